@@ -1,0 +1,47 @@
+// What a renderer returns: the AOV image of DESIGN.md plus the facts the JSON beside it
+// records (settings, device, counters, stage timings).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace twinrender::core {
+
+// The AOV channels in file order, and their background values.
+namespace aov {
+inline const std::vector<std::string>& channelNames() {
+    static const std::vector<std::string> names = {
+        "R",   "G",    "B",    "A",          "Z",          "N.X",        "N.Y",   "N.Z",
+        "uv.U", "uv.V", "id", "emission.R", "emission.G", "emission.B", "shadow"};
+    return names;
+}
+// An image with every AOV channel set to its background (Z = +inf, id = -1, others 0).
+Image makeImage(int width, int height);
+}  // namespace aov
+
+struct Frame {
+    Image image;                              // the AOV image
+    std::string renderer;                     // "raymarch" or "realtime"
+    std::string device;                       // GL_RENDERER, or the CPU model and thread count
+    nlohmann::json settings;                  // every setting used, by dotted key
+    std::map<std::string, double> counters;   // e.g. "unbracketed_rays"
+    // "total" (the render, without process start and file I/O) and one entry per stage.
+    std::map<std::string, double> timingsMs;
+    std::size_t particleCount = 0;
+};
+
+// The tonemapped sRGB beauty (R, G, B in [0, 1]) a person looks at.
+Image tonemappedBeauty(const Image& aovImage, float exposure);
+
+// Writes DIR/NAME.exr (all AOV channels, linear), DIR/NAME.png (display: the frame's
+// `display` image when given, else the tonemapped beauty) and DIR/NAME.json; each file
+// atomically. `extra` is merged into the JSON (scene name, resolution, ...).
+void writeFrame(const Frame& frame, const Image& display, const std::filesystem::path& dir,
+                const std::string& name, const nlohmann::json& extra);
+
+}  // namespace twinrender::core

@@ -1,0 +1,58 @@
+// The particles of a scene and their derived attributes, computed once in core/ and shared
+// by both renderers (DESIGN.md, "The two renderers"). Structure of arrays, float32: what a
+// GPU buffer and Embree want.
+#pragma once
+
+#include <cstdint>
+#include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <string>
+#include <vector>
+
+namespace twinrender::core {
+
+struct Scene;
+
+struct ParticleSet {
+    std::vector<glm::vec3> position;    // scene units
+    std::vector<float> h;               // smoothing length, scene units, > 0
+    // Colour-field volume v = m/rho, capped at 0.1 (4/3) pi h^3 (sph_kernel.h), or that cap
+    // when mass or density are unknown; generated particles: min(spacing^3, cap).
+    std::vector<float> volume;
+    std::vector<std::uint32_t> body;      // index into SceneParticles::bodies
+    std::vector<std::uint32_t> material;  // index into Scene::materials
+    std::vector<glm::vec2> uv;            // texture coordinates, u in [0,1) wraps, v in [0,1]
+    std::vector<glm::vec3> dudx;          // gradient of u with respect to position, 1/scene unit
+    std::vector<glm::vec3> dvdx;          // gradient of v with respect to position, 1/scene unit
+    std::vector<glm::vec3> normal;        // unit, outward: -grad(colour field) normalised
+    std::vector<float> temperature;       // kelvin
+    std::vector<glm::vec3> glow;          // blackbody emitted radiance from temperature, linear RGB
+
+    std::size_t size() const { return position.size(); }
+    // Resizes every attribute to n.
+    void resize(std::size_t n);
+};
+
+struct BodyInfo {
+    std::string name;
+    std::uint32_t material = 0;
+    glm::dvec3 center{0.0};         // origin of the body's uv frame, scene units
+    glm::dmat3 frame{1.0};          // columns: local x, y, z (z = the uv pole axis)
+    std::size_t begin = 0;          // particle range [begin, end) in the ParticleSet
+    std::size_t end = 0;
+    double meanH = 0.0;             // scene units
+};
+
+struct SceneParticles {
+    ParticleSet particles;
+    std::vector<BodyInfo> bodies;
+    glm::dvec3 boundsMin{0.0};      // of the support spheres (position +- 2h)
+    glm::dvec3 boundsMax{0.0};
+};
+
+// Generates or reads every body of the scene and derives the shared attributes.
+// Deterministic: the same scene gives the same particles on any thread count.
+SceneParticles buildParticles(const Scene& scene);
+
+}  // namespace twinrender::core

@@ -1,0 +1,101 @@
+// The scene model (../shared/SCENES.md) and its parser. A scene is one TOML file; every key
+// is read in exactly one place (scene.cpp) and any unknown key is an error naming the file,
+// line and key. Renderer sections ([realtime], [raymarch]) stay as parameter tables: each
+// renderer parses its own settings from them and reports the keys it did not read.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/parameters.h"
+
+namespace twinrender::core {
+
+struct CameraSettings {
+    glm::dvec3 position{0.0, -6.0, 1.5};  // scene units
+    glm::dvec3 target{0.0, 0.0, 0.0};     // scene units
+    glm::dvec3 up{0.0, 0.0, 1.0};         // need not be orthogonal to the view direction
+    double fovYDeg = 40.0;                // vertical field of view, degrees, (0, 179]
+    double near = 0.05;                   // scene units, > 0
+    double far = 100.0;                   // scene units, > near
+    int width = 640;                      // pixels, 1..16384
+    int height = 360;                     // pixels, 1..16384
+    double exposure = 1.0;                // multiplies radiance before the tonemapper, > 0
+};
+
+struct LightSettings {
+    glm::dvec3 direction{-1.0, 0.4, -0.3};  // unit after parsing; the way light travels
+    double intensity = 3.0;                 // irradiance scale, >= 0
+    glm::dvec3 color{1.0, 1.0, 1.0};        // linear RGB, >= 0
+    double ambient = 0.03;                  // ambient fraction of the diffuse albedo, >= 0
+};
+
+// Where a texture comes from: a constant colour, a named procedural, or an image file.
+struct TextureSource {
+    enum class Kind { Constant, Procedural, File };
+    Kind kind = Kind::Constant;
+    glm::dvec3 value{0.0};            // Constant: linear RGB
+    std::string procedural;           // Procedural: the name after "procedural:"
+    std::filesystem::path path;       // File: absolute (resolved against the scene file)
+    std::string where;                // "file:line:col: key 'materials[earth].diffuse'"
+};
+
+struct MaterialDesc {
+    std::string name;
+    TextureSource diffuse;      // albedo, linear RGB
+    TextureSource specular;     // specular colour, linear RGB
+    TextureSource emission;     // emitted radiance, linear RGB
+    TextureSource cityLights;   // emitted radiance on the night side only
+    double shininess = 32.0;    // Blinn-Phong exponent, [1, 10000]
+};
+
+enum class Shape { Ball, Shell, Ring, File };
+enum class Lattice { Hcp, Cubic, Random };
+
+struct BodyDesc {
+    std::string name;
+    Shape shape = Shape::Ball;
+    glm::dvec3 center{0.0};           // scene units
+    double radius = 1.0;              // ball/shell: outer radius, scene units
+    glm::dvec3 normal{0.0, 0.0, 1.0}; // ring: plane normal; all shapes: the uv pole axis
+    double innerRadius = 0.0;         // ring: scene units
+    double outerRadius = 0.0;         // ring: scene units
+    double thickness = 0.0;           // ring: full thickness; shell: wall thickness
+    std::int64_t particles = 1000;    // approximate count for generators, >= 1
+    Lattice lattice = Lattice::Hcp;
+    std::uint64_t seed = 1;
+    std::string material;             // a name from [[materials]]
+    std::uint32_t materialIndex = 0;  // resolved index into Scene::materials
+    double temperature = 0.0;         // kelvin, >= 0; overridden by a file's column
+    std::optional<double> smoothing;  // h in scene units; default 1.3 x lattice spacing
+    std::filesystem::path path;       // file: absolute path of the particle file
+    double scale = 1.0;               // file: multiplies positions and smoothing lengths
+    std::string where;                // "file:line" of the [[bodies]] entry, for messages
+};
+
+struct Scene {
+    std::string name;                 // default: the file's stem
+    std::string description;
+    std::filesystem::path file;       // the scene file (absolute)
+    CameraSettings camera;
+    LightSettings light;
+    std::vector<MaterialDesc> materials;
+    std::vector<BodyDesc> bodies;
+    ParameterTable realtime;          // [realtime], parsed by realtime/
+    ParameterTable raymarch;          // [raymarch], parsed by raymarch/
+    ParameterTable compare;           // [compare], parsed by compare/
+};
+
+// Loads a scene file. `overrides` are "KEY=VALUE" strings with the scene's dotted keys
+// (camera.width=160, realtime.ssss.enabled=false, bodies.planet.particles=5000); VALUE is
+// read as TOML, or as a plain string when it is not valid TOML. Throws InputError with the
+// file, line and key for syntax errors, unknown keys, wrong types, missing required keys,
+// unknown materials and out-of-range values.
+Scene loadScene(const std::filesystem::path& file, std::span<const std::string> overrides = {});
+
+}  // namespace twinrender::core
