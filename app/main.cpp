@@ -1,0 +1,97 @@
+// twinrender: renders a particle scene with a real-time renderer and a reference raymarcher
+// and measures how far the first is from the second. Exit codes (DESIGN.md): 0 pass,
+// 1 warn, 2 fail, 3 images not comparable, 4 bad input or environment.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fmt/format.h>
+#include <memory>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include "app/render_job.h"
+#include "core/error.h"
+
+namespace tr = twinrender;
+
+namespace {
+
+constexpr int EXIT_NOT_COMPARABLE = 3;
+constexpr int EXIT_BAD_INPUT = 4;
+
+struct CommonOptions {
+    std::vector<std::string> sets;
+    int threads = 0;  // 0: every core
+    std::string out = "out";
+};
+
+void addCommon(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--set", o.sets, "KEY=VALUE with the scene's dotted keys (repeatable)")
+        ->type_name("KEY=VALUE");
+    cmd->add_option("--threads", o.threads, "worker threads (default: every core)")
+        ->check(CLI::Range(0, 1024));
+    cmd->add_option("--out", o.out, "output folder")->capture_default_str();
+}
+
+int runRender(const std::string& scenePath, const std::string& renderer, const CommonOptions& o) {
+    const bool tty = isatty(STDERR_FILENO);
+    auto loaded = tr::app::loadScene(scenePath, o.sets);
+    const std::filesystem::path dir = std::filesystem::path(o.out) / loaded.scene.name;
+    if (renderer == "raymarch" || renderer == "both") {
+        tr::raymarch::EmbreeDevice device;
+        const tr::core::Frame frame = tr::app::renderRaymarch(device, loaded, tty);
+        tr::app::writeRender(loaded, frame, dir);
+        std::printf("%s: raymarch %dx%d, %zu particles, %.1f ms -> %s\n", loaded.scene.name.c_str(),
+                    frame.image.width(), frame.image.height(), frame.particleCount,
+                    frame.timingsMs.at("total"), (dir / "raymarch.exr").c_str());
+        if (frame.counters.at("unbracketed_rays") > 0)
+            std::printf("%s: %.0f rays could not be resolved (counted in raymarch.json)\n",
+                        loaded.scene.name.c_str(), frame.counters.at("unbracketed_rays"));
+    }
+    if (renderer == "realtime" || renderer == "both")
+        throw tr::core::InputError("the real-time renderer is not part of this build");
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"twinrender: a real-time particle renderer measured against an exact reference"};
+    app.require_subcommand(1);
+
+    CommonOptions renderOpts;
+    std::string scenePath, rendererName = "both";
+    auto* render = app.add_subcommand("render", "render one scene");
+    render->add_option("SCENE", scenePath, "scene file (.toml)")->required();
+    render->add_option("--renderer", rendererName, "realtime | raymarch | both")
+        ->check(CLI::IsMember({"realtime", "raymarch", "both"}))
+        ->capture_default_str();
+    addCommon(render, renderOpts);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int rc = app.exit(e);
+        return rc == 0 ? 0 : EXIT_BAD_INPUT;
+    }
+
+    try {
+        const int threads = renderOpts.threads > 0 ? renderOpts.threads
+                                                   : tbb::this_task_arena::max_concurrency();
+        tbb::task_arena arena(threads);
+        int rc = 0;
+        arena.execute([&] {
+            if (*render) rc = runRender(scenePath, rendererName, renderOpts);
+        });
+        return rc;
+    } catch (const tr::core::InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return EXIT_BAD_INPUT;
+    } catch (const tr::core::NotComparableError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return EXIT_NOT_COMPARABLE;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return EXIT_BAD_INPUT;
+    }
+}

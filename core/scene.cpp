@@ -1,0 +1,414 @@
+#include "core/scene.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <map>
+#include <set>
+#include <toml++/toml.h>
+
+#include "core/error.h"
+
+namespace twinrender::core {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string whereOf(const std::string& file, const toml::node& node, const std::string& fullKey,
+                    const std::map<std::string, std::string>& overrides) {
+    auto it = overrides.find(fullKey);
+    if (it != overrides.end()) return "--set " + it->second;
+    const auto& src = node.source();
+    if (src.begin.line == 0) return file;
+    return fmt::format("{}:{}:{}", file, src.begin.line, src.begin.column);
+}
+
+// Flattens a TOML table into dotted keys. `fullPrefix` is the key path from the document
+// root, for locating --set overrides and for messages.
+void flatten(const toml::table& table, const std::string& prefix, const std::string& fullPrefix,
+             const std::string& file, const std::map<std::string, std::string>& overrides,
+             ParameterTable& out) {
+    for (const auto& [k, node] : table) {
+        const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+        const std::string full = fullPrefix.empty() ? key : fullPrefix + "." + key;
+        const std::string where = whereOf(file, node, full, overrides);
+        if (const auto* t = node.as_table()) {
+            flatten(*t, key, fullPrefix, file, overrides, out);
+        } else if (const auto* a = node.as_array()) {
+            std::vector<double> values;
+            for (const auto& e : *a) {
+                if (auto d = e.value<double>()) values.push_back(*d);
+                else
+                    throw InputError(fmt::format("{}: key '{}' must be an array of numbers", where, full));
+            }
+            out.set(key, std::move(values), where);
+        } else if (auto b = node.value_exact<bool>()) {
+            out.set(key, *b, where);
+        } else if (auto i = node.value_exact<std::int64_t>()) {
+            out.set(key, *i, where);
+        } else if (auto d = node.value_exact<double>()) {
+            out.set(key, *d, where);
+        } else if (auto s = node.value_exact<std::string>()) {
+            out.set(key, *s, where);
+        } else {
+            throw InputError(fmt::format("{}: key '{}' has a type scenes do not use (dates and "
+                                         "times); use a number, string, boolean or array",
+                                         where, full));
+        }
+    }
+}
+
+std::vector<std::string> splitDots(const std::string& key) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (;;) {
+        std::size_t dot = key.find('.', start);
+        parts.push_back(key.substr(start, dot - start));
+        if (dot == std::string::npos) break;
+        start = dot + 1;
+    }
+    return parts;
+}
+
+// Stores VALUE under `key` in `table`, read as a TOML value; a bare word that is not TOML
+// ("log") is stored as a string.
+void assignOverrideValue(toml::table& table, const std::string& key, const std::string& value) {
+    try {
+        toml::table parsed = toml::parse("v = " + value);
+        if (auto* n = parsed.get("v")) {
+            n->visit([&](auto& x) { table.insert_or_assign(key, std::move(x)); });
+            return;
+        }
+    } catch (const toml::parse_error&) {
+    }
+    table.insert_or_assign(key, value);
+}
+
+// Applies one --set KEY=VALUE to the document. bodies.NAME.key and materials.NAME.key address
+// the array entry by name (or by index).
+void applyOverride(toml::table& root, const std::string& assignment, const std::string& file,
+                   std::map<std::string, std::string>& located) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw InputError(fmt::format("--set {}: expected KEY=VALUE (e.g. camera.width=160)", assignment));
+    const std::string key = assignment.substr(0, eq);
+    const std::string value = assignment.substr(eq + 1);
+    std::vector<std::string> parts = splitDots(key);
+    toml::table* table = &root;
+    std::size_t i = 0;
+    std::string locatedKey;
+    if ((parts[0] == "bodies" || parts[0] == "materials") && parts.size() >= 3) {
+        auto* arr = root[parts[0]].as_array();
+        toml::table* found = nullptr;
+        std::size_t index = 0;
+        if (arr)
+            for (auto& e : *arr) {
+                auto* t = e.as_table();
+                const auto* name = t ? t->get_as<std::string>("name") : nullptr;
+                if (t && ((name && name->get() == parts[1]) || std::to_string(index) == parts[1]))
+                    found = t;
+                ++index;
+            }
+        if (!found)
+            throw InputError(fmt::format("--set {}: {} has no entry named '{}' in {}", assignment,
+                                         parts[0], parts[1], file));
+        table = found;
+        i = 2;
+        locatedKey = parts[0] + "." + parts[1];
+    }
+    for (; i + 1 < parts.size(); ++i) {
+        auto* next = table->get(parts[i]);
+        if (!next) {
+            table->insert(parts[i], toml::table{});
+            next = table->get(parts[i]);
+        }
+        if (!next->is_table())
+            throw InputError(fmt::format("--set {}: '{}' is not a table in {}", assignment, parts[i], file));
+        table = next->as_table();
+    }
+    assignOverrideValue(*table, parts.back(), value);
+    located[key] = assignment;
+}
+
+TextureSource parseTexture(const ParameterTable& t, std::string_view key, TextureSource fallback,
+                           const fs::path& dir) {
+    const ParameterTable::Entry* e = t.find(key);
+    if (!e) return fallback;
+    TextureSource src;
+    src.where = t.describe(key);
+    if (auto* d = std::get_if<double>(&e->value)) src.value = glm::dvec3(*d);
+    else if (auto* i = std::get_if<std::int64_t>(&e->value)) src.value = glm::dvec3(double(*i));
+    else if (auto* a = std::get_if<std::vector<double>>(&e->value)) {
+        if (a->size() != 3)
+            throw InputError(fmt::format("{} must be [r, g, b], a number, \"procedural:NAME\" or an "
+                                         "image path", src.where));
+        src.value = glm::dvec3((*a)[0], (*a)[1], (*a)[2]);
+    } else if (auto* s = std::get_if<std::string>(&e->value)) {
+        const std::string prefix = "procedural:";
+        if (s->rfind(prefix, 0) == 0) {
+            src.kind = TextureSource::Kind::Procedural;
+            src.procedural = s->substr(prefix.size());
+        } else {
+            src.kind = TextureSource::Kind::File;
+            src.path = fs::absolute(dir / *s).lexically_normal();
+            if (!fs::is_regular_file(src.path))
+                throw InputError(fmt::format("{}: texture file {} does not exist; give a path "
+                                             "relative to the scene file",
+                                             src.where, src.path.string()));
+        }
+        return src;
+    } else {
+        throw InputError(fmt::format("{} must be [r, g, b], a number, \"procedural:NAME\" or an "
+                                     "image path", src.where));
+    }
+    if (src.kind == TextureSource::Kind::Constant)
+        for (int c = 0; c < 3; ++c)
+            if (!(src.value[c] >= 0.0 && std::isfinite(src.value[c])))
+                throw InputError(fmt::format("{}: colour components must be finite and >= 0", src.where));
+    return src;
+}
+
+glm::dvec3 unitVec3(const ParameterTable& t, std::string_view key, glm::dvec3 fallback) {
+    glm::dvec3 v = t.getVec3(key, fallback);
+    const double len = glm::length(v);
+    if (!(len > 1e-12)) throw InputError(fmt::format("{} must be a non-zero vector", t.describe(key)));
+    return v / len;
+}
+
+TextureSource constantTexture(double v) {
+    TextureSource s;
+    s.value = glm::dvec3(v);
+    return s;
+}
+
+MaterialDesc parseMaterial(const ParameterTable& t, const fs::path& dir) {
+    MaterialDesc m;
+    m.name = std::get<std::string>(t.require("name").value);
+    m.diffuse = parseTexture(t, "diffuse", constantTexture(0.8), dir);
+    m.specular = parseTexture(t, "specular", constantTexture(0.0), dir);
+    m.emission = parseTexture(t, "emission", constantTexture(0.0), dir);
+    m.cityLights = parseTexture(t, "city_lights", constantTexture(0.0), dir);
+    m.shininess = t.getDouble("shininess", 32.0, 1.0, 10000.0);
+    return m;
+}
+
+BodyDesc parseBody(const ParameterTable& t, const fs::path& dir, const std::vector<MaterialDesc>& mats,
+                   std::size_t index) {
+    BodyDesc b;
+    b.where = t.file();
+    b.name = t.getString("name", fmt::format("body{}", index));
+    const std::string shape = t.getEnum("shape", "ball", {"ball", "shell", "ring", "file"});
+    b.center = t.getVec3("center", glm::dvec3(0.0));
+    b.material = t.getString("material", mats.empty() ? "" : mats.front().name);
+    if (t.has("material") || !mats.empty()) {
+        bool found = false;
+        for (std::size_t m = 0; m < mats.size(); ++m)
+            if (mats[m].name == b.material) {
+                b.materialIndex = static_cast<std::uint32_t>(m);
+                found = true;
+            }
+        if (!found) {
+            std::string names;
+            for (const auto& m : mats) names += (names.empty() ? "" : ", ") + m.name;
+            throw InputError(fmt::format("{} names material '{}', which no [[materials]] entry "
+                                         "defines (defined: {})",
+                                         t.describe("material"), b.material,
+                                         names.empty() ? "none" : names));
+        }
+    }
+    b.temperature = t.getDouble("temperature", 0.0, 0.0, 1e6);
+    b.normal = unitVec3(t, "normal", glm::dvec3(0.0, 0.0, 1.0));
+    if (auto s = t.findDouble("smoothing")) {
+        if (!(*s > 0.0 && std::isfinite(*s)))
+            throw InputError(fmt::format("{} must be > 0", t.describe("smoothing")));
+        b.smoothing = *s;
+    }
+    const double big = 1e15;
+    if (shape == "file") {
+        b.shape = Shape::File;
+        const auto& p = t.require("path");
+        auto* s = std::get_if<std::string>(&p.value);
+        if (!s) throw InputError(fmt::format("{} must be a string", t.describe("path")));
+        b.path = fs::absolute(dir / *s).lexically_normal();
+        if (!fs::is_regular_file(b.path))
+            throw InputError(fmt::format("{}: particle file {} does not exist; paths are relative "
+                                         "to the scene file",
+                                         t.describe("path"), b.path.string()));
+        b.scale = t.getDouble("scale", 1.0, 1e-30, 1e30);
+        if (!(b.scale > 0.0)) throw InputError(fmt::format("{} must be > 0", t.describe("scale")));
+    } else {
+        b.particles = t.getInt("particles", 1000, 1, 50'000'000);
+        b.lattice = [&] {
+            std::string l = t.getEnum("lattice", "hcp", {"hcp", "cubic", "random"});
+            return l == "hcp" ? Lattice::Hcp : l == "cubic" ? Lattice::Cubic : Lattice::Random;
+        }();
+        b.seed = static_cast<std::uint64_t>(t.getInt("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+        if (shape == "ring") {
+            b.shape = Shape::Ring;
+            b.innerRadius = t.getDouble("inner_radius", 0.0, 0.0, big);
+            t.require("outer_radius");
+            b.outerRadius = t.getDouble("outer_radius", 0.0, 0.0, big);
+            b.thickness = t.getDouble("thickness", 0.0, 0.0, big);
+            if (!(b.outerRadius > b.innerRadius))
+                throw InputError(fmt::format("{} must be larger than inner_radius",
+                                             t.describe("outer_radius")));
+            if (!(b.thickness > 0.0))
+                throw InputError(fmt::format("{}: a ring needs thickness > 0", t.describe("thickness")));
+        } else {
+            b.shape = shape == "ball" ? Shape::Ball : Shape::Shell;
+            b.radius = t.getDouble("radius", 1.0, 0.0, big);
+            if (!(b.radius > 0.0)) throw InputError(fmt::format("{} must be > 0", t.describe("radius")));
+            if (b.shape == Shape::Shell) {
+                b.thickness = t.getDouble("thickness", 0.1 * b.radius, 0.0, b.radius);
+                if (!(b.thickness > 0.0))
+                    throw InputError(fmt::format("{}: a shell needs thickness > 0", t.describe("thickness")));
+            }
+        }
+    }
+    return b;
+}
+
+}  // namespace
+
+Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
+    const fs::path file = fs::absolute(path).lexically_normal();
+    const std::string fileName = path.string();
+    if (!fs::is_regular_file(file))
+        throw InputError(fmt::format("{}: scene file not found; give the path of a .toml scene", fileName));
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", fileName, e.source().begin.line,
+                                     e.source().begin.column, e.description()));
+    }
+    std::map<std::string, std::string> located;
+    for (const auto& o : overrides) applyOverride(root, o, fileName, located);
+
+    Scene scene;
+    scene.file = file;
+    const fs::path dir = file.parent_path();
+
+    // Top-level scalars and sections.
+    ParameterTable top("", fileName);
+    std::vector<std::pair<std::string, const toml::array*>> arrays;
+    for (const auto& [k, node] : root) {
+        const std::string key(k.str());
+        if (key == "materials" || key == "bodies") {
+            const auto* a = node.as_array();
+            if (!a || !a->is_array_of_tables())
+                throw InputError(fmt::format("{}: '{}' must be an array of tables ([[{}]])",
+                                             whereOf(fileName, node, key, located), key, key));
+            arrays.emplace_back(key, a);
+            continue;
+        }
+        if (!node.is_table()) {
+            toml::table one;
+            one.insert(k, node);
+            flatten(one, "", "", fileName, located, top);
+        }
+    }
+    scene.name = top.getString("name", file.stem().string());
+    scene.description = top.getString("description", "");
+    top.checkAllRead();
+
+    auto section = [&](const std::string& name) {
+        ParameterTable t(name, fileName);
+        for (const auto& [k, node] : root) {
+            if (std::string(k.str()) != name) continue;
+            if (!node.is_table())
+                throw InputError(fmt::format("{}: '{}' must be a table ([{}])",
+                                             whereOf(fileName, node, name, located), name, name));
+            flatten(*node.as_table(), "", name, fileName, located, t);
+        }
+        return t;
+    };
+    std::set<std::string> known = {"name", "description", "camera", "light", "materials", "bodies",
+                                   "realtime", "raymarch", "compare"};
+    for (const auto& [k, node] : root)
+        if (node.is_table() && !known.count(std::string(k.str())))
+            throw InputError(fmt::format("{}: unknown table '[{}]'; scene files have [camera], "
+                                         "[light], [[materials]], [[bodies]], [realtime], "
+                                         "[raymarch] and [compare]",
+                                         whereOf(fileName, node, std::string(k.str()), located), k.str()));
+
+    {
+        ParameterTable t = section("camera");
+        CameraSettings& c = scene.camera;
+        c.position = t.getVec3("position", c.position);
+        c.target = t.getVec3("target", c.target);
+        c.up = unitVec3(t, "up", c.up);
+        c.fovYDeg = t.getDouble("fov_y_deg", c.fovYDeg, 1e-6, 179.0);
+        c.near = t.getDouble("near", c.near, 1e-30, 1e30);
+        c.far = t.getDouble("far", c.far, 1e-30, 1e38);
+        c.width = static_cast<int>(t.getInt("width", c.width, 1, 16384));
+        c.height = static_cast<int>(t.getInt("height", c.height, 1, 16384));
+        c.exposure = t.getDouble("exposure", c.exposure, 1e-6, 1e6);
+        if (!(c.near > 0.0 && c.far > c.near))
+            throw InputError(fmt::format("{}: camera needs 0 < near < far (near = {}, far = {})",
+                                         t.describe("far"), c.near, c.far));
+        if (static_cast<double>(c.width) * c.height > 64.0 * 1024 * 1024)
+            throw InputError(fmt::format("{}: {}x{} pixels is more than the 64 Mpixel limit; use a "
+                                         "smaller resolution",
+                                         t.describe("width"), c.width, c.height));
+        const glm::dvec3 view = c.target - c.position;
+        if (!(glm::length(view) > 0.0))
+            throw InputError(fmt::format("{}: camera position and target coincide", t.describe("target")));
+        if (glm::length(glm::cross(view / glm::length(view), c.up)) < 1e-6)
+            throw InputError(fmt::format("{}: 'up' is parallel to the view direction", t.describe("up")));
+        t.checkAllRead();
+    }
+    {
+        ParameterTable t = section("light");
+        LightSettings& l = scene.light;
+        l.direction = unitVec3(t, "direction", l.direction);
+        l.intensity = t.getDouble("intensity", l.intensity, 0.0, 1e9);
+        l.color = t.getVec3("color", l.color);
+        l.ambient = t.getDouble("ambient", l.ambient, 0.0, 1e9);
+        for (int c = 0; c < 3; ++c)
+            if (!(l.color[c] >= 0.0))
+                throw InputError(fmt::format("{} must be >= 0", t.describe("color")));
+        t.checkAllRead();
+    }
+    for (const auto& [key, arr] : arrays) {
+        if (key != "materials") continue;
+        std::size_t i = 0;
+        for (const auto& node : *arr) {
+            ParameterTable t(fmt::format("materials[{}]", i), whereOf(fileName, node, key, located));
+            flatten(*node.as_table(), "", fmt::format("materials.{}", i), fileName, located, t);
+            scene.materials.push_back(parseMaterial(t, dir));
+            t.checkAllRead();
+            for (std::size_t j = 0; j + 1 < scene.materials.size(); ++j)
+                if (scene.materials[j].name == scene.materials.back().name)
+                    throw InputError(fmt::format("{}: material name '{}' is used twice", t.file(),
+                                                 scene.materials.back().name));
+            ++i;
+        }
+    }
+    if (scene.materials.empty()) {
+        MaterialDesc m;
+        m.name = "default";
+        m.diffuse = constantTexture(0.8);
+        m.specular = m.emission = m.cityLights = constantTexture(0.0);
+        scene.materials.push_back(m);
+    }
+    for (const auto& [key, arr] : arrays) {
+        if (key != "bodies") continue;
+        std::size_t i = 0;
+        for (const auto& node : *arr) {
+            ParameterTable t(fmt::format("bodies[{}]", i), whereOf(fileName, node, key, located));
+            flatten(*node.as_table(), "", fmt::format("bodies.{}", i), fileName, located, t);
+            scene.bodies.push_back(parseBody(t, dir, scene.materials, i));
+            t.checkAllRead();
+            ++i;
+        }
+    }
+    if (scene.bodies.empty())
+        throw InputError(fmt::format("{}: the scene has no [[bodies]]; add at least one", fileName));
+    scene.realtime = section("realtime");
+    scene.raymarch = section("raymarch");
+    scene.compare = section("compare");
+    return scene;
+}
+
+}  // namespace twinrender::core

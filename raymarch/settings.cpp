@@ -1,0 +1,29 @@
+#include "raymarch/settings.h"
+
+namespace twinrender::raymarch {
+
+Settings parseSettings(const core::ParameterTable& t) {
+    Settings s;
+    s.surfaceLevel = t.getDouble("surface_level", s.surfaceLevel, 1e-6, 10.0);
+    s.shadows = t.getBool("shadows", s.shadows);
+    s.spheres = t.getBool("spheres", s.spheres);
+    s.sphereRadius = t.getDouble("sphere_radius", s.sphereRadius, 1e-3, 2.0);
+    s.spp = static_cast<int>(t.getInt("spp", s.spp, 1, 1024));
+    s.rootTolerance = t.getDouble("root_tolerance", s.rootTolerance, 1e-8, 0.1);
+    s.segmentLength = t.getDouble("segment_length", s.segmentLength, 0.5, 64.0);
+    s.stepWindow = t.getDouble("step_window", s.stepWindow, 0.01, 4.0);
+    s.maxIterations = static_cast<int>(t.getInt("max_iterations", s.maxIterations, 8, 100000));
+    s.tileSize = static_cast<int>(t.getInt("tile_size", s.tileSize, 4, 256));
+    t.checkAllRead();
+    return s;
+}
+
+nlohmann::json toJson(const Settings& s) {
+    return {{"raymarch.surface_level", s.surfaceLevel},   {"raymarch.shadows", s.shadows},
+            {"raymarch.spheres", s.spheres},              {"raymarch.sphere_radius", s.sphereRadius},
+            {"raymarch.spp", s.spp},                      {"raymarch.root_tolerance", s.rootTolerance},
+            {"raymarch.segment_length", s.segmentLength}, {"raymarch.step_window", s.stepWindow},
+            {"raymarch.max_iterations", s.maxIterations}, {"raymarch.tile_size", s.tileSize}};
+}
+
+}  // namespace twinrender::raymarch
