@@ -1,0 +1,305 @@
+// The reference must be right before anything is compared to it: analytic cases.
+#include "raymarch/renderer.h"
+
+#include <gtest/gtest.h>
+#include <cmath>
+#include <numbers>
+#include <tbb/task_arena.h>
+
+#include "core/sph_kernel.h"
+#include "raymarch/implicit_field.h"
+
+namespace tr = twinrender;
+using tr::core::Image;
+
+namespace {
+
+// Radius r at which one particle's field v W(r, h) equals the level: bisection on the
+// monotone kernel, independent of the raymarcher's root finder.
+double singleParticleRadius(double v, double h, double level) {
+    double lo = 0.0, hi = 2.0 * h;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (v * tr::core::m4Kernel(mid, h) > level ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+struct TestScene {
+    tr::core::Scene scene;
+    tr::core::SceneParticles particles;
+    std::vector<tr::core::Material> materials;
+
+    TestScene() {
+        scene.name = "test";
+        scene.camera.width = 64;
+        scene.camera.height = 64;
+        scene.light.direction = {0.0, 0.0, -1.0};
+        tr::core::MaterialDesc m;
+        m.name = "white";
+        m.diffuse.value = glm::dvec3(0.8);
+        scene.materials.push_back(m);
+        materials = tr::core::loadMaterials(scene);
+    }
+
+    // Appends particles as one body (uv, normals and glow are not needed by these tests).
+    void addBody(const std::vector<glm::vec3>& positions, float h, float volume) {
+        auto& ps = particles.particles;
+        const std::size_t begin = ps.size();
+        ps.resize(begin + positions.size());
+        tr::core::BodyInfo body;
+        body.name = "body" + std::to_string(particles.bodies.size());
+        body.begin = begin;
+        body.end = ps.size();
+        body.meanH = h;
+        for (std::size_t i = 0; i < positions.size(); ++i) {
+            ps.position[begin + i] = positions[i];
+            ps.h[begin + i] = h;
+            ps.volume[begin + i] = volume;
+            ps.body[begin + i] = static_cast<std::uint32_t>(particles.bodies.size());
+            ps.normal[begin + i] = {0, 0, 1};
+            particles.boundsMin = glm::min(particles.boundsMin, glm::dvec3(positions[i]) - 2.0 * h);
+            particles.boundsMax = glm::max(particles.boundsMax, glm::dvec3(positions[i]) + 2.0 * h);
+        }
+        particles.bodies.push_back(body);
+    }
+};
+
+tr::core::Frame render(const TestScene& s, const tr::raymarch::Settings& settings, int threads = 2) {
+    tr::raymarch::EmbreeDevice device;
+    tr::core::Frame frame;
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        tr::raymarch::Renderer renderer(device, s.scene, s.particles, s.materials, settings);
+        frame = renderer.render();
+    });
+    return frame;
+}
+
+}  // namespace
+
+TEST(ImplicitField, SingleCandidateCrossingIsTheAnalyticRadius) {
+    const double h = 0.7, v = tr::core::maxParticleVolume(h);
+    const double level = 0.5 * v * tr::core::m4Kernel(0.0, h);  // a sphere of about 0.58 h
+    const double radius = singleParticleRadius(v, h, level);
+    const double origin[3] = {0.0, 0.0, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
+    tr::raymarch::Candidate c;
+    ASSERT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
+    tr::raymarch::CrossingSettings cs;
+    cs.level = level;
+    cs.tolerance = 1e-4 * h;
+    cs.maxStep = 0.5 * h;
+    const auto crossing = tr::raymarch::findFirstCrossing({c}, 0.0, 10.0, cs);
+    ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit);
+    EXPECT_NEAR(crossing.t, 5.0 - radius, 1e-4 * h);
+    EXPECT_LT(crossing.tBelow, 5.0 - radius);
+}
+
+TEST(ImplicitField, NeverStepsOverAThinBump) {
+    // A particle grazed by the ray: its field peaks just above the level over a short stretch.
+    const double h = 1.0, v = tr::core::maxParticleVolume(h);
+    const double d = 0.3;  // distance of the ray from the particle
+    const double peak = v * tr::core::m4Kernel(d, h);
+    tr::raymarch::CrossingSettings cs;
+    cs.level = peak * 0.9999;  // the crossing region is a few 1e-3 h long
+    cs.tolerance = 1e-6;
+    cs.maxStep = 0.5;
+    const double origin[3] = {0.0, d, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
+    tr::raymarch::Candidate c;
+    ASSERT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
+    const auto crossing = tr::raymarch::findFirstCrossing({c}, 0.0, 10.0, cs);
+    ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit);
+    EXPECT_LT(crossing.t, 5.0);
+    EXPECT_GT(crossing.t, 4.9);
+}
+
+TEST(ImplicitField, RemainingBoundIsAnUpperBound) {
+    const double h = 1.0, v = 1.0;
+    std::vector<tr::raymarch::Candidate> cands;
+    const double origin[3] = {0.0, 0.0, 0.0}, dir[3] = {1.0, 0.0, 0.0};
+    for (int i = 0; i < 6; ++i) {
+        const double center[3] = {0.7 * i, 0.4 * std::sin(i), 0.3 * std::cos(2.0 * i)};
+        tr::raymarch::Candidate c;
+        if (tr::raymarch::makeCandidate(origin, dir, center, h, v, i, c)) cands.push_back(c);
+    }
+    std::sort(cands.begin(), cands.end(), [](auto& a, auto& b) { return a.t0 < b.t0; });
+    for (double t = -2.0; t < 6.0; t += 0.25) {
+        const double bound = tr::raymarch::remainingBound(cands, t, 100.0);
+        for (double s = t; s < 7.0; s += 0.01)
+            ASSERT_LE(tr::raymarch::sampleField(cands, s, 0.0).value, bound + 1e-12) << t << " " << s;
+    }
+}
+
+TEST(Raymarch, OneParticleIsASphereOfTheAnalyticRadius) {
+    TestScene s;
+    const float h = 0.5f;
+    const float v = tr::core::maxParticleVolume(h);
+    s.addBody({glm::vec3(0.0f)}, h, v);
+    tr::raymarch::Settings settings;
+    settings.surfaceLevel = 0.6 * v * tr::core::m4Kernel(0.0, double(h));
+    settings.shadows = false;
+    const double radius = singleParticleRadius(v, h, settings.surfaceLevel);
+    s.scene.camera.position = {0.0, 0.0, 3.0};
+    s.scene.camera.target = {0.0, 0.0, 0.0};
+    s.scene.camera.up = {0.0, 1.0, 0.0};
+    s.scene.camera.fovYDeg = 20.0;
+    s.scene.camera.width = s.scene.camera.height = 64;
+    const auto frame = render(s, settings);
+    const Image& img = frame.image;
+    const int cZ = img.channelIndex("Z"), cN = img.channelIndex("N.X"), cA = img.channelIndex("A");
+    tr::core::Camera camera(s.scene.camera);
+    int covered = 0, expected = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const auto ray = camera.ray(x + 0.5, y + 0.5);
+            // Analytic ray-sphere intersection.
+            const double b = glm::dot(ray.origin, ray.direction);
+            const double c = glm::dot(ray.origin, ray.origin) - radius * radius;
+            const double disc = b * b - c;
+            const bool hits = disc > 0.0;
+            expected += hits;
+            covered += img.at(x, y, cA) > 0.5f;
+            if (!hits || disc < 1e-3) continue;  // skip the rim, where a pixel centre grazes
+            const double t = -b - std::sqrt(disc);
+            const glm::dvec3 p = ray.origin + t * ray.direction;
+            const double z = t * glm::dot(ray.direction, camera.forward());
+            EXPECT_NEAR(img.at(x, y, cZ), z, 1e-4 * h + 1e-6) << x << "," << y;
+            const glm::dvec3 n = glm::normalize(p);
+            const glm::dvec3 got(img.at(x, y, cN), img.at(x, y, cN + 1), img.at(x, y, cN + 2));
+            EXPECT_GT(glm::dot(n, got), std::cos(1e-3)) << x << "," << y;  // within 0.06 degrees
+        }
+    EXPECT_EQ(covered, expected);
+    EXPECT_EQ(frame.counters.at("unbracketed_rays"), 0.0);
+}
+
+TEST(Raymarch, LatticeHalfSpaceIsFlatAtTheComputedHeight) {
+    // A cubic lattice filling z <= 0 over a wide square: the surface above its middle is
+    // flat up to the lattice's own ripple. Its height is computed here by brute force: the
+    // field summed over every particle, bisected along the vertical line.
+    TestScene s;
+    const float spacing = 0.1f, h = 1.3f * spacing;
+    const float v = std::min(spacing * spacing * spacing, float(tr::core::maxParticleVolume(h)));
+    std::vector<glm::vec3> positions;
+    for (int i = -20; i <= 20; ++i)
+        for (int j = -20; j <= 20; ++j)
+            for (int k = 0; k < 6; ++k) positions.emplace_back(i * spacing, j * spacing, -k * spacing);
+    s.addBody(positions, h, v);
+    auto field = [&](glm::dvec3 p) {
+        double sum = 0.0;
+        for (const auto& x : positions) sum += v * tr::core::m4Kernel(glm::length(p - glm::dvec3(x)), double(h));
+        return sum;
+    };
+    tr::raymarch::Settings settings;
+    settings.shadows = false;
+    s.scene.camera.position = {0.0, 0.0, 2.0};
+    s.scene.camera.target = {0.0, 0.0, 0.0};
+    s.scene.camera.up = {0.0, 1.0, 0.0};
+    s.scene.camera.fovYDeg = 10.0;
+    s.scene.camera.width = s.scene.camera.height = 33;
+    const auto frame = render(s, settings);
+    tr::core::Camera camera(s.scene.camera);
+    const Image& img = frame.image;
+    for (auto [x, y] : {std::pair{16, 16}, std::pair{5, 9}, std::pair{27, 20}}) {
+        const auto ray = camera.ray(x + 0.5, y + 0.5);
+        // Bisect along the ray itself, so the comparison is point for point.
+        double lo = 0.0, hi = 2.05;  // z = -0.05: inside the top layers
+        ASSERT_GT(field(ray.origin + hi * ray.direction), settings.surfaceLevel);
+        for (int i = 0; i < 100; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (field(ray.origin + mid * ray.direction) < settings.surfaceLevel ? lo : hi) = mid;
+        }
+        const double z = lo * glm::dot(ray.direction, camera.forward());
+        EXPECT_NEAR(img.at(x, y, img.channelIndex("Z")), z, 1e-4 * h) << x << "," << y;
+        // The surface of a half-space faces up.
+        EXPECT_GT(img.at(x, y, img.channelIndex("N.Z")), 0.99f);
+    }
+    // The lattice surface lies 0.9 h to 1 h above the top layer (OpenSPH's level 0.13).
+    const double centreZ = 2.0 - img.at(16, 16, img.channelIndex("Z"));
+    EXPECT_GT(centreZ, 0.85 * h);
+    EXPECT_LT(centreZ, 1.0 * h);
+}
+
+TEST(Raymarch, SphereShadowOnAPlaneMatchesTheAnalyticOutline) {
+    // One particle (an exact sphere) above a lattice floor, lit at 37 degrees from the
+    // vertical: a floor point is in shadow exactly when the line from it toward the light
+    // passes within the sphere's radius of its centre.
+    TestScene s;
+    const float spacing = 0.1f, h = 1.3f * spacing;
+    const float v = std::min(spacing * spacing * spacing, float(tr::core::maxParticleVolume(h)));
+    std::vector<glm::vec3> floor;
+    for (int i = -25; i <= 25; ++i)
+        for (int j = -25; j <= 25; ++j)
+            for (int k = 0; k < 3; ++k) floor.emplace_back(i * spacing, j * spacing, -k * spacing);
+    s.addBody(floor, h, v);
+    // The ball's support (2 h = 0.8) stays clear of the floor's, so its surface is an exact
+    // sphere: its volume is chosen so that the field peaks at twice the level.
+    const float hBall = 0.4f;
+    tr::raymarch::Settings settings;
+    const float vBall = float(2.0 * settings.surfaceLevel / tr::core::m4Kernel(0.0, double(hBall)));
+    s.addBody({glm::vec3(0.0f, 0.0f, 1.0f)}, hBall, vBall);
+    const double radius = singleParticleRadius(vBall, hBall, settings.surfaceLevel);
+    ASSERT_GT(radius, 0.05);
+    s.scene.light.direction = {0.6, 0.0, -0.8};
+    const glm::dvec3 toLight(-0.6, 0.0, 0.8), centre(0.0, 0.0, 1.0);
+    s.scene.camera.position = {0.3, -0.01, 4.0};
+    s.scene.camera.target = {0.3, 0.0, 0.0};
+    s.scene.camera.up = {0.0, 1.0, 0.0};
+    s.scene.camera.fovYDeg = 25.0;
+    s.scene.camera.width = s.scene.camera.height = 64;
+    const auto frame = render(s, settings);
+    tr::core::Camera camera(s.scene.camera);
+    const Image& img = frame.image;
+    int checked = 0, wrong = 0, shadowed = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            if (img.at(x, y, img.channelIndex("id")) != 0.0f) continue;  // the floor only
+            const auto ray = camera.ray(x + 0.5, y + 0.5);
+            const double t = img.at(x, y, img.channelIndex("Z")) / glm::dot(ray.direction, camera.forward());
+            const glm::dvec3 p = ray.origin + t * ray.direction;
+            // Distance from the sphere's centre to the ray p + s toLight, s >= 0.
+            const double sc = std::max(0.0, glm::dot(centre - p, toLight));
+            const double r = glm::length(p + sc * toLight - centre);
+            // A pixel's footprint on the floor, stretched by the light's slant.
+            const double pixel = 2.0 * 2.0 * t * camera.tanHalfFovY() / 64.0;
+            if (std::abs(r - radius) < pixel) continue;  // the outline itself
+            const bool inShadow = img.at(x, y, img.channelIndex("shadow")) < 0.5f;
+            wrong += inShadow != (r < radius);
+            shadowed += inShadow;
+            ++checked;
+        }
+    EXPECT_GT(checked, 2000);
+    EXPECT_GT(shadowed, 50);
+    EXPECT_EQ(wrong, 0);
+}
+
+TEST(Raymarch, SameImageForAnyThreadCount) {
+    TestScene s;
+    std::vector<glm::vec3> positions;
+    std::uint32_t state = 12345;
+    auto next = [&] { state = state * 1664525u + 1013904223u; return (state >> 8) / 16777216.0f; };
+    for (int i = 0; i < 3000; ++i) {
+        glm::vec3 p(next() * 2 - 1, next() * 2 - 1, next() * 2 - 1);
+        if (glm::length(p) < 1.0f) positions.push_back(p);
+    }
+    s.addBody(positions, 0.15f, float(tr::core::maxParticleVolume(0.15)));
+    s.scene.camera.position = {0.3, -3.0, 1.0};
+    s.scene.camera.target = {0.0, 0.0, 0.0};
+    s.scene.camera.width = 48;
+    s.scene.camera.height = 40;
+    s.scene.light.direction = glm::normalize(glm::dvec3(-1.0, 0.5, -0.7));
+    tr::raymarch::Settings settings;
+    settings.spp = 4;
+    const auto one = render(s, settings, 1);
+    const auto two = render(s, settings, 2);
+    const auto twoAgain = render(s, settings, 2);
+    EXPECT_TRUE(one.image == two.image);
+    EXPECT_TRUE(two.image == twoAgain.image);
+    // Something was drawn, and shadows too.
+    double coverage = 0.0, lit = 0.0;
+    for (std::size_t p = 0; p < one.image.pixelCount(); ++p) {
+        coverage += one.image.at(p, one.image.channelIndex("A"));
+        lit += one.image.at(p, one.image.channelIndex("shadow"));
+    }
+    EXPECT_GT(coverage, 200.0);
+    EXPECT_LT(lit, coverage);
+}
