@@ -1,0 +1,143 @@
+// Bad input is rejected before any work starts: exit code 4, a message that names the file,
+// line or key, and no output file.
+#include <gtest/gtest.h>
+
+#include "tests/cli_harness.h"
+
+namespace tt = twinrender::test;
+
+namespace {
+
+// A small valid scene; each test breaks one thing in it.
+std::string sceneText(const std::string& cameraExtra = "", const std::string& bodyExtra = "",
+                      const std::string& materialExtra = "", const std::string& body = "") {
+    return "name = \"probe\"\n"
+           "[camera]\n"
+           "position = [0.0, -4.0, 0.0]\n"
+           "width = 32\n"
+           "height = 24\n" +
+           cameraExtra +
+           "\n[[materials]]\n"
+           "name = \"rock\"\n"
+           "diffuse = [0.5, 0.5, 0.5]\n" +
+           materialExtra +
+           "\n[[bodies]]\n" +
+           (body.empty() ? "name = \"ball\"\nshape = \"ball\"\nradius = 1.0\nparticles = 500\nmaterial = \"rock\"\n"
+                         : body) +
+           bodyExtra;
+}
+
+struct Rejected {
+    std::string output;
+    std::size_t filesWritten;
+};
+
+Rejected renderBroken(const std::string& name, const std::string& scene,
+                      const std::string& extraArgs = "") {
+    const auto dir = tt::freshDir(name);
+    tt::writeFile(dir / "scene.toml", scene);
+    const auto out = dir / "out";
+    const auto r = tt::runTwinrender("render " + (dir / "scene.toml").string() +
+                                     " --renderer raymarch --out " + out.string() + " " + extraArgs);
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    return {r.output, tt::countFiles(out)};
+}
+
+}  // namespace
+
+TEST(BadInput, UnknownKeyNamesFileLineAndKey) {
+    const auto r = renderBroken("unknown_key", sceneText("widht = 40\n"));
+    EXPECT_NE(r.output.find("scene.toml:6:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("camera.widht"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, WrongTypeNamesTheKey) {
+    const auto r = renderBroken("wrong_type", sceneText("fov_y_deg = \"wide\"\n"));
+    EXPECT_NE(r.output.find("camera.fov_y_deg"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("wrong type"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, UnknownMaterialIsNamed) {
+    const auto r = renderBroken(
+        "unknown_material",
+        sceneText("", "", "", "name = \"ball\"\nshape = \"ball\"\nparticles = 500\nmaterial = \"mud\"\n"));
+    EXPECT_NE(r.output.find("'mud'"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("rock"), std::string::npos) << r.output;  // lists what exists
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, NanAndNegativeSmoothingLengthInAFileNameTheLine) {
+    for (const std::string bad : {"nan", "-0.1"}) {
+        const auto dir = tt::freshDir("bad_h");
+        tt::writeFile(dir / "particles.csv", "x,y,z,h\n0,0,0,0.1\n0.1,0,0," + bad + "\n");
+        tt::writeFile(dir / "scene.toml",
+                      sceneText("", "", "",
+                                "name = \"cloud\"\nshape = \"file\"\npath = \"particles.csv\"\nmaterial = \"rock\"\n"));
+        const auto r = tt::runTwinrender("render " + (dir / "scene.toml").string() +
+                                         " --renderer raymarch --out " + (dir / "out").string());
+        EXPECT_EQ(r.exitCode, 4) << r.output;
+        EXPECT_NE(r.output.find("particles.csv:3"), std::string::npos) << r.output;
+        EXPECT_EQ(tt::countFiles(dir / "out"), 0u);
+    }
+}
+
+TEST(BadInput, TruncatedSsfNamesTheFile) {
+    const auto dir = tt::freshDir("truncated_ssf");
+    {
+        std::ifstream in(TWINRENDER_SOURCE_DIR "/../shared/data/opensph/ball.ssf", std::ios::binary);
+        ASSERT_TRUE(in) << "the shared OpenSPH file is missing";
+        std::string bytes(200000, '\0');
+        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        std::ofstream(dir / "cut.ssf", std::ios::binary).write(bytes.data(), in.gcount());
+    }
+    tt::writeFile(dir / "scene.toml",
+                  sceneText("", "", "", "name = \"ball\"\nshape = \"file\"\npath = \"cut.ssf\"\nmaterial = \"rock\"\n"));
+    const auto r = tt::runTwinrender("render " + (dir / "scene.toml").string() +
+                                     " --renderer raymarch --out " + (dir / "out").string());
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_NE(r.output.find("cut.ssf"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
+    EXPECT_EQ(tt::countFiles(dir / "out"), 0u);
+}
+
+TEST(BadInput, MissingTextureNamesTheFileAndKey) {
+    const auto r = renderBroken("missing_texture", sceneText("", "", "specular = \"shiny.png\"\n"));
+    EXPECT_NE(r.output.find("shiny.png"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("materials[0].specular"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, UnknownProceduralIsNamed) {
+    const auto r = renderBroken("unknown_procedural", sceneText("", "", "emission = \"procedural:plasma\"\n"));
+    EXPECT_NE(r.output.find("plasma"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, TomlSyntaxErrorNamesTheLine) {
+    const auto r = renderBroken("syntax", "name = \"x\"\n[camera\nwidth = 3\n");
+    EXPECT_NE(r.output.find("scene.toml:2"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("syntax"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, AbsurdResolutionIsRejected) {
+    const auto r = renderBroken("resolution", sceneText("", "", "", ""), "--set camera.width=1000000");
+    EXPECT_NE(r.output.find("camera.width"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("out of range"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, UnknownOverrideKeyIsNamed) {
+    const auto r = renderBroken("unknown_set", sceneText(), "--set raymarch.surface_levle=0.2");
+    EXPECT_NE(r.output.find("raymarch.surface_levle"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--set"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, MissingSceneFile) {
+    const auto r = tt::runTwinrender("render /nonexistent/scene.toml --renderer raymarch");
+    EXPECT_EQ(r.exitCode, 4);
+    EXPECT_NE(r.output.find("/nonexistent/scene.toml"), std::string::npos) << r.output;
+}
