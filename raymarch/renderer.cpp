@@ -15,6 +15,7 @@
 
 #include "core/shading.h"
 #include "core/sph_kernel.h"
+#include "raymarch/bundle_gather.h"
 #include "raymarch/implicit_field.h"
 #include "raymarch/sphere_scene.h"
 
@@ -42,8 +43,11 @@ std::string cpuName() {
 // Per-thread scratch memory: nothing is allocated in the hot loop once it has grown.
 struct Scratch {
     std::vector<std::uint32_t> prims;
+    std::vector<BundleHit> bundleHits;
+    // Per ray of a block: the particles whose support contains the hit's outside point, the
+    // spheres its shadow ray starts inside of.
+    std::vector<std::uint32_t> carryPrims[RayBundle::MAX_RAYS];
     std::vector<Candidate> candidates;
-    std::vector<Candidate> carry;
     std::vector<std::uint32_t> stamp;  // per particle: the last gather that saw it
     std::uint32_t stampId = 0;
     // Counters, summed at the end.
@@ -80,6 +84,8 @@ struct Renderer::Impl {
     core::Camera camera;
     std::unique_ptr<SphereScene> support;  // spheres of radius 2h (implicit surface)
     std::unique_ptr<SphereScene> spheres;  // plain spheres (spheres mode)
+    std::unique_ptr<BundleGather> bundles; // support spheres grown by the pixel-block margin
+    std::vector<float> supportRadius, bundleMargin;
     std::vector<BodyRange> bodyRanges;
     double buildMs = 0.0;
     mutable tbb::enumerable_thread_specific<Scratch> scratch;
@@ -92,8 +98,21 @@ struct Renderer::Impl {
         std::vector<float> radii(ps.size());
         const float scale = st.spheres ? static_cast<float>(st.sphereRadius) : float(core::M4_SUPPORT);
         for (std::size_t i = 0; i < ps.size(); ++i) radii[i] = scale * ps.h[i];
-        if (st.spheres) spheres = std::make_unique<SphereScene>(d, ps.position, radii);
-        else support = std::make_unique<SphereScene>(d, ps.position, radii);
+        if (st.spheres) {
+            spheres = std::make_unique<SphereScene>(d, ps.position, radii);
+        } else {
+            support = std::make_unique<SphereScene>(d, ps.position, radii);
+            // A ray of a pixel block is at most sinBlock away (per unit of distance from the
+            // camera) from the block's central ray; near particle i that is at most
+            // (|x_i - camera| + 2h) sinBlock.
+            const double sinBlock = blockSpread();
+            supportRadius = radii;
+            bundleMargin.resize(ps.size());
+            for (std::size_t i = 0; i < ps.size(); ++i)
+                bundleMargin[i] = static_cast<float>(
+                    (glm::length(glm::dvec3(ps.position[i]) - camera.position()) + radii[i]) * sinBlock);
+            bundles = std::make_unique<BundleGather>(d, ps.position, supportRadius, bundleMargin);
+        }
         buildMs = msSince(start);
         for (const auto& b : p.bodies) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), 0.0};
@@ -179,12 +198,7 @@ struct Renderer::Impl {
                 needEntry = true;
                 continue;
             }
-            CrossingSettings cs;
-            cs.level = settings.surfaceLevel;
-            cs.tolerance = settings.rootTolerance * hRef;
-            cs.maxStep = settings.stepWindow * hRef;
-            cs.maxIterations = settings.maxIterations;
-            crossing = findFirstCrossing(s.candidates, t, segEnd, cs);
+            crossing = findFirstCrossing(s.candidates, t, segEnd, crossingSettings(hRef));
             s.evaluations += crossing.evaluations;
             switch (crossing.status) {
                 case Crossing::Status::Hit:
@@ -285,14 +299,7 @@ struct Renderer::Impl {
         Crossing crossing;
         beginRay(s, particles.particles.size());
         if (traceImplicit(ray, tnear, tfar, true, 0.0, crossing, s) != Trace::Hit) return false;
-        hit.t = crossing.t;
-        hit.outside = ray.origin + crossing.tBelow * ray.direction;
-        hit.position = ray.origin + crossing.t * ray.direction;
-        double hMin = INFINITY;
-        for (const auto& c : s.candidates)
-            if (c.t0 < crossing.t && c.t1 > crossing.t) hMin = std::min(hMin, 1.0 / c.invH);
-        hit.hRef = std::isfinite(hMin) ? hMin : 1.0 / s.candidates.front().invH;
-        surfaceAttributes(hit.position, s.candidates, hit);
+        fillHit(ray, crossing, s, hit, s.carryPrims[0]);
         return true;
     }
 
@@ -321,7 +328,112 @@ struct Renderer::Impl {
         return true;
     }
 
-    float lightVisibility(const SurfaceHit& hit, Scratch& s) const {
+    static constexpr int BLOCK = 4;  // pixel block side for bundle gathers
+
+    // Upper bound of the sine of the angle between a block's central ray and any of its rays
+    // (samples anywhere inside the block's pixels), with 2 % to spare.
+    double blockSpread() const {
+        const double pixelAngle = 2.0 * camera.tanHalfFovY() / camera.height();  // largest at the centre
+        return std::min(1.0, 1.02 * (BLOCK / std::sqrt(2.0)) * pixelAngle);
+    }
+
+    // Primary rays of one pixel block: the entry of each ray by a closest-hit query, the first
+    // segment of every ray from one bundle gather, and the per-ray march after that.
+    void traceBlock(const core::Ray* rays, const double* tnear, const double* tfar, int n,
+                    const core::Ray& central, SurfaceHit* hits, bool* found, Scratch& s) const {
+        const auto& ps = particles.particles;
+        RayBundle bundle;
+        bundle.count = n;
+        double hRef[RayBundle::MAX_RAYS], segStart[RayBundle::MAX_RAYS], segEnd[RayBundle::MAX_RAYS];
+        double lo = INFINITY, hi = 0.0;
+        bool any = false;
+        for (int i = 0; i < n; ++i) {
+            found[i] = false;
+            SphereScene::Hit h;
+            const bool entered = support->closestHit(glm::vec3(rays[i].origin), glm::vec3(rays[i].direction),
+                                                     static_cast<float>(tnear[i]), static_cast<float>(tfar[i]), h);
+            if (!entered) {
+                bundle.set(i, rays[i].origin, rays[i].direction, 1.0, 0.0);  // empty interval
+                continue;
+            }
+            hRef[i] = ps.h[h.prim];
+            const double t0 = std::max(tnear[i], double(h.t) - 1e-3 * hRef[i]);
+            const double t1 = std::min(t0 + settings.segmentLength * hRef[i], tfar[i]);
+            segStart[i] = t0;
+            segEnd[i] = t1;
+            bundle.set(i, rays[i].origin, rays[i].direction, t0, t1);
+            lo = std::min(lo, t0);
+            hi = std::max(hi, t1);
+            any = true;
+        }
+        if (!any) return;
+        // The central ray's parameter of a point on ray i differs by the cosine between them.
+        const double cosMin = std::sqrt(std::max(0.0, 1.0 - blockSpread() * blockSpread()));
+        s.bundleHits.clear();
+        bundles->gather(bundle, central.origin, central.direction, lo * cosMin * (1.0 - 1e-6),
+                        hi * (1.0 + 1e-6), s.bundleHits);
+        for (int i = 0; i < n; ++i) {
+            if (!(bundle.tMin[i] <= bundle.tMax[i])) continue;
+            const core::Ray& ray = rays[i];
+            beginRay(s, ps.size());
+            s.candidates.clear();
+            for (const BundleHit& bh : s.bundleHits)
+                if (bh.mask & (1u << i)) addCandidate(ray, bh.prim, s);
+            const double t0 = segStart[i], t1 = segEnd[i];
+            // Spheres that open after t1 stay: the march past t1 needs them (they are marked
+            // as seen on this ray and will not be gathered again).
+            std::erase_if(s.candidates, [&](const Candidate& c) { return c.t1 <= t0; });
+            std::sort(s.candidates.begin(), s.candidates.end(), [](const Candidate& x, const Candidate& y) {
+                return x.t0 < y.t0 || (x.t0 == y.t0 && x.index < y.index);
+            });
+            ++s.segments;
+            Crossing crossing;
+            Trace result = Trace::Miss;
+            if (!s.candidates.empty()) {
+                crossing = findFirstCrossing(s.candidates, t0, t1, crossingSettings(hRef[i]));
+                s.evaluations += crossing.evaluations;
+                if (crossing.status == Crossing::Status::Hit || crossing.status == Crossing::Status::Inside)
+                    result = Trace::Hit;
+                else if (crossing.status == Crossing::Status::Unresolved) {
+                    ++s.unresolved;
+                    result = Trace::Unresolved;
+                }
+            }
+            // No crossing in the first segment: march on, ray by ray, from its end.
+            if (result == Trace::Miss && t1 < tfar[i])
+                result = traceImplicit(ray, t1, tfar[i], s.candidates.empty(), hRef[i], crossing, s);
+            if (result != Trace::Hit) continue;
+            found[i] = true;
+            fillHit(ray, crossing, s, hits[i], s.carryPrims[i]);
+        }
+    }
+
+    CrossingSettings crossingSettings(double hRef) const {
+        CrossingSettings cs;
+        cs.level = settings.surfaceLevel;
+        cs.tolerance = settings.rootTolerance * hRef;
+        cs.maxStep = settings.stepWindow * hRef;
+        cs.maxIterations = settings.maxIterations;
+        return cs;
+    }
+
+    void fillHit(const core::Ray& ray, const Crossing& crossing, Scratch& s, SurfaceHit& hit,
+                 std::vector<std::uint32_t>& carry) const {
+        carry.clear();
+        for (const auto& c : s.candidates)
+            if (c.t0 < crossing.tBelow && c.t1 > crossing.tBelow) carry.push_back(c.index);
+        hit.t = crossing.t;
+        hit.outside = ray.origin + crossing.tBelow * ray.direction;
+        hit.position = ray.origin + crossing.t * ray.direction;
+        double hMin = INFINITY;
+        for (const auto& c : s.candidates)
+            if (c.t0 < crossing.t && c.t1 > crossing.t) hMin = std::min(hMin, 1.0 / c.invH);
+        hit.hRef = std::isfinite(hMin) ? hMin : 1.0 / s.candidates.front().invH;
+        surfaceAttributes(hit.position, s.candidates, hit);
+    }
+
+    // `carry`: the particles whose support contains hit.outside (recorded by fillHit).
+    float lightVisibility(const SurfaceHit& hit, const std::vector<std::uint32_t>& carry, Scratch& s) const {
         const glm::dvec3 toLight = -scene.light.direction;
         // n = -grad(phi)/|grad(phi)|: with n.l <= 0 the ray toward the light enters the
         // surface at once (dphi/dt >= 0), so the point is occluded; no ray is needed.
@@ -344,10 +456,9 @@ struct Renderer::Impl {
                        : 1.0f;
         // The spheres that contain the origin are among the primary ray's candidates around
         // the hit (s.candidates): carry them over, re-expressed along the shadow ray.
-        std::swap(s.candidates, s.carry);
         s.candidates.clear();
         beginRay(s, particles.particles.size());
-        for (const Candidate& c : s.carry) addCandidate(ray, c.index, s);
+        for (std::uint32_t prim : carry) addCandidate(ray, prim, s);
         Crossing crossing;
         const double start = 2.0 * settings.rootTolerance * hit.hRef;
         return traceImplicit(ray, start, tExit, false, hit.hRef, crossing, s) == Trace::Hit ? 0.0f
@@ -367,7 +478,10 @@ bool Renderer::traceSurface(const core::Ray& ray, double tnear, double tfar, Sur
 }
 
 float Renderer::lightVisibility(const SurfaceHit& hit) const {
-    return mImpl->lightVisibility(hit, mImpl->scratch.local());
+    // The single-ray API: the hit came from traceSurface on this thread, which left its
+    // carry set in slot 0.
+    Scratch& s = mImpl->scratch.local();
+    return mImpl->lightVisibility(hit, s.carryPrims[0], s);
 }
 
 core::Frame Renderer::render(const std::function<void(double)>& progress) const {
@@ -396,63 +510,91 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
         Scratch& s = im.scratch.local();
+        constexpr int B = Impl::BLOCK;
+        constexpr int N = B * B;
         for (int ti = range.begin(); ti != range.end(); ++ti) {
-            const int x0 = (ti % tilesX) * tile, y0 = (ti / tilesX) * tile;
+            const int tx0 = (ti % tilesX) * tile, ty0 = (ti / tilesX) * tile;
             std::int64_t tPrimary = 0, tShadow = 0;
-            for (int y = y0; y < std::min(y0 + tile, height); ++y)
-                for (int x = x0; x < std::min(x0 + tile, width); ++x) {
-                    glm::dvec3 beauty(0.0), emission(0.0);
-                    double coverage = 0.0, shadow = 0.0, bestDist = INFINITY;
-                    for (int k = 0; k < st.spp; ++k) {
-                        double jx = 0.5, jy = 0.5;
-                        if (st.spp > 1) {
-                            jx = ((k % grid) + hashToUnit(x, y, k, 0)) / grid;
-                            jy = ((k / grid) + hashToUnit(x, y, k, 1)) / grid;
+            for (int by = ty0; by < std::min(ty0 + tile, height); by += B)
+                for (int bx = tx0; bx < std::min(tx0 + tile, width); bx += B) {
+                    // Per pixel of the block, summed over its samples.
+                    int px[N], py[N], n = 0;
+                    for (int y = by; y < std::min(by + B, height); ++y)
+                        for (int x = bx; x < std::min(bx + B, width); ++x) {
+                            px[n] = x;
+                            py[n] = y;
+                            ++n;
                         }
-                        const core::Ray ray = im.camera.ray(x + jx, y + jy);
-                        const double cosAxis = glm::dot(ray.direction, im.camera.forward());
-                        SurfaceHit hit;
+                    glm::dvec3 beauty[N], emission[N];  // glm does not zero them
+                    std::fill_n(beauty, N, glm::dvec3(0.0));
+                    std::fill_n(emission, N, glm::dvec3(0.0));
+                    double coverage[N] = {}, shadow[N] = {}, bestDist[N];
+                    std::fill_n(bestDist, N, INFINITY);
+                    const core::Ray central = im.camera.ray(bx + 0.5 * B, by + 0.5 * B);
+                    for (int k = 0; k < st.spp; ++k) {
+                        core::Ray rays[N];
+                        double tnear[N], tfar[N], cosAxis[N], jx[N], jy[N];
+                        for (int i = 0; i < n; ++i) {
+                            jx[i] = jy[i] = 0.5;
+                            if (st.spp > 1) {
+                                jx[i] = ((k % grid) + hashToUnit(px[i], py[i], k, 0)) / grid;
+                                jy[i] = ((k / grid) + hashToUnit(px[i], py[i], k, 1)) / grid;
+                            }
+                            rays[i] = im.camera.ray(px[i] + jx[i], py[i] + jy[i]);
+                            cosAxis[i] = glm::dot(rays[i].direction, im.camera.forward());
+                            tnear[i] = nearT / cosAxis[i];
+                            tfar[i] = farT / cosAxis[i];
+                        }
+                        SurfaceHit hits[N];
+                        bool found[N];
                         const auto t0 = Clock::now();
-                        const bool found = im.traceSurface(ray, nearT / cosAxis, farT / cosAxis, hit, s);
+                        if (st.spheres)
+                            for (int i = 0; i < n; ++i) found[i] = im.traceSpheres(rays[i], tnear[i], tfar[i], hits[i]);
+                        else
+                            im.traceBlock(rays, tnear, tfar, n, central, hits, found, s);
                         const auto t1 = Clock::now();
                         tPrimary += (t1 - t0).count();
-                        if (!found) continue;
-                        float vis = 1.0f;
-                        if (st.shadows) {
-                            vis = im.lightVisibility(hit, s);
-                            tShadow += (Clock::now() - t1).count();
+                        for (int i = 0; i < n; ++i) {
+                            if (!found[i]) continue;
+                            const SurfaceHit& hit = hits[i];
+                            const float vis = st.shadows ? im.lightVisibility(hit, s.carryPrims[i], s) : 1.0f;
+                            core::SurfacePoint sp;
+                            sp.normal = hit.normal;
+                            sp.toEye = glm::vec3(-rays[i].direction);
+                            sp.uv = hit.uv;
+                            sp.material = hit.material;
+                            sp.emission = core::surfaceEmission(im.materials[hit.material], hit.uv, hit.glow);
+                            sp.visibility = vis;
+                            beauty[i] += glm::dvec3(core::shade(im.materials, im.scene.light, sp));
+                            emission[i] += glm::dvec3(sp.emission);
+                            coverage[i] += 1.0;
+                            shadow[i] += vis;
+                            // Geometric channels are not filtered: they come from the hit
+                            // sample nearest the pixel centre.
+                            const double dist = (jx[i] - 0.5) * (jx[i] - 0.5) + (jy[i] - 0.5) * (jy[i] - 0.5);
+                            if (dist < bestDist[i]) {
+                                bestDist[i] = dist;
+                                const int x = px[i], y = py[i];
+                                img.at(x, y, cZ) = static_cast<float>(hit.t * cosAxis[i]);
+                                for (int c = 0; c < 3; ++c) img.at(x, y, cN + c) = hit.normal[c];
+                                img.at(x, y, cU) = hit.uv.x;
+                                img.at(x, y, cU + 1) = hit.uv.y;
+                                img.at(x, y, cId) = static_cast<float>(hit.body);
+                            }
                         }
-                        core::SurfacePoint sp;
-                        sp.normal = hit.normal;
-                        sp.toEye = glm::vec3(-ray.direction);
-                        sp.uv = hit.uv;
-                        sp.material = hit.material;
-                        sp.emission = core::surfaceEmission(im.materials[hit.material], hit.uv, hit.glow);
-                        sp.visibility = vis;
-                        beauty += glm::dvec3(core::shade(im.materials, im.scene.light, sp));
-                        emission += glm::dvec3(sp.emission);
-                        coverage += 1.0;
-                        shadow += vis;
-                        // Geometric channels are not filtered: they come from the hit sample
-                        // nearest the pixel centre.
-                        const double dist = (jx - 0.5) * (jx - 0.5) + (jy - 0.5) * (jy - 0.5);
-                        if (dist < bestDist) {
-                            bestDist = dist;
-                            img.at(x, y, cZ) = static_cast<float>(hit.t * cosAxis);
-                            for (int c = 0; c < 3; ++c) img.at(x, y, cN + c) = hit.normal[c];
-                            img.at(x, y, cU) = hit.uv.x;
-                            img.at(x, y, cU + 1) = hit.uv.y;
-                            img.at(x, y, cId) = static_cast<float>(hit.body);
+                        tShadow += (Clock::now() - t1).count();
+                    }
+                    for (int i = 0; i < n; ++i) {
+                        if (coverage[i] == 0.0) continue;
+                        const int x = px[i], y = py[i];
+                        const double inv = 1.0 / st.spp;
+                        for (int c = 0; c < 3; ++c) {
+                            img.at(x, y, cR + c) = static_cast<float>(beauty[i][c] * inv);
+                            img.at(x, y, cE + c) = static_cast<float>(emission[i][c] / coverage[i]);
                         }
+                        img.at(x, y, cA) = static_cast<float>(coverage[i] * inv);
+                        img.at(x, y, cS) = static_cast<float>(shadow[i] / coverage[i]);
                     }
-                    if (coverage == 0.0) continue;
-                    const double inv = 1.0 / st.spp;
-                    for (int c = 0; c < 3; ++c) {
-                        img.at(x, y, cR + c) = static_cast<float>(beauty[c] * inv);
-                        img.at(x, y, cE + c) = static_cast<float>(emission[c] / coverage);
-                    }
-                    img.at(x, y, cA) = static_cast<float>(coverage * inv);
-                    img.at(x, y, cS) = static_cast<float>(shadow / coverage);
                 }
             primaryNs += tPrimary;
             shadowNs += tShadow;
@@ -466,7 +608,7 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
     const double sum = std::max(primary + shadowT, 1.0);
     frame.timingsMs["build"] = im.buildMs;
     frame.timingsMs["trace"] = traceMs * primary / sum;
-    frame.timingsMs["shadow"] = traceMs * shadowT / sum;
+    frame.timingsMs["shade"] = traceMs * shadowT / sum;  // shadow rays and shading
     frame.timingsMs["total"] = im.buildMs + traceMs;
 
     Scratch total;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <tbb/task_arena.h>
 
@@ -292,8 +293,17 @@ TEST(Raymarch, SameImageForAnyThreadCount) {
     const auto one = render(s, settings, 1);
     const auto two = render(s, settings, 2);
     const auto twoAgain = render(s, settings, 2);
-    EXPECT_TRUE(one.image == two.image);
-    EXPECT_TRUE(two.image == twoAgain.image);
+    auto firstDifference = [](const Image& a, const Image& b) -> std::string {
+        for (std::size_t p = 0; p < a.pixelCount(); ++p)
+            for (int c = 0; c < a.channelCount(); ++c)
+                if (const float x = a.at(p, c), y = b.at(p, c); std::memcmp(&x, &y, sizeof(float)) != 0)
+                    return a.channelNames()[c] + " at pixel " + std::to_string(p % a.width()) + "," +
+                           std::to_string(p / a.width()) + ": " + std::to_string(a.at(p, c)) + " vs " +
+                           std::to_string(b.at(p, c));
+        return "";
+    };
+    EXPECT_EQ(firstDifference(one.image, two.image), "");
+    EXPECT_EQ(firstDifference(two.image, twoAgain.image), "");
     // Something was drawn, and shadows too.
     double coverage = 0.0, lit = 0.0;
     for (std::size_t p = 0; p < one.image.pixelCount(); ++p) {
