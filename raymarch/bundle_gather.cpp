@@ -1,5 +1,6 @@
 #include "raymarch/bundle_gather.h"
 
+#include <array>
 #include <cmath>
 
 namespace twinrender::raymarch {
@@ -17,6 +18,13 @@ struct BundleContext {
 // Relative slack of the float sphere test: it may report a sphere that only grazes a ray
 // (the exact candidate test then drops it), never miss one.
 constexpr float SLACK = 1e-4f;
+
+// Bit i as a table: a per-lane variable shift has no SSE2 instruction, a load does.
+constexpr auto RAY_BIT = [] {
+    std::array<std::uint32_t, RayBundle::MAX_RAYS> bits{};
+    for (int i = 0; i < RayBundle::MAX_RAYS; ++i) bits[i] = 1u << i;
+    return bits;
+}();
 
 }  // namespace
 
@@ -73,15 +81,17 @@ void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
     const float r2 = r * r * (1.0f + 2.0f * SLACK);
     const float slack = r * SLACK;
     std::uint32_t mask = 0;
+    // Branch-free, so that it runs a vector of rays at a time.
+#pragma omp simd reduction(| : mask)
     for (int i = 0; i < b.count; ++i) {
         const float wx = c.x - b.ox[i], wy = c.y - b.oy[i], wz = c.z - b.oz[i];
         const float tc = wx * b.dx[i] + wy * b.dy[i] + wz * b.dz[i];
         const float px = wx - tc * b.dx[i], py = wy - tc * b.dy[i], pz = wz - tc * b.dz[i];
-        const float d2 = px * px + py * py + pz * pz;
-        const float chord2 = r2 - d2;
-        if (chord2 <= 0.0f) continue;
-        const float half = std::sqrt(chord2) + slack;
-        if (tc + half >= b.tMin[i] && tc - half <= b.tMax[i]) mask |= 1u << i;
+        const float chord2 = r2 - (px * px + py * py + pz * pz);
+        const float half = std::sqrt(chord2 > 0.0f ? chord2 : 0.0f) + slack;
+        const bool overlaps = (chord2 > 0.0f) & (tc + half >= b.tMin[i]) & (tc - half <= b.tMax[i]);
+        const std::uint32_t bit = RAY_BIT[i];
+        mask |= bit & (0u - static_cast<std::uint32_t>(overlaps));
     }
     if (mask) ctx->out->push_back({args->primID, mask});
     // No hit is reported: traversal goes on through every sphere along the central ray.

@@ -11,8 +11,13 @@ namespace twinrender::raymarch {
 using core::m4Shape;
 using core::m4ShapeDerivative;
 
+// Value (not reference) minimum and maximum: std::min's reference result keeps a branch in
+// the loops, which stops them from being vectorised.
+inline float minf(float a, float b) { return a < b ? a : b; }
+inline float maxf(float a, float b) { return a > b ? a : b; }
+
 // Upper bound of w''(q) along a line, see the header.
-constexpr double W_CURVATURE_BOUND = 1.5;
+constexpr float W_CURVATURE_BOUND = 1.5f;
 
 bool makeCandidate(const double origin[3], const double direction[3], const double center[3],
                    double h, double volume, std::uint32_t index, Candidate& out) {
@@ -36,45 +41,97 @@ bool makeCandidate(const double origin[3], const double direction[3], const doub
     return true;
 }
 
-FieldSample sampleField(const std::vector<Candidate>& candidates, double t, double window) {
-    FieldSample s;
-    const double tEnd = t + window;
-    for (const Candidate& c : candidates) {
-        if (c.t0 >= tEnd) break;  // sorted by t0: nothing later reaches the window
-        if (c.t1 <= t) continue;
-        const double ih2 = c.invH * c.invH;
-        // Closest approach within the window, for the curvature bound.
-        const double tNear = std::clamp(c.tc, t, tEnd) - c.tc;
-        const double qNear2 = (tNear * tNear + c.d2) * ih2;
-        // max(w'', 0) <= 1.5 for q <= 1 and 1.5 (2 - q) beyond; (dq/dt)^2 <= (1 - d2/(4h^2))/h^2.
-        const double wBound = qNear2 <= 1.0 ? W_CURVATURE_BOUND
-                                            : W_CURVATURE_BOUND * (2.0 - std::sqrt(qNear2));
-        s.curvature += c.coef * wBound * std::max(0.0, 1.0 - 0.25 * c.d2 * ih2) * ih2;
-        const double dt = t - c.tc;
-        const double q2 = (dt * dt + c.d2) * ih2;
-        if (q2 >= 4.0) continue;
-        const double q = std::sqrt(q2);
-        s.value += c.coef * m4Shape(q);
-        // d/dt w(q) = w'(q) dq/dt, dq/dt = dt / (r h) = dt / (q h^2).
-        if (q > 0.0) s.slope += c.coef * m4ShapeDerivative(q) * dt * ih2 / q;
+void RayField::assign(const std::vector<Candidate>& candidates, double base) {
+    mBase = base;
+    const std::size_t n = candidates.size();
+    for (auto* v : {&mTc, &mD2, &mT0, &mT1, &mCoef, &mIh2, &mPeak}) v->resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Candidate& c = candidates[i];
+        mTc[i] = static_cast<float>(c.tc - base);
+        mD2[i] = static_cast<float>(c.d2);
+        mT0[i] = static_cast<float>(c.t0 - base);
+        mT1[i] = static_cast<float>(c.t1 - base);
+        mCoef[i] = static_cast<float>(c.coef);
+        mIh2[i] = static_cast<float>(c.invH * c.invH);
+        mPeak[i] = static_cast<float>(c.peak);
     }
-    return s;
 }
 
-double remainingBound(const std::vector<Candidate>& candidates, double t, double tEnd) {
-    double bound = 0.0;
-    for (const Candidate& c : candidates) {
-        if (c.t0 >= tEnd) break;
-        if (c.t1 <= t) continue;
-        if (c.tc >= t) {
-            bound += c.peak;
-        } else {
-            const double dt = t - c.tc;
-            const double q2 = (dt * dt + c.d2) * c.invH * c.invH;
-            if (q2 < 4.0) bound += c.coef * m4Shape(std::sqrt(q2));
-        }
+FieldSample RayField::sample(double t, double window) const {
+    const float x = static_cast<float>(t - mBase);
+    const float xEnd = static_cast<float>(t + window - mBase);
+    const std::size_t n = mT0.size();
+    const float* t0 = mT0.data();
+    const float* tc = mTc.data();
+    const float* d2 = mD2.data();
+    const float* t1 = mT1.data();
+    const float* coef = mCoef.data();
+    const float* ih2 = mIh2.data();
+    float value = 0.0f, slope = 0.0f, curvature = 0.0f;
+#pragma omp simd reduction(+ : value, slope, curvature)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float dt = x - tc[i];
+        const float q = std::sqrt(minf((dt * dt + d2[i]) * ih2[i], 4.0f));
+        const float a = 2.0f - q;
+        // w and dw/dq of the M4 spline; both vanish at q = 2, outside the support.
+        const float w = q < 1.0f ? 1.0f - 1.5f * q * q + 0.75f * q * q * q : 0.25f * a * a * a;
+        const float dw = q < 1.0f ? -3.0f * q + 2.25f * q * q : -0.75f * a * a;
+        value += coef[i] * w;
+        // d/dt w(q) = w'(q) dq/dt with dq/dt = dt / (q h^2); dw/q -> -3 as q -> 0.
+        slope += coef[i] * dw * dt * ih2[i] / maxf(q, 1e-30f);
+        // Curvature bound over the window: max(w'', 0) <= 1.5, and <= 1.5 (2 - q) beyond
+        // q = 1, taken at the closest approach within the window; as sqrt is concave,
+        // 2 - q <= (4 - q^2) / 3 on [1, 2], which spares a square root. And
+        // (dq/dt)^2 <= (1 - d2/4h^2) / h^2.
+        const float tn = minf(maxf(tc[i], x), xEnd) - tc[i];
+        const float qn2 = minf((tn * tn + d2[i]) * ih2[i], 4.0f);
+        const float wb = qn2 <= 1.0f ? W_CURVATURE_BOUND : W_CURVATURE_BOUND * (4.0f - qn2) / 3.0f;
+        const float active = (t1[i] > x) & (t0[i] < xEnd) ? 1.0f : 0.0f;
+        curvature += active * coef[i] * wb * maxf(0.0f, 1.0f - 0.25f * d2[i] * ih2[i]) * ih2[i];
     }
-    return bound;
+    return {value, slope, curvature};
+}
+
+double RayField::remainingBound(double t, double tEnd) const {
+    const float x = static_cast<float>(t - mBase);
+    const float xEnd = static_cast<float>(tEnd - mBase);
+    const std::size_t n = mT0.size();
+    const float* t0 = mT0.data();
+    const float* tc = mTc.data();
+    const float* d2 = mD2.data();
+    const float* t1 = mT1.data();
+    const float* coef = mCoef.data();
+    const float* ih2 = mIh2.data();
+    const float* peak = mPeak.data();
+    float bound = 0.0f;
+#pragma omp simd reduction(+ : bound)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float dt = x - tc[i];
+        const float q = std::sqrt(minf((dt * dt + d2[i]) * ih2[i], 4.0f));
+        const float a = 2.0f - q;
+        const float w = q < 1.0f ? 1.0f - 1.5f * q * q + 0.75f * q * q * q : 0.25f * a * a * a;
+        const float ahead = peak[i], behind = coef[i] * w;
+        const float here = tc[i] >= x ? ahead : behind;
+        bound += (t1[i] > x) & (t0[i] < xEnd) ? here : 0.0f;
+    }
+    // Float rounding must not turn the bound into an underestimate.
+    return bound * (1.0 + 1e-5);
+}
+
+double RayField::firstPossibleCrossing(double ta, double level) const {
+    // phi(t) <= the sum of the peaks of the particles entered by t (and not left by ta): the
+    // first t where that sum reaches the level, from the entries in (t0, index) order.
+    const float x = static_cast<float>(ta - mBase);
+    mEntries.clear();
+    for (std::size_t i = 0; i < mT0.size(); ++i)
+        if (mT1[i] > x) mEntries.push_back({mT0[i], static_cast<std::uint32_t>(i)});
+    std::sort(mEntries.begin(), mEntries.end());
+    double sum = 0.0;
+    for (const auto& [t0, i] : mEntries) {
+        sum += mPeak[i];
+        if (sum >= level * (1.0 - 1e-5)) return std::max(ta, t0 + mBase);
+    }
+    return INFINITY;
 }
 
 namespace {
@@ -93,35 +150,22 @@ double safeStep(const FieldSample& f, double level) {
 
 }  // namespace
 
-Crossing findFirstCrossing(const std::vector<Candidate>& candidates, double ta, double tb,
+Crossing findFirstCrossing(const RayField& field, double ta, double tb,
                            const CrossingSettings& settings) {
     Crossing out;
     const double level = settings.level;
     // Skip ahead: before the k-th support interval opens, phi is at most the sum of the peaks
     // of the particles already entered, so no crossing happens until that sum reaches the level.
-    double a = ta;
-    {
-        double sum = 0.0;
-        bool reached = false;
-        for (const Candidate& c : candidates) {
-            if (c.t1 <= ta) continue;
-            sum += c.peak;
-            if (sum >= level) {
-                a = std::max(ta, c.t0);
-                reached = true;
-                break;
-            }
-        }
-        if (!reached || a >= tb) {
-            out.status = Crossing::Status::Miss;
-            out.tBelow = tb;
-            return out;
-        }
+    double a = field.firstPossibleCrossing(ta, level);
+    if (a >= tb) {
+        out.status = Crossing::Status::Miss;
+        out.tBelow = tb;
+        return out;
     }
     double previous = a;
     for (int it = 0; it < settings.maxIterations; ++it) {
         const double window = std::min(settings.maxStep, tb - a);
-        const FieldSample f = sampleField(candidates, a, window);
+        const FieldSample f = field.sample(a, window);
         ++out.evaluations;
         if (f.value >= level) {
             // At the start: the ray begins inside. Later the step can only land exactly on the
@@ -133,7 +177,7 @@ Crossing findFirstCrossing(const std::vector<Candidate>& candidates, double ta, 
         }
         previous = a;
         // Going away from the surface: stop once nothing ahead can reach the level.
-        if (f.slope < 0.0 && remainingBound(candidates, a, tb) < level) {
+        if (f.slope < 0.0 && field.remainingBound(a, tb) < level) {
             ++out.evaluations;
             out.status = Crossing::Status::Miss;
             out.tBelow = tb;
@@ -143,7 +187,7 @@ Crossing findFirstCrossing(const std::vector<Candidate>& candidates, double ta, 
         if (step < settings.tolerance) {
             // The bound says the root may be closer than the tolerance: confirm it.
             const double b = a + settings.tolerance;
-            const FieldSample fb = sampleField(candidates, b, 0.0);
+            const FieldSample fb = field.sample(b, 0.0);
             ++out.evaluations;
             if (fb.value >= level) {
                 const double frac = (level - f.value) / (fb.value - f.value);

@@ -41,13 +41,32 @@ struct FieldSample {
     double curvature = 0.0;  // M: upper bound of d2phi/dt2 over the window
 };
 
-// phi, dphi/dt at t, and the curvature bound over the window [t, t + window], over the
-// candidates (any order).
-FieldSample sampleField(const std::vector<Candidate>& candidates, double t, double window);
+// The candidates of one ray segment in the layout the field loops want: structure of arrays,
+// float, ray parameters relative to `base` (the segment start), so float keeps about 1e-7 of
+// the segment's own scale wherever the segment lies. The loops are vectorised with a fixed
+// lane order, so results do not depend on the thread that runs them.
+class RayField {
+public:
+    // `candidates`: in any fixed order (it is the summation order). `base`: a ray parameter
+    // near the segment.
+    void assign(const std::vector<Candidate>& candidates, double base);
+    std::size_t size() const { return mT0.size(); }
+    double base() const { return mBase; }
 
-// An upper bound of phi on [t, tEnd]: each particle at its largest value there (its peak
-// when the closest approach lies ahead, its value at t when it lies behind).
-double remainingBound(const std::vector<Candidate>& candidates, double t, double tEnd);
+    // phi, dphi/dt at t and the curvature bound over [t, t + window].
+    FieldSample sample(double t, double window) const;
+    // An upper bound of phi on [t, tEnd]: each particle at its largest value there (its peak
+    // when the closest approach lies ahead, its value at t when it lies behind).
+    double remainingBound(double t, double tEnd) const;
+    // Where the sum of the peaks of the particles entered so far (and not yet left by ta)
+    // first reaches `level`: phi stays below the level before it. +inf when never.
+    double firstPossibleCrossing(double ta, double level) const;
+
+private:
+    double mBase = 0.0;
+    mutable std::vector<std::pair<float, std::uint32_t>> mEntries;  // scratch of the skip
+    std::vector<float> mTc, mD2, mT0, mT1, mCoef, mIh2, mPeak;
+};
 
 struct Crossing {
     enum class Status {
@@ -69,9 +88,9 @@ struct CrossingSettings {
     int maxIterations = 256;
 };
 
-// The first t in [ta, tb] where phi reaches the level. `candidates` must hold every particle
-// whose support overlaps [ta, tb], sorted by t0.
-Crossing findFirstCrossing(const std::vector<Candidate>& candidates, double ta, double tb,
+// The first t in [ta, tb] where phi reaches the level. `field` must hold every particle whose
+// support overlaps [ta, tb] (others may be there too).
+Crossing findFirstCrossing(const RayField& field, double ta, double tb,
                            const CrossingSettings& settings);
 
 }  // namespace twinrender::raymarch

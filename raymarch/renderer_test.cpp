@@ -90,7 +90,9 @@ TEST(ImplicitField, SingleCandidateCrossingIsTheAnalyticRadius) {
     cs.level = level;
     cs.tolerance = 1e-4 * h;
     cs.maxStep = 0.5 * h;
-    const auto crossing = tr::raymarch::findFirstCrossing({c}, 0.0, 10.0, cs);
+    tr::raymarch::RayField field;
+    field.assign({c}, 0.0);
+    const auto crossing = tr::raymarch::findFirstCrossing(field, 0.0, 10.0, cs);
     ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit);
     EXPECT_NEAR(crossing.t, 5.0 - radius, 1e-4 * h);
     EXPECT_LT(crossing.tBelow, 5.0 - radius);
@@ -108,7 +110,9 @@ TEST(ImplicitField, NeverStepsOverAThinBump) {
     const double origin[3] = {0.0, d, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
     tr::raymarch::Candidate c;
     ASSERT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
-    const auto crossing = tr::raymarch::findFirstCrossing({c}, 0.0, 10.0, cs);
+    tr::raymarch::RayField field;
+    field.assign({c}, 0.0);
+    const auto crossing = tr::raymarch::findFirstCrossing(field, 0.0, 10.0, cs);
     ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit);
     EXPECT_LT(crossing.t, 5.0);
     EXPECT_GT(crossing.t, 4.9);
@@ -124,10 +128,12 @@ TEST(ImplicitField, RemainingBoundIsAnUpperBound) {
         if (tr::raymarch::makeCandidate(origin, dir, center, h, v, i, c)) cands.push_back(c);
     }
     std::sort(cands.begin(), cands.end(), [](auto& a, auto& b) { return a.t0 < b.t0; });
+    tr::raymarch::RayField field;
+    field.assign(cands, 1.0);
     for (double t = -2.0; t < 6.0; t += 0.25) {
-        const double bound = tr::raymarch::remainingBound(cands, t, 100.0);
+        const double bound = field.remainingBound(t, 100.0);
         for (double s = t; s < 7.0; s += 0.01)
-            ASSERT_LE(tr::raymarch::sampleField(cands, s, 0.0).value, bound + 1e-12) << t << " " << s;
+            ASSERT_LE(field.sample(s, 0.0).value, bound) << t << " " << s;
     }
 }
 

@@ -1,0 +1,83 @@
+// Finding the implicit surface along rays, a pixel block at a time (DESIGN.md: "Embree finds
+// the candidate particles along each ray segment ... then evaluate phi and dphi/dt along the
+// ray").
+//
+// A block's rays advance together in rounds: each round, every unfinished ray takes its next
+// segment (a few h long), one bundle gather (bundle_gather.h) finds the support spheres that
+// overlap each ray's segment, and the ray's first crossing in the segment is searched
+// (implicit_field.h). A ray's candidates are kept in particle order, which is also the
+// summation order, so the result does not depend on Embree's traversal order or on threads.
+// Shadow rays of a block are parallel (a directional light) and march the same way, starting
+// inside the supports around their hit, which the primary ray hands over.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/particles.h"
+#include "raymarch/embree_device.h"
+#include "raymarch/settings.h"
+
+namespace twinrender::raymarch {
+
+// Where a ray meets the surface, with everything the AOV image records.
+struct SurfaceHit {
+    double t = 0.0;            // ray parameter of the crossing
+    glm::dvec3 position{0.0};  // at t
+    glm::dvec3 outside{0.0};   // a point on the ray just outside the surface (phi < level)
+    glm::vec3 normal{0.0f};    // unit, outward: -grad(phi) normalised
+    glm::vec2 uv{0.0f};
+    std::uint32_t body = 0;
+    std::uint32_t material = 0;
+    glm::vec3 glow{0.0f};      // kernel-weighted blackbody glow
+    double hRef = 0.0;         // smallest h of the particles around the hit, for tolerances
+};
+
+struct TraceCounters {
+    std::uint64_t unresolved = 0;   // rays given up at the iteration limit (reported)
+    std::uint64_t candidates = 0;   // support spheres turned into candidates
+    std::uint64_t evaluations = 0;  // field evaluations
+    std::uint64_t segments = 0;     // ray segments searched
+    std::uint64_t bundles = 0;      // bundle gathers
+};
+
+class SurfaceTracer {
+public:
+    static constexpr int BLOCK = 4;              // pixel block side
+    static constexpr int MAX_RAYS = 32;          // rays per bundle (one mask bit each)
+    static constexpr double SHADOW_MARGIN = 0.5; // shadow-bundle spread allowed, in units of h
+
+    SurfaceTracer(const EmbreeDevice& device, const core::Camera& camera,
+                  const core::SceneParticles& particles, const Settings& settings);
+    ~SurfaceTracer();
+
+    // Per-thread working memory (opaque; its deleter lives with its definition).
+    class Workspace;
+    struct WorkspaceDeleter {
+        void operator()(Workspace* w) const;
+    };
+    using WorkspacePtr = std::unique_ptr<Workspace, WorkspaceDeleter>;
+    WorkspacePtr makeWorkspace() const;
+
+    // Camera rays of one pixel block (n <= MAX_RAYS, samples anywhere inside the block's
+    // pixels); `central` is the ray through the block's centre.
+    void tracePrimary(int n, const core::Ray* rays, const double* tnear, const double* tfar,
+                      const core::Ray& central, SurfaceHit* hits, bool* found, Workspace& w) const;
+    // 1 where the light reaches the hit, 0 where the surface occludes it, for the hits of the
+    // last tracePrimary call on this workspace.
+    void traceShadows(int n, const SurfaceHit* hits, const bool* found, const glm::dvec3& toLight,
+                      float* visibility, Workspace& w) const;
+
+    const TraceCounters& counters(const Workspace& w) const;
+    void resetCounters(Workspace& w) const;
+    double buildMs() const { return mBuildMs; }
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+    double mBuildMs = 0.0;
+};
+
+}  // namespace twinrender::raymarch
