@@ -73,6 +73,8 @@ void BundleGather::bounds(const RTCBoundsFunctionArguments* args) {
     args->bounds_o->upper_z = c.z + r;
 }
 
+// Eight rays at a time where the CPU has AVX2 (chosen at run time), four otherwise.
+__attribute__((target_clones("avx2", "default")))
 void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const BundleContext*>(args->context);
     const RayBundle& b = *ctx->bundle;

@@ -58,13 +58,9 @@ public:
     // An upper bound of phi on [t, tEnd]: each particle at its largest value there (its peak
     // when the closest approach lies ahead, its value at t when it lies behind).
     double remainingBound(double t, double tEnd) const;
-    // Where the sum of the peaks of the particles entered so far (and not yet left by ta)
-    // first reaches `level`: phi stays below the level before it. +inf when never.
-    double firstPossibleCrossing(double ta, double level) const;
 
 private:
     double mBase = 0.0;
-    mutable std::vector<std::pair<float, std::uint32_t>> mEntries;  // scratch of the skip
     std::vector<float> mTc, mD2, mT0, mT1, mCoef, mIh2, mPeak;
 };
 

@@ -145,6 +145,8 @@ struct SurfaceTracer::Impl {
     // Marches the rays of w.rays[0, n) to their first crossing. Primary bundles pass the
     // block's central direction; shadow bundles (parallel rays) pass their direction too.
     void march(int n, const glm::dvec3& centralDirection, bool parallel, Workspace& w) const {
+        static const double SHADOW_L = getenv("SHADOW_L") ? atof(getenv("SHADOW_L")) : settings.segmentLength;
+        const double segmentLength = parallel ? SHADOW_L : settings.segmentLength;
         const auto& ps = particles.particles;
         for (int round = 0;; ++round) {
             // Entries: skip empty space with one closest-hit query per ray that needs it.
@@ -181,7 +183,7 @@ struct SurfaceTracer::Impl {
                     bundle.set(i, r.ray.origin, r.ray.direction, 1.0, 0.0);  // empty interval
                     continue;
                 }
-                segEnd[i] = std::min(r.t + settings.segmentLength * r.hRef, r.tEnd);
+                segEnd[i] = std::min(r.t + segmentLength * r.hRef, r.tEnd);
                 bundle.set(i, r.ray.origin, r.ray.direction, r.t, segEnd[i]);
                 const glm::dvec3 a = r.ray.origin + r.t * r.ray.direction;
                 const glm::dvec3 b = r.ray.origin + segEnd[i] * r.ray.direction;
