@@ -4,6 +4,7 @@
 // and read the medians. Wall time (UseRealTime): the metrics run on all cores through oneTBB.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 

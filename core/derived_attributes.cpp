@@ -1,5 +1,8 @@
 #include "core/derived_attributes.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cfloat>
@@ -10,8 +13,6 @@
 #include <glm/matrix.hpp>
 #include <numbers>
 #include <stdexcept>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "core/blackbody.h"
 #include "core/sph_kernel.h"
@@ -49,6 +50,7 @@ struct GridLevel {
     std::vector<float> px, py, pz;         // position
     std::vector<float> invH;               // 1 / h
     std::vector<float> coef;               // v / (pi h^4): dW/dr = coef * w'(r / h)
+    std::vector<std::uint32_t> index;      // the particle's index in the set
 
     std::int64_t cellIndex(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {
         return (iz * ny + iy) * nx + ix;
@@ -103,6 +105,7 @@ GridLevel buildLevel(const ParticleSet& set, const std::vector<std::uint32_t>& m
     // LANES - 1 padding entries (copies of a real position, coef 0) so that the vector loop
     // may read past the end of the last row.
     for (auto* v : {&g.px, &g.py, &g.pz, &g.invH, &g.coef}) v->resize(members.size() + LANES - 1);
+    g.index.resize(members.size());
     for (std::size_t m = 0; m < members.size(); ++m) {
         const std::uint32_t i = members[m];
         const glm::vec3& p = set.position[i];
@@ -113,6 +116,7 @@ GridLevel buildLevel(const ParticleSet& set, const std::vector<std::uint32_t>& m
         g.pz[k] = p.z;
         g.invH[k] = static_cast<float>(1.0 / h);
         g.coef[k] = static_cast<float>(set.volume[i] / (PI * h * h * h * h));
+        g.index[k] = i;
     }
     for (std::size_t k = members.size(); k < g.px.size(); ++k) {
         g.px[k] = g.px[0];
@@ -144,9 +148,9 @@ std::vector<GridLevel> buildGrids(const ParticleSet& set) {
 }
 
 struct FieldSample {
-    glm::dvec3 gradient{0.0};  // grad c at the particle
-    double magnitudeSum = 0.0; // sum_j v_j |dW/dr|: the size the gradient would have if
-                               // nothing cancelled
+    glm::dvec3 gradient{0.0};   // grad c at the particle
+    double magnitudeSum = 0.0;  // sum_j v_j |dW/dr|: the size the gradient would have if
+                                // nothing cancelled
 };
 
 // 1 / sqrt(x) for normal positive floats, to float precision (relative error < 1e-6): the
@@ -162,7 +166,9 @@ inline float reciprocalSqrt(float x) {
 }
 
 // max(x, 0), exactly, without a comparison (which keeps GCC from vectorising the loop).
-inline float positivePart(float x) { return 0.5f * (x + std::abs(x)); }
+inline float positivePart(float x) {
+    return 0.5f * (x + std::abs(x));
+}
 
 // Partial sums of the gradient, one per lane, reduced once per particle in a fixed order.
 struct Lanes {
@@ -174,8 +180,8 @@ struct Lanes {
 // candidates lie outside the support, and a branch per candidate costs more than computing
 // its (zero) term. Beyond the support (s >= 2) the M4 expression is exactly 0, and so is the
 // particle's own term (d = 0); lanes past `end` are multiplied by 0.
-void accumulateRange(const GridLevel& g, std::uint32_t begin, std::uint32_t end,
-                     const glm::vec3& q, Lanes& acc) {
+void accumulateRange(const GridLevel& g, std::uint32_t begin, std::uint32_t end, const glm::vec3& q,
+                     Lanes& acc) {
     for (std::uint32_t j = begin; j < end; j += LANES) {
         for (std::uint32_t l = 0; l < LANES; ++l) {
             const std::uint32_t k = j + l;
@@ -283,30 +289,36 @@ void deriveNormals(ParticleSet& set, std::span<const BodyInfo> bodies) {
     const std::size_t n = set.size();
     if (n == 0) return;
     const std::vector<GridLevel> grids = buildGrids(set);
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n, GRAIN),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const glm::dvec3 p(set.position[i]);
-                const FieldSample f = colourFieldGradient(grids, set.position[i]);
-                const double len = glm::length(f.gradient);
-                glm::dvec3 normal;
-                // Cancellation below what float positions resolve: relative rounding of
-                // |x| FLT_EPSILON / 2 in each position makes the terms of a perfect lattice
-                // interior miss each other by up to ~ |x| FLT_EPSILON / h of their size.
-                const double resolvable =
-                    NORMAL_FALLBACK_RATIO + FLT_EPSILON * glm::length(p) / set.h[i];
-                if (len > resolvable * f.magnitudeSum && len > 0.0) {
-                    normal = -f.gradient / len;
-                } else {
-                    const BodyInfo& body = bodies[set.body[i]];
-                    const glm::dvec3 radial = p - body.center;
-                    const double rl = glm::length(radial);
-                    normal = rl > 0.0 ? radial / rl : body.frame[2];
-                }
-                set.normal[i] = glm::vec3(normal);
-            }
-        });
+    // Particles are visited in grid order, so that neighbouring queries touch the same cells
+    // (random sets are 3-4x slower in index order); each particle's sum does not depend on
+    // the visiting order.
+    for (const GridLevel& level : grids) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, level.index.size(), GRAIN),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                                  const std::size_t i = level.index[k];
+                                  const glm::dvec3 p(set.position[i]);
+                                  const FieldSample f = colourFieldGradient(grids, set.position[i]);
+                                  const double len = glm::length(f.gradient);
+                                  glm::dvec3 normal;
+                                  // Cancellation below what float positions resolve: relative
+                                  // rounding of |x| FLT_EPSILON / 2 in each position makes the
+                                  // terms of a perfect lattice interior miss each other by up to ~
+                                  // |x| FLT_EPSILON / h of their size.
+                                  const double resolvable = NORMAL_FALLBACK_RATIO +
+                                                            FLT_EPSILON * glm::length(p) / set.h[i];
+                                  if (len > resolvable * f.magnitudeSum && len > 0.0) {
+                                      normal = -f.gradient / len;
+                                  } else {
+                                      const BodyInfo& body = bodies[set.body[i]];
+                                      const glm::dvec3 radial = p - body.center;
+                                      const double rl = glm::length(radial);
+                                      normal = rl > 0.0 ? radial / rl : body.frame[2];
+                                  }
+                                  set.normal[i] = glm::vec3(normal);
+                              }
+                          });
+    }
 }
 
 void deriveGlow(ParticleSet& set) {

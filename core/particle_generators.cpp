@@ -1,8 +1,9 @@
 #include "core/particle_generators.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <numbers>
 #include <stdexcept>
@@ -44,10 +45,10 @@ bool finite3(const glm::dvec3& v) {
 struct LocalShape {
     double rIn2 = 0.0;
     double rOut2 = 0.0;
-    bool cylindrical = false;     // ring: radius in the xy plane
-    double zHalf = 0.0;           // ring: half thickness
-    glm::dvec3 extent{0.0};       // half extents of the bounding box
-    double thickness = 0.0;       // wall / ring thickness, 0 for a ball
+    bool cylindrical = false;  // ring: radius in the xy plane
+    double zHalf = 0.0;        // ring: half thickness
+    glm::dvec3 extent{0.0};    // half extents of the bounding box
+    double thickness = 0.0;    // wall / ring thickness, 0 for a ball
 
     bool contains(const glm::dvec3& p) const {
         if (cylindrical && std::abs(p.z) > zHalf) return false;
@@ -136,8 +137,7 @@ double localVolume(const BodyDesc& body) {
             return 4.0 / 3.0 * PI * body.radius * body.radius * body.radius;
         case Shape::Shell: {
             const double rIn = body.radius - body.thickness;
-            return 4.0 / 3.0 * PI *
-                   (body.radius * body.radius * body.radius - rIn * rIn * rIn);
+            return 4.0 / 3.0 * PI * (body.radius * body.radius * body.radius - rIn * rIn * rIn);
         }
         case Shape::Ring:
             return PI *
@@ -161,7 +161,7 @@ struct LatticeGeometry {
     double dy = 0.0;  // row spacing
     double dz = 0.0;  // layer spacing
     bool hcp = false;
-    double d = 0.0;   // hcp nearest-neighbour distance
+    double d = 0.0;        // hcp nearest-neighbour distance
     double zOffset = 0.5;  // layer k at (k + zOffset) dz: 1/2 puts the mid-plane between layers
 
     double layerZ(std::int64_t k) const { return (static_cast<double>(k) + zOffset) * dz; }
@@ -290,8 +290,8 @@ GeneratedBody generateBody(const BodyDesc& body) {
     out.spacing = latticeSpacing(body);
     if (body.smoothing) {
         if (!(std::isfinite(*body.smoothing) && *body.smoothing > 0.0))
-            invalidBody(body,
-                        fmt::format("smoothing must be a positive number (got {})", *body.smoothing));
+            invalidBody(
+                body, fmt::format("smoothing must be a positive number (got {})", *body.smoothing));
         out.h = *body.smoothing;
     } else {
         out.h = 1.3 * out.spacing;

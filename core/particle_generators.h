@@ -62,13 +62,13 @@ bool insideShape(const BodyDesc& body, const glm::dvec3& local);
 //   random: round(V / s^3) points uniform in the shape (rejection sampling in the local
 //           bounding box with splitmix64 seeded by BodyDesc::seed).
 // Lattice layers are symmetric about the body's mid-plane: z = (k + 1/2) * layer spacing, or
-// z = k * layer spacing for a ring with an odd number of layers. Throws InputError (see shapeVolume) and for
-// particles < 1 or more than 2^31 particles.
+// z = k * layer spacing for a ring with an odd number of layers. Throws InputError (see
+// shapeVolume) and for particles < 1 or more than 2^31 particles.
 GeneratedBody generateBody(const BodyDesc& body);
 
 // splitmix64 (Steele, Lea & Flood 2014): a tiny PRNG with the same output on every platform.
 class SplitMix64 {
-public:
+  public:
     explicit SplitMix64(std::uint64_t seed) : mState(seed) {}
     std::uint64_t next() {
         std::uint64_t z = (mState += 0x9E3779B97F4A7C15ull);
@@ -79,7 +79,7 @@ public:
     // Uniform in [0, 1) with 53 random bits.
     double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
-private:
+  private:
     std::uint64_t mState;
 };
 

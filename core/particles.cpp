@@ -1,8 +1,9 @@
 #include "core/particles.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <glm/common.hpp>
 #include <limits>
 #include <map>
@@ -33,13 +34,16 @@ void ParticleSet::resize(std::size_t n) {
 
 namespace {
 
-std::string whereOf(const BodyDesc& desc) { return desc.where.empty() ? "scene" : desc.where; }
+std::string whereOf(const BodyDesc& desc) {
+    return desc.where.empty() ? "scene" : desc.where;
+}
 
 glm::dmat3 frameOf(const BodyDesc& desc) {
     try {
         return bodyFrame(desc.normal);
     } catch (const std::invalid_argument& e) {
-        throw InputError(fmt::format("{}: body '{}': normal: {}", whereOf(desc), desc.name, e.what()));
+        throw InputError(
+            fmt::format("{}: body '{}': normal: {}", whereOf(desc), desc.name, e.what()));
     }
 }
 
@@ -119,7 +123,8 @@ void appendFile(const BodyDesc& desc, ParticleSet& set, std::vector<BodyInfo>& b
             double v = maxParticleVolume(h);
             if (hasMassDensity && file.density[i] > 0.0 && file.mass[i] > 0.0)
                 // m / rho in file units^3, scaled like the positions.
-                v = std::min(file.mass[i] / file.density[i] * desc.scale * desc.scale * desc.scale, v);
+                v = std::min(file.mass[i] / file.density[i] * desc.scale * desc.scale * desc.scale,
+                             v);
             set.position[next] = glm::vec3(p);
             set.h[next] = static_cast<float>(h);
             set.volume[next] = static_cast<float>(v);
