@@ -11,6 +11,7 @@
 
 #include "app/render_job.h"
 #include "core/error.h"
+#include "realtime/gl/context.h"
 
 namespace tr = twinrender;
 
@@ -23,6 +24,7 @@ struct CommonOptions {
     std::vector<std::string> sets;
     int threads = 0;  // 0: every core
     std::string out = "out";
+    bool requireGpu = false;
 };
 
 void addCommon(CLI::App* cmd, CommonOptions& o) {
@@ -31,25 +33,42 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
     cmd->add_option("--threads", o.threads, "worker threads (default: every core)")
         ->check(CLI::Range(0, 1024));
     cmd->add_option("--out", o.out, "output folder")->capture_default_str();
+    cmd->add_flag("--require-gpu", o.requireGpu,
+                  "refuse to run the real-time renderer on a software rasteriser");
+}
+
+void printRender(const tr::app::LoadedScene& s, const tr::app::Render& r, const std::filesystem::path& dir) {
+    const auto& f = r.frame;
+    std::printf("%s: %s %dx%d, %zu particles, %.1f ms on %s -> %s\n", s.scene.name.c_str(),
+                f.renderer.c_str(), f.image.width(), f.image.height(), f.particleCount,
+                f.timingsMs.at("total"), f.device.c_str(), (dir / (f.renderer + ".exr")).c_str());
+    const auto unresolved = f.counters.find("unbracketed_rays");
+    if (unresolved != f.counters.end() && unresolved->second > 0)
+        std::printf("%s: %.0f rays could not be resolved (counted in %s.json)\n", s.scene.name.c_str(),
+                    unresolved->second, f.renderer.c_str());
 }
 
 int runRender(const std::string& scenePath, const std::string& renderer, const CommonOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
     auto loaded = tr::app::loadScene(scenePath, o.sets);
     const std::filesystem::path dir = std::filesystem::path(o.out) / loaded.scene.name;
+    // The GL context first: without one there is nothing to render in real time, and the
+    // error should come before minutes of raymarching.
+    std::unique_ptr<tr::realtime::gl::Context> context;
+    if (renderer == "realtime" || renderer == "both")
+        context = std::make_unique<tr::realtime::gl::Context>(tr::realtime::gl::ContextOptions{o.requireGpu});
     if (renderer == "raymarch" || renderer == "both") {
         tr::raymarch::EmbreeDevice device;
-        const tr::core::Frame frame = tr::app::renderRaymarch(device, loaded, tty);
-        tr::app::writeRender(loaded, frame, dir);
-        std::printf("%s: raymarch %dx%d, %zu particles, %.1f ms -> %s\n", loaded.scene.name.c_str(),
-                    frame.image.width(), frame.image.height(), frame.particleCount,
-                    frame.timingsMs.at("total"), (dir / "raymarch.exr").c_str());
-        if (frame.counters.at("unbracketed_rays") > 0)
-            std::printf("%s: %.0f rays could not be resolved (counted in raymarch.json)\n",
-                        loaded.scene.name.c_str(), frame.counters.at("unbracketed_rays"));
+        const auto r = tr::app::renderRaymarch(device, loaded, tty);
+        tr::app::writeRender(loaded, r, dir);
+        printRender(loaded, r, dir);
     }
-    if (renderer == "realtime" || renderer == "both")
-        throw tr::core::InputError("the real-time renderer is not part of this build");
+    if (context) {
+        tr::realtime::Renderer gl(*context);
+        const auto r = tr::app::renderRealtime(gl, loaded);
+        tr::app::writeRender(loaded, r, dir);
+        printRender(loaded, r, dir);
+    }
     return 0;
 }
 

@@ -9,6 +9,7 @@ LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::
     LoadedScene s;
     s.scene = core::loadScene(file, overrides);
     s.raymarch = raymarch::parseSettings(s.scene.raymarch);
+    s.realtime = realtime::parseSettings(s.scene.realtime);
     // [compare.thresholds] belongs to compare/; its keys are read there.
     s.scene.compare.keysUnder("thresholds");
     s.scene.compare.checkAllRead();
@@ -17,18 +18,24 @@ LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::
     return s;
 }
 
-core::Frame renderRaymarch(const raymarch::EmbreeDevice& device, const LoadedScene& s,
-                           bool showProgress) {
+Render renderRaymarch(const raymarch::EmbreeDevice& device, const LoadedScene& s, bool showProgress) {
     Progress progress(s.scene.name + ": raymarch");
     raymarch::Renderer renderer(device, s.scene, s.particles, s.materials, s.raymarch);
-    core::Frame frame = renderer.render([&](double f) {
+    Render r;
+    r.frame = renderer.render([&](double f) {
         if (showProgress) progress.update(f);
     });
     progress.finish();
-    return frame;
+    r.display = core::tonemappedBeauty(r.frame.image, static_cast<float>(s.scene.camera.exposure));
+    return r;
 }
 
-void writeRender(const LoadedScene& s, const core::Frame& frame, const std::filesystem::path& dir) {
+Render renderRealtime(realtime::Renderer& renderer, const LoadedScene& s) {
+    realtime::RenderResult result = renderer.render(s.scene, s.particles, s.materials, s.realtime);
+    return {std::move(result.frame), std::move(result.display)};
+}
+
+void writeRender(const LoadedScene& s, const Render& render, const std::filesystem::path& dir) {
     nlohmann::json extra;
     extra["scene"] = s.scene.name;
     extra["scene_file"] = s.scene.file.string();
@@ -40,9 +47,7 @@ void writeRender(const LoadedScene& s, const core::Frame& frame, const std::file
                        {"near", s.scene.camera.near},
                        {"far", s.scene.camera.far},
                        {"exposure", s.scene.camera.exposure}};
-    const core::Image display =
-        core::tonemappedBeauty(frame.image, static_cast<float>(s.scene.camera.exposure));
-    core::writeFrame(frame, display, dir, frame.renderer, extra);
+    core::writeFrame(render.frame, render.display, dir, render.frame.renderer, extra);
 }
 
 }  // namespace twinrender::app

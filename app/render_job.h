@@ -13,6 +13,8 @@
 #include "core/texture.h"
 #include "raymarch/embree_device.h"
 #include "raymarch/settings.h"
+#include "realtime/renderer.h"
+#include "realtime/settings.h"
 
 namespace twinrender::app {
 
@@ -20,6 +22,7 @@ namespace twinrender::app {
 struct LoadedScene {
     core::Scene scene;
     raymarch::Settings raymarch;
+    realtime::Settings realtime;
     std::vector<core::Material> materials;
     core::SceneParticles particles;
 };
@@ -28,11 +31,20 @@ struct LoadedScene {
 // errors), loads the textures and builds the particles.
 LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
+// A rendered frame and the image a person looks at (tonemapped; bloom when enabled).
+struct Render {
+    core::Frame frame;
+    core::Image display;
+};
+
 // Renders with the reference raymarcher.
-core::Frame renderRaymarch(const raymarch::EmbreeDevice& device, const LoadedScene& scene,
-                           bool showProgress);
+Render renderRaymarch(const raymarch::EmbreeDevice& device, const LoadedScene& scene,
+                      bool showProgress);
+
+// Renders with the real-time renderer (its GL context is current on this thread).
+Render renderRealtime(realtime::Renderer& renderer, const LoadedScene& scene);
 
 // Writes DIR/<renderer>.exr|.png|.json for a frame of the scene.
-void writeRender(const LoadedScene& scene, const core::Frame& frame, const std::filesystem::path& dir);
+void writeRender(const LoadedScene& scene, const Render& render, const std::filesystem::path& dir);
 
 }  // namespace twinrender::app

@@ -1,0 +1,59 @@
+#include "realtime/gl/pipeline.h"
+
+#include <epoxy/gl.h>
+
+namespace twinrender::realtime::gl {
+
+void setPipelineState(const PipelineState& state) {
+    if (state.depthTest == DepthTest::Off) {
+        glDisable(GL_DEPTH_TEST);
+    } else {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(state.depthTest == DepthTest::Less ? GL_LESS : GL_GREATER);
+    }
+    glDepthMask(state.depthWrite ? GL_TRUE : GL_FALSE);
+    if (state.depthClamp)
+        glEnable(GL_DEPTH_CLAMP);
+    else
+        glDisable(GL_DEPTH_CLAMP);
+    glClipControl(GL_LOWER_LEFT,
+                  state.clipDepth == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    if (state.additiveBlend) {
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+    } else {
+        glDisable(GL_BLEND);
+    }
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+}
+
+void drawTriangles(int vertexCount) {
+    if (vertexCount > 0) glDrawArrays(GL_TRIANGLES, 0, vertexCount);
+}
+
+void drawFullscreenTriangle() { glDrawArrays(GL_TRIANGLES, 0, 3); }
+
+void memoryBarrierAll() { glMemoryBarrier(GL_ALL_BARRIER_BITS); }
+
+void finish() { glFinish(); }
+
+Limits queryLimits() {
+    Limits l;
+    GLint64 block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+    l.maxStorageBlockBytes = block;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &l.maxTextureSize);
+    GLint64 texels = 0;
+    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
+    l.maxTextureBufferTexels = texels;
+    GLint viewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    l.maxViewportWidth = viewport[0];
+    l.maxViewportHeight = viewport[1];
+    return l;
+}
+
+}  // namespace twinrender::realtime::gl

@@ -1,0 +1,47 @@
+// Fixed-function state and draw calls, as typed values: the passes in realtime/ set state
+// and draw through these and never touch GL enums.
+#pragma once
+
+namespace twinrender::realtime::gl {
+
+enum class DepthTest {
+    Off,
+    Less,     // standard and logarithmic depth: smaller is nearer
+    Greater,  // reversed-Z: larger is nearer
+};
+
+// The clip-space depth range (glClipControl): reversed-Z wants [0, 1] so that float depth
+// keeps its precision near 0.
+enum class ClipDepth { MinusOneToOne, ZeroToOne };
+
+struct PipelineState {
+    DepthTest depthTest = DepthTest::Off;
+    bool depthWrite = false;
+    // Disables near/far clipping: impostors write their own depth and test near/far
+    // themselves, so a huge far/near ratio cannot clip a quad by rounding.
+    bool depthClamp = false;
+    ClipDepth clipDepth = ClipDepth::MinusOneToOne;
+    bool additiveBlend = false;  // dst = src + dst
+};
+
+void setPipelineState(const PipelineState& state);
+
+// Attribute-less draws: vertex shaders fetch their data from storage buffers by gl_VertexID.
+void drawTriangles(int vertexCount);
+// One triangle covering the viewport (vertex shader fullscreen.vert).
+void drawFullscreenTriangle();
+
+// Makes later texture reads see the writes of earlier draws to storage images or buffers
+// (not needed between a draw into a framebuffer and sampling its textures).
+void memoryBarrierAll();
+void finish();
+
+struct Limits {
+    long long maxStorageBlockBytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+    int maxTextureSize = 0;              // GL_MAX_TEXTURE_SIZE
+    long long maxTextureBufferTexels = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
+    int maxViewportWidth = 0, maxViewportHeight = 0;
+};
+Limits queryLimits();
+
+}  // namespace twinrender::realtime::gl

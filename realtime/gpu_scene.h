@@ -1,0 +1,67 @@
+// The scene in the layouts the shaders read (std430 / std140): particles with camera-relative
+// positions, material textures packed into one texel array, and the per-frame uniforms.
+// Pure packing, no GL: the renderer uploads these.
+#pragma once
+
+#include <cstdint>
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+#include <span>
+#include <vector>
+
+#include "core/particles.h"
+#include "core/texture.h"
+
+namespace twinrender::realtime {
+
+// shaders/particles.glsl, struct Particle (std430).
+struct GpuParticle {
+    glm::vec4 positionRadius;  // position - camera position (computed in double); radius
+    glm::vec4 normalU;
+    glm::vec4 dudxV;
+    glm::vec4 dvdxBody;        // w: body index as float
+    glm::vec4 glowMaterial;    // w: material index as float
+};
+static_assert(sizeof(GpuParticle) == 80);
+
+// Impostor radius = radiusScale * h. Body and material indices must stay below 2^24.
+// `indices`: the particles to pack, in order (all of them when empty).
+std::vector<GpuParticle> packParticles(const core::ParticleSet& particles,
+                                       const glm::dvec3& cameraPosition, double radiusScale,
+                                       std::span<const std::uint32_t> indices = {});
+
+// shaders/textures.glsl, struct MaterialRecord (std430).
+struct GpuMaterial {
+    glm::ivec4 diffuse;     // x: first texel (RGB triple) in the texel array, y: width, z: height
+    glm::ivec4 specular;
+    glm::ivec4 emission;
+    glm::ivec4 cityLights;
+    glm::vec4 params;       // x: shininess
+};
+static_assert(sizeof(GpuMaterial) == 80);
+
+struct GpuMaterials {
+    std::vector<float> texels;  // RGB triples of every distinct texture, back to back
+    std::vector<GpuMaterial> records;
+};
+
+// Identical textures (the same size and texels) are stored once.
+GpuMaterials packMaterials(const std::vector<core::Material>& materials);
+
+// shaders/common.glsl, uniform block FrameUniforms (std140).
+struct FrameUniforms {
+    glm::mat4 viewFromWorld{1.0f};
+    glm::mat4 clipFromView{1.0f};
+    glm::mat4 lightView{1.0f};
+    glm::mat4 lightClip{1.0f};
+    glm::vec4 viewport{0.0f};
+    glm::vec4 camera{0.0f};
+    glm::vec4 light{0.0f};
+    glm::vec4 lightColor{0.0f};
+    glm::vec4 shadowRange{0.0f};
+    glm::vec4 shadowBias{0.0f};
+    glm::vec4 misc{0.0f};
+};
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 7 * 16);
+
+}  // namespace twinrender::realtime

@@ -1,0 +1,30 @@
+// Exact occlusion culling of impostor spheres that can never be seen. A sphere whose whole
+// surface lies inside the union of other spheres is never the first sphere a ray meets from a
+// point outside all spheres (the ray crosses its surface inside another sphere, which it
+// entered earlier), so it never wins a depth test: not in the camera's G-buffer, not in the
+// shadow map, from any direction. In a body of hcp or cubic lattice particles with impostors
+// of about h, every particle with a full shell of neighbours is such a sphere; culling them
+// leaves the surface layers and cuts the fill of the shadow and G-buffer passes several-fold
+// without changing a pixel.
+//
+// The test is conservative: directions on the sphere are checked at the vertices of a
+// geodesic grid, each required to be covered with a margin of the grid's covering radius, so
+// a sphere is culled only when every point of its surface is provably covered. Coincident
+// equal spheres keep the lower index.
+//
+// Not valid when the near plane cuts into a body (its inside would show); the renderer then
+// skips culling (see renderer.cpp).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/particles.h"
+
+namespace twinrender::realtime {
+
+// Indices (ascending) of the particles whose sphere, of radius radiusScale * h, may be visible.
+std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& particles,
+                                               double radiusScale);
+
+}  // namespace twinrender::realtime

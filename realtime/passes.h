@@ -1,0 +1,81 @@
+// The frame as named passes (DESIGN.md, "Real-time"): shadow -> gbuffer -> ssss -> shade ->
+// post. Each pass takes the buffers it reads and returns the textures it writes; the renderer
+// (renderer.cpp) runs them in order, times each with a GL timer query and skips the passes the
+// settings do not need. Positions are camera-relative; the frame uniforms are bound at
+// uniform binding 0, particles and materials at storage bindings 0 and 2, the material
+// texels at texture unit 7.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "realtime/gl/buffer.h"
+#include "realtime/gl/buffer_texture.h"
+#include "realtime/gl/framebuffer.h"
+#include "realtime/gl/texture.h"
+#include "realtime/occlusion_spheres.h"
+#include "realtime/settings.h"
+#include "realtime/shader_library.h"
+
+namespace twinrender::realtime {
+
+// Buffers uploaded once per render.
+struct SceneBuffers {
+    gl::Buffer uniforms;   // FrameUniforms
+    gl::Buffer particles;  // GpuParticle[]
+    gl::BufferTexture texels;  // GpuMaterials::texels (RGB32F), texture unit 7
+    gl::Buffer materials;  // GpuMaterial[]
+    std::size_t particleCount = 0;
+
+    void bind() const;
+};
+
+// The #define selecting the depth encoding in common.glsl.
+const char* depthDefine(DepthMode mode);
+
+// shadow: the impostors seen from the light into a resolution^2 float depth map holding
+// linear light depth in [0, 1].
+gl::Texture runShadowPass(ProgramCache& programs, const SceneBuffers& scene, int resolution);
+
+// gbuffer: impostors from the camera, depth test in the selected encoding.
+struct GBuffer {
+    gl::Texture normalUv;   // RGBA32F: world normal (octahedral, octahedral.h), u, v
+    gl::Texture emission;   // RGBA32F: emission, 0
+    gl::Texture surface;    // RGBA32F: eye depth (+inf background), body (-1), radius px, material
+    gl::Texture depth;      // Depth24 (standard) or Depth32F
+    gl::Framebuffer framebuffer;
+};
+GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int width, int height,
+                       DepthMode mode);
+
+// ssss: the smoothed normal + uv and, when `emission` (the scene emits anywhere), the smoothed
+// emission (ping-pong targets); without, the G-buffer's (zero) emission stands.
+struct SmoothedSurface {
+    gl::Texture normalUv[2];
+    gl::Texture emission[2];  // empty when the emission is not smoothed
+    int current = 0;          // the targets holding the result
+    const gl::Texture& resultNormalUv() const { return normalUv[current]; }
+    const gl::Texture& resultEmission(const GBuffer& g) const {
+        return emission[current].id() ? emission[current] : g.emission;
+    }
+};
+SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
+                            const SsssSettings& settings, bool emission);
+
+// shade: beauty (rgb) and light visibility (a). `shadowMap` may be null (no map).
+struct ShadeInputs {
+    const gl::Texture* normalUv = nullptr;
+    const gl::Texture* emission = nullptr;
+    const gl::Texture* surface = nullptr;
+    const gl::Texture* shadowMap = nullptr;
+    ShadowMode shadows = ShadowMode::None;
+    // Spheres mode: camera-relative centres.
+    std::vector<OcclusionSphere> spheres;
+};
+gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& inputs);
+
+// post: bloom (when enabled) and the tonemapper into display values (RGBA32F, a = 1).
+gl::Texture runPostPass(ProgramCache& programs, const gl::Texture& beauty,
+                        const BloomSettings& bloom, float exposure);
+
+}  // namespace twinrender::realtime

@@ -1,0 +1,449 @@
+// Renderer tests on llvmpipe: small images (160 x 90) and few particles. Scenes are built in
+// code so that uv, normals and bodies are exactly what each test needs.
+#include "realtime/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <functional>
+#include <glm/geometric.hpp>
+#include <limits>
+
+#include "core/camera.h"
+#include "core/shading.h"
+#include "realtime/gl/context.h"
+
+namespace twinrender::realtime {
+namespace {
+
+constexpr int WIDTH = 160, HEIGHT = 90;
+
+core::Texture constantTexture(glm::vec3 c) {
+    core::Image image(1, 1, {"R", "G", "B"});
+    for (int i = 0; i < 3; ++i) image.at(0, 0, i) = c[i];
+    return core::Texture(std::move(image));
+}
+
+struct TestScene {
+    core::Scene scene;
+    core::SceneParticles particles;
+    std::vector<core::Material> materials;
+
+    TestScene() {
+        scene.name = "test";
+        scene.file = "test.toml";
+        scene.camera.position = {0.0, 0.0, 10.0};
+        scene.camera.target = {0.0, 0.0, 0.0};
+        scene.camera.up = {0.0, 1.0, 0.0};
+        scene.camera.fovYDeg = 30.0;
+        scene.camera.near = 0.1;
+        scene.camera.far = 100.0;
+        scene.camera.width = WIDTH;
+        scene.camera.height = HEIGHT;
+        scene.light.direction = glm::normalize(glm::dvec3(0.0, 0.0, -1.0));
+        scene.light.intensity = 2.0;
+        scene.light.ambient = 0.05;
+        core::Material grey;
+        grey.name = "grey";
+        grey.diffuse = constantTexture(glm::vec3(0.5f));
+        grey.specular = constantTexture(glm::vec3(0.0f));
+        grey.emission = constantTexture(glm::vec3(0.0f));
+        grey.cityLights = constantTexture(glm::vec3(0.0f));
+        materials.push_back(grey);
+    }
+
+    // One particle; returns its index.
+    std::size_t add(std::uint32_t body, glm::vec3 position, float h, glm::vec2 uv = {0.5f, 0.5f},
+                    glm::vec3 normal = {0.0f, 0.0f, 1.0f}) {
+        core::ParticleSet& ps = particles.particles;
+        const std::size_t i = ps.size();
+        ps.resize(i + 1);
+        ps.position[i] = position;
+        ps.h[i] = h;
+        ps.volume[i] = h * h * h / 2.197f;
+        ps.body[i] = body;
+        ps.material[i] = 0;
+        ps.uv[i] = uv;
+        ps.dudx[i] = ps.dvdx[i] = glm::vec3(0.0f);
+        ps.normal[i] = normal;
+        ps.temperature[i] = 0.0f;
+        ps.glow[i] = glm::vec3(0.0f);
+        if (particles.bodies.size() <= body) particles.bodies.resize(body + 1);
+        return i;
+    }
+
+    // A slab of nx x ny x 2 particles (spacing s, h = 1.3 s) in the plane z = 0 facing the
+    // camera, starting at `corner`; uv(column, row) gives each particle's uv.
+    void slab(std::uint32_t body, glm::vec3 corner, int nx, int ny, float s,
+              const std::function<glm::vec2(int, int)>& uv, glm::vec3 normal = {0, 0, 1}) {
+        for (int layer = 0; layer < 2; ++layer)
+            for (int y = 0; y < ny; ++y)
+                for (int x = 0; x < nx; ++x)
+                    add(body, corner + glm::vec3(x * s, y * s, -layer * s), 1.3f * s, uv(x, y), normal);
+    }
+
+    void finish() {
+        core::ParticleSet& ps = particles.particles;
+        glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+        for (std::size_t i = 0; i < ps.size(); ++i) {
+            lo = glm::min(lo, glm::dvec3(ps.position[i]) - 2.0 * double(ps.h[i]));
+            hi = glm::max(hi, glm::dvec3(ps.position[i]) + 2.0 * double(ps.h[i]));
+        }
+        particles.boundsMin = lo;
+        particles.boundsMax = hi;
+        for (std::uint32_t b = 0; b < particles.bodies.size(); ++b)
+            particles.bodies[b].name = fmt::format("body{}", b);
+    }
+};
+
+Settings quiet() {
+    Settings s;
+    s.shadows = ShadowMode::None;
+    s.ssss.enabled = false;
+    s.bloom.enabled = false;
+    return s;
+}
+
+struct Channels {
+    const core::Image& image;
+    float operator()(int x, int y, const char* name) const {
+        return image.at(x, y, image.requireChannel(name));
+    }
+};
+
+class RendererTest : public ::testing::Test {
+protected:
+    gl::Context context;
+    Renderer renderer{context};
+
+    RenderResult render(TestScene& t, const Settings& settings) {
+        t.finish();
+        return renderer.render(t.scene, t.particles, t.materials, settings);
+    }
+};
+
+// One particle: the disc it covers, its linear eye depth in Z, its id; the background keeps
+// the AOV background values. In every depth mode.
+TEST_F(RendererTest, OneSphereHasExactDepthAndCoverageInEveryMode) {
+    for (DepthMode mode : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
+        TestScene t;
+        const float h = 1.0f;
+        t.add(0, {0.0f, 0.0f, 0.0f}, h);
+        Settings s = quiet();
+        s.depth = mode;
+        const RenderResult r = render(t, s);
+        const Channels c{r.frame.image};
+        const core::Camera camera(t.scene.camera);
+        const double radius = s.particles.radiusScale * h;
+        int covered = 0, expected = 0;
+        for (int y = 0; y < HEIGHT; ++y)
+            for (int x = 0; x < WIDTH; ++x) {
+                const core::Ray ray = camera.ray(x + 0.5, y + 0.5);
+                // Ray-sphere in double precision.
+                const double b = glm::dot(ray.origin, ray.direction);
+                const double disc = b * b - (glm::dot(ray.origin, ray.origin) - radius * radius);
+                const bool hit = disc > 0.0;
+                // Pixels within 1e-3 of the silhouette may go either way.
+                if (std::abs(disc) < 1e-3) continue;
+                expected += hit;
+                covered += c(x, y, "A") > 0.5f;
+                if (hit) {
+                    const double t0 = -b - std::sqrt(disc);
+                    const double z = camera.eyeDepth(ray.origin + t0 * ray.direction);
+                    ASSERT_NEAR(c(x, y, "Z"), z, 2e-5 * z) << toString(mode) << " " << x << "," << y;
+                    ASSERT_EQ(c(x, y, "id"), 0.0f);
+                    ASSERT_EQ(c(x, y, "A"), 1.0f);
+                } else {
+                    ASSERT_EQ(c(x, y, "A"), 0.0f) << x << "," << y;
+                    ASSERT_EQ(c(x, y, "id"), -1.0f);
+                    ASSERT_TRUE(std::isinf(c(x, y, "Z")));
+                    ASSERT_EQ(c(x, y, "R"), 0.0f);
+                }
+            }
+        EXPECT_EQ(covered, expected) << toString(mode);
+        EXPECT_GT(expected, 100);
+        EXPECT_EQ(r.frame.renderer, "realtime");
+        EXPECT_EQ(r.frame.device, context.renderer());
+    }
+}
+
+// far / near = 1e10 (a telescope): two bodies 0.1 % apart in depth, far away. The log and
+// reversed buffers keep the nearer body in front; the 24-bit standard buffer cannot tell them
+// apart and shows the one drawn first (here the farther one).
+TEST_F(RendererTest, LogDepthKeepsFarBodiesInOrderWhereStandardDoesNot) {
+    std::map<DepthMode, int> wrong;
+    for (DepthMode mode : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
+        TestScene t;
+        t.scene.camera.position = {0.0, 0.0, 0.0};
+        t.scene.camera.target = {0.0, 0.0, -1.0};
+        t.scene.camera.near = 1e-3;
+        t.scene.camera.far = 1e7;
+        t.scene.camera.fovYDeg = 0.5;
+        Settings s = quiet();
+        s.depth = mode;
+        s.particles.cullHidden = false;
+        const double radius = 300.0;  // scene units
+        const auto h = static_cast<float>(radius / s.particles.radiusScale);
+        t.add(1, {150.0f, 0.0f, -100200.0f}, h);  // farther, drawn first
+        t.add(0, {-150.0f, 0.0f, -100000.0f}, h);
+        const RenderResult r = render(t, s);
+        const Channels c{r.frame.image};
+        const core::Camera camera(t.scene.camera);
+        for (int y = 0; y < HEIGHT; ++y)
+            for (int x = 0; x < WIDTH; ++x) {
+                // The nearest sphere along the pixel's ray, in double precision.
+                const core::Ray ray = camera.ray(x + 0.5, y + 0.5);
+                double best = std::numeric_limits<double>::infinity();
+                double hits[2] = {best, best};
+                float id = -1.0f;
+                bool silhouette = false;
+                for (std::size_t i = 0; i < 2; ++i) {
+                    const glm::dvec3 oc = -glm::dvec3(t.particles.particles.position[i]);
+                    const double b = glm::dot(oc, ray.direction);
+                    const double disc = b * b - (glm::dot(oc, oc) - radius * radius);
+                    // Pixels within a thousandth of a radius of an outline may go either way.
+                    silhouette |= std::abs(disc) < 1e-3 * radius * radius;
+                    if (disc < 0.0) continue;
+                    const double d = -b - std::sqrt(disc);
+                    hits[i] = d;
+                    if (d < best) {
+                        best = d;
+                        id = static_cast<float>(t.particles.particles.body[i]);
+                    }
+                }
+                // Where the spheres cut each other both are at the same depth: not an order.
+                const bool tie = std::abs(hits[0] - hits[1]) < 1e-5 * best;
+                if (!silhouette && !tie && id >= 0.0f && c(x, y, "id") != id) ++wrong[mode];
+            }
+    }
+    EXPECT_EQ(wrong[DepthMode::Log], 0);
+    EXPECT_EQ(wrong[DepthMode::Reversed], 0);
+    EXPECT_GT(wrong[DepthMode::Standard], 100);
+}
+
+// The shade pass is core::shade, and post (without bloom) is core::tonemap.
+TEST_F(RendererTest, ShadingMatchesTheCoreModel) {
+    TestScene t;
+    core::Image diffuse(8, 4, {"R", "G", "B"}), city(2, 2, {"R", "G", "B"});
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x)
+            for (int k = 0; k < 3; ++k) diffuse.at(x, y, k) = 0.1f + 0.8f * ((x * 3 + y * 5 + k) % 7) / 6.0f;
+    city.at(1, 0, 0) = 2.0f;
+    city.at(0, 1, 1) = 1.0f;
+    core::Material& m = t.materials[0];
+    m.diffuse = core::Texture(diffuse);
+    m.specular = constantTexture({0.3f, 0.3f, 0.2f});
+    m.emission = constantTexture({0.02f, 0.01f, 0.0f});
+    m.cityLights = core::Texture(city);
+    m.shininess = 20.0f;
+    t.scene.light.direction = glm::normalize(glm::dvec3(-1.0, 0.3, -0.5));
+    t.scene.light.color = {1.0, 0.9, 0.8};
+    t.scene.camera.exposure = 1.3;
+    // Particles with varied normals and uv gradients, a ball of 7 x 7 x 7.
+    for (int z = -3; z <= 3; ++z)
+        for (int y = -3; y <= 3; ++y)
+            for (int x = -3; x <= 3; ++x) {
+                const glm::vec3 p(x * 0.3f, y * 0.3f, z * 0.3f);
+                const std::size_t i = t.add(0, p, 0.39f, {0.5f + 0.07f * x, 0.5f + 0.1f * y},
+                                            glm::normalize(p + glm::vec3(0.01f, 0.02f, 0.03f)));
+                t.particles.particles.dudx[i] = {0.2f, 0.05f, 0.0f};
+                t.particles.particles.dvdx[i] = {0.0f, 0.3f, 0.1f};
+                t.particles.particles.glow[i] = {0.1f * (x + 3), 0.0f, 0.0f};
+            }
+    const RenderResult r = render(t, quiet());
+    const Channels c{r.frame.image};
+    const core::Camera camera(t.scene.camera);
+    int checked = 0;
+    for (int y = 0; y < HEIGHT; ++y)
+        for (int x = 0; x < WIDTH; ++x) {
+            const glm::vec3 beauty(c(x, y, "R"), c(x, y, "G"), c(x, y, "B"));
+            const glm::vec3 display(r.display.at(x, y, 0), r.display.at(x, y, 1), r.display.at(x, y, 2));
+            const glm::vec3 mapped = core::tonemap(beauty, 1.3f);
+            for (int k = 0; k < 3; ++k) ASSERT_NEAR(display[k], mapped[k], 2e-5) << x << "," << y;
+            if (c(x, y, "A") == 0.0f) continue;
+            core::SurfacePoint p;
+            p.normal = glm::vec3(c(x, y, "N.X"), c(x, y, "N.Y"), c(x, y, "N.Z"));
+            p.toEye = -glm::vec3(camera.ray(x + 0.5, y + 0.5).direction);
+            p.uv = {c(x, y, "uv.U"), c(x, y, "uv.V")};
+            p.material = 0;
+            p.emission = glm::vec3(c(x, y, "emission.R"), c(x, y, "emission.G"), c(x, y, "emission.B"));
+            p.visibility = c(x, y, "shadow");
+            const glm::vec3 expected = core::shade(t.materials, t.scene.light, p);
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(beauty[k], expected[k], 1e-4f + 1e-4f * expected[k]) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 500);
+}
+
+// Two touching slabs with different uv ranges and normals: the blur never mixes them.
+TEST_F(RendererTest, SmoothingNeverMixesTwoBodies) {
+    for (bool separable : {true, false}) {
+        TestScene t;
+        const float s = 0.12f;
+        t.slab(0, {-2.4f, -1.2f, 0.0f}, 20, 20, s, [](int x, int y) { return glm::vec2(0.1f + 0.005f * x, 0.2f + 0.005f * y); });
+        t.slab(1, {0.0f, -1.2f, 0.0f}, 20, 20, s, [](int x, int y) { return glm::vec2(0.6f + 0.005f * x, 0.7f + 0.005f * y); },
+               glm::normalize(glm::vec3(0.6f, 0.0f, 0.8f)));
+        // Red glow on body 0, blue on body 1: the emission is smoothed too.
+        for (std::size_t i = 0; i < t.particles.particles.size(); ++i)
+            t.particles.particles.glow[i] = t.particles.particles.body[i] == 0 ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+        Settings settings = quiet();
+        settings.ssss.enabled = true;
+        settings.ssss.separable = separable;
+        settings.ssss.radiusScale = 4.0;
+        settings.ssss.iterations = 3;
+        settings.particles.sphereNormalWeight = 0.0;  // one normal per body, to recognise it
+        const RenderResult r = render(t, settings);
+        const Channels c{r.frame.image};
+        int pixels[2] = {0, 0};
+        for (int y = 0; y < HEIGHT; ++y)
+            for (int x = 0; x < WIDTH; ++x) {
+                const float id = c(x, y, "id");
+                if (id < 0.0f) continue;
+                const int b = static_cast<int>(id);
+                ++pixels[b];
+                const float u = c(x, y, "uv.U"), v = c(x, y, "uv.V"), nx = c(x, y, "N.X");
+                if (b == 0) {
+                    ASSERT_TRUE(u >= 0.1f - 1e-6f && u <= 0.2f + 1e-6f) << u;
+                    ASSERT_TRUE(v >= 0.2f - 1e-6f && v <= 0.3f + 1e-6f) << v;
+                    ASSERT_NEAR(nx, 0.0f, 1e-6f);
+                    ASSERT_EQ(c(x, y, "emission.B"), 0.0f);
+                    ASSERT_NEAR(c(x, y, "emission.R"), 1.0f, 1e-6f);
+                } else {
+                    ASSERT_TRUE(u >= 0.6f - 1e-6f && u <= 0.7f + 1e-6f) << u;
+                    ASSERT_NEAR(nx, 0.6f, 1e-5f);
+                    ASSERT_EQ(c(x, y, "emission.R"), 0.0f);
+                }
+            }
+        EXPECT_GT(pixels[0], 1000);
+        EXPECT_GT(pixels[1], 1000);
+    }
+}
+
+// Symmetric exclusion: at a pixel whose right neighbour belongs to another body, the pair
+// (left, right) is excluded at every offset, so a body whose u varies only across columns keeps
+// its unsmoothed u at its right edge. A one-sided kernel would pull it towards the left.
+TEST_F(RendererTest, ExclusionIsSymmetric) {
+    for (bool separable : {true, false}) {
+        auto make = [&](bool smooth) {
+            TestScene t;
+            const float s = 0.12f;
+            t.slab(0, {-2.4f, -1.2f, 0.0f}, 20, 20, s, [](int x, int) { return glm::vec2(0.1f + 0.02f * x, 0.5f); });
+            t.slab(1, {0.0f, -1.2f, 0.0f}, 20, 20, s, [](int, int) { return glm::vec2(0.9f, 0.5f); });
+            Settings settings = quiet();
+            settings.ssss.enabled = smooth;
+            settings.ssss.separable = separable;
+            settings.ssss.radiusScale = 3.0;
+            return render(t, settings);
+        };
+        const RenderResult off = make(false), on = make(true);
+        const Channels a{off.frame.image}, b{on.frame.image};
+        int edges = 0, smoothedInside = 0;
+        for (int y = 0; y < HEIGHT; ++y)
+            for (int x = 0; x + 1 < WIDTH; ++x) {
+                if (a(x, y, "id") != 0.0f) continue;
+                if (a(x + 1, y, "id") == 1.0f) {
+                    // The edge column: its horizontal kernel is empty.
+                    ASSERT_NEAR(b(x, y, "uv.U"), a(x, y, "uv.U"), 1e-6f) << x << "," << y;
+                    ++edges;
+                } else if (b(x, y, "uv.U") != a(x, y, "uv.U")) {
+                    ++smoothedInside;
+                }
+            }
+        EXPECT_GT(edges, 20);
+        EXPECT_GT(smoothedInside, 500);  // the blur does act away from the edge
+    }
+}
+
+// u wraps at the seam: averaging across u = 0.99 | 0.01 gives values near the seam, never 0.5.
+TEST_F(RendererTest, SmoothingWrapsUAtTheSeam) {
+    for (bool separable : {true, false}) {
+        TestScene t;
+        t.slab(0, {-1.2f, -1.2f, 0.0f}, 20, 20, 0.12f,
+               [](int x, int) { return glm::vec2(std::fmod(0.95f + 0.01f * x, 1.0f), 0.5f); });
+        Settings settings = quiet();
+        settings.ssss.enabled = true;
+        settings.ssss.separable = separable;
+        settings.ssss.radiusScale = 4.0;
+        settings.ssss.iterations = 2;
+        const RenderResult r = render(t, settings);
+        const Channels c{r.frame.image};
+        int nearSeam = 0;
+        for (int y = 0; y < HEIGHT; ++y)
+            for (int x = 0; x < WIDTH; ++x) {
+                if (c(x, y, "id") < 0.0f) continue;
+                const float u = c(x, y, "uv.U");
+                ASSERT_TRUE(u >= 0.0f && u < 1.0f) << u;
+                ASSERT_TRUE(u <= 0.16f || u >= 0.94f) << "u = " << u << " at " << x << "," << y;
+                nearSeam += u > 0.98f || u < 0.02f;
+            }
+        EXPECT_GT(nearSeam, 50);
+    }
+}
+
+// Occlusion culling changes the cost, never the image.
+TEST_F(RendererTest, CullingHiddenParticlesLeavesTheImageUnchanged) {
+    auto make = [&](bool cull) {
+        TestScene t;
+        for (int z = -4; z <= 4; ++z)
+            for (int y = -4; y <= 4; ++y)
+                for (int x = -4; x <= 4; ++x)
+                    t.add(0, glm::vec3(x, y, z) * 0.2f, 0.26f, {0.5f + 0.05f * x, 0.5f + 0.05f * y},
+                          glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.01f)));
+        Settings s = quiet();
+        s.shadows = ShadowMode::Map;
+        s.ssss.enabled = true;
+        s.particles.cullHidden = cull;
+        return render(t, s);
+    };
+    const RenderResult culled = make(true), all = make(false);
+    EXPECT_LT(culled.frame.counters.at("particles_drawn"), 0.6 * all.frame.counters.at("particles_drawn"));
+    EXPECT_TRUE(culled.frame.image == all.frame.image);
+}
+
+// A small ball between the light and a slab: its shadow falls where the light's rays put it.
+TEST_F(RendererTest, ShadowFallsWhereTheLightPutsIt) {
+    for (ShadowMode mode : {ShadowMode::Map, ShadowMode::Pcf, ShadowMode::Spheres, ShadowMode::None}) {
+        TestScene t;
+        t.scene.light.direction = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));  // shadow shifts to +x
+        t.slab(0, {-3.0f, -1.6f, 0.0f}, 50, 27, 0.12f, [](int, int) { return glm::vec2(0.5f); });
+        // A ball of radius 0.2 centred at (-1, 0, 1.5): 257 particles, over 5 % of the scene,
+        // so the sphere baseline gives it an occluding sphere too.
+        for (int z = -4; z <= 4; ++z)
+            for (int y = -4; y <= 4; ++y)
+                for (int x = -4; x <= 4; ++x)
+                    if (x * x + y * y + z * z <= 16)
+                        t.add(1, glm::vec3(x * 0.05f - 1.0f, y * 0.05f, z * 0.05f + 1.5f), 0.065f, {0.5f, 0.5f},
+                              glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.0f, 0.0f, 0.01f)));
+        Settings s = quiet();
+        s.shadows = mode;
+        const RenderResult r = render(t, s);
+        const Channels c{r.frame.image};
+        const core::Camera camera(t.scene.camera);
+        // The slab's surface (z ~ 0.15) below the ball's centre along the light.
+        const glm::dvec2 shadowed = camera.project({-1.0 + 1.35, 0.0, 0.15});
+        const glm::dvec2 lit = camera.project({2.0, 1.0, 0.1});
+        const int sx = int(shadowed.x), sy = int(shadowed.y), lx = int(lit.x), ly = int(lit.y);
+        ASSERT_EQ(c(sx, sy, "id"), 0.0f);
+        EXPECT_EQ(c(lx, ly, "shadow"), 1.0f) << toString(mode);
+        EXPECT_EQ(c(sx, sy, "shadow"), mode == ShadowMode::None ? 1.0f : 0.0f) << toString(mode);
+        EXPECT_EQ(r.frame.timingsMs.at("shadow") > 0.0,
+                  mode == ShadowMode::Map || mode == ShadowMode::Pcf) << toString(mode);
+    }
+}
+
+TEST_F(RendererTest, PassesTheSettingsDoNotNeedDoNotRun) {
+    TestScene t;
+    t.add(0, {0.0f, 0.0f, 0.0f}, 1.0f);
+    const RenderResult r = render(t, quiet());
+    EXPECT_EQ(r.frame.timingsMs.at("shadow"), 0.0);
+    EXPECT_EQ(r.frame.timingsMs.at("ssss"), 0.0);
+    EXPECT_GT(r.frame.timingsMs.at("gbuffer"), 0.0);
+    for (const char* key : {"total", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
+        EXPECT_TRUE(r.frame.timingsMs.count(key)) << key;
+    EXPECT_EQ(r.frame.settings.at("realtime.shadows"), "none");
+}
+
+}  // namespace
+}  // namespace twinrender::realtime

@@ -1,0 +1,95 @@
+// Settings of the real-time renderer: the [realtime] table of a scene (and --set realtime.*),
+// read in exactly one place, parseSettings(). Keys are the dotted names in the comments.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "core/parameters.h"
+
+namespace twinrender::realtime {
+
+// How the depth buffer stores depth (DESIGN.md, "Depth"). The Z channel of the frame is
+// linear eye depth in every mode.
+enum class DepthMode {
+    Standard,  // "standard": the perspective z/w in a 24-bit fixed-point buffer (GL's default)
+    Log,       // "log": log2(1 + z/near) / log2(1 + far/near) in a float buffer
+    Reversed,  // "reversed": reversed-Z (near -> 1, far -> 0) in a float buffer
+};
+
+enum class ShadowMode {
+    None,     // "none": no shadow pass; every surface is lit (visibility 1)
+    Map,      // "map": orthographic shadow map of the particle impostors, one tap
+    Pcf,      // "pcf": the same map, percentage-closer filtered
+    Spheres,  // "spheres": the old baseline; one occluding sphere per body over 5 % of particles
+};
+
+struct ParticleSettings {
+    // particles.radius_scale: impostor sphere radius / smoothing length h, (0, 10].
+    // The M4 level set at 0.13 lies 0.92 h (hcp) to 0.94 h (cubic) above the outermost layer
+    // of a flat lattice (h = 1.3 s); on curved bodies the spheres' scalloped outline matches
+    // it best a little lower: 0.9 gives the least depth error against the raymarcher on the
+    // planet, opensph_ball and contact scenes (coverage IoU 0.98; realtime/README.md).
+    double radiusScale = 0.9;
+    // particles.sphere_normal_weight: the G-buffer normal is normalize(mix(particle normal,
+    // impostor sphere normal, weight)), 0..1. The particle normal is the colour-field gradient
+    // at the particle's centre; at a surface point the particle's own kernel adds a term along
+    // the sphere normal. 0.25 minimises the normal error against the raymarcher (README).
+    double sphereNormalWeight = 0.25;
+    // particles.cull_hidden: skip particles whose impostor lies inside the union of its
+    // neighbours' (realtime/occlusion_culling.h); the image does not change, only the cost.
+    bool cullHidden = true;
+};
+
+struct ShadowMapSettings {
+    int resolution = 2048;  // shadow_map.resolution: texels per side, 16..16384
+    // Depth bias = (bias + slope_bias * tan(angle between normal and light)) * unit, the unit
+    // being the larger of the receiving particle's radius and a shadow-map texel: impostor
+    // surfaces are bumpy on the scale of a particle, the map is coarse on that of a texel.
+    // The tangent is capped at 10.
+    double bias = 0.5;       // shadow_map.bias: 0..10
+    double slopeBias = 1.0;  // shadow_map.slope_bias: 0..100
+    double pcfRadius = 1.5;  // shadow_map.pcf_radius: "pcf" filter radius, texels, 0..16
+};
+
+struct SsssSettings {
+    bool enabled = true;  // ssss.enabled: Screen-Space Surface Smoothing of uv, normal, emission
+    // ssss.radius_scale: blur radius / projected particle radius, 0..16 (0 = no blur). Larger
+    // hides more of the particles in uv (texture), smaller keeps the surface's real ripples in
+    // the normals; 0.75 balances both against the raymarcher (README).
+    double radiusScale = 0.75;
+    // ssss.depth_limit: largest eye-depth difference between blurred pixels, in radii of the
+    // centre pixel's particle, (0, 1000].
+    double depthLimit = 3.0;
+    int iterations = 1;      // ssss.iterations: the filter applied this many times, 1..16
+    bool separable = true;   // ssss.separable: horizontal then vertical; false: the full 2-D kernel
+    int maxTaps = 8;         // ssss.max_taps: samples on each side of the centre, 1..64
+};
+
+struct BloomSettings {
+    bool enabled = true;     // bloom.enabled: bloom in the PNG (never in the EXR)
+    double strength = 0.05;  // bloom.strength: weight of the bloom added to the beauty, 0..10
+    double threshold = 1.0;  // bloom.threshold: linear radiance above which pixels bloom, >= 0
+};
+
+struct Settings {
+    DepthMode depth = DepthMode::Log;      // depth: "log" | "standard" | "reversed"
+    ShadowMode shadows = ShadowMode::Map;  // shadows: "map" | "pcf" | "spheres" | "none"
+    ParticleSettings particles;
+    ShadowMapSettings shadowMap;
+    SsssSettings ssss;
+    BloomSettings bloom;
+};
+
+// Reads every key of the table (the scene's [realtime] section with --set overrides applied)
+// and then calls table.checkAllRead(): an unknown key, a wrong type or an out-of-range value
+// throws core::InputError naming the file, line and key.
+Settings parseSettings(const core::ParameterTable& table);
+
+// Every setting by dotted key ("realtime.ssss.enabled"), for the frame's JSON.
+nlohmann::json toJson(const Settings& settings);
+
+std::string_view toString(DepthMode mode);
+std::string_view toString(ShadowMode mode);
+
+}  // namespace twinrender::realtime

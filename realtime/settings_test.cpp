@@ -1,0 +1,94 @@
+#include "realtime/settings.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace twinrender::realtime {
+namespace {
+
+core::ParameterTable table(std::initializer_list<std::pair<std::string, core::ParameterTable::Value>> entries) {
+    core::ParameterTable t("realtime", "scene.toml");
+    int line = 1;
+    for (const auto& [key, value] : entries) t.set(key, value, "scene.toml:" + std::to_string(line++) + ":1");
+    return t;
+}
+
+TEST(Settings, DefaultsFollowScenesMd) {
+    const Settings s = parseSettings(table({}));
+    EXPECT_EQ(s.depth, DepthMode::Log);
+    EXPECT_EQ(s.shadows, ShadowMode::Map);
+    EXPECT_EQ(s.shadowMap.resolution, 2048);
+    EXPECT_TRUE(s.ssss.enabled);
+    EXPECT_TRUE(s.ssss.separable);
+    EXPECT_TRUE(s.particles.cullHidden);
+}
+
+TEST(Settings, ReadsEveryKey) {
+    const Settings s = parseSettings(table({{"depth", std::string("reversed")},
+                                            {"shadows", std::string("pcf")},
+                                            {"particles.radius_scale", 1.1},
+                                            {"particles.cull_hidden", false},
+                                            {"particles.sphere_normal_weight", 0.5},
+                                            {"shadow_map.resolution", std::int64_t(512)},
+                                            {"shadow_map.bias", 0.25},
+                                            {"shadow_map.slope_bias", 3.0},
+                                            {"shadow_map.pcf_radius", std::int64_t(2)},
+                                            {"ssss.enabled", false},
+                                            {"ssss.radius_scale", 1.5},
+                                            {"ssss.depth_limit", 4.0},
+                                            {"ssss.iterations", std::int64_t(3)},
+                                            {"ssss.separable", false},
+                                            {"ssss.max_taps", std::int64_t(12)},
+                                            {"bloom.enabled", false},
+                                            {"bloom.strength", 0.2},
+                                            {"bloom.threshold", 2.0}}));
+    EXPECT_EQ(s.depth, DepthMode::Reversed);
+    EXPECT_EQ(s.shadows, ShadowMode::Pcf);
+    EXPECT_DOUBLE_EQ(s.particles.radiusScale, 1.1);
+    EXPECT_FALSE(s.particles.cullHidden);
+    EXPECT_DOUBLE_EQ(s.particles.sphereNormalWeight, 0.5);
+    EXPECT_EQ(s.shadowMap.resolution, 512);
+    EXPECT_DOUBLE_EQ(s.shadowMap.bias, 0.25);
+    EXPECT_DOUBLE_EQ(s.shadowMap.slopeBias, 3.0);
+    EXPECT_DOUBLE_EQ(s.shadowMap.pcfRadius, 2.0);
+    EXPECT_FALSE(s.ssss.enabled);
+    EXPECT_DOUBLE_EQ(s.ssss.radiusScale, 1.5);
+    EXPECT_DOUBLE_EQ(s.ssss.depthLimit, 4.0);
+    EXPECT_EQ(s.ssss.iterations, 3);
+    EXPECT_FALSE(s.ssss.separable);
+    EXPECT_EQ(s.ssss.maxTaps, 12);
+    EXPECT_FALSE(s.bloom.enabled);
+    EXPECT_DOUBLE_EQ(s.bloom.strength, 0.2);
+    EXPECT_DOUBLE_EQ(s.bloom.threshold, 2.0);
+    // Every setting appears in the JSON under its dotted key.
+    const nlohmann::json j = toJson(s);
+    EXPECT_EQ(j.at("realtime.depth"), "reversed");
+    EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
+    EXPECT_EQ(j.size(), 18u);
+}
+
+void expectError(const core::ParameterTable& t, const std::string& fragment) {
+    try {
+        parseSettings(t);
+        FAIL() << "no error";
+    } catch (const core::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+}
+
+TEST(Settings, UnknownKeyNamesFileLineAndKey) {
+    expectError(table({{"ssss.enabeld", true}}), "scene.toml:1:1");
+    expectError(table({{"ssss.enabeld", true}}), "realtime.ssss.enabeld");
+}
+
+TEST(Settings, RejectsBadValues) {
+    expectError(table({{"depth", std::string("logarithmic")}}), "realtime.depth");
+    expectError(table({{"shadows", std::string("esm")}}), "realtime.shadows");
+    expectError(table({{"shadow_map.resolution", std::int64_t(1 << 20)}}), "out of range");
+    expectError(table({{"ssss.iterations", std::int64_t(0)}}), "out of range");
+    expectError(table({{"ssss.enabled", std::int64_t(1)}}), "wrong type");
+}
+
+}  // namespace
+}  // namespace twinrender::realtime

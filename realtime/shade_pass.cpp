@@ -1,0 +1,50 @@
+// The shading pass (shaders/shade.frag): core's shading model on the smoothed buffers.
+#include <fmt/format.h>
+
+#include "realtime/gl/error.h"
+#include "realtime/gl/pipeline.h"
+#include "realtime/passes.h"
+
+namespace twinrender::realtime {
+
+namespace {
+constexpr int MAX_SPHERES = 20;  // shade.frag; bodies over 5 % of the particles are at most 19
+}
+
+gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& in) {
+    const int w = in.surface->width(), h = in.surface->height();
+    gl::Texture beauty(w, h, gl::Format::RGBA32F);
+    gl::Framebuffer framebuffer("shade", {{&beauty}});
+    framebuffer.bind();
+    gl::setPipelineState({});
+
+    std::vector<std::string> defines;
+    switch (in.shadows) {
+        case ShadowMode::None: defines.emplace_back("SHADOWS_NONE"); break;
+        case ShadowMode::Map: defines.emplace_back("SHADOWS_MAP"); break;
+        case ShadowMode::Pcf: defines.emplace_back("SHADOWS_PCF"); break;
+        case ShadowMode::Spheres: defines.emplace_back("SHADOWS_SPHERES"); break;
+    }
+    const gl::Program& program = programs.get("fullscreen.vert", "shade.frag", defines);
+    program.use();
+    in.normalUv->bind(0);
+    in.emission->bind(1);
+    in.surface->bind(2);
+    if (in.shadowMap) in.shadowMap->bind(3);
+    if (in.shadows == ShadowMode::Spheres) {
+        if (in.spheres.size() > MAX_SPHERES)
+            throw gl::Error(fmt::format("{} occlusion spheres, at most {}", in.spheres.size(),
+                                        MAX_SPHERES));
+        std::vector<glm::vec4> spheres;
+        for (const auto& s : in.spheres)
+            spheres.emplace_back(glm::vec3(s.centre), static_cast<float>(s.radius));
+        program.set("uSphereCount", static_cast<int>(spheres.size()));
+        program.set("uSpheres", std::span<const glm::vec4>(spheres));
+        for (std::size_t i = 0; i < in.spheres.size(); ++i)
+            program.set(fmt::format("uSphereBodies[{}]", i), static_cast<float>(in.spheres[i].body));
+    }
+    gl::drawFullscreenTriangle();
+    return beauty;
+}
+
+}  // namespace twinrender::realtime

@@ -1,0 +1,43 @@
+// The GLSL files of realtime/shaders/, embedded at build time (embed_shaders.cmake), and the
+// programs built from them. A shader is composed as: "#version 450 core", the variant's
+// #defines, then the file with each `#include "name.glsl"` line replaced by that file (once
+// per shader, like #pragma once), with #line directives so compile errors name the file.
+#pragma once
+
+#include <map>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "realtime/gl/program.h"
+
+namespace twinrender::realtime {
+
+struct EmbeddedFile {
+    std::string_view name;  // file name, e.g. "gbuffer.frag"
+    std::string_view text;
+};
+
+// Every embedded file (defined in the generated embedded_shaders.cpp).
+std::span<const EmbeddedFile> embeddedShaderFiles();
+
+// The text of one embedded file; throws gl::Error naming it when there is none.
+std::string_view shaderFile(std::string_view name);
+
+// `defines`: "NAME" or "NAME VALUE", each becoming a #define line.
+gl::ShaderSource composeShader(std::string_view file, std::span<const std::string> defines);
+
+// Programs by (vertex file, fragment file, defines), compiled on first use.
+class ProgramCache {
+public:
+    const gl::Program& get(std::string_view vertexFile, std::string_view fragmentFile,
+                           const std::vector<std::string>& defines = {});
+
+    std::size_t size() const { return mPrograms.size(); }
+
+private:
+    std::map<std::string, gl::Program, std::less<>> mPrograms;
+};
+
+}  // namespace twinrender::realtime

@@ -1,0 +1,52 @@
+// The G-buffer pass: ray-sphere intersection per pixel, depth in the selected encoding, and
+// the particle's attributes: normal (blended with the sphere's), uv extrapolated to the hit point with d(uv)/dx, body and
+// material, projected radius, emission (emission map at uv + blackbody glow).
+#include "common.glsl"
+#include "textures.glsl"
+
+in vec2 vOffset;
+in vec3 vQuadPoint;
+flat in float vCentreDistance;
+flat in float vRadius;
+flat in vec3 vCentre;
+flat in vec3 vNormal;
+flat in vec2 vUv;
+flat in vec3 vDudx;
+flat in vec3 vDvdx;
+flat in vec4 vGlowMaterial;
+flat in float vBody;
+flat in ivec4 vEmissionTexture;
+
+layout(location = 0) out vec4 outNormalUv;  // world normal (octahedral), u, v
+layout(location = 1) out vec4 outEmission;  // emission (linear RGB), 0
+layout(location = 2) out vec4 outSurface;   // eye depth, body, projected radius (px), material
+
+void main() {
+    // The eye ray through the quad point q: with rho = |q - c| in the plane perpendicular to
+    // the centre direction, the ray passes the centre at distance D rho / sqrt(D^2 + rho^2)
+    // and its closest approach lies at D^2 / sqrt(D^2 + rho^2). No large-number cancellation,
+    // whatever the distance to the particle.
+    float d2 = vCentreDistance * vCentreDistance;
+    float rho2 = dot(vOffset, vOffset);
+    float r2 = vRadius * vRadius;
+    float miss2 = d2 * rho2 / (d2 + rho2);
+    if (miss2 >= r2) discard;
+    float t = d2 / sqrt(d2 + rho2) - sqrt(r2 - miss2);
+    vec3 hit = normalize(vQuadPoint) * t;  // eye space
+    float z = -hit.z;
+    if (z < cameraNear() || z > cameraFar()) discard;
+    gl_FragDepth = windowDepth(z);
+
+    mat3 worldFromView = transpose(mat3(viewFromWorld));
+    vec3 offset = worldFromView * (hit - vCentre);
+    float u = fract(vUv.x + dot(vDudx, offset));
+    float v = clamp(vUv.y + dot(vDvdx, offset), 0.0, 1.0);
+    vec3 emission = sampleTexture(vEmissionTexture, vec2(u, v)) + vGlowMaterial.rgb;
+    // The particle's colour-field normal, tilted towards the impostor's own normal: at a surface
+    // point the particle's own kernel adds a gradient along (x - x_i), which the normal taken
+    // at the particle's centre lacks (realtime.particles.sphere_normal_weight).
+    vec3 sphereNormal = worldFromView * ((hit - vCentre) / vRadius);
+    outNormalUv = vec4(octEncode(normalize(mix(vNormal, sphereNormal, misc.z))), u, v);
+    outEmission = vec4(emission, 0.0);
+    outSurface = vec4(z, vBody, vRadius * pixelsPerUnitAt(-vCentre.z), vGlowMaterial.w);
+}

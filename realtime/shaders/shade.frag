@@ -1,0 +1,94 @@
+// The shading pass: core's shading model on the smoothed buffers, with the light's visibility
+// from the shadow map (SHADOWS_MAP, SHADOWS_PCF), the occlusion spheres (SHADOWS_SPHERES) or
+// none. Output: linear beauty and the visibility (the shadow AOV).
+#include "common.glsl"
+#include "textures.glsl"
+#include "shading.glsl"
+
+layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
+layout(binding = 1) uniform sampler2D uEmission;
+layout(binding = 2) uniform sampler2D uSurface;
+layout(binding = 3) uniform sampler2D uShadowMap;  // linear light depth in [0, 1]
+
+#ifdef SHADOWS_SPHERES
+const int MAX_SPHERES = 20;  // bodies over 5 % of the particles: at most 19
+uniform int uSphereCount;
+uniform vec4 uSpheres[MAX_SPHERES];     // camera-relative centre, radius
+uniform float uSphereBodies[MAX_SPHERES];
+#endif
+
+layout(location = 0) out vec4 outBeautyShadow;
+
+// Cap of tan(angle between the normal and the light) in the slope bias.
+const float MAX_SLOPE = 10.0;
+
+float visibility(vec3 position, vec3 normal, float body, float worldRadius) {
+#if defined(SHADOWS_MAP) || defined(SHADOWS_PCF)
+    vec3 l = (lightView * vec4(position, 1.0)).xyz;
+    vec2 tc = (lightClip * vec4(l, 1.0)).xy * 0.5 + 0.5;
+    if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) return 1.0;
+    // Slope-scaled bias in units of the larger of the particle radius and the shadow texel:
+    // the impostor surface is bumpy on the scale of a particle, the map on that of a texel.
+    float cosine = clamp(dot(normal, -light.xyz), 1e-3, 1.0);
+    float slope = min(sqrt(1.0 - cosine * cosine) / cosine, MAX_SLOPE);
+    float unit = max(worldRadius, shadowRange.z);
+    float bias = (shadowBias.x + shadowBias.y * slope) * unit;
+    float depth = (-l.z - bias - shadowRange.x) / (shadowRange.y - shadowRange.x);
+    ivec2 size = textureSize(uShadowMap, 0);
+    vec2 texelPos = tc * vec2(size);
+#if defined(SHADOWS_PCF)
+    // Taps on a grid of one texel inside a disc of radius shadowBias.z texels.
+    float radius = shadowBias.z;
+    int n = int(ceil(radius));
+    float lit = 0.0, count = 0.0;
+    for (int j = -n; j <= n; ++j) {
+        for (int i = -n; i <= n; ++i) {
+            if (float(i * i + j * j) > radius * radius + 1e-3) continue;
+            ivec2 q = clamp(ivec2(floor(texelPos)) + ivec2(i, j), ivec2(0), size - 1);
+            lit += texelFetch(uShadowMap, q, 0).r >= depth ? 1.0 : 0.0;
+            count += 1.0;
+        }
+    }
+    return lit / count;
+#else
+    ivec2 q = clamp(ivec2(floor(texelPos)), ivec2(0), size - 1);
+    return texelFetch(uShadowMap, q, 0).r >= depth ? 1.0 : 0.0;
+#endif
+#elif defined(SHADOWS_SPHERES)
+    // A ray towards the sun; a sphere of another body ahead of the point occludes it.
+    vec3 dir = -light.xyz;
+    for (int i = 0; i < uSphereCount; ++i) {
+        if (uSphereBodies[i] == body) continue;
+        vec3 oc = position - uSpheres[i].xyz;
+        float b = dot(oc, dir);
+        float c = dot(oc, oc) - uSpheres[i].w * uSpheres[i].w;
+        float disc = b * b - c;
+        if (disc < 0.0) continue;
+        float tFar = -b + sqrt(disc);
+        if (tFar > 0.0) return 0.0;
+    }
+    return 1.0;
+#else
+    return 1.0;
+#endif
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 s = texelFetch(uSurface, p, 0);
+    if (s.y < 0.0) {
+        outBeautyShadow = vec4(0.0);
+        return;
+    }
+    vec4 a = texelFetch(uNormalUv, p, 0);
+    vec3 emission = texelFetch(uEmission, p, 0).rgb;
+    float z = s.x;
+    vec3 position = surfacePosition(gl_FragCoord.xy, z);
+    vec3 normal = octDecode(a.xy);
+    float worldRadius = s.z / pixelsPerUnitAt(z);
+    // A surface facing away from the light is shadowed by its own body (what a shadow ray
+    // from the surface finds); the beauty does not change, as it lights only n.l > 0.
+    float vis = dot(normal, -light.xyz) > 0.0 ? visibility(position, normal, s.y, worldRadius) : 0.0;
+    vec3 color = shadeSurface(int(s.w), normal, -normalize(position), a.zw, emission, vis);
+    outBeautyShadow = vec4(color, vis);
+}
