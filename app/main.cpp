@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app/render_job.h"
+#include "app/suite_commands.h"
 #include "core/error.h"
 #include "realtime/gl/context.h"
 
@@ -87,6 +88,35 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     addCommon(render, renderOpts);
 
+    tr::app::CompareOptions compareOpts;
+    auto* compareCmd = app.add_subcommand("compare", "compare two images (AOV EXRs, or plain images)");
+    compareCmd->add_option("REF", compareOpts.reference, "reference image")->required();
+    compareCmd->add_option("TEST", compareOpts.test, "image to measure")->required();
+    compareCmd->add_option("--out", compareOpts.out, "output folder")->capture_default_str();
+    compareCmd->add_option("--thresholds", compareOpts.thresholds, "thresholds file (TOML)");
+    compareCmd->add_option("--ppd", compareOpts.ppd, "ꟻLIP pixels per degree")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+
+    tr::app::RunOptions runOpts;
+    CommonOptions runCommon;
+    auto* runCmd = app.add_subcommand(
+        "run", "render every scene with both renderers, compare, and write the report");
+    runCmd->add_option("SCENES", runOpts.inputs, "scene files or folders (default: scenes/)");
+    runCmd->add_option("--thresholds", runOpts.thresholds,
+                       "thresholds file (default: scenes/thresholds.toml when running scenes/)");
+    runCmd->add_option("--baseline", runOpts.baseline, "baseline from `twinrender bless`");
+    runCmd->add_option("--junit", runOpts.junit, "also write JUnit XML here");
+    runCmd->add_option("--ppd", runOpts.ppd, "ꟻLIP pixels per degree")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    addCommon(runCmd, runCommon);
+
+    std::string blessDir, blessOut;
+    auto* blessCmd = app.add_subcommand("bless", "write the baseline of a run");
+    blessCmd->add_option("RUN_DIR", blessDir, "the output folder of `twinrender run`")->required();
+    blessCmd->add_option("--out", blessOut, "baseline file (default: RUN_DIR/baseline.json)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -95,12 +125,21 @@ int main(int argc, char** argv) {
     }
 
     try {
-        const int threads = renderOpts.threads > 0 ? renderOpts.threads
-                                                   : tbb::this_task_arena::max_concurrency();
+        const int requested = *runCmd ? runCommon.threads : renderOpts.threads;
+        const int threads = requested > 0 ? requested : tbb::this_task_arena::max_concurrency();
         tbb::task_arena arena(threads);
         int rc = 0;
         arena.execute([&] {
             if (*render) rc = runRender(scenePath, rendererName, renderOpts);
+            if (*compareCmd) rc = tr::app::runCompare(compareOpts);
+            if (*blessCmd) rc = tr::app::runBless(blessDir, blessOut);
+            if (*runCmd) {
+                runOpts.out = runCommon.out;
+                runOpts.sets = runCommon.sets;
+                runOpts.requireGpu = runCommon.requireGpu;
+                for (int i = 0; i < argc; ++i) runOpts.commandLine += (i ? " " : "") + std::string(argv[i]);
+                rc = tr::app::runSuite(runOpts);
+            }
         });
         return rc;
     } catch (const tr::core::InputError& e) {

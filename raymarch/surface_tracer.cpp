@@ -145,8 +145,7 @@ struct SurfaceTracer::Impl {
     // Marches the rays of w.rays[0, n) to their first crossing. Primary bundles pass the
     // block's central direction; shadow bundles (parallel rays) pass their direction too.
     void march(int n, const glm::dvec3& centralDirection, bool parallel, Workspace& w) const {
-        static const double SHADOW_L = getenv("SHADOW_L") ? atof(getenv("SHADOW_L")) : settings.segmentLength;
-        const double segmentLength = parallel ? SHADOW_L : settings.segmentLength;
+        const double segmentLength = settings.segmentLength;
         const auto& ps = particles.particles;
         for (int round = 0;; ++round) {
             // Entries: skip empty space with one closest-hit query per ray that needs it.

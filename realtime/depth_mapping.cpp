@@ -30,18 +30,24 @@ double reversedDepthToEye(double d, double near, double far) {
 
 double windowDepth(DepthMode mode, double z, double near, double far) {
     switch (mode) {
-        case DepthMode::Standard: return standardDepth(z, near, far);
-        case DepthMode::Log: return logDepth(z, near, far);
-        case DepthMode::Reversed: return reversedDepth(z, near, far);
+        case DepthMode::Standard:
+            return standardDepth(z, near, far);
+        case DepthMode::Log:
+            return logDepth(z, near, far);
+        case DepthMode::Reversed:
+            return reversedDepth(z, near, far);
     }
     return logDepth(z, near, far);
 }
 
 double eyeDepth(DepthMode mode, double d, double near, double far) {
     switch (mode) {
-        case DepthMode::Standard: return standardDepthToEye(d, near, far);
-        case DepthMode::Log: return logDepthToEye(d, near, far);
-        case DepthMode::Reversed: return reversedDepthToEye(d, near, far);
+        case DepthMode::Standard:
+            return standardDepthToEye(d, near, far);
+        case DepthMode::Log:
+            return logDepthToEye(d, near, far);
+        case DepthMode::Reversed:
+            return reversedDepthToEye(d, near, far);
     }
     return logDepthToEye(d, near, far);
 }

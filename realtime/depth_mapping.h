@@ -24,6 +24,8 @@ double windowDepth(DepthMode mode, double z, double near, double far);
 double eyeDepth(DepthMode mode, double d, double near, double far);
 
 // Whether a larger buffer value is nearer (reversed-Z), i.e. the depth test is GREATER.
-inline bool nearerIsLarger(DepthMode mode) { return mode == DepthMode::Reversed; }
+inline bool nearerIsLarger(DepthMode mode) {
+    return mode == DepthMode::Reversed;
+}
 
 }  // namespace twinrender::realtime

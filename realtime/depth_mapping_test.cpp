@@ -21,7 +21,8 @@ TEST(DepthMapping, EveryModeRoundTripsOverTenDecades) {
             const double d = windowDepth(mode, z, near, far);
             EXPECT_GE(d, 0.0);
             EXPECT_LE(d, 1.0);
-            EXPECT_NEAR(eyeDepth(mode, d, near, far) / z, 1.0, 1e-6) << toString(mode) << " z=" << z;
+            EXPECT_NEAR(eyeDepth(mode, d, near, far) / z, 1.0, 1e-6)
+                << toString(mode) << " z=" << z;
             if (z > near) {
                 if (nearerIsLarger(mode))
                     EXPECT_LT(d, previous) << toString(mode);

@@ -1,6 +1,7 @@
 #include "realtime/gpu_scene.h"
 
 #include <fmt/format.h>
+
 #include <memory>
 #include <stdexcept>
 
@@ -18,12 +19,13 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
     for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = indices.empty() ? k : indices[k];
         if (ps.body[i] >= MAX_EXACT_INDEX || ps.material[i] >= MAX_EXACT_INDEX)
-            throw std::invalid_argument(fmt::format(
-                "particle {}: body {} or material {} is not exact as a float id", i, ps.body[i],
-                ps.material[i]));
+            throw std::invalid_argument(
+                fmt::format("particle {}: body {} or material {} is not exact as a float id", i,
+                            ps.body[i], ps.material[i]));
         const glm::dvec3 relative = glm::dvec3(ps.position[i]) - camera;
         GpuParticle& g = out[k];
-        g.positionRadius = glm::vec4(glm::vec3(relative), static_cast<float>(radiusScale * ps.h[i]));
+        g.positionRadius =
+            glm::vec4(glm::vec3(relative), static_cast<float>(radiusScale * ps.h[i]));
         g.normalU = glm::vec4(ps.normal[i], ps.uv[i].x);
         g.dudxV = glm::vec4(ps.dudx[i], ps.uv[i].y);
         g.dvdxBody = glm::vec4(ps.dvdx[i], static_cast<float>(ps.body[i]));
@@ -47,7 +49,8 @@ GpuMaterials packMaterials(const std::vector<core::Material>& materials) {
             bool uniform = true;
             for (std::size_t k = 3; k < px.size() && uniform; ++k) uniform = px[k] == px[k % 3];
             if (uniform) {
-                auto one = std::make_unique<core::Image>(1, 1, std::vector<std::string>{"R", "G", "B"});
+                auto one =
+                    std::make_unique<core::Image>(1, 1, std::vector<std::string>{"R", "G", "B"});
                 for (int c = 0; c < 3; ++c) one->at(0, 0, c) = px[c];
                 source = one.get();
                 uniforms.push_back(std::move(one));

@@ -19,8 +19,8 @@ struct GpuParticle {
     glm::vec4 positionRadius;  // position - camera position (computed in double); radius
     glm::vec4 normalU;
     glm::vec4 dudxV;
-    glm::vec4 dvdxBody;        // w: body index as float
-    glm::vec4 glowMaterial;    // w: material index as float
+    glm::vec4 dvdxBody;      // w: body index as float
+    glm::vec4 glowMaterial;  // w: material index as float
 };
 static_assert(sizeof(GpuParticle) == 80);
 
@@ -32,11 +32,11 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& particles,
 
 // shaders/textures.glsl, struct MaterialRecord (std430).
 struct GpuMaterial {
-    glm::ivec4 diffuse;     // x: first texel (RGB triple) in the texel array, y: width, z: height
+    glm::ivec4 diffuse;  // x: first texel (RGB triple) in the texel array, y: width, z: height
     glm::ivec4 specular;
     glm::ivec4 emission;
     glm::ivec4 cityLights;
-    glm::vec4 params;       // x: shininess
+    glm::vec4 params;  // x: shininess
 };
 static_assert(sizeof(GpuMaterial) == 80);
 

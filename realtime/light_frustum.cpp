@@ -9,7 +9,8 @@
 namespace twinrender::realtime {
 
 LightFrustum fitLightFrustum(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax,
-                             const glm::dvec3& origin, const glm::dvec3& direction, int resolution) {
+                             const glm::dvec3& origin, const glm::dvec3& direction,
+                             int resolution) {
     const glm::dvec3 forward = glm::normalize(direction);
     const glm::dvec3 helper =
         std::abs(forward.z) < 0.9 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0);
@@ -24,7 +25,8 @@ LightFrustum fitLightFrustum(const glm::dvec3& boundsMin, const glm::dvec3& boun
         view[i][1] = up[i];
         view[i][2] = -forward[i];
     }
-    view[3] = glm::dvec4(-glm::dot(right, centre), -glm::dot(up, centre), glm::dot(forward, centre), 1.0);
+    view[3] =
+        glm::dvec4(-glm::dot(right, centre), -glm::dot(up, centre), glm::dot(forward, centre), 1.0);
 
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
     for (int corner = 0; corner < 8; ++corner) {

@@ -8,11 +8,11 @@
 namespace twinrender::realtime {
 
 struct LightFrustum {
-    glm::dmat4 view{1.0};   // camera-relative world -> light eye space (looks down -z), scene units
-    glm::dmat4 clip{1.0};   // orthographic projection of the bounds, x and y to [-1, 1]
-    double nearDepth = 0.0; // light-space depth (along the light) stored as 0 in the map
-    double farDepth = 1.0;  // ... stored as 1
-    double texelSize = 0.0; // scene units per texel (the larger of the two axes)
+    glm::dmat4 view{1.0};  // camera-relative world -> light eye space (looks down -z), scene units
+    glm::dmat4 clip{1.0};  // orthographic projection of the bounds, x and y to [-1, 1]
+    double nearDepth = 0.0;  // light-space depth (along the light) stored as 0 in the map
+    double farDepth = 1.0;   // ... stored as 1
+    double texelSize = 0.0;  // scene units per texel (the larger of the two axes)
 };
 
 // `origin`: the camera position (positions on the GPU are relative to it); `direction`: the

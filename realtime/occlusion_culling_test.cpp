@@ -34,7 +34,8 @@ TEST(OcclusionCulling, KeepsTheSurfaceLayerOfALatticeAndCullsTheInside) {
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
                 const auto i = static_cast<std::uint32_t>((z * n + y) * n + x);
-                const bool boundary = x == 0 || y == 0 || z == 0 || x == n - 1 || y == n - 1 || z == n - 1;
+                const bool boundary =
+                    x == 0 || y == 0 || z == 0 || x == n - 1 || y == n - 1 || z == n - 1;
                 if (boundary) {
                     EXPECT_TRUE(contains(kept, i)) << x << " " << y << " " << z;
                 }

@@ -11,8 +11,8 @@
 namespace twinrender::realtime {
 
 struct OcclusionSphere {
-    glm::dvec3 centre;   // centre of mass: the volume-weighted mean position, scene units
-    double radius = 0;   // effective radius: of the ball with the body's total volume sum(v)
+    glm::dvec3 centre;  // centre of mass: the volume-weighted mean position, scene units
+    double radius = 0;  // effective radius: of the ball with the body's total volume sum(v)
     std::uint32_t body = 0;
 };
 

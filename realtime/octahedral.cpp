@@ -6,7 +6,9 @@
 namespace twinrender::realtime {
 
 namespace {
-glm::vec2 signNotZero(glm::vec2 v) { return {v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f}; }
+glm::vec2 signNotZero(glm::vec2 v) {
+    return {v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f};
+}
 }  // namespace
 
 glm::vec2 octEncode(glm::vec3 n) {
@@ -18,7 +20,8 @@ glm::vec2 octEncode(glm::vec3 n) {
 glm::vec3 octDecode(glm::vec2 e) {
     glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
     if (n.z < 0.0f) {
-        const glm::vec2 xy = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * signNotZero(glm::vec2(n.x, n.y));
+        const glm::vec2 xy =
+            (1.0f - glm::abs(glm::vec2(n.y, n.x))) * signNotZero(glm::vec2(n.x, n.y));
         n.x = xy.x;
         n.y = xy.y;
     }

@@ -17,7 +17,8 @@ TEST(Octahedral, RoundTripsUnitVectors) {
         EXPECT_LE(std::max(std::abs(e.x), std::abs(e.y)), 1.0f);  // inside the unit square
         EXPECT_GT(glm::dot(octDecode(e), n), 1.0f - 1e-6f) << n.x << " " << n.y << " " << n.z;
     }
-    for (const glm::vec3 n : {glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::vec3(1, 0, 0), glm::vec3(0, -1, 0)})
+    for (const glm::vec3 n :
+         {glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::vec3(1, 0, 0), glm::vec3(0, -1, 0)})
         EXPECT_GT(glm::dot(octDecode(octEncode(n)), n), 1.0f - 1e-6f);
 }
 

@@ -12,6 +12,7 @@
 #include "realtime/gl/buffer.h"
 #include "realtime/gl/buffer_texture.h"
 #include "realtime/gl/framebuffer.h"
+#include "realtime/gl/pipeline.h"
 #include "realtime/gl/texture.h"
 #include "realtime/occlusion_spheres.h"
 #include "realtime/settings.h"
@@ -21,10 +22,10 @@ namespace twinrender::realtime {
 
 // Buffers uploaded once per render.
 struct SceneBuffers {
-    gl::Buffer uniforms;   // FrameUniforms
-    gl::Buffer particles;  // GpuParticle[]
+    gl::Buffer uniforms;       // FrameUniforms
+    gl::Buffer particles;      // GpuParticle[]
     gl::BufferTexture texels;  // GpuMaterials::texels (RGB32F), texture unit 7
-    gl::Buffer materials;  // GpuMaterial[]
+    gl::Buffer materials;      // GpuMaterial[]
     std::size_t particleCount = 0;
 
     void bind() const;
@@ -39,14 +40,20 @@ gl::Texture runShadowPass(ProgramCache& programs, const SceneBuffers& scene, int
 
 // gbuffer: impostors from the camera, depth test in the selected encoding.
 struct GBuffer {
-    gl::Texture normalUv;   // RGBA32F: world normal (octahedral, octahedral.h), u, v
-    gl::Texture emission;   // RGBA32F: emission, 0
-    gl::Texture surface;    // RGBA32F: eye depth (+inf background), body (-1), radius px, material
-    gl::Texture depth;      // Depth24 (standard) or Depth32F
+    gl::Texture normalUv;  // RGBA32F: world normal (octahedral, octahedral.h), u, v
+    gl::Texture emission;  // RGBA32F: emission, 0
+    gl::Texture surface;   // RGBA32F: eye depth (+inf background), body (-1), radius px, material
+    gl::Texture depth;     // Depth24 (standard) or Depth32F
     gl::Framebuffer framebuffer;
 };
 GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int width, int height,
                        DepthMode mode);
+
+// Full-screen passes that only need covered pixels (ssss, shade) draw with this state and put
+// fullscreen.vert's triangle at coveredOnlyDepth(): the G-buffer's depth attachment then
+// rejects background pixels before their fragment shader runs.
+gl::PipelineState coveredOnlyState(DepthMode mode);
+float coveredOnlyDepth(DepthMode mode);
 
 // ssss: the smoothed normal + uv and, when `emission` (the scene emits anywhere), the smoothed
 // emission (ping-pong targets); without, the G-buffer's (zero) emission stands.
@@ -60,15 +67,18 @@ struct SmoothedSurface {
     }
 };
 SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
-                            const SsssSettings& settings, bool emission);
+                            const SsssSettings& settings, bool emission, DepthMode mode);
 
 // shade: beauty (rgb) and light visibility (a). `shadowMap` may be null (no map).
 struct ShadeInputs {
     const gl::Texture* normalUv = nullptr;
-    const gl::Texture* emission = nullptr;
+    const gl::Texture* emissionBuffer = nullptr;
     const gl::Texture* surface = nullptr;
+    const gl::Texture* depth = nullptr;  // the G-buffer's depth attachment
+    DepthMode depthMode = DepthMode::Log;
     const gl::Texture* shadowMap = nullptr;
     ShadowMode shadows = ShadowMode::None;
+    bool emission = true;  // false: the emission buffer is zero and need not be read
     // Spheres mode: camera-relative centres.
     std::vector<OcclusionSphere> spheres;
 };

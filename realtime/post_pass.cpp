@@ -47,7 +47,8 @@ gl::Texture runPostPass(ProgramCache& programs, const gl::Texture& beauty,
         gl::setPipelineState({.additiveBlend = true});
         for (std::size_t i = levels.size() - 1; i > 0; --i) {
             levels[i].bind(0);
-            up.set("uTargetTexel", glm::vec2(1.0f / levels[i - 1].width(), 1.0f / levels[i - 1].height()));
+            up.set("uTargetTexel",
+                   glm::vec2(1.0f / levels[i - 1].width(), 1.0f / levels[i - 1].height()));
             levelTargets[i - 1].bind();
             gl::drawFullscreenTriangle();
         }

@@ -1,12 +1,13 @@
 #include "realtime/renderer.h"
 
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
 #include <chrono>
 #include <cmath>
-#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <optional>
-#include <tbb/parallel_for.h>
 
 #include "core/camera.h"
 #include "core/error.h"
@@ -30,8 +31,12 @@ double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-bool usesShadowMap(ShadowMode mode) { return mode == ShadowMode::Map || mode == ShadowMode::Pcf; }
-bool usesSsss(const SsssSettings& s) { return s.enabled && s.radiusScale > 0.0; }
+bool usesShadowMap(ShadowMode mode) {
+    return mode == ShadowMode::Map || mode == ShadowMode::Pcf;
+}
+bool usesSsss(const SsssSettings& s) {
+    return s.enabled && s.radiusScale > 0.0;
+}
 
 FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
                            const core::SceneParticles& particles, const Settings& settings,
@@ -52,8 +57,8 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
     u.camera = glm::vec4(cs.near, cs.far, camera.tanHalfFovY(), std::log2(1.0 + cs.far / cs.near));
     u.light = glm::vec4(glm::vec3(glm::normalize(scene.light.direction)), scene.light.intensity);
     u.lightColor = glm::vec4(glm::vec3(scene.light.color), scene.light.ambient);
-    u.shadowRange = glm::vec4(light.nearDepth, light.farDepth, light.texelSize,
-                              settings.shadowMap.resolution);
+    u.shadowRange =
+        glm::vec4(light.nearDepth, light.farDepth, light.texelSize, settings.shadowMap.resolution);
     u.shadowBias = glm::vec4(settings.shadowMap.bias, settings.shadowMap.slopeBias,
                              settings.shadowMap.pcfRadius, 0.0);
     u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale,
@@ -128,9 +133,9 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
             m.context.renderer()));
     for (std::size_t i = 0; i < particles.particles.size(); ++i)
         if (particles.particles.material[i] >= materials.size())
-            throw core::InputError(fmt::format("{}: particle {} has material {} but the scene has {}",
-                                               scene.file.string(), i,
-                                               particles.particles.material[i], materials.size()));
+            throw core::InputError(fmt::format(
+                "{}: particle {} has material {} but the scene has {}", scene.file.string(), i,
+                particles.particles.material[i], materials.size()));
 
     RenderResult result;
     core::Frame& frame = result.frame;
@@ -170,8 +175,8 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
                         scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(scene, camera, particles, settings, light);
     std::vector<std::uint32_t> drawn;
-    if (settings.particles.cullHidden && cullingIsExact(particles.particles, camera,
-                                                        settings.particles.radiusScale)) {
+    if (settings.particles.cullHidden &&
+        cullingIsExact(particles.particles, camera, settings.particles.radiusScale)) {
         const auto cullStart = Clock::now();
         drawn = unoccludedParticles(particles.particles, settings.particles.radiusScale);
         frame.timingsMs["cull"] = msSince(cullStart);
@@ -181,11 +186,13 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     const std::vector<GpuParticle> gpuParticles = packParticles(
         particles.particles, scene.camera.position, settings.particles.radiusScale, drawn);
     const GpuMaterials gpuMaterials = packMaterials(materials);
-    if (static_cast<long long>(gpuParticles.size() * sizeof(GpuParticle)) > limits.maxStorageBlockBytes)
+    if (static_cast<long long>(gpuParticles.size() * sizeof(GpuParticle)) >
+        limits.maxStorageBlockBytes)
         throw core::InputError(fmt::format(
             "{}: {} particles take {} MB, over the GL device's storage-buffer limit of {} MB ({})",
-            scene.file.string(), gpuParticles.size(), (gpuParticles.size() * sizeof(GpuParticle)) >> 20,
-            limits.maxStorageBlockBytes >> 20, m.context.renderer()));
+            scene.file.string(), gpuParticles.size(),
+            (gpuParticles.size() * sizeof(GpuParticle)) >> 20, limits.maxStorageBlockBytes >> 20,
+            m.context.renderer()));
     if (static_cast<long long>(gpuMaterials.texels.size() / 3) > limits.maxTextureBufferTexels)
         throw core::InputError(fmt::format(
             "{}: the material textures hold {} texels, over the GL device's buffer-texture limit "
@@ -231,20 +238,24 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
         });
 
     std::optional<GBuffer> gbuffer;
-    pass("gbuffer", [&] {
-        gbuffer.emplace(runGBufferPass(m.programs, buffers, w, h, settings.depth));
-    });
+    pass("gbuffer",
+         [&] { gbuffer.emplace(runGBufferPass(m.programs, buffers, w, h, settings.depth)); });
 
     std::optional<SmoothedSurface> smoothed;
     if (usesSsss(settings.ssss))
         pass("ssss", [&] {
-            smoothed.emplace(runSsssPass(m.programs, *gbuffer, settings.ssss, emits));
+            smoothed.emplace(
+                runSsssPass(m.programs, *gbuffer, settings.ssss, emits, settings.depth));
         });
 
     ShadeInputs shadeInputs;
     shadeInputs.normalUv = smoothed ? &smoothed->resultNormalUv() : &gbuffer->normalUv;
-    shadeInputs.emission = smoothed ? &smoothed->resultEmission(*gbuffer) : &gbuffer->emission;
+    shadeInputs.emissionBuffer =
+        smoothed ? &smoothed->resultEmission(*gbuffer) : &gbuffer->emission;
+    shadeInputs.emission = emits;
     shadeInputs.surface = &gbuffer->surface;
+    shadeInputs.depth = &gbuffer->depth;
+    shadeInputs.depthMode = settings.depth;
     shadeInputs.shadowMap = shadowMap ? &*shadowMap : nullptr;
     shadeInputs.shadows = settings.shadows;
     if (settings.shadows == ShadowMode::Spheres) {
@@ -264,19 +275,24 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     // Read back and assemble the AOV image, top row first.
     stageStart = Clock::now();
     const std::vector<float> normalUv = readTexture(*shadeInputs.normalUv, "read normal");
-    const std::vector<float> emission = readTexture(*shadeInputs.emission, "read emission");
+    // Without emitters the emission buffer is zero, as the image's channels already are.
+    const std::vector<float> emission =
+        emits ? readTexture(*shadeInputs.emissionBuffer, "read emission") : std::vector<float>{};
     const std::vector<float> surface = readTexture(gbuffer->surface, "read surface");
     const std::vector<float> beautyShadow = readTexture(*beauty, "read beauty");
     const std::vector<float> displayPixels = readTexture(*display, "read display");
 
-    frame.image = core::aov::makeImage(w, h);
+    // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
+    // written in the same pass as the covered pixels: filling the 15 channels first costs
+    // as much as the whole read-back.
+    frame.image = core::Image(w, h, core::aov::channelNames());
     core::Image& image = frame.image;
     const auto channel = [&](const char* name) { return image.requireChannel(name); };
     const int cR = channel("R"), cG = channel("G"), cB = channel("B"), cA = channel("A"),
               cZ = channel("Z"), cNX = channel("N.X"), cNY = channel("N.Y"), cNZ = channel("N.Z"),
               cU = channel("uv.U"), cV = channel("uv.V"), cId = channel("id"),
-              cER = channel("emission.R"), cEG = channel("emission.G"),
-              cEB = channel("emission.B"), cShadow = channel("shadow");
+              cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
+              cShadow = channel("shadow");
     const std::size_t stride = static_cast<std::size_t>(image.channelCount());
     result.display = core::Image(w, h, {"R", "G", "B"});
     float* aov = image.pixels().data();
@@ -292,8 +308,12 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
             d[1] = displayPixels[g + 1];
             d[2] = displayPixels[g + 2];
             const float body = surface[g + 1];
-            if (body < 0.0f) continue;  // background: makeImage's values
             float* o = aov + p * stride;
+            if (body < 0.0f) {
+                o[cZ] = std::numeric_limits<float>::infinity();
+                o[cId] = -1.0f;
+                continue;
+            }
             o[cR] = beautyShadow[g + 0];
             o[cG] = beautyShadow[g + 1];
             o[cB] = beautyShadow[g + 2];
@@ -307,9 +327,11 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
             o[cNZ] = n.z;
             o[cU] = normalUv[g + 2];
             o[cV] = normalUv[g + 3];
-            o[cER] = emission[g + 0];
-            o[cEG] = emission[g + 1];
-            o[cEB] = emission[g + 2];
+            if (emits) {
+                o[cER] = emission[g + 0];
+                o[cEG] = emission[g + 1];
+                o[cEB] = emission[g + 2];
+            }
         }
     });
     frame.timingsMs["readback"] = msSince(stageStart);

@@ -31,7 +31,7 @@ struct RenderResult {
 };
 
 class Renderer {
-public:
+  public:
     // The context must be current on the calling thread and outlive the renderer.
     explicit Renderer(const gl::Context& context);
     ~Renderer();
@@ -44,7 +44,7 @@ public:
     RenderResult render(const core::Scene& scene, const core::SceneParticles& particles,
                         const std::vector<core::Material>& materials, const Settings& settings);
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

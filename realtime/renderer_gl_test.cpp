@@ -1,11 +1,9 @@
 // Renderer tests on llvmpipe: small images (160 x 90) and few particles. Scenes are built in
 // code so that uv, normals and bodies are exactly what each test needs.
-#include "realtime/renderer.h"
-
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fmt/format.h>
 #include <functional>
 #include <glm/geometric.hpp>
 #include <limits>
@@ -13,6 +11,7 @@
 #include "core/camera.h"
 #include "core/shading.h"
 #include "realtime/gl/context.h"
+#include "realtime/renderer.h"
 
 namespace twinrender::realtime {
 namespace {
@@ -80,12 +79,14 @@ struct TestScene {
         for (int layer = 0; layer < 2; ++layer)
             for (int y = 0; y < ny; ++y)
                 for (int x = 0; x < nx; ++x)
-                    add(body, corner + glm::vec3(x * s, y * s, -layer * s), 1.3f * s, uv(x, y), normal);
+                    add(body, corner + glm::vec3(x * s, y * s, -layer * s), 1.3f * s, uv(x, y),
+                        normal);
     }
 
     void finish() {
         core::ParticleSet& ps = particles.particles;
-        glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+        glm::dvec3 lo(std::numeric_limits<double>::max()),
+            hi(std::numeric_limits<double>::lowest());
         for (std::size_t i = 0; i < ps.size(); ++i) {
             lo = glm::min(lo, glm::dvec3(ps.position[i]) - 2.0 * double(ps.h[i]));
             hi = glm::max(hi, glm::dvec3(ps.position[i]) + 2.0 * double(ps.h[i]));
@@ -113,7 +114,7 @@ struct Channels {
 };
 
 class RendererTest : public ::testing::Test {
-protected:
+  protected:
     gl::Context context;
     Renderer renderer{context};
 
@@ -132,6 +133,7 @@ TEST_F(RendererTest, OneSphereHasExactDepthAndCoverageInEveryMode) {
         t.add(0, {0.0f, 0.0f, 0.0f}, h);
         Settings s = quiet();
         s.depth = mode;
+        s.ssss.enabled = true;  // ssss and shade draw covered pixels only, by depth test
         const RenderResult r = render(t, s);
         const Channels c{r.frame.image};
         const core::Camera camera(t.scene.camera);
@@ -151,9 +153,12 @@ TEST_F(RendererTest, OneSphereHasExactDepthAndCoverageInEveryMode) {
                 if (hit) {
                     const double t0 = -b - std::sqrt(disc);
                     const double z = camera.eyeDepth(ray.origin + t0 * ray.direction);
-                    ASSERT_NEAR(c(x, y, "Z"), z, 2e-5 * z) << toString(mode) << " " << x << "," << y;
+                    ASSERT_NEAR(c(x, y, "Z"), z, 2e-5 * z)
+                        << toString(mode) << " " << x << "," << y;
                     ASSERT_EQ(c(x, y, "id"), 0.0f);
                     ASSERT_EQ(c(x, y, "A"), 1.0f);
+                    ASSERT_GT(c(x, y, "R"), 0.0f);  // lit from behind the camera
+                    ASSERT_EQ(c(x, y, "shadow"), 1.0f);
                 } else {
                     ASSERT_EQ(c(x, y, "A"), 0.0f) << x << "," << y;
                     ASSERT_EQ(c(x, y, "id"), -1.0f);
@@ -228,7 +233,8 @@ TEST_F(RendererTest, ShadingMatchesTheCoreModel) {
     core::Image diffuse(8, 4, {"R", "G", "B"}), city(2, 2, {"R", "G", "B"});
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 8; ++x)
-            for (int k = 0; k < 3; ++k) diffuse.at(x, y, k) = 0.1f + 0.8f * ((x * 3 + y * 5 + k) % 7) / 6.0f;
+            for (int k = 0; k < 3; ++k)
+                diffuse.at(x, y, k) = 0.1f + 0.8f * ((x * 3 + y * 5 + k) % 7) / 6.0f;
     city.at(1, 0, 0) = 2.0f;
     city.at(0, 1, 1) = 1.0f;
     core::Material& m = t.materials[0];
@@ -258,7 +264,8 @@ TEST_F(RendererTest, ShadingMatchesTheCoreModel) {
     for (int y = 0; y < HEIGHT; ++y)
         for (int x = 0; x < WIDTH; ++x) {
             const glm::vec3 beauty(c(x, y, "R"), c(x, y, "G"), c(x, y, "B"));
-            const glm::vec3 display(r.display.at(x, y, 0), r.display.at(x, y, 1), r.display.at(x, y, 2));
+            const glm::vec3 display(r.display.at(x, y, 0), r.display.at(x, y, 1),
+                                    r.display.at(x, y, 2));
             const glm::vec3 mapped = core::tonemap(beauty, 1.3f);
             for (int k = 0; k < 3; ++k) ASSERT_NEAR(display[k], mapped[k], 2e-5) << x << "," << y;
             if (c(x, y, "A") == 0.0f) continue;
@@ -267,7 +274,8 @@ TEST_F(RendererTest, ShadingMatchesTheCoreModel) {
             p.toEye = -glm::vec3(camera.ray(x + 0.5, y + 0.5).direction);
             p.uv = {c(x, y, "uv.U"), c(x, y, "uv.V")};
             p.material = 0;
-            p.emission = glm::vec3(c(x, y, "emission.R"), c(x, y, "emission.G"), c(x, y, "emission.B"));
+            p.emission =
+                glm::vec3(c(x, y, "emission.R"), c(x, y, "emission.G"), c(x, y, "emission.B"));
             p.visibility = c(x, y, "shadow");
             const glm::vec3 expected = core::shade(t.materials, t.scene.light, p);
             for (int k = 0; k < 3; ++k)
@@ -282,12 +290,16 @@ TEST_F(RendererTest, SmoothingNeverMixesTwoBodies) {
     for (bool separable : {true, false}) {
         TestScene t;
         const float s = 0.12f;
-        t.slab(0, {-2.4f, -1.2f, 0.0f}, 20, 20, s, [](int x, int y) { return glm::vec2(0.1f + 0.005f * x, 0.2f + 0.005f * y); });
-        t.slab(1, {0.0f, -1.2f, 0.0f}, 20, 20, s, [](int x, int y) { return glm::vec2(0.6f + 0.005f * x, 0.7f + 0.005f * y); },
-               glm::normalize(glm::vec3(0.6f, 0.0f, 0.8f)));
+        t.slab(0, {-2.4f, -1.2f, 0.0f}, 20, 20, s,
+               [](int x, int y) { return glm::vec2(0.1f + 0.005f * x, 0.2f + 0.005f * y); });
+        t.slab(
+            1, {0.0f, -1.2f, 0.0f}, 20, 20, s,
+            [](int x, int y) { return glm::vec2(0.6f + 0.005f * x, 0.7f + 0.005f * y); },
+            glm::normalize(glm::vec3(0.6f, 0.0f, 0.8f)));
         // Red glow on body 0, blue on body 1: the emission is smoothed too.
         for (std::size_t i = 0; i < t.particles.particles.size(); ++i)
-            t.particles.particles.glow[i] = t.particles.particles.body[i] == 0 ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+            t.particles.particles.glow[i] =
+                t.particles.particles.body[i] == 0 ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
         Settings settings = quiet();
         settings.ssss.enabled = true;
         settings.ssss.separable = separable;
@@ -329,8 +341,10 @@ TEST_F(RendererTest, ExclusionIsSymmetric) {
         auto make = [&](bool smooth) {
             TestScene t;
             const float s = 0.12f;
-            t.slab(0, {-2.4f, -1.2f, 0.0f}, 20, 20, s, [](int x, int) { return glm::vec2(0.1f + 0.02f * x, 0.5f); });
-            t.slab(1, {0.0f, -1.2f, 0.0f}, 20, 20, s, [](int, int) { return glm::vec2(0.9f, 0.5f); });
+            t.slab(0, {-2.4f, -1.2f, 0.0f}, 20, 20, s,
+                   [](int x, int) { return glm::vec2(0.1f + 0.02f * x, 0.5f); });
+            t.slab(1, {0.0f, -1.2f, 0.0f}, 20, 20, s,
+                   [](int, int) { return glm::vec2(0.9f, 0.5f); });
             Settings settings = quiet();
             settings.ssss.enabled = smooth;
             settings.ssss.separable = separable;
@@ -398,15 +412,18 @@ TEST_F(RendererTest, CullingHiddenParticlesLeavesTheImageUnchanged) {
         return render(t, s);
     };
     const RenderResult culled = make(true), all = make(false);
-    EXPECT_LT(culled.frame.counters.at("particles_drawn"), 0.6 * all.frame.counters.at("particles_drawn"));
+    EXPECT_LT(culled.frame.counters.at("particles_drawn"),
+              0.6 * all.frame.counters.at("particles_drawn"));
     EXPECT_TRUE(culled.frame.image == all.frame.image);
 }
 
 // A small ball between the light and a slab: its shadow falls where the light's rays put it.
 TEST_F(RendererTest, ShadowFallsWhereTheLightPutsIt) {
-    for (ShadowMode mode : {ShadowMode::Map, ShadowMode::Pcf, ShadowMode::Spheres, ShadowMode::None}) {
+    for (ShadowMode mode :
+         {ShadowMode::Map, ShadowMode::Pcf, ShadowMode::Spheres, ShadowMode::None}) {
         TestScene t;
-        t.scene.light.direction = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));  // shadow shifts to +x
+        t.scene.light.direction =
+            glm::normalize(glm::dvec3(1.0, 0.0, -1.0));  // shadow shifts to +x
         t.slab(0, {-3.0f, -1.6f, 0.0f}, 50, 27, 0.12f, [](int, int) { return glm::vec2(0.5f); });
         // A ball of radius 0.2 centred at (-1, 0, 1.5): 257 particles, over 5 % of the scene,
         // so the sphere baseline gives it an occluding sphere too.
@@ -414,7 +431,8 @@ TEST_F(RendererTest, ShadowFallsWhereTheLightPutsIt) {
             for (int y = -4; y <= 4; ++y)
                 for (int x = -4; x <= 4; ++x)
                     if (x * x + y * y + z * z <= 16)
-                        t.add(1, glm::vec3(x * 0.05f - 1.0f, y * 0.05f, z * 0.05f + 1.5f), 0.065f, {0.5f, 0.5f},
+                        t.add(1, glm::vec3(x * 0.05f - 1.0f, y * 0.05f, z * 0.05f + 1.5f), 0.065f,
+                              {0.5f, 0.5f},
                               glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.0f, 0.0f, 0.01f)));
         Settings s = quiet();
         s.shadows = mode;
@@ -429,7 +447,8 @@ TEST_F(RendererTest, ShadowFallsWhereTheLightPutsIt) {
         EXPECT_EQ(c(lx, ly, "shadow"), 1.0f) << toString(mode);
         EXPECT_EQ(c(sx, sy, "shadow"), mode == ShadowMode::None ? 1.0f : 0.0f) << toString(mode);
         EXPECT_EQ(r.frame.timingsMs.at("shadow") > 0.0,
-                  mode == ShadowMode::Map || mode == ShadowMode::Pcf) << toString(mode);
+                  mode == ShadowMode::Map || mode == ShadowMode::Pcf)
+            << toString(mode);
     }
 }
 
@@ -440,9 +459,16 @@ TEST_F(RendererTest, PassesTheSettingsDoNotNeedDoNotRun) {
     EXPECT_EQ(r.frame.timingsMs.at("shadow"), 0.0);
     EXPECT_EQ(r.frame.timingsMs.at("ssss"), 0.0);
     EXPECT_GT(r.frame.timingsMs.at("gbuffer"), 0.0);
-    for (const char* key : {"total", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
+    for (const char* key :
+         {"total", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
         EXPECT_TRUE(r.frame.timingsMs.count(key)) << key;
     EXPECT_EQ(r.frame.settings.at("realtime.shadows"), "none");
+    // The background carries core::aov::makeImage's values in every channel.
+    const core::Image background = core::aov::makeImage(1, 1);
+    ASSERT_EQ(r.frame.image.channelNames(), background.channelNames());
+    for (int c = 0; c < background.channelCount(); ++c)
+        EXPECT_EQ(r.frame.image.at(0, 0, c), background.at(0, 0, c))
+            << background.channelNames()[c];
 }
 
 }  // namespace

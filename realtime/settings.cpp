@@ -21,19 +21,26 @@ ShadowMode parseShadowMode(const std::string& s) {
 
 std::string_view toString(DepthMode mode) {
     switch (mode) {
-        case DepthMode::Standard: return "standard";
-        case DepthMode::Log: return "log";
-        case DepthMode::Reversed: return "reversed";
+        case DepthMode::Standard:
+            return "standard";
+        case DepthMode::Log:
+            return "log";
+        case DepthMode::Reversed:
+            return "reversed";
     }
     return "log";
 }
 
 std::string_view toString(ShadowMode mode) {
     switch (mode) {
-        case ShadowMode::None: return "none";
-        case ShadowMode::Map: return "map";
-        case ShadowMode::Pcf: return "pcf";
-        case ShadowMode::Spheres: return "spheres";
+        case ShadowMode::None:
+            return "none";
+        case ShadowMode::Map:
+            return "map";
+        case ShadowMode::Pcf:
+            return "pcf";
+        case ShadowMode::Spheres:
+            return "spheres";
     }
     return "map";
 }
@@ -43,9 +50,10 @@ Settings parseSettings(const core::ParameterTable& t) {
     Settings s;
     s.depth = parseDepthMode(
         t.getEnum("depth", std::string(toString(d.depth)), {"log", "standard", "reversed"}));
-    s.shadows = parseShadowMode(t.getEnum("shadows", std::string(toString(d.shadows)),
-                                          {"map", "pcf", "spheres", "none"}));
-    s.particles.radiusScale = t.getDouble("particles.radius_scale", d.particles.radiusScale, 1e-6, 10.0);
+    s.shadows = parseShadowMode(
+        t.getEnum("shadows", std::string(toString(d.shadows)), {"map", "pcf", "spheres", "none"}));
+    s.particles.radiusScale =
+        t.getDouble("particles.radius_scale", d.particles.radiusScale, 1e-6, 10.0);
     s.particles.sphereNormalWeight =
         t.getDouble("particles.sphere_normal_weight", d.particles.sphereNormalWeight, 0.0, 1.0);
     s.particles.cullHidden = t.getBool("particles.cull_hidden", d.particles.cullHidden);

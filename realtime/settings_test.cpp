@@ -7,10 +7,12 @@
 namespace twinrender::realtime {
 namespace {
 
-core::ParameterTable table(std::initializer_list<std::pair<std::string, core::ParameterTable::Value>> entries) {
+core::ParameterTable table(
+    std::initializer_list<std::pair<std::string, core::ParameterTable::Value>> entries) {
     core::ParameterTable t("realtime", "scene.toml");
     int line = 1;
-    for (const auto& [key, value] : entries) t.set(key, value, "scene.toml:" + std::to_string(line++) + ":1");
+    for (const auto& [key, value] : entries)
+        t.set(key, value, "scene.toml:" + std::to_string(line++) + ":1");
     return t;
 }
 

@@ -13,37 +13,51 @@ constexpr int MAX_SPHERES = 20;  // shade.frag; bodies over 5 % of the particles
 
 gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& in) {
     const int w = in.surface->width(), h = in.surface->height();
-    gl::Texture beauty(w, h, gl::Format::RGBA32F);
-    gl::Framebuffer framebuffer("shade", {{&beauty}});
+    // Linear filtering for the bloom's bright pass; every other read is a texelFetch.
+    gl::Texture beauty(w, h, gl::Format::RGBA32F, gl::Filter::Linear);
+    gl::Framebuffer framebuffer("shade", {{&beauty}}, gl::Attachment{in.depth});
     framebuffer.bind();
-    gl::setPipelineState({});
+    framebuffer.clearColor(0, glm::vec4(0.0f));  // the background: black, visibility 0
+    gl::setPipelineState(coveredOnlyState(in.depthMode));
 
     std::vector<std::string> defines;
     switch (in.shadows) {
-        case ShadowMode::None: defines.emplace_back("SHADOWS_NONE"); break;
-        case ShadowMode::Map: defines.emplace_back("SHADOWS_MAP"); break;
-        case ShadowMode::Pcf: defines.emplace_back("SHADOWS_PCF"); break;
-        case ShadowMode::Spheres: defines.emplace_back("SHADOWS_SPHERES"); break;
+        case ShadowMode::None:
+            defines.emplace_back("SHADOWS_NONE");
+            break;
+        case ShadowMode::Map:
+            defines.emplace_back("SHADOWS_MAP");
+            break;
+        case ShadowMode::Pcf:
+            defines.emplace_back("SHADOWS_PCF");
+            break;
+        case ShadowMode::Spheres:
+            defines.emplace_back("SHADOWS_SPHERES");
+            break;
     }
+    if (in.emission) defines.emplace_back("EMISSION");
     const gl::Program& program = programs.get("fullscreen.vert", "shade.frag", defines);
     program.use();
     in.normalUv->bind(0);
-    in.emission->bind(1);
+    in.emissionBuffer->bind(1);
     in.surface->bind(2);
     if (in.shadowMap) in.shadowMap->bind(3);
     if (in.shadows == ShadowMode::Spheres) {
         if (in.spheres.size() > MAX_SPHERES)
-            throw gl::Error(fmt::format("{} occlusion spheres, at most {}", in.spheres.size(),
-                                        MAX_SPHERES));
+            throw gl::Error(
+                fmt::format("{} occlusion spheres, at most {}", in.spheres.size(), MAX_SPHERES));
         std::vector<glm::vec4> spheres;
         for (const auto& s : in.spheres)
             spheres.emplace_back(glm::vec3(s.centre), static_cast<float>(s.radius));
         program.set("uSphereCount", static_cast<int>(spheres.size()));
         program.set("uSpheres", std::span<const glm::vec4>(spheres));
         for (std::size_t i = 0; i < in.spheres.size(); ++i)
-            program.set(fmt::format("uSphereBodies[{}]", i), static_cast<float>(in.spheres[i].body));
+            program.set(fmt::format("uSphereBodies[{}]", i),
+                        static_cast<float>(in.spheres[i].body));
     }
+    program.set("uDepth", coveredOnlyDepth(in.depthMode));
     gl::drawFullscreenTriangle();
+    gl::setPipelineState({});
     return beauty;
 }
 

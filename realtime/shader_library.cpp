@@ -1,7 +1,8 @@
 #include "realtime/shader_library.h"
 
-#include <algorithm>
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <sstream>
 
 #include "realtime/gl/error.h"

@@ -30,13 +30,13 @@ gl::ShaderSource composeShader(std::string_view file, std::span<const std::strin
 
 // Programs by (vertex file, fragment file, defines), compiled on first use.
 class ProgramCache {
-public:
+  public:
     const gl::Program& get(std::string_view vertexFile, std::string_view fragmentFile,
                            const std::vector<std::string>& defines = {});
 
     std::size_t size() const { return mPrograms.size(); }
 
-private:
+  private:
     std::map<std::string, gl::Program, std::less<>> mPrograms;
 };
 

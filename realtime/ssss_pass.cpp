@@ -9,7 +9,7 @@
 namespace twinrender::realtime {
 
 SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
-                            const SsssSettings& settings, bool emission) {
+                            const SsssSettings& settings, bool emission, DepthMode mode) {
     const int w = gbuffer.surface.width(), h = gbuffer.surface.height();
     SmoothedSurface s;
     std::optional<gl::Framebuffer> targets[2];
@@ -20,7 +20,10 @@ SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
             s.emission[i] = gl::Texture(w, h, gl::Format::RGBA32F);
             attachments.push_back({&s.emission[i]});
         }
-        targets[i].emplace("ssss " + std::to_string(i), std::move(attachments));
+        // Background pixels are never read by the next pass or by shade: only covered ones
+        // are drawn (coveredOnlyState), the rest keep whatever the texture holds.
+        targets[i].emplace("ssss " + std::to_string(i), std::move(attachments),
+                           gl::Attachment{&gbuffer.depth});
     }
 
     std::vector<std::string> defines;
@@ -31,7 +34,8 @@ SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
     program.set("uRadiusScale", static_cast<float>(settings.radiusScale));
     program.set("uDepthLimit", static_cast<float>(settings.depthLimit));
     program.set("uMaxTaps", settings.maxTaps);
-    gl::setPipelineState({});
+    program.set("uDepth", coveredOnlyDepth(mode));
+    gl::setPipelineState(coveredOnlyState(mode));
     gbuffer.surface.bind(2);
 
     const gl::Texture* sourceNormalUv = &gbuffer.normalUv;
@@ -56,6 +60,7 @@ SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
             step({0.0f, 0.0f});
         }
     }
+    gl::setPipelineState({});
     return s;
 }
 

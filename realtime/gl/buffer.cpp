@@ -8,7 +8,9 @@
 namespace twinrender::realtime::gl {
 
 namespace {
-void deleteBuffer(unsigned id) { glDeleteBuffers(1, &id); }
+void deleteBuffer(unsigned id) {
+    glDeleteBuffers(1, &id);
+}
 }  // namespace
 
 Buffer::Buffer(std::span<const std::byte> data) : mSize(data.size()) {

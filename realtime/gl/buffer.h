@@ -10,7 +10,7 @@
 namespace twinrender::realtime::gl {
 
 class Buffer {
-public:
+  public:
     Buffer() = default;
     // Copies `data` into a new buffer (an empty span still gets a small buffer, so that a
     // binding is always valid).
@@ -27,7 +27,7 @@ public:
     std::size_t size() const { return mSize; }
     unsigned id() const { return mHandle.id(); }
 
-private:
+  private:
     Handle mHandle;
     std::size_t mSize = 0;
 };

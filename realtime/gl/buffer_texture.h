@@ -15,7 +15,7 @@ enum class BufferFormat {
 };
 
 class BufferTexture {
-public:
+  public:
     BufferTexture() = default;
     BufferTexture(std::span<const std::byte> data, BufferFormat format);
     template <typename T>
@@ -26,7 +26,7 @@ public:
     void bind(unsigned unit) const;  // glBindTextureUnit
     std::size_t size() const { return mBuffer.size(); }
 
-private:
+  private:
     Buffer mBuffer;
     Handle mTexture;
 };

@@ -3,10 +3,10 @@
 #include <dlfcn.h>
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
+#include <fmt/format.h>
 
 #include <cstdlib>
 #include <cstring>
-#include <fmt/format.h>
 #include <optional>
 
 #include "core/error.h"
@@ -17,22 +17,38 @@ namespace {
 
 std::string eglErrorName(EGLint code) {
     switch (code) {
-        case EGL_SUCCESS: return "EGL_SUCCESS";
-        case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-        case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-        case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-        case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-        case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-        case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-        case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
-        case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-        case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-        case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
-        case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
-        case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-        case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-        case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
-        default: return "unknown EGL error";
+        case EGL_SUCCESS:
+            return "EGL_SUCCESS";
+        case EGL_NOT_INITIALIZED:
+            return "EGL_NOT_INITIALIZED";
+        case EGL_BAD_ACCESS:
+            return "EGL_BAD_ACCESS";
+        case EGL_BAD_ALLOC:
+            return "EGL_BAD_ALLOC";
+        case EGL_BAD_ATTRIBUTE:
+            return "EGL_BAD_ATTRIBUTE";
+        case EGL_BAD_CONFIG:
+            return "EGL_BAD_CONFIG";
+        case EGL_BAD_CONTEXT:
+            return "EGL_BAD_CONTEXT";
+        case EGL_BAD_CURRENT_SURFACE:
+            return "EGL_BAD_CURRENT_SURFACE";
+        case EGL_BAD_DISPLAY:
+            return "EGL_BAD_DISPLAY";
+        case EGL_BAD_MATCH:
+            return "EGL_BAD_MATCH";
+        case EGL_BAD_NATIVE_PIXMAP:
+            return "EGL_BAD_NATIVE_PIXMAP";
+        case EGL_BAD_NATIVE_WINDOW:
+            return "EGL_BAD_NATIVE_WINDOW";
+        case EGL_BAD_PARAMETER:
+            return "EGL_BAD_PARAMETER";
+        case EGL_BAD_SURFACE:
+            return "EGL_BAD_SURFACE";
+        case EGL_CONTEXT_LOST:
+            return "EGL_CONTEXT_LOST";
+        default:
+            return "unknown EGL error";
     }
 }
 
@@ -95,10 +111,15 @@ Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()
     std::vector<Candidate> candidates;
     std::vector<std::string> failures;
     const bool platformBase = hasExtension(clientExtensions, "EGL_EXT_platform_base");
-    if (!platformBase) failures.push_back(fmt::format(
-        "EGL client: no EGL_EXT_platform_base (client extensions: {})",
-        clientExtensions ? clientExtensions : eglFailure("eglQueryString")));
-
+    if (!platformBase) {
+        if (!clientExtensions || !*clientExtensions)
+            failures.push_back(
+                "EGL loader: no EGL implementation found (libglvnd has no vendor library: "
+                "no client extensions at all)");
+        else
+            failures.push_back(fmt::format(
+                "EGL loader: no EGL_EXT_platform_base (client extensions: {})", clientExtensions));
+    }
     if (platformBase && hasExtension(clientExtensions, "EGL_EXT_device_enumeration") &&
         hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
         EGLint count = 0;
@@ -130,16 +151,18 @@ Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()
         candidates.insert(candidates.end(), hardware.begin(), hardware.end());
         candidates.insert(candidates.end(), software.begin(), software.end());
     } else if (platformBase) {
-        failures.push_back("EGL devices: the EGL client lacks EGL_EXT_device_enumeration / "
-                           "EGL_EXT_platform_device");
+        failures.push_back(
+            "EGL devices: the EGL client lacks EGL_EXT_device_enumeration / "
+            "EGL_EXT_platform_device");
     }
     if (platformBase && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
         // Mesa picks the driver itself; the renderer string says whether it is software.
         candidates.push_back({"EGL surfaceless platform (Mesa)", EGL_PLATFORM_SURFACELESS_MESA,
                               EGL_DEFAULT_DISPLAY, false});
     } else if (platformBase) {
-        failures.push_back("EGL surfaceless platform: the EGL client lacks "
-                           "EGL_MESA_platform_surfaceless (Mesa's EGL, libegl-mesa0, provides it)");
+        failures.push_back(
+            "EGL surfaceless platform: the EGL client lacks "
+            "EGL_MESA_platform_surfaceless (Mesa's EGL, libegl-mesa0, provides it)");
     }
 
     for (const Candidate& c : candidates) {
@@ -180,8 +203,10 @@ Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()
                 continue;
             }
         }
-        const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                            EGL_CONTEXT_MINOR_VERSION, 5,
+        const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                            4,
+                                            EGL_CONTEXT_MINOR_VERSION,
+                                            5,
                                             EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                             EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                             EGL_NONE};
@@ -243,12 +268,24 @@ Context::~Context() {
     }
 }
 
-const std::string& Context::renderer() const { return mImpl->renderer; }
-const std::string& Context::vendor() const { return mImpl->vendor; }
-const std::string& Context::version() const { return mImpl->version; }
-const std::string& Context::platform() const { return mImpl->platform; }
-bool Context::isSoftware() const { return mImpl->software; }
-const std::vector<std::string>& Context::skipped() const { return mImpl->skipped; }
+const std::string& Context::renderer() const {
+    return mImpl->renderer;
+}
+const std::string& Context::vendor() const {
+    return mImpl->vendor;
+}
+const std::string& Context::version() const {
+    return mImpl->version;
+}
+const std::string& Context::platform() const {
+    return mImpl->platform;
+}
+bool Context::isSoftware() const {
+    return mImpl->software;
+}
+const std::vector<std::string>& Context::skipped() const {
+    return mImpl->skipped;
+}
 
 std::string Context::description() const {
     return fmt::format("{} (OpenGL {}, {}{})", mImpl->renderer, mImpl->version, mImpl->platform,

@@ -19,7 +19,7 @@ struct ContextOptions {
 };
 
 class Context {
-public:
+  public:
     explicit Context(const ContextOptions& options = {});
     ~Context();
     Context(const Context&) = delete;
@@ -40,7 +40,7 @@ public:
     // Makes the context current on the calling thread (it already is on the creating one).
     void makeCurrent() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

@@ -1,5 +1,3 @@
-#include "realtime/gl/context.h"
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -7,6 +5,7 @@
 
 #include "core/error.h"
 #include "realtime/gl/buffer.h"
+#include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/framebuffer.h"
 #include "realtime/gl/texture.h"

@@ -9,7 +9,7 @@ namespace twinrender::realtime::gl {
 // A GL call failed, a shader did not compile, a framebuffer is incomplete: a bug or a driver
 // limit, not bad input (core::InputError is for that).
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

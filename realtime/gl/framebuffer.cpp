@@ -1,7 +1,6 @@
 #include "realtime/gl/framebuffer.h"
 
 #include <epoxy/gl.h>
-
 #include <fmt/format.h>
 
 #include "realtime/gl/error.h"
@@ -9,17 +8,24 @@
 namespace twinrender::realtime::gl {
 
 namespace {
-void deleteFramebuffer(unsigned id) { glDeleteFramebuffers(1, &id); }
+void deleteFramebuffer(unsigned id) {
+    glDeleteFramebuffers(1, &id);
+}
 
 const char* statusName(GLenum status) {
     switch (status) {
-        case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
-        case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+        case GL_FRAMEBUFFER_UNDEFINED:
+            return "GL_FRAMEBUFFER_UNDEFINED";
+        case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT:
+            return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
         case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
             return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
-        case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
-        case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
-        default: return "unknown framebuffer status";
+        case GL_FRAMEBUFFER_UNSUPPORTED:
+            return "GL_FRAMEBUFFER_UNSUPPORTED";
+        case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE:
+            return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+        default:
+            return "unknown framebuffer status";
     }
 }
 }  // namespace

@@ -17,7 +17,7 @@ struct Attachment {
 };
 
 class Framebuffer {
-public:
+  public:
     Framebuffer() = default;
     // Throws Error naming the framebuffer when it is incomplete or the attachments differ in size.
     Framebuffer(std::string name, std::vector<Attachment> colour,
@@ -35,7 +35,7 @@ public:
     int height() const { return mHeight; }
     const std::string& name() const { return mName; }
 
-private:
+  private:
     Handle mHandle;
     std::string mName;
     int mWidth = 0, mHeight = 0;

@@ -7,7 +7,7 @@
 namespace twinrender::realtime::gl {
 
 class Handle {
-public:
+  public:
     using Deleter = void (*)(unsigned id);
 
     Handle() = default;
@@ -15,8 +15,7 @@ public:
     ~Handle() { reset(); }
     Handle(const Handle&) = delete;
     Handle& operator=(const Handle&) = delete;
-    Handle(Handle&& other) noexcept
-        : mId(std::exchange(other.mId, 0u)), mDeleter(other.mDeleter) {}
+    Handle(Handle&& other) noexcept : mId(std::exchange(other.mId, 0u)), mDeleter(other.mDeleter) {}
     Handle& operator=(Handle&& other) noexcept {
         if (this != &other) {
             reset();
@@ -33,7 +32,7 @@ public:
         mId = 0;
     }
 
-private:
+  private:
     unsigned mId = 0;
     Deleter mDeleter = nullptr;
 };

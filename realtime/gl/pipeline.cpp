@@ -16,8 +16,8 @@ void setPipelineState(const PipelineState& state) {
         glEnable(GL_DEPTH_CLAMP);
     else
         glDisable(GL_DEPTH_CLAMP);
-    glClipControl(GL_LOWER_LEFT,
-                  state.clipDepth == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    glClipControl(GL_LOWER_LEFT, state.clipDepth == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE
+                                                                         : GL_NEGATIVE_ONE_TO_ONE);
     if (state.additiveBlend) {
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
@@ -34,11 +34,17 @@ void drawTriangles(int vertexCount) {
     if (vertexCount > 0) glDrawArrays(GL_TRIANGLES, 0, vertexCount);
 }
 
-void drawFullscreenTriangle() { glDrawArrays(GL_TRIANGLES, 0, 3); }
+void drawFullscreenTriangle() {
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
 
-void memoryBarrierAll() { glMemoryBarrier(GL_ALL_BARRIER_BITS); }
+void memoryBarrierAll() {
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
 
-void finish() { glFinish(); }
+void finish() {
+    glFinish();
+}
 
 Limits queryLimits() {
     Limits l;

@@ -37,8 +37,8 @@ void memoryBarrierAll();
 void finish();
 
 struct Limits {
-    long long maxStorageBlockBytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
-    int maxTextureSize = 0;              // GL_MAX_TEXTURE_SIZE
+    long long maxStorageBlockBytes = 0;    // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+    int maxTextureSize = 0;                // GL_MAX_TEXTURE_SIZE
     long long maxTextureBufferTexels = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
     int maxViewportWidth = 0, maxViewportHeight = 0;
 };

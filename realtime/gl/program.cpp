@@ -1,8 +1,8 @@
 #include "realtime/gl/program.h"
 
 #include <epoxy/gl.h>
-
 #include <fmt/format.h>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "realtime/gl/error.h"
@@ -10,7 +10,9 @@
 namespace twinrender::realtime::gl {
 
 namespace {
-void deleteProgram(unsigned id) { glDeleteProgram(id); }
+void deleteProgram(unsigned id) {
+    glDeleteProgram(id);
+}
 
 std::string fileMap(const ShaderSource& source) {
     std::string out;
@@ -77,7 +79,9 @@ Program::Program(std::string name, const ShaderSource& vertex, const ShaderSourc
     checkErrors("program " + mName);
 }
 
-void Program::use() const { glUseProgram(mHandle.id()); }
+void Program::use() const {
+    glUseProgram(mHandle.id());
+}
 
 int Program::location(std::string_view uniform) const {
     auto it = mLocations.find(uniform);
@@ -88,8 +92,12 @@ int Program::location(std::string_view uniform) const {
     return it->second;
 }
 
-void Program::set(std::string_view u, float v) const { glProgramUniform1f(id(), location(u), v); }
-void Program::set(std::string_view u, int v) const { glProgramUniform1i(id(), location(u), v); }
+void Program::set(std::string_view u, float v) const {
+    glProgramUniform1f(id(), location(u), v);
+}
+void Program::set(std::string_view u, int v) const {
+    glProgramUniform1i(id(), location(u), v);
+}
 void Program::set(std::string_view u, const glm::vec2& v) const {
     glProgramUniform2fv(id(), location(u), 1, glm::value_ptr(v));
 }
@@ -110,7 +118,8 @@ void Program::set(std::string_view u, const glm::mat4& v) const {
 }
 void Program::set(std::string_view u, std::span<const glm::vec4> v) const {
     if (!v.empty())
-        glProgramUniform4fv(id(), location(u), static_cast<GLsizei>(v.size()), glm::value_ptr(v[0]));
+        glProgramUniform4fv(id(), location(u), static_cast<GLsizei>(v.size()),
+                            glm::value_ptr(v[0]));
 }
 
 }  // namespace twinrender::realtime::gl

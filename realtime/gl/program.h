@@ -24,7 +24,7 @@ struct ShaderSource {
 };
 
 class Program {
-public:
+  public:
     Program() = default;
     // Compiles and links; throws Error with the program name, the driver's log and the
     // source-number-to-file map when either step fails.
@@ -45,7 +45,7 @@ public:
     void set(std::string_view uniform, const glm::mat4& value) const;
     void set(std::string_view uniform, std::span<const glm::vec4> values) const;
 
-private:
+  private:
     int location(std::string_view uniform) const;
 
     Handle mHandle;

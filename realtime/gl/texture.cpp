@@ -1,24 +1,31 @@
 #include "realtime/gl/texture.h"
 
 #include <epoxy/gl.h>
+#include <fmt/format.h>
 
 #include <algorithm>
-#include <fmt/format.h>
 
 #include "realtime/gl/error.h"
 
 namespace twinrender::realtime::gl {
 
 namespace {
-void deleteTexture(unsigned id) { glDeleteTextures(1, &id); }
+void deleteTexture(unsigned id) {
+    glDeleteTextures(1, &id);
+}
 
 GLenum internalFormat(Format format) {
     switch (format) {
-        case Format::RGBA32F: return GL_RGBA32F;
-        case Format::RG32F: return GL_RG32F;
-        case Format::R32F: return GL_R32F;
-        case Format::Depth24: return GL_DEPTH_COMPONENT24;
-        case Format::Depth32F: return GL_DEPTH_COMPONENT32F;
+        case Format::RGBA32F:
+            return GL_RGBA32F;
+        case Format::RG32F:
+            return GL_RG32F;
+        case Format::R32F:
+            return GL_R32F;
+        case Format::Depth24:
+            return GL_DEPTH_COMPONENT24;
+        case Format::Depth32F:
+            return GL_DEPTH_COMPONENT32F;
     }
     return GL_RGBA32F;
 }
@@ -36,16 +43,23 @@ Texture::Texture(int width, int height, Format format, Filter filter, int levels
                                 ? (levels > 1 ? GL_LINEAR_MIPMAP_NEAREST : GL_LINEAR)
                                 : (levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, minFilter);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter == Filter::Linear ? GL_LINEAR : GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER,
+                        filter == Filter::Linear ? GL_LINEAR : GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
     checkErrors(fmt::format("texture {}x{}", width, height));
 }
 
-void Texture::bind(unsigned unit) const { glBindTextureUnit(unit, mHandle.id()); }
+void Texture::bind(unsigned unit) const {
+    glBindTextureUnit(unit, mHandle.id());
+}
 
-int Texture::width(int level) const { return std::max(1, mWidth >> level); }
-int Texture::height(int level) const { return std::max(1, mHeight >> level); }
+int Texture::width(int level) const {
+    return std::max(1, mWidth >> level);
+}
+int Texture::height(int level) const {
+    return std::max(1, mHeight >> level);
+}
 
 }  // namespace twinrender::realtime::gl

@@ -18,7 +18,7 @@ enum class Format {
 enum class Filter { Nearest, Linear };
 
 class Texture {
-public:
+  public:
     Texture() = default;
     // width, height >= 1; levels >= 1 (a mip chain for the bloom pass).
     Texture(int width, int height, Format format, Filter filter = Filter::Nearest, int levels = 1);
@@ -31,7 +31,7 @@ public:
     bool isDepth() const { return mFormat == Format::Depth24 || mFormat == Format::Depth32F; }
     unsigned id() const { return mHandle.id(); }
 
-private:
+  private:
     Handle mHandle;
     int mWidth = 0, mHeight = 0, mLevels = 0;
     Format mFormat = Format::RGBA32F;

@@ -5,7 +5,9 @@
 namespace twinrender::realtime::gl {
 
 namespace {
-void deleteQuery(unsigned id) { glDeleteQueries(1, &id); }
+void deleteQuery(unsigned id) {
+    glDeleteQueries(1, &id);
+}
 }  // namespace
 
 TimerQuery::TimerQuery() {
@@ -14,8 +16,12 @@ TimerQuery::TimerQuery() {
     mHandle = Handle(id, deleteQuery);
 }
 
-void TimerQuery::begin() const { glBeginQuery(GL_TIME_ELAPSED, mHandle.id()); }
-void TimerQuery::end() const { glEndQuery(GL_TIME_ELAPSED); }
+void TimerQuery::begin() const {
+    glBeginQuery(GL_TIME_ELAPSED, mHandle.id());
+}
+void TimerQuery::end() const {
+    glEndQuery(GL_TIME_ELAPSED);
+}
 
 double TimerQuery::milliseconds() const {
     GLuint64 ns = 0;

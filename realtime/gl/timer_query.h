@@ -7,14 +7,14 @@
 namespace twinrender::realtime::gl {
 
 class TimerQuery {
-public:
+  public:
     TimerQuery();
     void begin() const;
     void end() const;
     // Waits for the result; milliseconds of GPU time between begin() and end().
     double milliseconds() const;
 
-private:
+  private:
     Handle mHandle;
 };
 

@@ -81,7 +81,11 @@ void main() {
         return;
     }
     vec4 a = texelFetch(uNormalUv, p, 0);
+#ifdef EMISSION
     vec3 emission = texelFetch(uEmission, p, 0).rgb;
+#else
+    const vec3 emission = vec3(0.0);  // nothing in the scene emits
+#endif
     float z = s.x;
     vec3 position = surfacePosition(gl_FragCoord.xy, z);
     vec3 normal = octDecode(a.xy);

@@ -1,0 +1,39 @@
+// One scene's two renders compared: the metrics, the checks against thresholds and baseline,
+// and the images and JSON of the scene's folder in a run. Shared by `run` (and `sweep`).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "app/render_job.h"
+#include "compare/baseline.h"
+#include "compare/metrics.h"
+#include "compare/report.h"
+#include "compare/thresholds.h"
+
+namespace twinrender::app {
+
+// The error maps a page shows beside the renders, with the range their colours span.
+struct ErrorMapStyle {
+    const char* key;    // MetricResult::errorMaps key
+    const char* buffer; // the page's buffer
+    const char* label;
+    double lo, hi;
+    const char* unit;
+};
+const std::vector<ErrorMapStyle>& errorMapStyles();
+
+// Metric settings for a scene: its light and exposure, FLIP's pixels per degree.
+compare::MetricSettings metricSettings(const LoadedScene& scene, double ppd);
+
+// Compares the real-time render (test) with the reference (ref), writes the scene folder's
+// images (per-buffer PNGs of both renders, colour-mapped error maps) and returns the scene's
+// report with its checks. `bounds` from the thresholds; `baseline` may be null.
+compare::SceneReport compareScene(const LoadedScene& scene, const Render& ref, const Render& test,
+                                  const compare::Bounds& bounds, const compare::Baseline* baseline,
+                                  double ppd, const std::filesystem::path& sceneDir);
+
+// The time metrics of a pair of renders: time.realtime_ms and time.raymarch_ms (total).
+void addTimeMetrics(const Render& ref, const Render& test, compare::MetricValues& metrics);
+
+}  // namespace twinrender::app

@@ -1,0 +1,212 @@
+#include "app/suite_commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "app/comparison.h"
+#include "app/progress.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "realtime/gl/context.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int exitCode(compare::Status s) { return static_cast<int>(s); }  // pass 0, warn 1, fail 2
+
+std::string nowUtc() {
+    const std::time_t t = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+    return buf;
+}
+
+// The status of a metric's checks, for the terminal table.
+std::string statusOf(const std::vector<compare::Check>& checks, const std::string& metric) {
+    compare::Status s = compare::Status::Pass;
+    bool any = false;
+    for (const auto& c : checks)
+        if (c.metric == metric) {
+            s = compare::worst(s, c.status);
+            any = true;
+        }
+    return any ? std::string(compare::toString(s)) : "";
+}
+
+void printMetricTable(const compare::MetricValues& metrics, const std::vector<compare::Check>& checks) {
+    std::printf("%-24s %14s  %-4s %s\n", "metric", "value", "unit", "check");
+    for (const auto& [name, value] : metrics)
+        std::printf("%-24s %14s  %-4s %s\n", name.c_str(), compare::formatValue(value).c_str(),
+                    compare::metricUnit(name).c_str(), statusOf(checks, name).c_str());
+    for (const auto& c : checks)
+        if (c.status != compare::Status::Pass) std::printf("  %s: %s\n", std::string(compare::toString(c.status)).c_str(), c.message.c_str());
+}
+
+// The scene files of the inputs: files as given, folders by their *.toml (sorted), except
+// thresholds.toml, which is not a scene.
+std::vector<fs::path> sceneFiles(const std::vector<std::string>& inputs) {
+    std::vector<fs::path> files;
+    for (const auto& in : inputs) {
+        const fs::path p(in);
+        if (fs::is_directory(p)) {
+            std::vector<fs::path> found;
+            for (const auto& e : fs::directory_iterator(p))
+                if (e.path().extension() == ".toml" && e.path().filename() != "thresholds.toml")
+                    found.push_back(e.path());
+            std::sort(found.begin(), found.end());
+            if (found.empty())
+                throw core::InputError(fmt::format("{}: the folder holds no scene (.toml) files", in));
+            files.insert(files.end(), found.begin(), found.end());
+        } else if (fs::is_regular_file(p)) {
+            files.push_back(p);
+        } else {
+            throw core::InputError(fmt::format("{}: no such scene file or folder", in));
+        }
+    }
+    return files;
+}
+
+fs::path defaultScenesDir() {
+    if (fs::is_directory("scenes")) return "scenes";
+    return fs::path(TWINRENDER_SOURCE_DIR) / "scenes";
+}
+
+}  // namespace
+
+int runCompare(const CompareOptions& o) {
+    const core::Image ref = core::readImage(o.reference);
+    const core::Image test = core::readImage(o.test);
+    compare::MetricSettings settings;
+    settings.ppd = o.ppd;
+    const compare::MetricResult result = compare::computeMetrics(ref, test, settings);
+    compare::SceneReport report;
+    report.name = fs::path(o.test).stem().string();
+    report.metrics = result.values;
+    if (!o.thresholds.empty()) {
+        compare::Bounds bounds = compare::Thresholds::parseFile(o.thresholds).forScene(report.name);
+        // Plain images have beauty metrics only: bounds on other buffers do not apply.
+        if (!compare::isAovImage(ref) || !compare::isAovImage(test))
+            bounds = compare::filterBounds(bounds, [](const std::string& m) { return m.rfind("beauty.", 0) == 0; });
+        report.checks = compare::evaluate(report.metrics, bounds);
+    }
+    const fs::path out(o.out);
+    for (const ErrorMapStyle& style : errorMapStyles()) {
+        const auto it = result.errorMaps.find(style.key);
+        if (it == result.errorMaps.end()) continue;
+        const std::string file = std::string("error.") + style.buffer + ".png";
+        compare::writeErrorMapPng(it->second, 0, style.lo, style.hi, out / file);
+        report.errorMaps[style.buffer] = {file, style.label, style.lo, style.hi, style.unit};
+    }
+    compare::writeMetricsJson(report, out / "metrics.json");
+    printMetricTable(report.metrics, report.checks);
+    const compare::Status status = report.status();
+    std::printf("%s -> %s (%s)\n", o.test.c_str(), (out / "metrics.json").c_str(),
+                std::string(compare::toString(status)).c_str());
+    return exitCode(status);
+}
+
+int runSuite(const RunOptions& o) {
+    const bool tty = isatty(STDERR_FILENO);
+    // Everything is read and checked before the first render.
+    std::vector<std::string> inputs = o.inputs;
+    std::string thresholdsFile = o.thresholds;
+    if (inputs.empty()) {
+        const fs::path dir = defaultScenesDir();
+        inputs.push_back(dir.string());
+        if (thresholdsFile.empty() && fs::is_regular_file(dir / "thresholds.toml"))
+            thresholdsFile = (dir / "thresholds.toml").string();
+    }
+    const std::vector<fs::path> files = sceneFiles(inputs);
+    std::vector<LoadedScene> scenes;
+    for (const auto& f : files) scenes.push_back(loadScene(f, o.sets));
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (scenes[i].scene.name == scenes[j].scene.name)
+                throw core::InputError(fmt::format("{} and {} are both named '{}'; scene names name "
+                                                   "the report's folders and must differ",
+                                                   files[j].string(), files[i].string(), scenes[i].scene.name));
+    const compare::Thresholds thresholds =
+        thresholdsFile.empty() ? compare::Thresholds::parseString("", "(none)")
+                               : compare::Thresholds::parseFile(thresholdsFile);
+    std::vector<compare::Bounds> bounds;
+    for (const auto& s : scenes) bounds.push_back(thresholds.forScene(s.scene.name, &s.scene.compare));
+    std::optional<compare::Baseline> baseline;
+    if (!o.baseline.empty()) baseline = compare::readBaseline(o.baseline);
+
+    realtime::gl::Context context(realtime::gl::ContextOptions{o.requireGpu});
+    realtime::Renderer realtimeRenderer(context);
+    raymarch::EmbreeDevice device;
+
+    compare::RunReport run;
+    run.createdAt = nowUtc();
+    run.commandLine = o.commandLine;
+    run.thresholdsFile = thresholdsFile;
+    run.baselineFile = o.baseline;
+    const fs::path out(o.out);
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+        const LoadedScene& s = scenes[i];
+        const fs::path dir = out / s.scene.name;
+        if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, scenes.size(), s.scene.name.c_str());
+        compare::SceneReport report;
+        try {
+            const Render ref = renderRaymarch(device, s, tty);
+            writeRender(s, ref, dir);
+            const Render test = renderRealtime(realtimeRenderer, s);
+            writeRender(s, test, dir);
+            report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd, dir);
+        } catch (const std::exception& e) {
+            // One scene that cannot be rendered or compared fails; the others still run.
+            report = compare::SceneReport{};
+            report.name = s.scene.name;
+            report.description = s.scene.description;
+            report.error = e.what();
+        }
+        run.scenes.push_back(std::move(report));
+    }
+    compare::writeReport(run, out);
+    if (!o.junit.empty()) compare::writeJunit(run, o.junit);
+
+    // One screen: a row per scene.
+    std::printf("%-14s %-5s %8s %8s %8s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM", "normal°",
+                "cov. IoU", "realtime", "reference", "speed");
+    for (const auto& r : run.scenes) {
+        auto m = [&](const char* k) {
+            const auto it = r.metrics.find(k);
+            return it == r.metrics.end() ? std::string("-") : compare::formatValue(it->second);
+        };
+        const auto rt = r.metrics.find("time.realtime_ms"), ref = r.metrics.find("time.raymarch_ms");
+        const std::string speed = rt != r.metrics.end() && ref != r.metrics.end() && rt->second > 0
+                                      ? fmt::format("{:.1f}x", ref->second / rt->second)
+                                      : "-";
+        std::printf("%-14s %-5s %8s %8s %8s %9s %8s ms %8s ms %7s\n", r.name.c_str(),
+                    std::string(compare::toString(r.status())).c_str(), m("beauty.flip").c_str(),
+                    m("beauty.ssim").c_str(), m("normal.mean_deg").c_str(), m("coverage.iou").c_str(),
+                    m("time.realtime_ms").c_str(), m("time.raymarch_ms").c_str(), speed.c_str());
+        if (!r.error.empty()) std::printf("  error: %s\n", r.error.c_str());
+        for (const auto& c : r.checks)
+            if (c.status != compare::Status::Pass)
+                std::printf("  %s: %s\n", std::string(compare::toString(c.status)).c_str(), c.message.c_str());
+    }
+    const compare::Status status = run.status();
+    std::printf("%s: %s\n", std::string(compare::toString(status)).c_str(), (out / "index.html").c_str());
+    return exitCode(status);
+}
+
+int runBless(const std::string& runDir, const std::string& out) {
+    const compare::Baseline b = compare::blessRunDir(runDir);
+    const fs::path file = out.empty() ? fs::path(runDir) / "baseline.json" : fs::path(out);
+    compare::writeBaseline(b, file);
+    std::printf("baseline of %zu scenes -> %s\n", b.scenes.size(), file.c_str());
+    return 0;
+}
+
+}  // namespace twinrender::app

@@ -1,0 +1,36 @@
+// The commands that compare: `compare` (two images), `run` (the main job: every scene with
+// both renderers, compared, reported) and `bless` (a run's metrics as the baseline).
+// Each returns the exit code of DESIGN.md: 0 pass, 1 warn, 2 fail.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace twinrender::app {
+
+struct CompareOptions {
+    std::string reference;
+    std::string test;
+    std::string out = "out/compare";
+    std::string thresholds;  // empty: no bounds, the verdict is pass
+    double ppd = 67.0;       // ꟻLIP's pixels per degree
+};
+int runCompare(const CompareOptions& options);
+
+struct RunOptions {
+    std::vector<std::string> inputs;  // scene files or folders of them; empty: scenes/
+    std::string out = "out";
+    std::string thresholds;           // empty: <scenes>/thresholds.toml when running scenes/
+    std::string baseline;
+    std::string junit;
+    std::vector<std::string> sets;
+    bool requireGpu = false;
+    double ppd = 67.0;
+    std::string commandLine;          // recorded in the report
+};
+int runSuite(const RunOptions& options);
+
+// Writes the baseline of RUN_DIR (its summary.json) to `out` (default RUN_DIR/baseline.json).
+int runBless(const std::string& runDir, const std::string& out);
+
+}  // namespace twinrender::app

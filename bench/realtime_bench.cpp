@@ -1,0 +1,114 @@
+// The real-time renderer's per-stage cost (issue 3, "Speed"): the planet scene at 1280 x 720
+// with 100k particles, all defaults (log depth, 2048^2 shadow map, separable SSSS, bloom),
+// and variants that switch one feature off. Counters are milliseconds per stage from the GL
+// timer queries (cull, upload, readback and total are wall clock), averaged over iterations.
+// The issue's target: ssss + shade + post <= (gbuffer + shadow) / 2, total < 1000 ms on the
+// 2-core llvmpipe machines; 1M particles at 1920 x 1080 under 5 ms on a GPU.
+// Run: build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/particles.h"
+#include "core/scene.h"
+#include "core/texture.h"
+#include "realtime/gl/context.h"
+#include "realtime/occlusion_culling.h"
+#include "realtime/renderer.h"
+#include "realtime/settings.h"
+
+namespace tr = twinrender;
+
+namespace {
+
+struct LoadedScene {
+    tr::core::Scene scene;
+    tr::core::SceneParticles particles;
+    std::vector<tr::core::Material> materials;
+    tr::realtime::Settings settings;
+};
+
+const LoadedScene& planet(int particles, int width, int height) {
+    static std::map<std::string, std::unique_ptr<LoadedScene>> cache;
+    const std::string key = fmt::format("{}@{}x{}", particles, width, height);
+    auto& slot = cache[key];
+    if (!slot) {
+        slot = std::make_unique<LoadedScene>();
+        const std::vector<std::string> overrides = {fmt::format("bodies.0.particles={}", particles),
+                                                    fmt::format("camera.width={}", width),
+                                                    fmt::format("camera.height={}", height)};
+        slot->scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/planet.toml", overrides);
+        slot->settings = tr::realtime::parseSettings(slot->scene.realtime);
+        slot->particles = tr::core::buildParticles(slot->scene);
+        slot->materials = tr::core::loadMaterials(slot->scene);
+    }
+    return *slot;
+}
+
+tr::realtime::gl::Context& context() {
+    static tr::realtime::gl::Context c;
+    return c;
+}
+
+void frame(benchmark::State& state, int particles, int width, int height,
+           void (*adjust)(tr::realtime::Settings&)) {
+    const LoadedScene& s = planet(particles, width, height);
+    tr::realtime::Settings settings = s.settings;
+    if (adjust) adjust(settings);
+    tr::realtime::Renderer renderer(context());
+    renderer.render(s.scene, s.particles, s.materials, settings);  // compiles the programs
+    std::map<std::string, double> sums;
+    for (auto _ : state) {
+        const tr::realtime::RenderResult r =
+            renderer.render(s.scene, s.particles, s.materials, settings);
+        for (const auto& [stage, ms] : r.frame.timingsMs) sums[stage] += ms;
+        benchmark::DoNotOptimize(r.frame.image.pixels().data());
+    }
+    for (const auto& [stage, ms] : sums)
+        if (stage != "compile")
+            state.counters[fmt::format("{}_ms", stage)] =
+                benchmark::Counter(ms, benchmark::Counter::kAvgIterations);
+    state.SetLabel(context().renderer());
+}
+
+void BM_Planet100k720p(benchmark::State& state) {
+    frame(state, 100000, 1280, 720, nullptr);
+}
+void BM_Planet100k720pNoSsss(benchmark::State& state) {
+    frame(state, 100000, 1280, 720, [](tr::realtime::Settings& s) { s.ssss.enabled = false; });
+}
+void BM_Planet100k720pNoCulling(benchmark::State& state) {
+    frame(state, 100000, 1280, 720,
+          [](tr::realtime::Settings& s) { s.particles.cullHidden = false; });
+}
+void BM_Planet100k720pFull2dSsss(benchmark::State& state) {
+    frame(state, 100000, 1280, 720, [](tr::realtime::Settings& s) { s.ssss.separable = false; });
+}
+// The GPU target of the issue (slow on llvmpipe: run it where a GPU is present).
+void BM_Planet1M1080p(benchmark::State& state) {
+    frame(state, 1000000, 1920, 1080, nullptr);
+}
+
+// Occlusion culling alone (CPU, part of "upload").
+void BM_Cull100k(benchmark::State& state) {
+    const LoadedScene& s = planet(100000, 1280, 720);
+    std::size_t kept = 0;
+    for (auto _ : state)
+        kept = tr::realtime::unoccludedParticles(s.particles.particles, 0.9).size();
+    state.counters["kept"] = double(kept);
+}
+
+}  // namespace
+
+BENCHMARK(BM_Planet100k720p)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_Planet100k720pNoSsss)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_Planet100k720pFull2dSsss)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_Planet100k720pNoCulling)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_Cull100k)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_Planet1M1080p)->Unit(benchmark::kMillisecond)->Iterations(2);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,59 @@
+// Every metric of a pair of frames, by the names of DESIGN.md ("Metric names"): the one call
+// `twinrender compare` and `run` make.
+//
+// Two AOV images (every channel of core::aov::channelNames()): the beauty metrics on the
+// tonemapped sRGB beauty (the image a person sees) and every per-buffer metric over its mask
+// (masks.h, buffer_metrics.h). Two plain images (no AOV channel other than R, G, B, A; e.g.
+// PNGs): the beauty metrics only, on R, G, B as given.
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <map>
+#include <string>
+
+#include "core/image.h"
+
+namespace twinrender::compare {
+
+struct MetricSettings {
+    // FLIP observer's pixels per degree (`--ppd`), > 0; 67 is FLIP's default.
+    double ppd = 67.0;
+    // Multiplies the linear beauty before the tonemapper (core::tonemap), > 0. AOV images only.
+    double exposure = 1.0;
+    // The way the light travels (the scene's light.direction, core::LightSettings::direction),
+    // world space, any length > 0; used only when hasLight. It picks the pixels facing the light
+    // for the shadow metrics; without it they use every pixel covered in both.
+    glm::dvec3 lightDirection{0.0, 0.0, -1.0};
+    bool hasLight = false;
+    // Radius of the interior mask's erosion, pixels, >= 0 (masks.h).
+    int interiorRadius = 2;
+};
+
+struct MetricResult {
+    // By metric key: beauty.psnr (dB; +inf for identical images), beauty.ssim, beauty.flip,
+    // and for AOV images coverage.iou, silhouette.mean_px, depth.rel_mean, id.mismatch,
+    // normal.mean_deg, normal.p95_deg, uv.mean, emission.rmse, smoothness.ratio, shadow.iou,
+    // shadow.false_shadow, shadow.missed_shadow. A metric whose mask is empty is NaN (and
+    // silhouette.mean_px is +inf when only one image has an outline): a JSON writer must map
+    // both.
+    std::map<std::string, double> values;
+    // One-channel float images of the pair's size: "beauty.flip" always; for AOV images also
+    // "normal" (angle, degrees), "depth" (relative error), "uv" (seam-aware uv distance), "id"
+    // (1 where the visible body differs), "shadow" (1 false, 2 missed shadow) and "emission"
+    // (per-pixel RMS over R, G, B), each 0 where its mask does not reach.
+    std::map<std::string, core::Image> errorMaps;
+};
+
+// True when the image carries every AOV channel; false when it carries none but R, G, B, A.
+// Throws core::NotComparableError naming the first missing channel for an image with some AOV
+// channels but not all.
+bool isAovImage(const core::Image& image);
+
+// Throws core::NotComparableError when the sizes differ (the message names both), when either
+// image lacks R, G or B, when one is an AOV image and the other is not, or when an image has
+// some AOV channels but not all (the message names the channel); std::invalid_argument for
+// settings out of range.
+MetricResult computeMetrics(const core::Image& reference, const core::Image& test,
+                            const MetricSettings& settings = {});
+
+}  // namespace twinrender::compare

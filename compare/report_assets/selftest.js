@@ -1,0 +1,54 @@
+/* Page self-test, run first in <head>: records script errors, console.error calls, rejected
+   promises and resources (images) that fail to load, then, once the page has loaded, checks
+   that every <img> decoded and that the page script ran to its end (it sets data-ready on
+   <html>). The verdict goes into the element with id "selftest": "selftest: ok (N images)", or
+   "selftest: FAIL" and one line per problem. tests/report_browser_test.cpp reads it from
+   Chromium's --dump-dom; a person sees it in the footer. */
+(function () {
+  "use strict";
+  var problems = [];
+  var loaded = false;
+  function show() {
+    if (!loaded) return;
+    var el = document.getElementById("selftest");
+    if (!el) return;
+    var images = document.images, good = 0;
+    var lines = problems.slice();
+    for (var i = 0; i < images.length; i++) {
+      var im = images[i];
+      if (im.complete && im.naturalWidth > 0) good++;
+      else lines.push("image did not load: " + im.getAttribute("src"));
+    }
+    if (!document.documentElement.hasAttribute("data-ready"))
+      lines.push("the page script did not run to its end");
+    el.textContent = lines.length ? "selftest: FAIL\n" + lines.join("\n")
+                                  : "selftest: ok (" + good + " images)";
+    el.setAttribute("data-status", lines.length ? "fail" : "ok");
+  }
+  window.addEventListener("error", function (e) {
+    var t = e.target;
+    if (t && t !== window && t.tagName) {
+      problems.push("resource failed to load: <" + t.tagName.toLowerCase() + "> " +
+                    (t.getAttribute("src") || t.getAttribute("href") || ""));
+    } else {
+      problems.push("script error: " + e.message + " (" + (e.filename || "inline") + ":" +
+                    (e.lineno || 0) + ")");
+    }
+    show();
+  }, true);
+  document.addEventListener("securitypolicyviolation", function (e) {
+    problems.push("blocked by the offline policy: " + e.blockedURI + " (" + e.violatedDirective + ")");
+    show();
+  });
+  window.addEventListener("unhandledrejection", function (e) {
+    problems.push("unhandled promise rejection: " + e.reason);
+    show();
+  });
+  var consoleError = console.error;
+  console.error = function () {
+    problems.push("console.error: " + Array.prototype.join.call(arguments, " "));
+    show();
+    return consoleError.apply(console, arguments);
+  };
+  window.addEventListener("load", function () { loaded = true; show(); });
+})();

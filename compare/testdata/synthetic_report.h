@@ -1,0 +1,132 @@
+// A small report made without any renderer, for the report tests (compare/report_test.cpp)
+// and the browser test (tests/report_browser_test.cpp): two scenes of tiny AOV images (a lit
+// sphere of two bodies; the "real-time" one slightly larger and shifted), their buffer PNGs
+// and ꟻLIP map written into the report folder, metrics, checks against thresholds and a
+// baseline, timings and settings.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "compare/baseline.h"
+#include "compare/flip.h"
+#include "compare/report.h"
+#include "compare/thresholds.h"
+#include "core/frame.h"
+#include "core/image.h"
+
+namespace twinrender::compare::testdata {
+
+// A sphere of radius `radius` (pixels) centred at (cx, cy), seen along -z, lit from the upper
+// left; its left half is body 0, its right half body 1; the lower right quarter is shadowed.
+inline core::Image syntheticAov(int width, int height, double cx, double cy, double radius) {
+    core::Image img = core::aov::makeImage(width, height);
+    auto ch = [&](const char* name) { return img.channelIndex(name); };
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const double dx = (x + 0.5 - cx) / radius, dy = (y + 0.5 - cy) / radius;
+            const double r2 = dx * dx + dy * dy;
+            if (r2 >= 1.0) continue;
+            const double nz = std::sqrt(1.0 - r2);
+            const double nx = dx, ny = -dy;
+            const bool shadowed = dx > 0.2 && dy > 0.2;
+            const double lambert = std::max(0.0, (-0.5 * nx + 0.5 * ny + 0.707 * nz));
+            const double lit = shadowed ? 0.0 : 1.0;
+            const int body = dx < 0.0 ? 0 : 1;
+            const double albedo[2][3] = {{0.8, 0.5, 0.3}, {0.3, 0.6, 0.9}};
+            for (int c = 0; c < 3; ++c)
+                img.at(x, y, c) = static_cast<float>(albedo[body][c] * (0.05 + lit * lambert));
+            img.at(x, y, ch("A")) = 1.0f;
+            img.at(x, y, ch("Z")) = static_cast<float>(10.0 - 3.0 * nz);
+            img.at(x, y, ch("N.X")) = static_cast<float>(nx);
+            img.at(x, y, ch("N.Y")) = static_cast<float>(ny);
+            img.at(x, y, ch("N.Z")) = static_cast<float>(nz);
+            img.at(x, y, ch("uv.U")) = static_cast<float>(0.5 + std::atan2(nx, nz) / 6.2831853);
+            img.at(x, y, ch("uv.V")) = static_cast<float>(0.5 + 0.5 * ny);
+            img.at(x, y, ch("id")) = static_cast<float>(body);
+            img.at(x, y, ch("emission.R")) = r2 > 0.8 ? 0.6f : 0.0f;
+            img.at(x, y, ch("emission.G")) = r2 > 0.8 ? 0.2f : 0.0f;
+            img.at(x, y, ch("shadow")) = static_cast<float>(lit);
+        }
+    return img;
+}
+
+// One scene of the synthetic report: images written under dir/<name>/.
+inline SceneReport syntheticScene(const std::filesystem::path& dir, const std::string& name,
+                                  double shift, const Thresholds& thresholds,
+                                  const Baseline* baseline) {
+    const int w = 64, h = 40;
+    const core::Image ref = syntheticAov(w, h, 32.0, 20.0, 15.0);
+    const core::Image test = syntheticAov(w, h, 32.0 + shift, 20.0, 15.0 + 0.5 * shift);
+    const std::filesystem::path sceneDir = dir / name;
+    BufferVisualSettings vis;
+    vis.depthRange = depthRange(ref, test);
+
+    SceneReport s;
+    s.name = name;
+    s.description =
+        fmt::format("A synthetic sphere of two bodies, the real-time one shifted by {} px", shift);
+    s.renderers["raymarch"].images = writeBufferImages(ref, nullptr, sceneDir, "raymarch", vis);
+    s.renderers["realtime"].images = writeBufferImages(test, nullptr, sceneDir, "realtime", vis);
+    const FlipResult f =
+        flip(core::tonemappedBeauty(ref, 1.0f), core::tonemappedBeauty(test, 1.0f));
+    writeErrorMapPng(f.errorMap, 0, 0.0, 1.0, sceneDir / "flip.png");
+    s.errorMaps["beauty"] = {"flip.png", "ꟻLIP error", 0.0, 1.0, ""};
+
+    s.metrics = {{"beauty.psnr", 30.0 - 4.0 * shift},
+                 {"beauty.ssim", 0.98 - 0.02 * shift},
+                 {"beauty.flip", f.mean},
+                 {"coverage.iou", 1.0 - 0.03 * shift},
+                 {"normal.mean_deg", 1.5 + 2.0 * shift},
+                 {"shadow.iou", 0.95 - 0.1 * shift},
+                 {"time.realtime_ms", 2.5},
+                 {"time.raymarch_ms", 850.0}};
+    s.checks = evaluate(s.metrics, thresholds.forScene(name));
+    if (baseline) {
+        const nlohmann::json settings = {{"realtime", {{"ssss", {{"enabled", shift < 1.0}}}}}};
+        auto b = compareToBaseline(name, s.metrics, *baseline, &settings);
+        s.checks.insert(s.checks.end(), b.begin(), b.end());
+        if (const MetricValues* m = baseline->metrics(name)) s.baseline = *m;
+    }
+    s.renderers["realtime"].timingsMs = {{"total", 2.5}, {"shadow", 0.3}, {"gbuffer", 0.8},
+                                         {"ssss", 0.9},  {"shade", 0.3},  {"post", 0.2}};
+    s.renderers["realtime"].device = "llvmpipe (LLVM 15.0.6, 256 bits)";
+    s.renderers["raymarch"].timingsMs = {{"total", 850.0}, {"build", 12.0}, {"trace", 838.0}};
+    s.renderers["raymarch"].device = "2 CPU threads";
+    s.renderers["raymarch"].counters = {{"unbracketed_rays", 0.0}};
+    s.settings = {
+        {"realtime", {{"ssss", {{"enabled", shift < 1.0}, {"separable", true}}}, {"depth", "log"}}},
+        {"raymarch", {{"level", 0.13}}},
+        {"camera", {{"width", w}, {"height", h}}}};
+    return s;
+}
+
+// Two scenes: "sphere" (pass) and "sphere_shifted" (fails its shadow.iou bound and its
+// baseline), written into dir.
+inline RunReport syntheticReport(const std::filesystem::path& dir) {
+    const Thresholds thresholds = Thresholds::parseString(R"(
+"beauty.psnr" = { min = 20, warn_min = 25 }
+"beauty.flip" = { max = 0.5, warn_max = 0.3 }
+"coverage.iou" = { min = 0.9 }
+"shadow.iou" = { min = 0.9 }
+)",
+                                                          "thresholds.toml");
+    Baseline baseline;
+    baseline.file = "baseline.json";
+    baseline.scenes["sphere_shifted"].metrics = {
+        {"beauty.psnr", 29.0}, {"shadow.iou", 0.95}, {"time.realtime_ms", 2.0}};
+    baseline.scenes["sphere_shifted"].settings = {{"realtime", {{"ssss", {{"enabled", true}}}}}};
+    RunReport run;
+    run.createdAt = "2024-01-01 00:00 UTC";
+    run.commandLine = "twinrender run scenes --out " + dir.string();
+    run.thresholdsFile = "thresholds.toml";
+    run.baselineFile = "baseline.json";
+    run.scenes.push_back(syntheticScene(dir, "sphere", 0.0, thresholds, &baseline));
+    run.scenes.push_back(syntheticScene(dir, "sphere_shifted", 1.5, thresholds, &baseline));
+    return run;
+}
+
+}  // namespace twinrender::compare::testdata

@@ -1,0 +1,38 @@
+// Helpers shared by the passes (passes.h).
+#include "realtime/passes.h"
+
+namespace twinrender::realtime {
+
+void SceneBuffers::bind() const {
+    uniforms.bindUniform(0);
+    particles.bindStorage(0);
+    texels.bind(7);
+    materials.bindStorage(2);
+}
+
+const char* depthDefine(DepthMode mode) {
+    switch (mode) {
+        case DepthMode::Standard:
+            return "DEPTH_STANDARD";
+        case DepthMode::Log:
+            return "DEPTH_LOG";
+        case DepthMode::Reversed:
+            return "DEPTH_REVERSED";
+    }
+    return "DEPTH_LOG";
+}
+
+gl::PipelineState coveredOnlyState(DepthMode mode) {
+    // The background holds the cleared depth (1, or 0 reversed); every covered pixel is nearer.
+    return {.depthTest = mode == DepthMode::Reversed ? gl::DepthTest::Less : gl::DepthTest::Greater,
+            .depthWrite = false,
+            .clipDepth = mode == DepthMode::Reversed ? gl::ClipDepth::ZeroToOne
+                                                     : gl::ClipDepth::MinusOneToOne};
+}
+
+float coveredOnlyDepth(DepthMode mode) {
+    // Window depth 1 is clip depth +1 in [-1, 1]; window depth 0 is clip depth 0 in [0, 1].
+    return mode == DepthMode::Reversed ? 0.0f : 1.0f;
+}
+
+}  // namespace twinrender::realtime
