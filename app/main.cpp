@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
         "run", "render every scene with both renderers, compare, and write the report");
     runCmd->add_option("SCENES", runOpts.inputs, "scene files or folders (default: scenes/)");
     runCmd->add_option("--thresholds", runOpts.thresholds,
-                       "thresholds file (default: scenes/thresholds.toml when running scenes/)");
+                       "thresholds file (default: thresholds.toml beside the scenes)");
     runCmd->add_option("--baseline", runOpts.baseline, "baseline from `twinrender bless`");
     runCmd->add_option("--junit", runOpts.junit, "also write JUnit XML here");
     runCmd->add_option("--ppd", runOpts.ppd, "ꟻLIP pixels per degree")

@@ -118,12 +118,14 @@ int runSuite(const RunOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
     // Everything is read and checked before the first render.
     std::vector<std::string> inputs = o.inputs;
+    if (inputs.empty()) inputs.push_back(defaultScenesDir().string());
+    // Without --thresholds, the thresholds.toml beside the scenes (the first input's folder),
+    // so `run scenes/planet.toml` is held to the same bounds as the whole suite.
     std::string thresholdsFile = o.thresholds;
-    if (inputs.empty()) {
-        const fs::path dir = defaultScenesDir();
-        inputs.push_back(dir.string());
-        if (thresholdsFile.empty() && fs::is_regular_file(dir / "thresholds.toml"))
-            thresholdsFile = (dir / "thresholds.toml").string();
+    if (thresholdsFile.empty()) {
+        const fs::path first(inputs.front());
+        const fs::path dir = fs::is_directory(first) ? first : first.parent_path();
+        if (fs::is_regular_file(dir / "thresholds.toml")) thresholdsFile = (dir / "thresholds.toml").string();
     }
     const std::vector<fs::path> files = sceneFiles(inputs);
     std::vector<LoadedScene> scenes;

@@ -20,7 +20,7 @@ int runCompare(const CompareOptions& options);
 struct RunOptions {
     std::vector<std::string> inputs;  // scene files or folders of them; empty: scenes/
     std::string out = "out";
-    std::string thresholds;           // empty: <scenes>/thresholds.toml when running scenes/
+    std::string thresholds;           // empty: thresholds.toml beside the first input, if any
     std::string baseline;
     std::string junit;
     std::vector<std::string> sets;

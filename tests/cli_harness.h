@@ -15,8 +15,10 @@ struct CommandResult {
     std::string output;  // standard output and standard error together
 };
 
-inline CommandResult runTwinrender(const std::string& args) {
-    const std::string cmd = std::string(TWINRENDER_BIN) + " " + args + " 2>&1";
+// `environment`: "NAME=VALUE ..." set for this command only.
+inline CommandResult runTwinrender(const std::string& args, const std::string& environment = "") {
+    const std::string cmd =
+        (environment.empty() ? "" : "env " + environment + " ") + std::string(TWINRENDER_BIN) + " " + args + " 2>&1";
     CommandResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
