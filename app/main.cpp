@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include "app/render_job.h"
+#include "app/shard.h"
+#include "app/sweep_command.h"
 #include "app/suite_commands.h"
 #include "core/error.h"
 #include "realtime/gl/context.h"
@@ -110,7 +112,38 @@ int main(int argc, char** argv) {
     runCmd->add_option("--ppd", runOpts.ppd, "ꟻLIP pixels per degree")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
+    runCmd->add_option("--shard", runOpts.shard,
+                       "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
+        ->type_name("K/N");
     addCommon(runCmd, runCommon);
+
+    tr::app::SweepOptions sweepOpts;
+    CommonOptions sweepCommon;
+    sweepCommon.out = "out/sweep";
+    auto* sweepCmd = app.add_subcommand(
+        "sweep", "time against error over the cartesian product of varied settings");
+    sweepCmd->add_option("SCENE", sweepOpts.scene, "scene file (.toml)")->required();
+    sweepCmd->add_option("--vary", sweepOpts.vary,
+                         "KEY=V1,V2,... with the scene's dotted keys (repeatable; realtime.* or raymarch.*)")
+        ->type_name("KEY=V1,V2,...")
+        ->required();
+    sweepCmd->add_option("--metric", sweepOpts.metric, "the chart's error metric")->capture_default_str();
+    sweepCmd->add_option("--frames", sweepOpts.frames,
+                         "frames per combination, timed as their median (default 5; 1 when varying raymarch.*)")
+        ->check(CLI::Range(1, 1000));
+    sweepCmd->add_option("--cache", sweepOpts.cache, "reference cache folder (default: OUT/reference_cache)");
+    sweepCmd->add_option("--ppd", sweepOpts.ppd, "ꟻLIP pixels per degree")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    sweepCmd->add_option("--shard", sweepOpts.shard,
+                         "K/N: every N-th combination starting at the K-th; join with `merge`")
+        ->type_name("K/N");
+    addCommon(sweepCmd, sweepCommon);
+
+    tr::app::MergeOptions mergeOpts;
+    auto* mergeCmd = app.add_subcommand("merge", "join the output folders of `run|sweep --shard K/N`");
+    mergeCmd->add_option("DIRS", mergeOpts.inputs, "the shards' output folders")->required();
+    mergeCmd->add_option("--out", mergeOpts.out, "output folder of the joined report")->required();
 
     std::string blessDir, blessOut;
     auto* blessCmd = app.add_subcommand("bless", "write the baseline of a run");
@@ -125,7 +158,11 @@ int main(int argc, char** argv) {
     }
 
     try {
-        const int requested = *runCmd ? runCommon.threads : renderOpts.threads;
+        const int requested = *runCmd     ? runCommon.threads
+                              : *sweepCmd ? sweepCommon.threads
+                                          : renderOpts.threads;
+        std::string commandLine;
+        for (int i = 0; i < argc; ++i) commandLine += (i ? " " : "") + std::string(argv[i]);
         const int threads = requested > 0 ? requested : tbb::this_task_arena::max_concurrency();
         tbb::task_arena arena(threads);
         int rc = 0;
@@ -137,8 +174,19 @@ int main(int argc, char** argv) {
                 runOpts.out = runCommon.out;
                 runOpts.sets = runCommon.sets;
                 runOpts.requireGpu = runCommon.requireGpu;
-                for (int i = 0; i < argc; ++i) runOpts.commandLine += (i ? " " : "") + std::string(argv[i]);
+                runOpts.commandLine = commandLine;
                 rc = tr::app::runSuite(runOpts);
+            }
+            if (*sweepCmd) {
+                sweepOpts.out = sweepCommon.out;
+                sweepOpts.sets = sweepCommon.sets;
+                sweepOpts.requireGpu = sweepCommon.requireGpu;
+                sweepOpts.commandLine = commandLine;
+                rc = tr::app::runSweep(sweepOpts);
+            }
+            if (*mergeCmd) {
+                mergeOpts.commandLine = commandLine;
+                rc = tr::app::runMerge(mergeOpts);
             }
         });
         return rc;

@@ -11,6 +11,7 @@
 
 #include "app/comparison.h"
 #include "app/progress.h"
+#include "app/shard.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "realtime/gl/context.h"
@@ -143,6 +144,17 @@ int runSuite(const RunOptions& o) {
     for (const auto& s : scenes) bounds.push_back(thresholds.forScene(s.scene.name, &s.scene.compare));
     std::optional<compare::Baseline> baseline;
     if (!o.baseline.empty()) baseline = compare::readBaseline(o.baseline);
+    // A shard runs every N-th scene of the suite sorted by name, starting at the (K-1)-th.
+    std::optional<Shard> shard;
+    if (!o.shard.empty()) shard = parseShard(o.shard);
+    std::vector<bool> selected(scenes.size(), true);
+    if (shard) {
+        std::vector<std::size_t> byName(scenes.size());
+        for (std::size_t i = 0; i < byName.size(); ++i) byName[i] = i;
+        std::sort(byName.begin(), byName.end(),
+                  [&](std::size_t a, std::size_t b) { return scenes[a].scene.name < scenes[b].scene.name; });
+        for (std::size_t p = 0; p < byName.size(); ++p) selected[byName[p]] = shard->takes(p);
+    }
 
     realtime::gl::Context context(realtime::gl::ContextOptions{o.requireGpu});
     realtime::Renderer realtimeRenderer(context);
@@ -154,10 +166,12 @@ int runSuite(const RunOptions& o) {
     run.thresholdsFile = thresholdsFile;
     run.baselineFile = o.baseline;
     const fs::path out(o.out);
-    for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const std::size_t count = static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
+    for (std::size_t i = 0, done = 0; i < scenes.size(); ++i) {
+        if (!selected[i]) continue;
         const LoadedScene& s = scenes[i];
         const fs::path dir = out / s.scene.name;
-        if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, scenes.size(), s.scene.name.c_str());
+        if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", ++done, count, s.scene.name.c_str());
         compare::SceneReport report;
         try {
             const Render ref = renderRaymarch(device, s, tty);
@@ -176,6 +190,25 @@ int runSuite(const RunOptions& o) {
     }
     compare::writeReport(run, out);
     if (!o.junit.empty()) compare::writeJunit(run, o.junit);
+    if (shard) {
+        // What merge needs to rebuild the whole run's report, and what must be equal across
+        // the shards of one run.
+        nlohmann::json names = nlohmann::json::array(), files = nlohmann::json::array(),
+                       reports = nlohmann::json::array();
+        for (const auto& s : scenes) {
+            names.push_back(s.scene.name);
+            files.push_back(fs::absolute(s.scene.file).lexically_normal().string());
+        }
+        for (const auto& r : run.scenes) reports.push_back(compare::sceneReportJson(r));
+        const nlohmann::json settings = {{"scenes", files},        {"sets", o.sets},
+                                         {"thresholds", thresholdsFile}, {"baseline", o.baseline},
+                                         {"ppd", o.ppd},            {"junit", !o.junit.empty()}};
+        writeShardManifest(*shard,
+                           {{"command", "run"}, {"settings", settings}, {"scenes", names}, {"reports", reports},
+                            {"junit", !o.junit.empty()}, {"created", run.createdAt},
+                            {"command_line", o.commandLine}},
+                           out);
+    }
 
     // One screen: a row per scene.
     std::printf("%-14s %-5s %8s %8s %8s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM", "normal°",

@@ -27,6 +27,7 @@ struct RunOptions {
     bool requireGpu = false;
     double ppd = 67.0;
     std::string commandLine;          // recorded in the report
+    std::string shard;                // "K/N" (app/shard.h); empty: every scene
 };
 int runSuite(const RunOptions& options);
 

@@ -1208,3 +1208,104 @@ void writeReport(const RunReport& run, const fs::path& dir) {
 }
 
 }  // namespace twinrender::compare
+
+// ---- Shared with other reports and with `merge` -------------------------------------------
+
+namespace twinrender::compare {
+
+std::optional<Status> statusFromString(std::string_view text) {
+    for (Status s : {Status::Pass, Status::Warn, Status::Fail})
+        if (toString(s) == text) return s;
+    return std::nullopt;
+}
+
+json sceneReportJson(const SceneReport& scene) {
+    json j = metricsJson(scene);
+    j["baseline"] = metricsObject(scene.baseline);
+    json renderers = json::object();
+    for (const auto& [name, r] : scene.renderers) {
+        json t = json::object(), c = json::object();
+        for (const auto& [k, v] : r.timingsMs) t[k] = jsonNumber(v);
+        for (const auto& [k, v] : r.counters) c[k] = jsonNumber(v);
+        renderers[name] = {{"timings_ms", t}, {"device", r.device}, {"counters", c}, {"images", r.images}};
+    }
+    j["renderers"] = renderers;
+    json maps = json::object();
+    for (const auto& [buffer, m] : scene.errorMaps)
+        maps[buffer] = {{"path", m.path}, {"label", m.label}, {"lo", jsonNumber(m.lo)},
+                        {"hi", jsonNumber(m.hi)}, {"unit", m.unit}};
+    j["error_maps"] = maps;
+    j["settings"] = scene.settings;
+    return j;
+}
+
+SceneReport sceneReportFromJson(const json& j, const std::string& source) {
+    auto bad = [&](const std::string& what) {
+        return core::InputError(fmt::format("{}: {} (expected a scene report as twinrender writes it)", source, what));
+    };
+    auto number = [&](const json& v, const std::string& where) {
+        const auto n = numberFromJson(v);
+        if (!n) throw bad(where + " is not a number");
+        return *n;
+    };
+    auto numbers = [&](const json& obj, const std::string& where) {
+        std::map<std::string, double> m;
+        if (obj.is_null()) return m;
+        if (!obj.is_object()) throw bad(where + " is not an object");
+        for (const auto& [k, v] : obj.items()) m[k] = number(v, where + "." + k);
+        return m;
+    };
+    try {
+        SceneReport s;
+        s.name = j.at("scene").get<std::string>();
+        s.description = j.value("description", "");
+        s.metrics = numbers(j.at("metrics"), "metrics");
+        s.baseline = numbers(j.value("baseline", json()), "baseline");
+        for (const json& c : j.at("checks")) {
+            Check k;
+            k.metric = c.at("metric").get<std::string>();
+            k.value = number(c.at("value"), "checks[].value");
+            k.bound = c.at("bound").get<std::string>();
+            k.limit = number(c.at("limit"), "checks[].limit");
+            const auto st = statusFromString(c.at("status").get<std::string>());
+            if (!st) throw bad("checks[].status is not pass, warn or fail");
+            k.status = *st;
+            k.message = c.value("message", "");
+            k.where = c.value("where", "");
+            if (c.contains("baseline")) k.baseline = number(c.at("baseline"), "checks[].baseline");
+            s.checks.push_back(std::move(k));
+        }
+        const json renderers = j.value("renderers", json::object());
+        for (const auto& [name, r] : renderers.items()) {
+            RendererReport rr;
+            rr.timingsMs = numbers(r.value("timings_ms", json()), "renderers." + name + ".timings_ms");
+            rr.device = r.value("device", "");
+            rr.counters = numbers(r.value("counters", json()), "renderers." + name + ".counters");
+            rr.images = r.value("images", std::map<std::string, std::string>{});
+            s.renderers[name] = std::move(rr);
+        }
+        const json maps = j.value("error_maps", json::object());
+        for (const auto& [buffer, m] : maps.items())
+            s.errorMaps[buffer] = {m.at("path").get<std::string>(), m.value("label", ""),
+                                   number(m.at("lo"), "error_maps.lo"), number(m.at("hi"), "error_maps.hi"),
+                                   m.value("unit", "")};
+        s.settings = j.value("settings", json());
+        s.error = j.value("error", "");
+        return s;
+    } catch (const json::exception& e) {
+        throw bad(e.what());
+    }
+}
+
+std::string reportPage(const std::string& title, const std::string& body, const std::string& createdAt,
+                       const std::string& commandLine) {
+    RunReport footer;
+    footer.createdAt = createdAt;
+    footer.commandLine = commandLine;
+    return pageStart(title) + body + pageEnd(footer, "index.js", "");
+}
+
+std::string htmlEscape(std::string_view text) { return esc(text); }
+std::string urlPath(std::string_view path) { return url(path); }
+
+}  // namespace twinrender::compare

@@ -171,4 +171,26 @@ std::map<std::string, ErrorMapImage> writeErrorMapImages(
 // Unit of a metric for tables ("dB", "°", "px", "ms"; "" for ratios and fractions).
 std::string metricUnit(std::string_view metric);
 
+
+// ---- Shared with other reports and with `merge` -----------------------------------------
+
+// Every field of a scene's report as JSON (metricsJson's keys plus "baseline", "renderers"
+// with timings, device, counters and images, "error_maps" and "settings"), and back:
+// sceneReportFromJson(sceneReportJson(s)) reproduces s, so shards of a run can be merged into
+// the report one run writes. Throws core::InputError naming `source` for malformed JSON.
+nlohmann::json sceneReportJson(const SceneReport& scene);
+SceneReport sceneReportFromJson(const nlohmann::json& json, const std::string& source);
+
+// "pass" | "warn" | "fail" -> Status; nullopt for anything else.
+std::optional<Status> statusFromString(std::string_view text);
+
+// A page in the report's style and with its self-test (writeHtmlReport): head, `body`
+// (everything inside <body> above the footer, e.g. a <header class="top"> and a <main>), and
+// the footer with `createdAt` and `commandLine` (either may be empty).
+std::string reportPage(const std::string& title, const std::string& body,
+                       const std::string& createdAt, const std::string& commandLine);
+// Text for HTML (&, <, >, ", ' escaped) and a relative path as a URL (percent-encoded).
+std::string htmlEscape(std::string_view text);
+std::string urlPath(std::string_view path);
+
 }  // namespace twinrender::compare

@@ -1,0 +1,246 @@
+#include "app/shard.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "compare/report.h"
+#include "compare/sweep_report.h"
+#include "core/error.h"
+#include "core/image_io.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+Shard parseShard(const std::string& text) {
+    const auto slash = text.find('/');
+    auto number = [&](const std::string& part) {
+        if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos ||
+            part.size() > 6)
+            throw core::InputError(fmt::format(
+                "--shard {}: expected K/N with whole numbers, 1 <= K <= N (e.g. 2/4)", text));
+        return std::stoi(part);
+    };
+    if (slash == std::string::npos)
+        throw core::InputError(
+            fmt::format("--shard {}: expected K/N, 1 <= K <= N (e.g. 2/4)", text));
+    Shard s{number(text.substr(0, slash)), number(text.substr(slash + 1))};
+    if (s.count < 1 || s.index < 1 || s.index > s.count)
+        throw core::InputError(fmt::format(
+            "--shard {}: K must be between 1 and N (here K = {}, N = {})", text, s.index, s.count));
+    return s;
+}
+
+void writeShardManifest(const Shard& shard, json manifest, const fs::path& dir) {
+    manifest["format"] = "twinrender-shard";
+    manifest["version"] = 1;
+    manifest["shard"] = shard.index;
+    manifest["of"] = shard.count;
+    fs::create_directories(dir);
+    core::writeTextFile(dir / "shard.json", manifest.dump(2) + "\n");
+}
+
+json readShardManifest(const fs::path& dir) {
+    const fs::path file = dir / "shard.json";
+    std::ifstream in(file);
+    if (!in)
+        throw core::InputError(
+            fmt::format("{}: no shard manifest; merge takes the --out folders of "
+                        "`run --shard K/N` or `sweep --shard K/N`",
+                        file.string()));
+    const json j = json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || j.value("format", "") != "twinrender-shard")
+        throw core::InputError(fmt::format("{}: not a twinrender shard manifest", file.string()));
+    if (j.value("version", 0) != 1)
+        throw core::InputError(fmt::format("{}: manifest version {} is not supported",
+                                           file.string(), j.value("version", 0)));
+    for (const char* key : {"command", "shard", "of", "settings"})
+        if (!j.contains(key))
+            throw core::InputError(fmt::format("{}: no \"{}\"", file.string(), key));
+    return j;
+}
+
+void copyTree(const fs::path& from, const fs::path& to) {
+    fs::create_directories(to);
+    for (const auto& e : fs::recursive_directory_iterator(from)) {
+        const fs::path target = to / fs::relative(e.path(), from);
+        if (e.is_directory()) {
+            fs::create_directories(target);
+            continue;
+        }
+        if (!e.is_regular_file()) continue;
+        fs::remove(target);
+        std::error_code ec;
+        fs::create_hard_link(e.path(), target, ec);
+        if (ec) fs::copy_file(e.path(), target, fs::copy_options::overwrite_existing);
+    }
+}
+
+namespace {
+
+std::string nowUtc() {
+    const std::time_t t = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+    return buf;
+}
+
+int mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+             const fs::path& out, const std::string& commandLine) {
+    const json& first = manifests.front();
+    const auto order = first.at("scenes").get<std::vector<std::string>>();
+    std::map<std::string, compare::SceneReport> reports;
+    std::map<std::string, fs::path> from;
+    for (std::size_t i = 0; i < dirs.size(); ++i)
+        for (const json& r : manifests[i].at("reports")) {
+            compare::SceneReport s =
+                compare::sceneReportFromJson(r, (dirs[i] / "shard.json").string());
+            if (reports.count(s.name))
+                throw core::InputError(
+                    fmt::format("{}: scene '{}' is also in {}; the shards overlap",
+                                dirs[i].string(), s.name, from[s.name].string()));
+            from[s.name] = dirs[i];
+            reports.emplace(s.name, std::move(s));
+        }
+    compare::RunReport run;
+    run.createdAt = nowUtc();
+    run.commandLine = commandLine;
+    run.thresholdsFile = first.at("settings").value("thresholds", "");
+    run.baselineFile = first.at("settings").value("baseline", "");
+    for (const std::string& name : order) {
+        const auto it = reports.find(name);
+        if (it == reports.end())
+            throw core::InputError(
+                fmt::format("scene '{}' is in none of the shards; was a shard cut short?", name));
+        if (fs::is_directory(from[name] / name)) copyTree(from[name] / name, out / name);
+        run.scenes.push_back(std::move(it->second));
+        reports.erase(it);
+    }
+    if (!reports.empty())
+        throw core::InputError(fmt::format("scene '{}' of {} is not in the run's list",
+                                           reports.begin()->first,
+                                           from[reports.begin()->first].string()));
+    compare::writeReport(run, out);
+    if (first.value("junit", false)) compare::writeJunit(run, out / "junit.xml");
+    std::printf("merged %zu shards, %zu scenes: %s -> %s\n", dirs.size(), run.scenes.size(),
+                std::string(compare::toString(run.status())).c_str(), (out / "index.html").c_str());
+    return static_cast<int>(run.status());
+}
+
+int mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+               const fs::path& out, const std::string& commandLine) {
+    const std::size_t total = manifests.front().at("combinations").get<std::size_t>();
+    std::optional<compare::SweepReport> merged;
+    std::map<std::size_t, fs::path> seen;
+    bool anyError = false;
+    for (std::size_t i = 0; i < dirs.size(); ++i) {
+        if (manifests[i].at("combinations").get<std::size_t>() != total)
+            throw core::InputError(fmt::format(
+                "{}: {} combinations, {} has {}; not shards of one sweep", dirs[i].string(),
+                manifests[i].at("combinations").get<std::size_t>(), dirs[0].string(), total));
+        std::ifstream in(dirs[i] / "sweep.json");
+        const json j = json::parse(in, nullptr, false);
+        if (!in || j.is_discarded())
+            throw core::InputError(
+                fmt::format("{}: missing or not JSON", (dirs[i] / "sweep.json").string()));
+        compare::SweepReport part = compare::sweepFromJson(j, (dirs[i] / "sweep.json").string());
+        for (compare::SweepRow& row : part.rows) {
+            if (row.index >= total || seen.count(row.index))
+                throw core::InputError(
+                    fmt::format("{}: combination {} {}", dirs[i].string(), row.index,
+                                row.index >= total ? "is beyond the sweep"
+                                                   : "is also in " + seen[row.index].string()));
+            seen[row.index] = dirs[i];
+            anyError = anyError || !row.error.empty();
+            if (fs::is_directory(dirs[i] / row.dir)) copyTree(dirs[i] / row.dir, out / row.dir);
+        }
+        if (fs::is_directory(dirs[i] / "reference_cache"))
+            copyTree(dirs[i] / "reference_cache", out / "reference_cache");
+        if (!merged) {
+            merged = std::move(part);
+        } else {
+            for (auto& row : part.rows) merged->rows.push_back(std::move(row));
+        }
+    }
+    if (seen.size() != total)
+        for (std::size_t k = 0; k < total; ++k)
+            if (!seen.count(k))
+                throw core::InputError(fmt::format(
+                    "combination {} is in none of the shards; was a shard cut short?", k));
+    std::sort(merged->rows.begin(), merged->rows.end(),
+              [](const auto& a, const auto& b) { return a.index < b.index; });
+    merged->createdAt = nowUtc();
+    merged->commandLine = commandLine;
+    compare::writeSweepReport(*merged, out);
+    std::printf("merged %zu shards, %zu combinations -> %s, %s\n", dirs.size(), merged->rows.size(),
+                (out / "sweep.csv").c_str(), (out / "index.html").c_str());
+    return anyError ? 2 : 0;
+}
+
+}  // namespace
+
+int runMerge(const MergeOptions& o) {
+    if (o.inputs.empty()) throw core::InputError("merge: give the shard folders to merge");
+    std::vector<fs::path> dirs;
+    std::vector<json> manifests;
+    const fs::path out = fs::weakly_canonical(o.out);
+    for (const auto& in : o.inputs) {
+        if (!fs::is_directory(in)) throw core::InputError(fmt::format("{}: no such folder", in));
+        if (fs::weakly_canonical(in) == out)
+            throw core::InputError(
+                fmt::format("--out {}: is one of the shards; merge into a new folder", o.out));
+        dirs.emplace_back(in);
+        manifests.push_back(readShardManifest(in));
+    }
+    // They belong together: one command, one N, every K once, the same settings.
+    const json& first = manifests.front();
+    const int n = first.at("of").get<int>();
+    std::map<int, fs::path> shards;
+    for (std::size_t i = 0; i < dirs.size(); ++i) {
+        const json& m = manifests[i];
+        if (m.at("command") != first.at("command"))
+            throw core::InputError(
+                fmt::format("{} is a shard of `{}`, {} of `{}`; merge shards of one command",
+                            dirs[i].string(), m.at("command").get<std::string>(), dirs[0].string(),
+                            first.at("command").get<std::string>()));
+        if (m.at("of").get<int>() != n)
+            throw core::InputError(
+                fmt::format("{} is shard {}/{}, {} is shard {}/{}: not shards of one run",
+                            dirs[i].string(), m.at("shard").get<int>(), m.at("of").get<int>(),
+                            dirs[0].string(), first.at("shard").get<int>(), n));
+        if (m.at("settings") != first.at("settings")) {
+            std::string diff;
+            for (const auto& [k, v] : m.at("settings").items())
+                if (!first.at("settings").contains(k) || first.at("settings").at(k) != v)
+                    diff += fmt::format("{}{}: {} vs {}", diff.empty() ? "" : "; ", k,
+                                        first.at("settings").value(k, json()).dump(), v.dump());
+            throw core::InputError(fmt::format(
+                "{} and {} were run with different settings ({}); not shards of one run",
+                dirs[0].string(), dirs[i].string(), diff));
+        }
+        const int k = m.at("shard").get<int>();
+        if (shards.count(k))
+            throw core::InputError(fmt::format("{} and {} are both shard {}/{}", shards[k].string(),
+                                               dirs[i].string(), k, n));
+        shards[k] = dirs[i];
+    }
+    for (int k = 1; k <= n; ++k)
+        if (!shards.count(k))
+            throw core::InputError(
+                fmt::format("shard {}/{} is missing; give all {} shard folders", k, n, n));
+    fs::create_directories(out);
+    const std::string command = first.at("command").get<std::string>();
+    if (command == "run") return mergeRun(dirs, manifests, out, o.commandLine);
+    if (command == "sweep") return mergeSweep(dirs, manifests, out, o.commandLine);
+    throw core::InputError(
+        fmt::format("{}: unknown command '{}' in the manifest", dirs[0].string(), command));
+}
+
+}  // namespace twinrender::app

@@ -1,0 +1,471 @@
+#include "app/sweep_command.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "app/comparison.h"
+#include "app/render_job.h"
+#include "app/shard.h"
+#include "compare/report.h"
+#include "compare/sweep_report.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "realtime/gl/context.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The convergence sweep's tight reference: 1e-7 h root accuracy and 16 samples per pixel,
+// or tighter when the sweep itself goes beyond them.
+constexpr double TIGHT_ROOT_TOLERANCE = 1e-7;
+constexpr int TIGHT_SPP = 16;
+
+// Bump when the cached reference's format or what goes into its key changes.
+constexpr const char* CACHE_KEY_VERSION = "twinrender-reference-v1";
+
+std::string nowUtc() {
+    const std::time_t t = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+    return buf;
+}
+
+bool startsWith(const std::string& s, const char* prefix) {
+    return s.rfind(prefix, 0) == 0;
+}
+
+std::string keyOf(const std::string& assignment) {
+    return assignment.substr(0, assignment.find('='));
+}
+
+// FNV-1a, 64 bits: a cache key, not a security boundary.
+class Hash {
+  public:
+    void add(std::string_view bytes) {
+        for (unsigned char c : bytes) {
+            mState ^= c;
+            mState *= 0x100000001b3ULL;
+        }
+        // A separator, so that ("ab", "c") and ("a", "bc") differ.
+        mState ^= 0xff;
+        mState *= 0x100000001b3ULL;
+    }
+    void addFile(const fs::path& file) {
+        std::ifstream in(file, std::ios::binary);
+        if (!in) throw core::InputError(fmt::format("{}: cannot be read", file.string()));
+        add(file.string());
+        add(std::string(std::istreambuf_iterator<char>(in), {}));
+    }
+    std::string hex() const { return fmt::format("{:016x}", mState); }
+
+  private:
+    std::uint64_t mState = 0xcbf29ce484222325ULL;
+};
+
+// The cache key of a reference render, and a readable account of what went into it:
+// everything the raymarcher reads (the scene file and the files it names, the overrides
+// other than realtime.*, the parsed raymarch settings), nothing only the real-time renderer
+// reads. The raymarcher's code is not part of it: delete the cache after changing it.
+std::pair<std::string, json> referenceKey(const LoadedScene& s,
+                                          const std::vector<std::string>& overrides) {
+    Hash h;
+    json what;
+    h.add(CACHE_KEY_VERSION);
+    h.addFile(s.scene.file);
+    what["scene_file"] = s.scene.file.string();
+    std::vector<std::string> used;
+    for (const auto& o : overrides)
+        if (!startsWith(o, "realtime.")) {
+            h.add(o);
+            used.push_back(o);
+        }
+    what["overrides"] = used;
+    json files = json::array();
+    for (const auto& b : s.scene.bodies)
+        if (!b.path.empty()) {
+            h.addFile(b.path);
+            files.push_back(b.path.string());
+        }
+    for (const auto& m : s.scene.materials)
+        for (const core::TextureSource* t : {&m.diffuse, &m.specular, &m.emission, &m.cityLights})
+            if (t->kind == core::TextureSource::Kind::File) {
+                h.addFile(t->path);
+                files.push_back(t->path.string());
+            }
+    what["files"] = files;
+    const json settings = raymarch::toJson(s.raymarch);
+    h.add(settings.dump());
+    what["raymarch"] = settings;
+    what["version"] = CACHE_KEY_VERSION;
+    return {h.hex(), what};
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// A reference render from the cache folder, or rendered and stored there.
+class ReferenceCache {
+  public:
+    ReferenceCache(fs::path dir, const raymarch::EmbreeDevice& device, bool tty)
+        : mDir(std::move(dir)), mDevice(device), mTty(tty) {}
+
+    const Render& get(const LoadedScene& s, const std::string& key, const json& what) {
+        if (auto it = mLoaded.find(key); it != mLoaded.end()) return it->second;
+        const fs::path dir = mDir / key;
+        Render r;
+        if (fs::is_regular_file(dir / "raymarch.exr") &&
+            fs::is_regular_file(dir / "raymarch.json")) {
+            r.frame.image = core::readImage(dir / "raymarch.exr");
+            std::ifstream in(dir / "raymarch.json");
+            const json j = json::parse(in, nullptr, false);
+            if (j.is_discarded())
+                throw core::InputError(fmt::format("{}: not JSON; delete the folder",
+                                                   (dir / "raymarch.json").string()));
+            r.frame.renderer = "raymarch";
+            r.frame.device = j.value("device", "");
+            r.frame.settings = j.value("settings", json());
+            const json timings = j.value("timings_ms", json::object());
+            const json counters = j.value("counters", json::object());
+            for (const auto& [k, v] : timings.items())
+                if (v.is_number()) r.frame.timingsMs[k] = v.get<double>();
+            for (const auto& [k, v] : counters.items())
+                if (v.is_number()) r.frame.counters[k] = v.get<double>();
+            r.frame.particleCount = j.value("particle_count", std::size_t{0});
+            r.display =
+                core::tonemappedBeauty(r.frame.image, static_cast<float>(s.scene.camera.exposure));
+            std::printf("reference %s: cache hit %s\n", key.c_str(), dir.c_str());
+        } else {
+            r = renderRaymarch(mDevice, s, mTty);
+            writeRender(s, r, dir);
+            core::writeTextFile(dir / "key.json", what.dump(2) + "\n");
+            std::printf("reference %s: rendered in %.1f ms, cached in %s\n", key.c_str(),
+                        r.frame.timingsMs.at("total"), dir.c_str());
+        }
+        std::fflush(stdout);
+        return mLoaded.emplace(key, std::move(r)).first->second;
+    }
+
+  private:
+    fs::path mDir;
+    const raymarch::EmbreeDevice& mDevice;
+    bool mTty;
+    std::map<std::string, Render> mLoaded;
+};
+
+// One combination, loaded and checked before anything renders.
+struct Job {
+    std::size_t index = 0;
+    std::vector<std::string> varied;  // its key=value overrides
+    LoadedScene test;
+    std::vector<std::string> testOverrides;
+    // The reference: in realtime mode the test scene itself (the raymarcher reads its
+    // non-realtime part), in raymarch mode the tight scene.
+    std::optional<LoadedScene> tight;
+    std::vector<std::string> tightOverrides;
+};
+
+std::string combinationDir(std::size_t index, std::size_t total) {
+    const int digits = std::max<int>(3, static_cast<int>(std::to_string(total - 1).size()));
+    return fmt::format("combinations/c{:0{}}", index, digits);
+}
+
+}  // namespace
+
+std::pair<std::string, std::vector<std::string>> parseVary(const std::string& text) {
+    const auto eq = text.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw core::InputError(fmt::format(
+            "--vary {}: expected KEY=V1,V2,... (e.g. realtime.ssss.enabled=true,false)", text));
+    std::string key = text.substr(0, eq);
+    std::vector<std::string> values;
+    std::string cur;
+    int depth = 0;
+    char quote = 0;
+    for (char c : text.substr(eq + 1)) {
+        if (quote) {
+            if (c == quote) quote = 0;
+        } else if (c == '"' || c == '\'') {
+            quote = c;
+        } else if (c == '[' || c == '{') {
+            ++depth;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        } else if (c == ',' && depth == 0) {
+            values.push_back(cur);
+            cur.clear();
+            continue;
+        }
+        cur += c;
+    }
+    values.push_back(cur);
+    for (const auto& v : values)
+        if (v.empty())
+            throw core::InputError(
+                fmt::format("--vary {}: an empty value; give values separated by commas", text));
+    std::set<std::string> unique(values.begin(), values.end());
+    if (unique.size() != values.size())
+        throw core::InputError(fmt::format("--vary {}: a value is given twice", text));
+    return {key, values};
+}
+
+std::vector<std::string> combination(
+    const std::vector<std::pair<std::string, std::vector<std::string>>>& vary, std::size_t index) {
+    std::vector<std::string> out(vary.size());
+    for (std::size_t k = vary.size(); k-- > 0;) {
+        const auto& values = vary[k].second;
+        out[k] = vary[k].first + "=" + values[index % values.size()];
+        index /= values.size();
+    }
+    return out;
+}
+
+int runSweep(const SweepOptions& o) {
+    const bool tty = isatty(STDERR_FILENO);
+    // ---- Everything is read and checked before the first render. ----
+    std::vector<std::pair<std::string, std::vector<std::string>>> vary;
+    for (const auto& v : o.vary) {
+        auto parsed = parseVary(v);
+        for (const auto& [k, _] : vary)
+            if (k == parsed.first)
+                throw core::InputError(fmt::format("--vary {}: the key is varied twice", k));
+        vary.push_back(std::move(parsed));
+    }
+    if (vary.empty()) throw core::InputError("sweep: give at least one --vary KEY=V1,V2,...");
+    bool anyRealtime = false, anyRaymarch = false;
+    for (const auto& [k, _] : vary) {
+        anyRealtime = anyRealtime || startsWith(k, "realtime.");
+        anyRaymarch = anyRaymarch || startsWith(k, "raymarch.");
+    }
+    if (anyRealtime && anyRaymarch)
+        throw core::InputError(
+            "sweep: vary realtime.* keys (the real-time renderer against the reference) and "
+            "raymarch.* keys (the reference's convergence) in separate sweeps");
+    const bool convergence = anyRaymarch;
+    const std::string testRenderer = convergence ? "raymarch" : "realtime";
+    if (o.frames < 0 || o.frames > 1000)
+        throw core::InputError(fmt::format("--frames {}: give 1..1000", o.frames));
+    const int frames = o.frames > 0 ? o.frames : (convergence ? 1 : 5);
+    {
+        // The metric must be one the comparison computes (DESIGN.md, "Metric names").
+        static const std::set<std::string> known = {
+            "beauty.psnr",  "beauty.ssim",         "beauty.flip",
+            "coverage.iou", "silhouette.mean_px",  "depth.rel_mean",
+            "id.mismatch",  "normal.mean_deg",     "normal.p95_deg",
+            "uv.mean",      "emission.rmse",       "smoothness.ratio",
+            "shadow.iou",   "shadow.false_shadow", "shadow.missed_shadow"};
+        if (!known.count(o.metric)) {
+            std::string list;
+            for (const auto& m : known) list += (list.empty() ? "" : ", ") + m;
+            throw core::InputError(
+                fmt::format("--metric {}: not a metric; metrics are {}", o.metric, list));
+        }
+    }
+    std::optional<Shard> shard;
+    if (!o.shard.empty()) shard = parseShard(o.shard);
+    if (!fs::is_regular_file(o.scene))
+        throw core::InputError(
+            fmt::format("{}: scene file not found; give the path of a .toml scene", o.scene));
+
+    std::size_t total = 1;
+    for (const auto& [k, values] : vary) total *= values.size();
+    double tightTolerance = TIGHT_ROOT_TOLERANCE;
+    int tightSpp = TIGHT_SPP;
+    if (convergence)
+        for (const auto& [k, values] : vary)
+            for (const auto& v : values) {
+                // Tighter than the sweep's tightest: numbers as given (loadScene checks them).
+                char* end = nullptr;
+                const double x = std::strtod(v.c_str(), &end);
+                if (end == v.c_str() || *end) continue;
+                if (k == "raymarch.root_tolerance")
+                    tightTolerance = std::min(tightTolerance, x / 10.0);
+                if (k == "raymarch.spp") tightSpp = std::max(tightSpp, static_cast<int>(x) * 4);
+            }
+    tightTolerance = std::max(tightTolerance, 1e-8);  // the raymarcher's lower bound
+    tightSpp = std::min(tightSpp, 1024);
+
+    std::vector<Job> jobs;
+    for (std::size_t i = 0; i < total; ++i) {
+        Job job;
+        job.index = i;
+        job.varied = combination(vary, i);
+        job.testOverrides = o.sets;
+        job.testOverrides.insert(job.testOverrides.end(), job.varied.begin(), job.varied.end());
+        try {
+            job.test = loadScene(o.scene, job.testOverrides);
+        } catch (const core::InputError& e) {
+            // The scene parser names overrides "--set KEY=VALUE"; say --vary for varied ones.
+            std::string message = e.what(), which;
+            for (const auto& v : job.varied) {
+                which += (which.empty() ? "" : ", ") + v;
+                if (message.rfind("--set " + v + ":", 0) == 0) message.replace(0, 5, "--vary");
+            }
+            throw core::InputError(fmt::format("{} (in the combination {})", message, which));
+        }
+        if (convergence) {
+            for (const auto& s : job.testOverrides)
+                if (!(startsWith(s, "raymarch.") &&
+                      std::any_of(vary.begin(), vary.end(),
+                                  [&](const auto& kv) { return kv.first == keyOf(s); })) &&
+                    keyOf(s) != "raymarch.root_tolerance" && keyOf(s) != "raymarch.spp")
+                    job.tightOverrides.push_back(s);
+            job.tightOverrides.push_back(fmt::format("raymarch.root_tolerance={}", tightTolerance));
+            job.tightOverrides.push_back(fmt::format("raymarch.spp={}", tightSpp));
+        }
+        // Only this shard's combinations are kept; every one is checked, so all shards fail alike.
+        if (shard && !shard->takes(i)) continue;
+        if (convergence) job.tight = loadScene(o.scene, job.tightOverrides);
+        jobs.push_back(std::move(job));
+    }
+
+    const fs::path out(o.out);
+    const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
+    std::unique_ptr<realtime::gl::Context> context;
+    std::unique_ptr<realtime::Renderer> gl;
+    if (!convergence) {
+        context =
+            std::make_unique<realtime::gl::Context>(realtime::gl::ContextOptions{o.requireGpu});
+        gl = std::make_unique<realtime::Renderer>(*context);
+    }
+    raymarch::EmbreeDevice device;
+    ReferenceCache cache(cacheDir, device, tty);
+
+    compare::SweepReport report;
+    report.scene =
+        jobs.empty() ? loadScene(o.scene, o.sets).scene.name : jobs.front().test.scene.name;
+    report.sceneFile = o.scene;
+    report.mode = testRenderer;
+    report.testRenderer = testRenderer;
+    report.referenceDescription =
+        convergence
+            ? fmt::format("raymarch, root_tolerance {:g} h, spp {}", tightTolerance, tightSpp)
+            : "raymarch (the scene's settings)";
+    for (const auto& [k, _] : vary) report.keys.push_back(k);
+    report.metric = o.metric;
+    report.frames = frames;
+    report.combinations = total;
+    report.createdAt = nowUtc();
+    report.commandLine = o.commandLine;
+
+    bool anyError = false;
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+        const Job& job = jobs[j];
+        compare::SweepRow row;
+        row.index = job.index;
+        for (std::size_t k = 0; k < vary.size(); ++k)
+            row.settings.emplace_back(vary[k].first,
+                                      job.varied[k].substr(vary[k].first.size() + 1));
+        row.dir = combinationDir(job.index, total);
+        if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", j + 1, jobs.size(), row.label().c_str());
+        try {
+            const LoadedScene& refScene = convergence ? *job.tight : job.test;
+            const auto [key, what] =
+                referenceKey(refScene, convergence ? job.tightOverrides : job.testOverrides);
+            row.referenceKey = key;
+            const Render& ref = cache.get(refScene, key, what);
+            // N frames; the median of each stage and of the total. The real-time renderer
+            // first renders one frame untimed: the driver compiles shader variants on first use.
+            std::map<std::string, std::vector<double>> times;
+            Render test;
+            if (!convergence) renderRealtime(*gl, job.test);
+            for (int f = 0; f < frames; ++f) {
+                test = convergence ? renderRaymarch(device, job.test, tty)
+                                   : renderRealtime(*gl, job.test);
+                for (const auto& [stage, ms] : test.frame.timingsMs)
+                    if (stage != "compile")
+                        times[stage].push_back(ms);  // not part of a frame's time
+            }
+            for (const auto& [stage, v] : times) row.timingsMs[stage] = median(v);
+            const compare::MetricResult result = compare::computeMetrics(
+                ref.frame.image, test.frame.image, metricSettings(job.test, o.ppd));
+            row.metrics = result.values;
+            for (const auto& [name, n] : test.frame.counters) row.metrics["count." + name] = n;
+
+            // The combination's folder: its render, the ꟻLIP map, its metrics.
+            const fs::path dir = out / row.dir;
+            fs::create_directories(dir);
+            core::writeImage(test.display, dir / (testRenderer + ".png"));
+            compare::SceneReport scene;
+            scene.name = job.test.scene.name;
+            scene.description = row.label();
+            scene.metrics = row.metrics;
+            compare::RendererReport rr;
+            rr.timingsMs = row.timingsMs;
+            rr.device = test.frame.device;
+            rr.counters = test.frame.counters;
+            rr.images["beauty"] = testRenderer + ".png";
+            scene.renderers[testRenderer] = rr;
+            if (const auto it = result.errorMaps.find("beauty.flip");
+                it != result.errorMaps.end()) {
+                compare::writeErrorMapPng(it->second, 0, 0.0, 1.0, dir / "error.beauty.png");
+                scene.errorMaps["beauty"] = {"error.beauty.png", "ꟻLIP error", 0.0, 1.0, ""};
+            }
+            json settings = json::object();
+            for (const auto& [k, v] : row.settings) settings[k] = v;
+            scene.settings = {{"varied", settings},
+                              {"scene_file", job.test.scene.file.string()},
+                              {testRenderer, test.frame.settings},
+                              {"reference_key", key}};
+            compare::writeMetricsJson(scene, dir / "metrics.json");
+            const auto m = row.metrics.find(o.metric);
+            std::printf("[%zu/%zu] %s: %s %.2f ms, %s %s\n", j + 1, jobs.size(),
+                        row.label().c_str(), testRenderer.c_str(), row.timingsMs.at("total"),
+                        o.metric.c_str(),
+                        m == row.metrics.end() ? "-" : compare::formatValue(m->second).c_str());
+        } catch (const core::InputError&) {
+            throw;
+        } catch (const std::exception& e) {
+            // One combination that cannot be rendered fails; the others still run.
+            row.error = e.what();
+            anyError = true;
+            std::printf("[%zu/%zu] %s: error: %s\n", j + 1, jobs.size(), row.label().c_str(),
+                        e.what());
+        }
+        std::fflush(stdout);
+        report.rows.push_back(std::move(row));
+    }
+    compare::writeSweepReport(report, out);
+    if (shard) {
+        json indices = json::array();
+        for (const auto& r : report.rows) indices.push_back(r.index);
+        json settings = {{"scene", fs::absolute(o.scene).lexically_normal().string()},
+                         {"vary", o.vary},
+                         {"sets", o.sets},
+                         {"metric", o.metric},
+                         {"frames", frames},
+                         {"ppd", o.ppd}};
+        writeShardManifest(*shard,
+                           {{"command", "sweep"},
+                            {"settings", settings},
+                            {"combinations", total},
+                            {"indices", indices},
+                            {"created", report.createdAt},
+                            {"command_line", o.commandLine}},
+                           out);
+    }
+    std::printf("%zu combinations -> %s, %s\n", report.rows.size(), (out / "sweep.csv").c_str(),
+                (out / "index.html").c_str());
+    return anyError ? 2 : 0;
+}
+
+}  // namespace twinrender::app

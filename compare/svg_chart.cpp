@@ -1,0 +1,294 @@
+#include "compare/svg_chart.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace twinrender::compare {
+
+namespace {
+
+bool drawable(const ChartPoint& p, bool logX) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && (!logX || p.x > 0.0);
+}
+
+std::string xmlText(std::string_view s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t')
+                    out += ' ';  // not allowed in XML 1.0
+                else
+                    out += c;
+        }
+    }
+    return out;
+}
+
+// A tick value as people write it: 0.05, 2, 1e+06.
+std::string tickText(double v) {
+    if (v == 0.0) return "0";
+    const double a = std::abs(v);
+    if (a >= 1e5 || a < 1e-3) return fmt::format("{:.0e}", v);
+    return fmt::format("{:.6g}", v);
+}
+
+// Linear ticks at 1, 2 or 5 times a power of ten, about `target` of them over [lo, hi].
+std::vector<double> linearTicks(double lo, double hi, int target) {
+    const double span = hi - lo;
+    const double raw = span / std::max(target, 1);
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    double step = mag;
+    for (double m : {1.0, 2.0, 5.0, 10.0})
+        if (m * mag >= raw) {
+            step = m * mag;
+            break;
+        }
+    std::vector<double> ticks;
+    for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step)
+        ticks.push_back(std::abs(t) < step * 1e-9 ? 0.0 : t);
+    return ticks;
+}
+
+// Log ticks: every decade, and 2 and 5 between them when there are few decades.
+std::vector<double> logTicks(double lo, double hi) {
+    const int d0 = static_cast<int>(std::floor(std::log10(lo)));
+    const int d1 = static_cast<int>(std::ceil(std::log10(hi)));
+    std::vector<double> ticks;
+    for (int d = d0; d <= d1; ++d)
+        for (double m : d1 - d0 <= 3 ? std::vector<double>{1, 2, 5} : std::vector<double>{1}) {
+            const double t = m * std::pow(10.0, d);
+            if (t >= lo * (1 - 1e-9) && t <= hi * (1 + 1e-9)) ticks.push_back(t);
+        }
+    return ticks;
+}
+
+struct Axis {
+    double lo, hi;
+    bool log;
+    double pixLo, pixHi;  // screen coordinates of lo and hi
+    double map(double v) const {
+        const double f = log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
+                             : (v - lo) / (hi - lo);
+        return pixLo + f * (pixHi - pixLo);
+    }
+};
+
+// The data range padded so that markers do not sit on the frame.
+std::pair<double, double> paddedRange(double lo, double hi, bool log) {
+    if (log) {
+        if (hi <= lo) return {lo / 2, hi * 2};
+        const double f = std::pow(hi / lo, 0.06);
+        return {lo / f, hi * f};
+    }
+    if (hi <= lo) {
+        const double d = lo == 0.0 ? 1.0 : std::abs(lo) * 0.1;
+        return {lo - d, hi + d};
+    }
+    const double pad = (hi - lo) * 0.06;
+    return {lo - pad, hi + pad};
+}
+
+}  // namespace
+
+std::vector<std::size_t> paretoFront(const std::vector<ChartPoint>& points, bool lowerYIsBetter) {
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (std::isfinite(points[i].x) && std::isfinite(points[i].y)) order.push_back(i);
+    // y as a cost: lower is better in both coordinates.
+    auto cost = [&](std::size_t i) { return lowerYIsBetter ? points[i].y : -points[i].y; };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        if (points[a].x != points[b].x) return points[a].x < points[b].x;
+        return cost(a) < cost(b);
+    });
+    // Swept by increasing x: a point is on the front when it beats every cheaper point's y.
+    std::vector<std::size_t> front;
+    for (std::size_t i : order)
+        if (front.empty() || cost(i) < cost(front.back())) front.push_back(i);
+    return front;
+}
+
+bool usesLogX(const ScatterChart& chart) {
+    if (chart.xScale != AxisScale::Auto) return chart.xScale == AxisScale::Log;
+    double lo = INFINITY, hi = 0.0;
+    for (const ChartPoint& p : chart.points)
+        if (drawable(p, true)) {
+            lo = std::min(lo, p.x);
+            hi = std::max(hi, p.x);
+        }
+    return hi > 0.0 && hi / lo > 10.0;
+}
+
+std::string scatterSvg(const ScatterChart& chart) {
+    const bool logX = usesLogX(chart);
+    const double W = chart.width, H = chart.height;
+    // Plot area: room on the left for y tick values, below for x ticks and the axis label,
+    // above for the title, on the right for the legend and point labels.
+    const double left = 78, right = W - 24, top = 64, bottom = H - 62;
+
+    std::vector<std::size_t> shown;
+    for (std::size_t i = 0; i < chart.points.size(); ++i)
+        if (drawable(chart.points[i], logX)) shown.push_back(i);
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (std::size_t i : shown) {
+        x0 = std::min(x0, chart.points[i].x);
+        x1 = std::max(x1, chart.points[i].x);
+        y0 = std::min(y0, chart.points[i].y);
+        y1 = std::max(y1, chart.points[i].y);
+    }
+    if (shown.empty()) {
+        x0 = logX ? 1.0 : 0.0;
+        x1 = logX ? 10.0 : 1.0;
+        y0 = 0.0;
+        y1 = 1.0;
+    }
+    const auto [xl, xh] = paddedRange(x0, x1, logX);
+    const auto [yl, yh] = paddedRange(y0, y1, false);
+    const Axis ax{xl, xh, logX, left, right};
+    const Axis ay{yl, yh, false, bottom, top};
+
+    std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    s += fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
+        "viewBox=\"0 0 {0} {1}\" font-family=\"DejaVu Sans, Arial, sans-serif\" "
+        "font-size=\"12\">\n",
+        chart.width, chart.height);
+    s += "<style>.grid{stroke:#e1e4e8;stroke-width:1}.axis{stroke:#57606a;stroke-width:1;fill:none}"
+         ".tick{fill:#57606a;font-size:11px}.point{fill:#0969da;fill-opacity:0.75;stroke:#ffffff;"
+         "stroke-width:1}.pareto-point{fill:#cf222e}.pareto{stroke:#cf222e;stroke-width:2;"
+         "fill:none}.point-label{fill:#24292f;font-size:10px}.title{font-size:15px;"
+         "font-weight:600;fill:#24292f}.label{fill:#24292f;font-size:12px}</style>\n";
+    s += fmt::format("<rect x=\"0\" y=\"0\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>\n", W, H);
+    s += fmt::format("<text class=\"title\" x=\"{}\" y=\"24\">{}</text>\n", left,
+                     xmlText(chart.title));
+
+    // Grid and ticks.
+    const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
+    const std::vector<double> yt = linearTicks(yl, yh, 6);
+    s += "<g class=\"ticks\">\n";
+    for (double t : xt) {
+        const double px = ax.map(t);
+        s += fmt::format(
+            "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
+            "<text class=\"tick\" x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\">{4}</text>\n",
+            px, top, bottom, bottom + 16, xmlText(tickText(t)));
+    }
+    for (double t : yt) {
+        const double py = ay.map(t);
+        s += fmt::format(
+            "<line class=\"grid\" x1=\"{1:.1f}\" y1=\"{0:.1f}\" x2=\"{2:.1f}\" y2=\"{0:.1f}\"/>"
+            "<text class=\"tick\" x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
+            py, left, right, left - 6, py + 4, xmlText(tickText(t)));
+    }
+    s += "</g>\n";
+    s += fmt::format("<rect class=\"axis\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n", left,
+                     top, right - left, bottom - top);
+    s += fmt::format(
+        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}{}</text>\n",
+        (left + right) / 2, H - 22, xmlText(chart.xLabel), logX ? " — log scale" : "");
+    s += fmt::format(
+        "<text class=\"label\" transform=\"translate(18 {:.1f}) rotate(-90)\" "
+        "text-anchor=\"middle\">{}</text>\n",
+        (top + bottom) / 2, xmlText(chart.yLabel));
+
+    // The Pareto front under the markers.
+    const std::vector<std::size_t> front = paretoFront(
+        [&] {
+            std::vector<ChartPoint> pts = chart.points;
+            for (ChartPoint& p : pts)
+                if (!drawable(p, logX)) p.x = NAN;
+            return pts;
+        }(),
+        chart.lowerYIsBetter);
+    if (!front.empty()) {
+        s += "<polyline class=\"pareto\" points=\"";
+        for (std::size_t k = 0; k < front.size(); ++k)
+            s += fmt::format("{}{:.1f},{:.1f}", k ? " " : "", ax.map(chart.points[front[k]].x),
+                             ay.map(chart.points[front[k]].y));
+        s += "\"/>\n";
+    }
+    s += "<g class=\"points\">\n";
+    // Labels beside their markers, moved up or down past labels already placed (estimated
+    // widths: 6 px per character at 10 px), and left of the marker near the right edge.
+    struct Box {
+        double x0, y0, x1, y1;
+    };
+    std::vector<Box> placed;
+    for (std::size_t i : shown) {
+        const ChartPoint& p = chart.points[i];
+        const double px = ax.map(p.x), py = ay.map(p.y);
+        placed.push_back({px - 5, py - 5, px + 5, py + 5});
+    }
+    for (std::size_t i : shown) {
+        const ChartPoint& p = chart.points[i];
+        const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
+        const double px = ax.map(p.x), py = ay.map(p.y);
+        s += fmt::format(
+            "<circle class=\"point{}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"><title>{} — x {}, y "
+            "{}</title></circle>",
+            onFront ? " pareto-point" : "", px, py, xmlText(p.label), xmlText(tickText(p.x)),
+            xmlText(tickText(p.y)));
+        if (!p.label.empty()) {
+            const double w = 6.0 * static_cast<double>(p.label.size());
+            const bool flip = px + 8 + w > W - 4 && px - 8 - w >= 4;
+            const double x0 = flip ? px - 8 - w : px + 8;
+            double y = py - 6;
+            for (double dy : {0.0, 14.0, -12.0, 26.0, -24.0, 38.0, -36.0}) {
+                const Box b{x0, py - 6 + dy - 9, x0 + w, py - 6 + dy + 2};
+                const bool clash = std::any_of(placed.begin(), placed.end(), [&](const Box& o) {
+                    return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1;
+                });
+                if (!clash || dy == -36.0) {
+                    y = py - 6 + dy;
+                    placed.push_back(b);
+                    break;
+                }
+            }
+            s += fmt::format("<text class=\"point-label\" x=\"{:.1f}\" y=\"{:.1f}\"{}>{}</text>",
+                             flip ? px - 8 : px + 8, y, flip ? " text-anchor=\"end\"" : "",
+                             xmlText(p.label));
+        }
+        s += "\n";
+    }
+    s += "</g>\n";
+
+    // Legend, between the title and the plot.
+    const double lx = left + 6, ly = 44;
+    s += "<g class=\"legend\">\n";
+    s += fmt::format(
+        "<circle class=\"point\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"/>"
+        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">setting</text>\n",
+        lx, ly, lx + 10, ly + 4);
+    s += fmt::format(
+        "<line class=\"pareto\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\"/>"
+        "<circle class=\"point pareto-point\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"/>"
+        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">Pareto front (nothing is both "
+        "faster and {})</text>\n",
+        lx + 70, ly, lx + 100, ly, lx + 85, ly, lx + 106, ly + 4,
+        chart.lowerYIsBetter ? "lower" : "higher");
+    s += "</g>\n";
+    if (shown.size() < chart.points.size())
+        s += fmt::format(
+            "<text class=\"tick\" x=\"{}\" y=\"{:.1f}\">{} of {} points not drawn (no finite "
+            "value)</text>\n",
+            left, H - 6, chart.points.size() - shown.size(), chart.points.size());
+    s += "</svg>\n";
+    return s;
+}
+
+}  // namespace twinrender::compare

@@ -1,0 +1,47 @@
+// A scatter chart as standalone SVG: cost (x) against error (y), one labelled marker per point,
+// the Pareto front as a line through the points no other point beats in both. Written for
+// `twinrender sweep` (DESIGN.md, "Command line"); no library, the SVG is plain text.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace twinrender::compare {
+
+struct ChartPoint {
+    double x = 0.0;     // e.g. time in ms; non-finite or (log axis) <= 0: not drawn
+    double y = 0.0;     // e.g. an error metric; non-finite: not drawn
+    std::string label;  // shown beside the marker; may be empty
+};
+
+// The indices of the non-dominated points, by increasing x (ties by better y). Lower x is
+// always better; lower y too when `lowerYIsBetter`, else higher y. A point is dominated when
+// another is at least as good in both and strictly better in one; of several equal points
+// the first is kept. Points with a non-finite x or y take no part.
+std::vector<std::size_t> paretoFront(const std::vector<ChartPoint>& points, bool lowerYIsBetter);
+
+enum class AxisScale { Auto, Linear, Log };
+
+struct ScatterChart {
+    std::string title;
+    std::string xLabel;  // with its unit: "time per frame (ms)"
+    std::string yLabel;  // with its unit and direction: "beauty.flip (lower is better)"
+    std::vector<ChartPoint> points;
+    bool lowerYIsBetter = true;
+    // Auto: logarithmic when the positive x values span more than a decade.
+    AxisScale xScale = AxisScale::Auto;
+    int width = 760;   // px
+    int height = 480;  // px
+};
+
+// Whether the chart's x axis is logarithmic (xScale, or for Auto the span of the data).
+bool usesLogX(const ScatterChart& chart);
+
+// A complete SVG document (XML declaration, <svg> with width, height and viewBox): frame,
+// ticks with values, axis labels, a title, one <circle class="point"> per drawn point with a
+// <title> and a <text class="point-label">, the Pareto front as <polyline class="pareto">
+// (marked points get class="point pareto-point"), and a legend.
+std::string scatterSvg(const ScatterChart& chart);
+
+}  // namespace twinrender::compare

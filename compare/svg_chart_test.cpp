@@ -1,0 +1,77 @@
+#include "compare/svg_chart.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "compare/testdata/xml_check.h"
+
+namespace tc = twinrender::compare;
+
+TEST(ParetoFront, KeepsThePointsNothingBeatsInBoth) {
+    // (time, error): c is beaten by b (faster and better), e by d; the rest trade off.
+    const std::vector<tc::ChartPoint> pts = {
+        {10.0, 0.05, "a"}, {2.0, 0.20, "b"}, {3.0, 0.25, "c"}, {5.0, 0.10, "d"}, {6.0, 0.12, "e"}};
+    EXPECT_EQ(tc::paretoFront(pts, true), (std::vector<std::size_t>{1, 3, 0}));
+    // Higher is better (e.g. SSIM): only the fastest point and the best ones survive.
+    const std::vector<tc::ChartPoint> ssim = {
+        {1.0, 0.80, "a"}, {2.0, 0.95, "b"}, {3.0, 0.90, "c"}, {4.0, 0.99, "d"}};
+    EXPECT_EQ(tc::paretoFront(ssim, false), (std::vector<std::size_t>{0, 1, 3}));
+}
+
+TEST(ParetoFront, TiesAndNonFiniteValues) {
+    // Equal points: the first is kept. Same time, worse error: dominated. NaN: no part.
+    const std::vector<tc::ChartPoint> pts = {{1.0, 0.5, "a"},        {1.0, 0.5, "a again"},
+                                             {1.0, 0.7, "worse"},    {NAN, 0.0, "nan"},
+                                             {0.5, INFINITY, "inf"}, {2.0, 0.1, "b"}};
+    EXPECT_EQ(tc::paretoFront(pts, true), (std::vector<std::size_t>{0, 5}));
+    EXPECT_TRUE(tc::paretoFront({}, true).empty());
+}
+
+TEST(ScatterSvg, IsWellFormedWithOneMarkerPerPoint) {
+    tc::ScatterChart chart;
+    chart.title = "planet: time against <error> & more";
+    chart.xLabel = "time per frame (ms)";
+    chart.yLabel = "beauty.flip (lower is better)";
+    chart.points = {{1.5, 0.2, "ssss.enabled=true"},
+                    {3.0, 0.1, "a \"quoted\" label"},
+                    {2.0, 0.3, "x<y"},
+                    {4.0, 0.05, ""}};
+    const std::string svg = tc::scatterSvg(chart);
+    const auto xml = twinrender::test::checkXml(svg);
+    ASSERT_EQ(xml.error, "") << svg;
+    // Four markers plus the two legend markers; three of them on the front (+1 in the legend).
+    EXPECT_EQ(xml.classCounts.at("point"), 4 + 2);
+    EXPECT_EQ(xml.classCounts.at("pareto-point"), 3 + 1);
+    EXPECT_EQ(xml.classCounts.at("point-label"), 3);
+    EXPECT_EQ(xml.elementCounts.at("polyline"), 1);
+    EXPECT_NE(svg.find("width=\"760\""), std::string::npos);
+    EXPECT_NE(svg.find("time per frame (ms)"), std::string::npos);
+    EXPECT_NE(svg.find("Pareto front"), std::string::npos);
+    EXPECT_EQ(svg.find("log scale"), std::string::npos);  // 1.5..4 ms: linear
+}
+
+TEST(ScatterSvg, LogAxisWhenTimesSpanDecades) {
+    tc::ScatterChart chart;
+    chart.xLabel = "time (ms)";
+    chart.yLabel = "error";
+    chart.points = {{0.5, 0.3, "fast"}, {40.0, 0.1, "mid"}, {2000.0, 0.01, "slow"}};
+    EXPECT_TRUE(tc::usesLogX(chart));
+    const std::string svg = tc::scatterSvg(chart);
+    EXPECT_EQ(twinrender::test::checkXml(svg).error, "") << svg;
+    EXPECT_NE(svg.find("log scale"), std::string::npos);
+    // Decade ticks are labelled.
+    EXPECT_NE(svg.find(">100</text>"), std::string::npos) << svg;
+    chart.xScale = tc::AxisScale::Linear;
+    EXPECT_FALSE(tc::usesLogX(chart));
+}
+
+TEST(ScatterSvg, NoDrawablePointsStillMakesAChart) {
+    tc::ScatterChart chart;
+    chart.points = {{NAN, 1.0, "a"}};
+    const std::string svg = tc::scatterSvg(chart);
+    const auto xml = twinrender::test::checkXml(svg);
+    ASSERT_EQ(xml.error, "") << svg;
+    EXPECT_EQ(xml.classCounts.at("point"), 2);  // the legend's only
+    EXPECT_NE(svg.find("1 of 1 points not drawn"), std::string::npos);
+}

@@ -1,0 +1,83 @@
+// What `twinrender sweep` leaves (DESIGN.md, "Command line"): one row per combination of the
+// varied settings with its cost (median time per stage) and every metric, as
+// DIR/sweep.json, DIR/sweep.csv, the chart DIR/sweep.svg (time against one metric, Pareto
+// front marked) and DIR/index.html (the chart, the table, the command line).
+//
+// sweep.json:
+//   {"format": "twinrender-sweep", "version": 1, "scene", "scene_file", "mode", "test",
+//    "reference", "keys": [...], "metric", "better": "lower|higher", "frames",
+//    "combinations", "created", "command", "rows": [{"index", "label", "dir",
+//    "settings": {key: value}, "timings_ms": {stage: ms, "total": ms}, "metrics": {...},
+//    "reference_key", ["error"]}]}
+// Non-finite numbers are the strings "Infinity", "-Infinity", "NaN" (report.h's jsonNumber).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compare/thresholds.h"
+
+namespace twinrender::compare {
+
+struct SweepRow {
+    std::size_t index = 0;  // position in the cartesian product of the varied settings
+    // Varied key -> value as given on the command line, in the order of SweepReport::keys.
+    std::vector<std::pair<std::string, std::string>> settings;
+    std::map<std::string, double> timingsMs;  // median over the frames: "total" and per stage
+    MetricValues metrics;                     // the test render against its reference
+    std::string dir;                          // the combination's folder, relative to the sweep's
+    std::string referenceKey;                 // the reference's cache key
+    std::string error;                        // set when the combination could not be rendered
+
+    // "ssss.enabled=true, shadow_map.resolution=256": keys without their section.
+    std::string label() const;
+};
+
+struct SweepReport {
+    std::string scene;      // scene name
+    std::string sceneFile;  // as given
+    // "realtime": real-time renders against the reference; "raymarch": reference renders
+    // against a tight reference (the raymarcher's own convergence).
+    std::string mode = "realtime";
+    std::string testRenderer = "realtime";  // what was timed
+    std::string referenceDescription;    // "raymarch (scene settings)", "raymarch, root_tolerance
+                                         // 1e-07, spp 16"
+    std::vector<std::string> keys;       // the varied keys, in --vary order
+    std::string metric = "beauty.flip";  // the chart's y
+    int frames = 5;                      // frames per combination (median)
+    std::size_t combinations = 0;        // size of the whole product (all shards)
+    std::string createdAt;
+    std::string commandLine;
+    std::vector<SweepRow> rows;  // by index
+};
+
+// The chart's y for a metric and whether lower is better (baseline.h's defaultPolicy): the
+// value itself, or for a metric whose best value is a target (smoothness.ratio: 1) the
+// distance |value - target|, lower being better. `label` gets the axis title.
+double chartValue(const std::string& metric, double value, std::string* label = nullptr);
+bool lowerIsBetter(const std::string& metric);
+
+nlohmann::json sweepJson(const SweepReport& sweep);
+// Throws core::InputError naming `source` for anything sweepJson does not write.
+SweepReport sweepFromJson(const nlohmann::json& json, const std::string& source);
+
+// One header line, one line per row: index, the varied keys, time.<stage>_ms (total first),
+// every metric (in the report's order), dir, error. Numbers at full precision; empty for
+// a missing value, "nan"/"inf" for non-finite ones.
+std::string sweepCsv(const SweepReport& sweep);
+
+// The chart: x the median total time, y the sweep's metric (chartValue).
+std::string sweepSvg(const SweepReport& sweep);
+
+// The page: chart (sweep.svg beside it), the rows, the command line.
+std::string sweepHtml(const SweepReport& sweep);
+
+// DIR/sweep.json, sweep.csv, sweep.svg, index.html (atomically).
+void writeSweepReport(const SweepReport& sweep, const std::filesystem::path& dir);
+
+}  // namespace twinrender::compare
