@@ -117,10 +117,6 @@ json summaryJson(const RunReport& run) {
             {"created", run.createdAt}};
 }
 
-// ---- JUnit -----------------------------------------------------------------------------
-
-namespace {
-
 std::string xmlEscape(std::string_view s, bool attribute) {
     std::string out;
     out.reserve(s.size());
@@ -156,6 +152,10 @@ std::string xmlEscape(std::string_view s, bool attribute) {
     }
     return out;
 }
+
+// ---- JUnit -----------------------------------------------------------------------------
+
+namespace {
 
 // Full precision, for machines: the shortest form that reads back to the same double.
 std::string exactValue(double v) {

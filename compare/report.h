@@ -191,6 +191,10 @@ std::string reportPage(const std::string& title, const std::string& body,
                        const std::string& createdAt, const std::string& commandLine);
 // Text for HTML (&, <, >, ", ' escaped) and a relative path as a URL (percent-encoded).
 std::string htmlEscape(std::string_view text);
+// Text for XML (JUnit, SVG): & < > escaped, and " too inside attributes (`attribute`), where
+// newlines and tabs become character references; other control characters, which XML 1.0
+// does not allow, become spaces.
+std::string xmlEscape(std::string_view text, bool attribute);
 std::string urlPath(std::string_view path);
 
 }  // namespace twinrender::compare

@@ -1,5 +1,7 @@
 #include "compare/svg_chart.h"
 
+#include "compare/report.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,31 +16,8 @@ bool drawable(const ChartPoint& p, bool logX) {
     return std::isfinite(p.x) && std::isfinite(p.y) && (!logX || p.x > 0.0);
 }
 
-std::string xmlText(std::string_view s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t')
-                    out += ' ';  // not allowed in XML 1.0
-                else
-                    out += c;
-        }
-    }
-    return out;
-}
+// Titles, labels and tick texts go both into text nodes and attributes: escape for both.
+std::string xmlText(std::string_view s) { return xmlEscape(s, true); }
 
 // A tick value as people write it: 0.05, 2, 1e+06.
 std::string tickText(double v) {
