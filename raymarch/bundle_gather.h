@@ -5,9 +5,9 @@
 // (a pixel block, or the shadow rays of one) is gathered at once: an Embree user geometry
 // holds every particle with its support sphere (radius 2h) inflated by a margin, the bundle's
 // central ray is traced through it, and the callback tests the real support sphere against
-// every ray of the bundle over that ray's own interval. Each reported sphere comes with the
-// mask of the rays it overlaps. The result is exact as long as every ray of the bundle stays
-// within the margin of the central ray near the spheres it crosses; the caller guarantees it.
+// every ray of the bundle over that ray's own interval. The result is exact as long as every
+// ray of the bundle stays within the margin of the central ray near the spheres it crosses;
+// the caller guarantees it. The same scene answers first-entry queries along lines.
 #pragma once
 
 #include <cstdint>
@@ -22,18 +22,17 @@ namespace twinrender::raymarch {
 
 struct RayBundle {
     static constexpr int MAX_RAYS = 32;
+    static constexpr int LANES = 8;  // the test runs this many rays at a time
     int count = 0;
-    // Per ray, in float: the test only selects spheres; candidates are rebuilt in double.
+    // Per ray, in float: the test only selects spheres; the field build tests them again.
     float ox[MAX_RAYS], oy[MAX_RAYS], oz[MAX_RAYS];
     float dx[MAX_RAYS], dy[MAX_RAYS], dz[MAX_RAYS];
     float tMin[MAX_RAYS], tMax[MAX_RAYS];  // the interval of each ray to gather over
 
-    void set(int i, const glm::dvec3& origin, const glm::dvec3& direction, double t0, double t1);
-};
-
-struct BundleHit {
-    std::uint32_t prim;
-    std::uint32_t mask;  // bit i: the sphere overlaps ray i over its interval
+    // Appends a ray.
+    void add(const glm::dvec3& origin, const glm::dvec3& direction, double t0, double t1);
+    // Pads to whole vectors with rays that overlap nothing; call before gathering.
+    void finish();
 };
 
 class BundleGather {
@@ -46,16 +45,37 @@ public:
     BundleGather(const BundleGather&) = delete;
     BundleGather& operator=(const BundleGather&) = delete;
 
-    // Appends every support sphere that overlaps some ray of the bundle over its interval.
-    // The central ray's [tnear, tfar] must cover the part of it next to every ray interval.
+    // Appends (in no particular order) every support sphere that overlaps some ray of the
+    // bundle over its interval. The central ray's [tnear, tfar] must cover the part of it
+    // abreast of every ray interval.
     void gather(const RayBundle& bundle, const glm::dvec3& centralOrigin,
                 const glm::dvec3& centralDirection, double tnear, double tfar,
-                std::vector<BundleHit>& out) const;
+                std::vector<std::uint32_t>& out) const;
+
+    struct Entry {
+        double t;  // where the line enters the grown sphere (never after it), or tnear inside it
+        std::uint32_t prim;
+    };
+    // The first support sphere grown by the margin along the line origin + t direction (unit)
+    // in [tnear, tfar]: no ray of a bundle around the line enters a support sphere before its
+    // point abreast of entry.t.
+    bool firstEntry(const glm::dvec3& origin, const glm::dvec3& direction, double tnear, double tfar,
+                    Entry& entry) const;
+    // firstEntry for up to PACKET separate rays at once (a packet: much cheaper than a query
+    // per ray when they are coherent); for a single ray, a safe start before its own entry.
+    // Returns the mask of the rays that found one.
+    static constexpr int PACKET = 8;
+    struct Query {
+        glm::dvec3 origin, direction;
+        double tnear, tfar;
+    };
+    std::uint32_t firstEntries(int count, const Query* queries, Entry* entries) const;
 
 private:
     static void bounds(const RTCBoundsFunctionArguments* args);
     static void intersect(const RTCIntersectFunctionNArguments* args);
     static void occluded(const RTCOccludedFunctionNArguments* args);
+    static void firstEntryTest(const RTCIntersectFunctionNArguments* args);
 
     const EmbreeDevice& mDevice;
     std::span<const glm::vec3> mCenters;

@@ -1,6 +1,7 @@
 #include "raymarch/implicit_field.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <numbers>
 
@@ -9,15 +10,48 @@
 namespace twinrender::raymarch {
 
 using core::m4Shape;
-using core::m4ShapeDerivative;
 
 // Value (not reference) minimum and maximum: std::min's reference result keeps a branch in
 // the loops, which stops them from being vectorised.
 inline float minf(float a, float b) { return a < b ? a : b; }
 inline float maxf(float a, float b) { return a > b ? a : b; }
 
-// Upper bound of w''(q) along a line, see the header.
-constexpr float W_CURVATURE_BOUND = 1.5f;
+namespace {
+
+// An inert candidate (padding, or a particle whose support misses the segment): outside its
+// support everywhere (q^2 = (dt^2 + 4) * 1 >= 4), weightless, with an empty support interval.
+constexpr float INERT_D2 = 4.0f;
+constexpr float INERT_T = -FLT_MAX;
+// A batch's padding: a zero support meets no ray.
+constexpr FieldParticle INERT_PARTICLE{0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f};
+
+// A bracketed hit's tBelow is taken this fraction of the tolerance before the end of the
+// proven-safe step, so that rounding cannot put it on the level.
+constexpr double BELOW_MARGIN = 0.01;
+// The lower bound is solved for a bracket only once the bracket's estimate, (M - m) step^2 /
+// (2 phi'), is within this factor of the tolerance (a square root saved on most steps).
+constexpr double BRACKET_ESTIMATE_SLACK = 4.0;
+
+// The M4 shape w(q) and w'(q)/q for q in [0, 2]; the inner branch of w'/q needs no division
+// and stays finite at q = 0.
+inline float shape(float q) {
+    const float a = 2.0f - q;
+    return q < 1.0f ? 1.0f - 1.5f * q * q + 0.75f * q * q * q : 0.25f * a * a * a;
+}
+inline float shapeDerivativeOverQ(float q) {
+    const float a = 2.0f - q;
+    return q < 1.0f ? -3.0f + 2.25f * q : -0.75f * a * a / q;
+}
+
+// A double split into a float and the float of what remains: x - (head + tail) computed as
+// (x - head) - tail in float is then within an ulp of the (small) difference.
+struct SplitFloat {
+    float head, tail;
+    explicit SplitFloat(double v)
+        : head(static_cast<float>(v)), tail(static_cast<float>(v - double(static_cast<float>(v)))) {}
+};
+
+}  // namespace
 
 bool makeCandidate(const double origin[3], const double direction[3], const double center[3],
                    double h, double volume, std::uint32_t index, Candidate& out) {
@@ -41,10 +75,49 @@ bool makeCandidate(const double origin[3], const double direction[3], const doub
     return true;
 }
 
+std::vector<FieldParticle> makeFieldParticles(const core::ParticleSet& ps) {
+    std::vector<FieldParticle> out(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        const double h = ps.h[i], support = core::M4_SUPPORT * h;
+        out[i] = {ps.position[i].x,
+                  ps.position[i].y,
+                  ps.position[i].z,
+                  static_cast<float>(support * support),
+                  static_cast<float>(ps.volume[i] / (std::numbers::pi * h * h * h)),
+                  static_cast<float>(1.0 / (h * h))};
+    }
+    return out;
+}
+
+void RayField::resize(std::size_t n) {
+    mCount = n;
+    mPadded = (n + LANES - 1) / LANES * LANES;
+    if (mIndex.size() < mPadded) {
+        constexpr std::size_t ARRAYS = 10;
+        const std::size_t capacity = 2 * mPadded;
+        mStore.resize(ARRAYS * capacity);
+        mIndex.resize(capacity);
+        float* p = mStore.data();
+        for (float** a : {&mTc, &mD2, &mT0, &mT1, &mCoef, &mIh2, &mPeak, &mEx, &mEy, &mEz}) {
+            *a = p;
+            p += capacity;
+        }
+    }
+    for (std::size_t i = n; i < mPadded; ++i) {
+        mTc[i] = 0.0f;
+        mD2[i] = INERT_D2;
+        mT0[i] = mT1[i] = INERT_T;
+        mCoef[i] = mPeak[i] = 0.0f;
+        mIh2[i] = 1.0f;
+        mEx[i] = mEy[i] = mEz[i] = 0.0f;
+        mIndex[i] = 0;  // a valid particle (there is one whenever there is padding)
+    }
+}
+
 void RayField::assign(const std::vector<Candidate>& candidates, double base) {
     mBase = base;
     const std::size_t n = candidates.size();
-    for (auto* v : {&mTc, &mD2, &mT0, &mT1, &mCoef, &mIh2, &mPeak}) v->resize(n);
+    resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const Candidate& c = candidates[i];
         mTc[i] = static_cast<float>(c.tc - base);
@@ -54,136 +127,329 @@ void RayField::assign(const std::vector<Candidate>& candidates, double base) {
         mCoef[i] = static_cast<float>(c.coef);
         mIh2[i] = static_cast<float>(c.invH * c.invH);
         mPeak[i] = static_cast<float>(c.peak);
+        mIndex[i] = c.index;
+    }
+    mCandidates = n;
+    mPeakSum = 0.0;
+    for (const Candidate& c : candidates) mPeakSum += c.peak;
+    mFirstT0 = INFINITY;
+    for (std::size_t i = 0; i < n; ++i) mFirstT0 = std::min(mFirstT0, mT0[i]);
+}
+
+// The vector loops run 8 lanes wide with fused multiply-adds where the CPU has x86-64-v3
+// (AVX2, FMA; chosen at run time), 4 lanes otherwise. One machine always takes the same
+// clone, so results stay bit-identical run to run.
+#define TWINRENDER_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+
+void ParticleBatch::assign(std::span<const std::uint32_t> prims, const std::vector<FieldParticle>& particles) {
+    const std::size_t n = prims.size(), padded = (n + RayField::LANES - 1) / RayField::LANES * RayField::LANES;
+    for (auto* v : {&mX, &mY, &mZ, &mSupport2, &mCoef, &mInvH2}) v->resize(padded);
+    mIndex.resize(padded);
+    for (std::size_t i = 0; i < padded; ++i) {
+        const FieldParticle& p = i < n ? particles[prims[i]] : INERT_PARTICLE;
+        mX[i] = p.x;
+        mY[i] = p.y;
+        mZ[i] = p.z;
+        mSupport2[i] = p.support2;
+        mCoef[i] = p.coef;
+        mInvH2[i] = p.invH2;
+        mIndex[i] = i < n ? prims[i] : 0;
     }
 }
 
-// The vector loops run 8 lanes wide where the CPU has AVX2 (chosen at run time), 4 otherwise.
-// One machine always takes the same clone, so results stay bit-identical run to run.
-#define TWINRENDER_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+TWINRENDER_VECTOR_CLONES
+void RayField::build(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax,
+                     const ParticleBatch& batch) {
+    mBase = tMin;
+    const std::size_t n = batch.size();
+    if (n % LANES != 0) __builtin_unreachable();
+    resize(n);
+    float* tc = mTc;
+    float* d2 = mD2;
+    float* t0 = mT0;
+    float* t1 = mT1;
+    float* coef = mCoef;
+    float* ih2 = mIh2;
+    float* peak = mPeak;
+    const float *px = batch.mX.data(), *py = batch.mY.data(), *pz = batch.mZ.data(),
+                *support2 = batch.mSupport2.data(), *pcoef = batch.mCoef.data(), *pih2 = batch.mInvH2.data();
+    const glm::dvec3 start = origin + tMin * direction;
+    const SplitFloat sx(start.x), sy(start.y), sz(start.z);
+    const float dx = static_cast<float>(direction.x), dy = static_cast<float>(direction.y),
+                dz = static_cast<float>(direction.z);
+    const float length = static_cast<float>(tMax - tMin);
+    mDirection = {dx, dy, dz};
+    float *ex = mEx, *ey = mEy, *ez = mEz;
+    // Every particle of the batch, in its order (the summation order).
+    float first = INFINITY;
+    float peaks = 0.0f;
+    int overlapping = 0;
+#pragma omp simd reduction(min : first) reduction(+ : overlapping, peaks)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float wx = (px[i] - sx.head) - sx.tail, wy = (py[i] - sy.head) - sy.tail,
+                    wz = (pz[i] - sz.head) - sz.tail;
+        const float c = wx * dx + wy * dy + wz * dz;
+        // Perpendicular offset computed directly (not |w|^2 - c^2, which cancels).
+        const float ox = wx - c * dx, oy = wy - c * dy, oz = wz - c * dz;
+        const float e2 = ox * ox + oy * oy + oz * oz;
+        const float chord2 = support2[i] - e2;
+        const float half = std::sqrt(maxf(chord2, 0.0f));
+        const float c0 = c - half, c1 = c + half;
+        const bool overlaps = (chord2 > 0.0f) & (c1 > 0.0f) & (c0 < length);
+        // Loaded unconditionally: a load under a condition becomes a masked load.
+        const float pc = pcoef[i], h2 = pih2[i];
+        const float largest = pc * shape(std::sqrt(minf(e2 * h2, 4.0f)));
+        // The others become inert.
+        tc[i] = overlaps ? c : 0.0f;
+        d2[i] = overlaps ? e2 : INERT_D2;
+        t0[i] = overlaps ? c0 : INERT_T;
+        t1[i] = overlaps ? c1 : INERT_T;
+        coef[i] = overlaps ? pc : 0.0f;
+        ih2[i] = overlaps ? h2 : 1.0f;
+        peak[i] = overlaps ? largest : 0.0f;
+        ex[i] = ox;
+        ey[i] = oy;
+        ez[i] = oz;
+        first = minf(first, overlaps ? c0 : INFINITY);
+        overlapping += overlaps;
+        peaks += overlaps ? largest : 0.0f;
+    }
+    mCandidates = overlapping;
+    // Float rounding must not turn the bound into an underestimate.
+    mPeakSum = peaks * (1.0 + 1e-5);
+    std::copy(batch.mIndex.begin(), batch.mIndex.end(), mIndex.begin());
+    mFirstT0 = first;
+}
 
 TWINRENDER_VECTOR_CLONES
-FieldSample RayField::sample(double t, double window) const {
+FieldSample RayField::sample(double t, double window, double horizon) const {
     const float x = static_cast<float>(t - mBase);
     const float xEnd = static_cast<float>(t + window - mBase);
-    const std::size_t n = mT0.size();
-    const float* t0 = mT0.data();
-    const float* tc = mTc.data();
-    const float* d2 = mD2.data();
-    const float* t1 = mT1.data();
-    const float* coef = mCoef.data();
-    const float* ih2 = mIh2.data();
-    float value = 0.0f, slope = 0.0f, curvature = 0.0f;
-#pragma omp simd reduction(+ : value, slope, curvature)
+    const float xAhead = static_cast<float>(t + horizon - mBase);
+    const std::size_t n = mPadded;
+    // Whole vectors only (the padding is inert): no scalar remainder loop.
+    if (n % LANES != 0) __builtin_unreachable();
+    const float *tcs = mTc, *d2s = mD2, *t0s = mT0, *t1s = mT1, *coefs = mCoef, *ih2s = mIh2, *peaks = mPeak;
+    float value = 0.0f, slope = 0.0f, curvature = 0.0f, curvatureLow = 0.0f, ahead = 0.0f;
+#pragma omp simd reduction(+ : value, slope, curvature, curvatureLow, ahead)
     for (std::size_t i = 0; i < n; ++i) {
-        const float dt = x - tc[i];
-        const float q = std::sqrt(minf((dt * dt + d2[i]) * ih2[i], 4.0f));
-        const float a = 2.0f - q;
-        // w and dw/dq of the M4 spline; both vanish at q = 2, outside the support.
-        const float w = q < 1.0f ? 1.0f - 1.5f * q * q + 0.75f * q * q * q : 0.25f * a * a * a;
-        const float dw = q < 1.0f ? -3.0f * q + 2.25f * q * q : -0.75f * a * a;
-        value += coef[i] * w;
-        // d/dt w(q) = w'(q) dq/dt with dq/dt = dt / (q h^2); dw/q -> -3 as q -> 0.
-        slope += coef[i] * dw * dt * ih2[i] / maxf(q, 1e-30f);
-        // Curvature bound over the window: max(w'', 0) <= 1.5, and <= 1.5 (2 - q) beyond
-        // q = 1, taken at the closest approach within the window; as sqrt is concave,
-        // 2 - q <= (4 - q^2) / 3 on [1, 2], which spares a square root. And
-        // (dq/dt)^2 <= (1 - d2/4h^2) / h^2.
-        const float tn = minf(maxf(tc[i], x), xEnd) - tc[i];
-        const float qn2 = minf((tn * tn + d2[i]) * ih2[i], 4.0f);
-        const float wb = qn2 <= 1.0f ? W_CURVATURE_BOUND : W_CURVATURE_BOUND * (4.0f - qn2) / 3.0f;
-        const float active = (t1[i] > x) & (t0[i] < xEnd) ? 1.0f : 0.0f;
-        curvature += active * coef[i] * wb * maxf(0.0f, 1.0f - 0.25f * d2[i] * ih2[i]) * ih2[i];
+        // Every operand loaded up front: a load under a condition becomes a masked load.
+        const float tc = tcs[i], d2 = d2s[i], t0 = t0s[i], t1 = t1s[i], coef = coefs[i], ih2 = ih2s[i],
+                    peak = peaks[i];
+        const float k = coef * ih2;
+        const float dt = x - tc;
+        const float q2 = (dt * dt + d2) * ih2;
+        const float q = std::sqrt(minf(q2, 4.0f));
+        const float w = shape(q);
+        value += coef * w;
+        // d/dt w(q) = w'(q) dq/dt with dq/dt = dt / (q h^2).
+        slope += k * shapeDerivativeOverQ(q) * dt;
+        // Curvature bounds over the window (header): q^2 is smallest at the closest approach
+        // within the window and largest at one of its ends.
+        const float tn = minf(maxf(tc, x), xEnd) - tc;
+        const float qmin2 = (tn * tn + d2) * ih2;
+        const float dtEnd = xEnd - tc;
+        const float qmax2 = maxf(q2, (dtEnd * dtEnd + d2) * ih2);
+        const float delta2 = d2 * ih2;
+        const float outer = 1.0f - delta2 / qmax2;
+        const float upper = qmin2 >= 1.0f   ? 0.5f * (4.0f - qmin2) * outer
+                            : qmax2 <= 1.0f ? -0.75f + 2.25f * (qmax2 - delta2)
+                                            : 1.5f * outer;
+        const float lower = qmin2 >= 1.0f ? -0.75f : -3.0f;
+        const bool inWindow = qmin2 < 4.0f;
+        curvature += inWindow ? k * upper : 0.0f;
+        curvatureLow += inWindow ? k * lower : 0.0f;
+        // Each particle at its largest value over [x, xAhead]: its peak when the closest
+        // approach lies ahead, its value at x when it lies behind.
+        const float largest = tc >= x ? peak : coef * w;
+        ahead += (t1 > x) & (t0 < xAhead) ? largest : 0.0f;
     }
-    return {value, slope, curvature};
+    // Float rounding must not turn the bounds into underestimates.
+    constexpr double SAFETY = 1e-5;
+    return {value, slope, curvature + std::abs(curvature) * SAFETY,
+            curvatureLow - std::abs(curvatureLow) * SAFETY, ahead * (1.0 + SAFETY)};
 }
 
 TWINRENDER_VECTOR_CLONES
-double RayField::remainingBound(double t, double tEnd) const {
+double RayField::largestHBeyond(double t) const {
+    const float x = static_cast<float>(t - mBase);
+    const std::size_t n = mPadded;
+    if (n % LANES != 0) __builtin_unreachable();
+    const float *t1s = mT1, *ih2s = mIh2;
+    float smallest = INFINITY;  // of 1 / h^2
+#pragma omp simd reduction(min : smallest)
+    for (std::size_t i = 0; i < n; ++i) smallest = minf(smallest, t1s[i] > x ? ih2s[i] : INFINITY);
+    return std::isfinite(smallest) ? 1.0 / std::sqrt(double(smallest)) : 0.0;
+}
+
+TWINRENDER_VECTOR_CLONES
+FieldSample RayField::sampleValue(double t) const {
+    const float x = static_cast<float>(t - mBase);
+    const std::size_t n = mPadded;
+    if (n % LANES != 0) __builtin_unreachable();
+    const float *tcs = mTc, *d2s = mD2, *coefs = mCoef, *ih2s = mIh2;
+    float value = 0.0f, slope = 0.0f;
+#pragma omp simd reduction(+ : value, slope)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float tc = tcs[i], d2 = d2s[i], coef = coefs[i], ih2 = ih2s[i];
+        const float dt = x - tc;
+        const float q = std::sqrt(minf((dt * dt + d2) * ih2, 4.0f));
+        value += coef * shape(q);
+        slope += coef * ih2 * shapeDerivativeOverQ(q) * dt;
+    }
+    FieldSample f;
+    f.value = value;
+    f.slope = slope;
+    return f;
+}
+
+double RayField::remainingBound(double t, double tEnd) const { return sample(t, 0.0, tEnd - t).ahead; }
+
+TWINRENDER_VECTOR_CLONES
+double RayField::intervalBound(double t, double tEnd) const {
     const float x = static_cast<float>(t - mBase);
     const float xEnd = static_cast<float>(tEnd - mBase);
-    const std::size_t n = mT0.size();
-    const float* t0 = mT0.data();
-    const float* tc = mTc.data();
-    const float* d2 = mD2.data();
-    const float* t1 = mT1.data();
-    const float* coef = mCoef.data();
-    const float* ih2 = mIh2.data();
-    const float* peak = mPeak.data();
+    const std::size_t n = mPadded;
+    if (n % LANES != 0) __builtin_unreachable();
+    const float *tcs = mTc, *d2s = mD2, *t0s = mT0, *t1s = mT1, *coefs = mCoef, *ih2s = mIh2;
     float bound = 0.0f;
 #pragma omp simd reduction(+ : bound)
     for (std::size_t i = 0; i < n; ++i) {
-        const float dt = x - tc[i];
-        const float q = std::sqrt(minf((dt * dt + d2[i]) * ih2[i], 4.0f));
-        const float a = 2.0f - q;
-        const float w = q < 1.0f ? 1.0f - 1.5f * q * q + 0.75f * q * q * q : 0.25f * a * a * a;
-        const float ahead = peak[i], behind = coef[i] * w;
-        const float here = tc[i] >= x ? ahead : behind;
-        bound += (t1[i] > x) & (t0[i] < xEnd) ? here : 0.0f;
+        const float tc = tcs[i], d2 = d2s[i], t0 = t0s[i], t1 = t1s[i], coef = coefs[i], ih2 = ih2s[i];
+        const float tn = minf(maxf(tc, x), xEnd) - tc;
+        const float largest = coef * shape(std::sqrt(minf((tn * tn + d2) * ih2, 4.0f)));
+        bound += (t1 > x) & (t0 < xEnd) ? largest : 0.0f;
     }
     // Float rounding must not turn the bound into an underestimate.
     return bound * (1.0 + 1e-5);
 }
 
+TWINRENDER_VECTOR_CLONES
+SurfacePoint RayField::surfacePoint(double t, std::vector<float>& weights) const {
+    const float s = static_cast<float>(t - mBase);
+    const std::size_t n = mPadded;
+    if (n % LANES != 0) __builtin_unreachable();
+    weights.resize(n);
+    const float *tcs = mTc, *d2s = mD2, *coefs = mCoef, *ih2s = mIh2, *exs = mEx, *eys = mEy, *ezs = mEz;
+    const glm::vec3 d = mDirection;
+    float* weight = weights.data();
+    float gx = 0.0f, gy = 0.0f, gz = 0.0f, largest = 0.0f;  // of 1 / h^2
+#pragma omp simd reduction(+ : gx, gy, gz) reduction(max : largest)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float dt = s - tcs[i], coef = coefs[i], ih2 = ih2s[i];
+        const float q = std::sqrt(minf((dt * dt + d2s[i]) * ih2, 4.0f));
+        weight[i] = coef * shape(q);
+        largest = maxf(largest, weight[i] > 0.0f ? ih2 : 0.0f);
+        // grad f = c w'(q) grad q = c (w'(q) / q) (p - x) / h^2, with p - x = dt d - e.
+        const float g = coef * shapeDerivativeOverQ(q) * ih2;
+        gx += g * (dt * d.x - exs[i]);
+        gy += g * (dt * d.y - eys[i]);
+        gz += g * (dt * d.z - ezs[i]);
+    }
+    return {{gx, gy, gz}, largest > 0.0f ? 1.0 / std::sqrt(double(largest)) : 0.0};
+}
+
 namespace {
 
-// Smallest s >= 0 with value + slope s + curvature s^2 / 2 = level (value < level).
-double safeStep(const FieldSample& f, double level) {
-    const double gap = level - f.value;
-    if (f.curvature > 0.0) {
-        const double disc = f.slope * f.slope + 2.0 * f.curvature * gap;
-        // Written to avoid cancellation when slope > 0: s = 2 gap / (slope + sqrt(disc)).
-        const double root = std::sqrt(disc);
-        return f.slope > 0.0 ? 2.0 * gap / (f.slope + root) : (root - f.slope) / f.curvature;
-    }
-    return f.slope > 0.0 ? gap / f.slope : INFINITY;
+// Smallest s >= 0 at which value + slope s + curvature s^2 / 2 reaches the level (value below
+// it); infinity when it never does.
+double firstReach(double value, double slope, double curvature, double level) {
+    const double gap = level - value;
+    const double disc = slope * slope + 2.0 * curvature * gap;
+    if (disc < 0.0) return INFINITY;  // a downward parabola peaking below the level
+    const double root = std::sqrt(disc);
+    // Written to avoid cancellation when slope > 0.
+    if (slope > 0.0) return 2.0 * gap / (slope + root);
+    return curvature > 0.0 ? (root - slope) / curvature : INFINITY;
 }
 
 }  // namespace
 
+TWINRENDER_VECTOR_CLONES
 Crossing findFirstCrossing(const RayField& field, double ta, double tb,
-                           const CrossingSettings& settings) {
+                           const CrossingSettings& settings, double hint) {
     Crossing out;
-    const double level = settings.level;
+    const double level = settings.level, tolerance = settings.tolerance;
     double a = ta;
+    if (hint > ta && hint < tb) {
+        ++out.evaluations;
+        if (field.intervalBound(ta, hint) < level) a = hint;
+    }
     double previous = a;
+    // The curvature bounds of the last full sample hold up to boundsEnd: while the window left
+    // reaches past the last step (converging on a root, the steps shrink), phi and phi' alone
+    // suffice.
+    double boundsEnd = -INFINITY, upper = 0.0, lower = 0.0, lastStep = INFINITY;
     for (int it = 0; it < settings.maxIterations; ++it) {
-        const double window = std::min(settings.maxStep, tb - a);
-        const FieldSample f = field.sample(a, window);
+        double window = boundsEnd - a;
+        FieldSample f;
+        if (window >= lastStep) {
+            f = field.sampleValue(a);
+            f.curvature = upper;
+            f.curvatureLow = lower;
+            f.ahead = INFINITY;
+        } else {
+            window = std::min(settings.maxStep, tb - a);
+            f = field.sample(a, window, tb - a);
+            boundsEnd = a + window;
+            upper = f.curvature;
+            lower = f.curvatureLow;
+        }
         ++out.evaluations;
         if (f.value >= level) {
             // At the start: the ray begins inside. Later the step can only land exactly on the
             // root (the bound touches the level there): a hit.
-            out.status = it == 0 ? Crossing::Status::Inside : Crossing::Status::Hit;
+            out.status = it == 0 && a == ta ? Crossing::Status::Inside : Crossing::Status::Hit;
             out.t = a;
             out.tBelow = it == 0 ? a : previous;
             return out;
         }
         previous = a;
-        // Going away from the surface: stop once nothing ahead can reach the level.
-        if (f.slope < 0.0 && field.remainingBound(a, tb) < level) {
+        if (f.ahead < level) {
+            // Nothing ahead can reach the level.
+            out.status = Crossing::Status::Miss;
+            out.tBelow = tb;
+            return out;
+        }
+        // phi < level on [a, a + step); phi(a + sure) >= level.
+        const double step = firstReach(f.value, f.slope, f.curvature, level);
+        const bool nearRoot =
+            (f.curvature - f.curvatureLow) * step * step <= 2.0 * BRACKET_ESTIMATE_SLACK * tolerance * f.slope;
+        const double sure = nearRoot ? firstReach(f.value, f.slope, f.curvatureLow, level) : INFINITY;
+        // Going away from the surface (a shadow ray leaving its start): phi stays below the
+        // level up to the next point; the bound of what lies beyond is cheaper than a sample.
+        const double next = a + std::min(step, window);
+        if (f.slope <= 0.0 && next < tb && field.intervalBound(next, tb) < level) {
             ++out.evaluations;
             out.status = Crossing::Status::Miss;
             out.tBelow = tb;
             return out;
         }
-        const double step = safeStep(f, level);
-        if (step < settings.tolerance) {
+        if (sure <= window && sure - step <= tolerance) {
+            // The first root is bracketed within the tolerance: take the Newton estimate
+            // inside the bracket.
+            out.status = Crossing::Status::Hit;
+            out.t = a + std::clamp((level - f.value) / f.slope, step, sure);
+            out.tBelow = a + std::max(0.0, step - BELOW_MARGIN * tolerance);
+            return out;
+        }
+        if (step < tolerance) {
             // The bound says the root may be closer than the tolerance: confirm it.
-            const double b = a + settings.tolerance;
-            const FieldSample fb = field.sample(b, 0.0);
+            const double b = a + tolerance;
+            const FieldSample fb = field.sampleValue(b);
             ++out.evaluations;
             if (fb.value >= level) {
                 const double frac = (level - f.value) / (fb.value - f.value);
                 out.status = Crossing::Status::Hit;
                 out.tBelow = a;
-                out.t = a + settings.tolerance * std::clamp(frac, 0.0, 1.0);
+                out.t = a + tolerance * std::clamp(frac, 0.0, 1.0);
                 return out;
             }
             a = b;  // grazing past a tangency; the next step starts below the level
-        } else if (step >= window) {
-            a += window;
+            lastStep = tolerance;
         } else {
-            a += step;
+            lastStep = std::min(step, window);
+            a += lastStep;
         }
         if (a >= tb) {
             out.status = Crossing::Status::Miss;

@@ -16,13 +16,15 @@ namespace {
 // One ray's state while its bundle marches.
 struct MarchRay {
     core::Ray ray;
-    double t = 0.0;        // where the next segment starts
-    double tEnd = 0.0;     // where the ray stops
-    double hRef = 0.0;     // scale of the particles near t (segment length, tolerances)
-    bool needEntry = true; // skip empty space to the next support sphere first
+    double t = 0.0;             // where the next segment starts
+    double tEnd = 0.0;          // where the ray stops
+    double hRef = 0.0;          // scale of the particles near t (segment length, tolerances)
+    double segmentScale = 1.0;  // the next segment's length, in units of the setting
+    bool needEntry = true;      // skip empty space to the next support sphere first
+    bool sharedEntry = true;    // that skip may come from one query for the bundle (once)
+    bool fromSharedEntry = false;  // the next segment starts at a shared entry
     bool active = true;
     bool hit = false;
-    Crossing crossing;
 };
 
 struct BodyRange {
@@ -30,20 +32,45 @@ struct BodyRange {
     double hMin;
 };
 
-bool boxesOverlap(const glm::dvec3& alo, const glm::dvec3& ahi, const glm::dvec3& blo, const glm::dvec3& bhi) {
-    return alo.x <= bhi.x && ahi.x >= blo.x && alo.y <= bhi.y && ahi.y >= blo.y && alo.z <= bhi.z &&
-           ahi.z >= blo.z;
+// Whether the ray meets the box within [t0, t1] (slab test).
+bool rayMeetsBox(const core::Ray& ray, double t0, double t1, const glm::dvec3& lo, const glm::dvec3& hi) {
+    for (int k = 0; k < 3; ++k) {
+        const double inv = 1.0 / ray.direction[k];
+        double a = (lo[k] - ray.origin[k]) * inv, b = (hi[k] - ray.origin[k]) * inv;
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, b);
+    }
+    return t0 <= t1;
 }
+
+// An entry found in float may land a little after the true one: the segment starts this many
+// h before it.
+constexpr double ENTRY_BACKOFF = 1e-3;
+// A segment that starts at a shared entry begins up to the bundle's spread before the ray's
+// own entry; it is this many h longer, so that most rays still find their crossing in it.
+constexpr double SHARED_ENTRY_EXTRA = 0.5;
+// Shadow rays mostly prove that nothing ahead reaches the level (one or two evaluations per
+// segment, against four or five to refine a crossing), so their segments are longer: one
+// gather takes most of them out of the support spheres.
+constexpr double SHADOW_SEGMENT_SCALE = 4.0;
+// Rays that graze the thin outer layer (silhouettes) miss segment after segment at the first
+// evaluation: after each such miss the next segment is twice as long, up to this factor.
+constexpr double MAX_SEGMENT_SCALE = 4.0;
+// A primary ray's search is hinted to start this many h before the crossing of the block's
+// last ray that found one (neighbouring pixels' crossings lie close).
+constexpr double HINT_BACKOFF = 0.1;
 
 }  // namespace
 
 class SurfaceTracer::Workspace {
 public:
-    std::vector<Candidate> candidates[MAX_RAYS];  // per ray, in particle order
-    std::vector<Candidate> merged;
-    std::vector<std::uint32_t> carry[MAX_RAYS];   // per hit: spheres containing hit.outside
-    std::vector<BundleHit> bundleHits;
-    RayField field;
+    RayField field;                    // the segment being searched
+    std::vector<std::uint32_t> prims;  // this round's gather, in particle order
+    ParticleBatch batch;               // their data
+    std::vector<float> weights;        // kernel weights at a hit
+    std::vector<int> groupEnds;  // shadow bundles
+    double lastCrossing = NAN;   // the block's last primary crossing
     MarchRay rays[MAX_RAYS];
     TraceCounters counters;
 };
@@ -53,9 +80,9 @@ struct SurfaceTracer::Impl {
     const core::SceneParticles& particles;
     Settings settings;
     std::vector<float> supportRadius, margin;
-    std::unique_ptr<SphereScene> support;  // support spheres (entries)
-    std::unique_ptr<SphereScene> spheres;  // plain spheres (spheres mode)
-    std::unique_ptr<BundleGather> bundles; // support spheres grown by the margin
+    std::vector<FieldParticle> fieldParticles;
+    std::unique_ptr<SphereScene> spheres;   // plain spheres (spheres mode)
+    std::unique_ptr<BundleGather> bundles;  // support spheres grown by the margin
     std::vector<BodyRange> bodyRanges;
     double sinBlock = 0.0;
 
@@ -80,23 +107,25 @@ struct SurfaceTracer::Impl {
             supportRadius[i] = static_cast<float>(core::M4_SUPPORT) * ps.h[i];
             // Near particle i a camera ray of the block passes within
             // (|x_i - camera| + 2h) sinBlock of the central ray; a shadow ray of a bundle
-            // within SHADOW_MARGIN h (checked per bundle).
+            // within SHADOW_MARGIN h (groupParallel).
             const double primary =
                 (glm::length(glm::dvec3(ps.position[i]) - cam.position()) + supportRadius[i]) * sinBlock;
             margin[i] = static_cast<float>(std::max(primary, SHADOW_MARGIN * ps.h[i]));
         }
-        support = std::make_unique<SphereScene>(device, ps.position, supportRadius);
+        fieldParticles = makeFieldParticles(ps);
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin);
-        for (const auto& b : p.bodies) {
+        auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), INFINITY};
-            for (std::size_t i = b.begin; i < b.end; ++i) {
+            for (std::size_t i = begin; i < end; ++i) {
                 const double s = supportRadius[i];
                 r.lo = glm::min(r.lo, glm::dvec3(ps.position[i]) - s);
                 r.hi = glm::max(r.hi, glm::dvec3(ps.position[i]) + s);
                 r.hMin = std::min(r.hMin, double(ps.h[i]));
             }
             bodyRanges.push_back(r);
-        }
+        };
+        for (const auto& b : p.bodies) addRange(b.begin, b.end);
+        if (p.bodies.empty()) addRange(0, n);
     }
 
     CrossingSettings crossingSettings(double hRef) const {
@@ -108,167 +137,220 @@ struct SurfaceTracer::Impl {
         return cs;
     }
 
-    bool candidateFor(const core::Ray& ray, std::uint32_t prim, Candidate& c) const {
-        const auto& ps = particles.particles;
-        const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
-        const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
-        const double x[3] = {ps.position[prim].x, ps.position[prim].y, ps.position[prim].z};
-        return makeCandidate(o, d, x, ps.h[prim], ps.volume[prim], prim, c);
-    }
-
-    // Merges ray i's bundle hits into its candidates (both in particle order), dropping the
-    // candidates that ended before r.t.
-    void updateCandidates(int i, MarchRay& r, Workspace& w) const {
-        std::vector<Candidate>& cur = w.candidates[i];
-        std::vector<Candidate>& out = w.merged;
-        out.clear();
-        const std::uint32_t bit = 1u << i;
-        std::size_t a = 0;
-        for (const BundleHit& bh : w.bundleHits) {
-            if (!(bh.mask & bit)) continue;
-            while (a < cur.size() && cur[a].index < bh.prim) {
-                if (cur[a].t1 > r.t) out.push_back(cur[a]);
-                ++a;
+    // Splits the parallel rays ids[0, count) into groups that stay within the shadow margin of
+    // their group's central line (through its mean origin) near any particle they may meet, so
+    // that each is gathered as one bundle: a group that does not fit is halved across its
+    // widest spread. Appends each group's end (in the reordered ids) to `ends`.
+    void groupParallel(int* ids, int count, const glm::dvec3& direction, const Workspace& w,
+                       std::vector<int>& ends, int offset = 0) const {
+        glm::dvec3 mean(0.0);
+        for (int k = 0; k < count; ++k) mean += w.rays[ids[k]].ray.origin;
+        mean /= double(count);
+        // The smallest h of the bodies the rays cross.
+        double hMin = INFINITY;
+        for (const auto& b : bodyRanges) {
+            bool meets = false;
+            for (int k = 0; k < count && !meets && b.hMin < hMin; ++k) {
+                const MarchRay& r = w.rays[ids[k]];
+                meets = rayMeetsBox(r.ray, r.t, r.tEnd, b.lo, b.hi);
             }
-            if (a < cur.size() && cur[a].index == bh.prim) continue;  // carried already
-            Candidate c;
-            if (candidateFor(r.ray, bh.prim, c) && c.t1 > r.t) {
-                out.push_back(c);
-                ++w.counters.candidates;
+            if (meets) hMin = std::min(hMin, b.hMin);
+        }
+        glm::dvec3 perp[MAX_RAYS] = {};
+        int widest = 0;
+        double widest2 = 0.0;
+        for (int k = 0; k < count; ++k) {
+            const glm::dvec3 off = w.rays[ids[k]].ray.origin - mean;
+            perp[k] = off - glm::dot(off, direction) * direction;
+            if (glm::dot(perp[k], perp[k]) > widest2) {
+                widest2 = glm::dot(perp[k], perp[k]);
+                widest = k;
             }
         }
-        for (; a < cur.size(); ++a)
-            if (cur[a].t1 > r.t) out.push_back(cur[a]);
-        std::swap(cur, out);
+        const double limit = SHADOW_MARGIN * hMin * 0.999;
+        if (widest2 <= limit * limit) {
+            ends.push_back(offset + count);
+            return;
+        }
+        // Order along the widest offset and split at the median.
+        const glm::dvec3 axis = perp[widest];
+        int order[MAX_RAYS], sorted[MAX_RAYS];
+        for (int k = 0; k < count; ++k) order[k] = k;
+        std::sort(order, order + count, [&](int a, int b) {
+            const double pa = glm::dot(perp[a], axis), pb = glm::dot(perp[b], axis);
+            return pa < pb || (pa == pb && ids[a] < ids[b]);
+        });
+        for (int k = 0; k < count; ++k) sorted[k] = ids[order[k]];
+        std::copy(sorted, sorted + count, ids);
+        const int half = count / 2;
+        groupParallel(ids, half, direction, w, ends, offset);
+        groupParallel(ids + half, count - half, direction, w, ends, offset + half);
     }
 
-    // Marches the rays of w.rays[0, n) to their first crossing. Primary bundles pass the
-    // block's central direction; shadow bundles (parallel rays) pass their direction too.
-    void march(int n, const glm::dvec3& centralDirection, bool parallel, Workspace& w) const {
-        const double segmentLength = settings.segmentLength;
+    // Skips empty space: moves each active ray of the bundle that needs it to its next
+    // support-sphere entry (that of the sphere grown by the margin, a little before), or ends
+    // it when there is none. Rays asking for the first time skip the bodies their lines miss,
+    // then share one query along the central line: a bundle that meets nothing (most blocks,
+    // most shadow bundles) costs that one query. A primary ray then starts abreast of the
+    // shared entry; a shared entry can lie well before a ray's own, so later entries (and
+    // shadow rays, whose bundles spread more) take their own queries, packets of rays.
+    void enter(const int* ids, int n, const glm::dvec3& origin, const glm::dvec3& centralDirection, bool parallel,
+               Workspace& w) const {
         const auto& ps = particles.particles;
-        for (int round = 0;; ++round) {
-            // Entries: skip empty space with one closest-hit query per ray that needs it.
-            int active = 0;
-            for (int i = 0; i < n; ++i) {
-                MarchRay& r = w.rays[i];
-                if (!r.active) continue;
-                if (r.needEntry) {
-                    SphereScene::Hit h;
-                    if (!support->closestHit(glm::vec3(r.ray.origin), glm::vec3(r.ray.direction),
-                                             static_cast<float>(r.t), static_cast<float>(r.tEnd), h)) {
-                        r.active = false;
-                        continue;
-                    }
-                    // Embree's float t may land a little after the true entry: back off so
-                    // that the segment starts outside every support sphere.
-                    r.hRef = ps.h[h.prim];
-                    r.t = std::max(r.t, double(h.t) - 1e-3 * r.hRef);
-                    w.candidates[i].clear();
-                    r.needEntry = false;
-                }
-                ++active;
+        int shared[MAX_RAYS], own[MAX_RAYS], sharedCount = 0, ownCount = 0;
+        for (int k = 0; k < n; ++k) {
+            MarchRay& r = w.rays[ids[k]];
+            if (!r.active || !r.needEntry) continue;
+            if (!r.sharedEntry) {
+                own[ownCount++] = ids[k];
+                continue;
             }
-            if (active == 0) return;
-
-            // The bundle: every active ray's next segment.
-            RayBundle bundle;
-            bundle.count = n;
-            double segEnd[MAX_RAYS];
-            glm::dvec3 lo(INFINITY), hi(-INFINITY), originSum(0.0);
-            for (int i = 0; i < n; ++i) {
-                MarchRay& r = w.rays[i];
-                if (!r.active) {
-                    bundle.set(i, r.ray.origin, r.ray.direction, 1.0, 0.0);  // empty interval
+            r.sharedEntry = false;
+            bool meets = false;
+            for (const auto& b : bodyRanges) meets = meets || rayMeetsBox(r.ray, r.t, r.tEnd, b.lo, b.hi);
+            if (!meets) {
+                r.active = false;
+                continue;
+            }
+            shared[sharedCount++] = ids[k];
+        }
+        if (sharedCount > 0) {
+            // Ray i's parameter s lies abreast of origin + a direction with a = along_i + s cos_i.
+            double along[MAX_RAYS], cosine[MAX_RAYS], a0 = INFINITY, a1 = -INFINITY;
+            bool positive = true;
+            for (int k = 0; k < sharedCount; ++k) {
+                const MarchRay& r = w.rays[shared[k]];
+                along[k] = glm::dot(r.ray.origin - origin, centralDirection);
+                cosine[k] = glm::dot(r.ray.direction, centralDirection);
+                positive = positive && cosine[k] > 0.0;
+                a0 = std::min(a0, along[k] + r.t * cosine[k]);
+                a1 = std::max(a1, along[k] + r.tEnd * cosine[k]);
+            }
+            BundleGather::Entry e{};
+            const double shift = std::min(a0, 0.0);
+            const bool found = !positive || bundles->firstEntry(origin + shift * centralDirection, centralDirection,
+                                                                a0 - shift, a1 - shift, e);
+            e.t += shift;
+            for (int k = 0; k < sharedCount; ++k) {
+                MarchRay& r = w.rays[shared[k]];
+                if (!found) {
+                    r.active = false;
                     continue;
                 }
-                segEnd[i] = std::min(r.t + segmentLength * r.hRef, r.tEnd);
-                bundle.set(i, r.ray.origin, r.ray.direction, r.t, segEnd[i]);
-                const glm::dvec3 a = r.ray.origin + r.t * r.ray.direction;
-                const glm::dvec3 b = r.ray.origin + segEnd[i] * r.ray.direction;
-                lo = glm::min(lo, glm::min(a, b));
-                hi = glm::max(hi, glm::max(a, b));
-                originSum += r.ray.origin;
-            }
-            // The central line: through the mean origin (the camera, for primary rays).
-            const glm::dvec3 origin = originSum / double(active);
-            bool together = true;
-            if (parallel) {
-                // Parallel rays stay at their origin's offset from the central line: it must
-                // be within the margin of every particle they may meet.
-                double hMin = INFINITY;
-                for (const auto& b : bodyRanges)
-                    if (boxesOverlap(lo, hi, b.lo, b.hi)) hMin = std::min(hMin, b.hMin);
-                for (int i = 0; i < n && together; ++i) {
-                    if (!w.rays[i].active) continue;
-                    const glm::dvec3 off = w.rays[i].ray.origin - origin;
-                    const glm::dvec3 perp = off - glm::dot(off, centralDirection) * centralDirection;
-                    together = glm::length(perp) <= SHADOW_MARGIN * hMin * 0.999;
-                }
-            }
-            w.bundleHits.clear();
-            if (together) {
-                double tnear = INFINITY, tfar = -INFINITY;
-                for (int i = 0; i < n; ++i) {
-                    const MarchRay& r = w.rays[i];
-                    if (!r.active) continue;
-                    for (double t : {r.t, segEnd[i]}) {
-                        const double along =
-                            glm::dot(r.ray.origin + t * r.ray.direction - origin, centralDirection);
-                        tnear = std::min(tnear, along);
-                        tfar = std::max(tfar, along);
+                if (positive) {
+                    // No support sphere is entered before the point abreast of the grown
+                    // one's entry.
+                    r.t = std::max(r.t, (e.t - along[k]) / cosine[k] - ENTRY_BACKOFF * ps.h[e.prim]);
+                    if (!parallel) {
+                        r.hRef = ps.h[e.prim];
+                        r.needEntry = false;
+                        r.fromSharedEntry = true;
+                        continue;
                     }
                 }
-                // Shift the central origin so that its range starts at 0.
-                const double shift = std::min(tnear, 0.0);
-                const glm::dvec3 o = origin + shift * centralDirection;
-                const double slack = 1e-6 * std::max(std::abs(tfar - shift), 1.0);
-                bundles->gather(bundle, o, centralDirection, tnear - shift - slack, tfar - shift + slack,
-                                w.bundleHits);
-                ++w.counters.bundles;
-            } else {
-                // Too spread out: each ray on its own (its own line is the central line).
-                for (int i = 0; i < n; ++i) {
-                    const MarchRay& r = w.rays[i];
-                    if (!r.active) continue;
-                    RayBundle one;
-                    one.count = 1;
-                    one.set(0, r.ray.origin, r.ray.direction, r.t, segEnd[i]);
-                    const std::size_t before = w.bundleHits.size();
-                    bundles->gather(one, r.ray.origin, r.ray.direction, r.t, segEnd[i], w.bundleHits);
-                    for (std::size_t k = before; k < w.bundleHits.size(); ++k) w.bundleHits[k].mask = 1u << i;
-                    ++w.counters.bundles;
+                own[ownCount++] = shared[k];
+            }
+        }
+        BundleGather::Query queries[MAX_RAYS];
+        for (int k = 0; k < ownCount; ++k) {
+            const MarchRay& r = w.rays[own[k]];
+            queries[k] = {r.ray.origin, r.ray.direction, r.t, r.tEnd};
+        }
+        for (int k = 0; k < ownCount; k += BundleGather::PACKET) {
+            const int m = std::min(BundleGather::PACKET, ownCount - k);
+            BundleGather::Entry entries[BundleGather::PACKET];
+            const std::uint32_t found = bundles->firstEntries(m, queries + k, entries);
+            for (int j = 0; j < m; ++j) {
+                MarchRay& r = w.rays[own[k + j]];
+                if (!(found >> j & 1u)) {
+                    r.active = false;
+                    continue;
+                }
+                r.hRef = ps.h[entries[j].prim];
+                r.t = std::max(r.t, entries[j].t - ENTRY_BACKOFF * r.hRef);
+                r.needEntry = false;
+            }
+        }
+    }
+
+    // Marches the rays w.rays[ids[0, n)] to their first crossing as one bundle; fills
+    // hits[id] for the rays that find one when `hits` is given. Primary bundles pass the
+    // block's central direction, shadow bundles (parallel rays within the shadow margin of
+    // the central line through their mean origin, groupParallel) the direction of the light.
+    void march(const int* ids, int n, const glm::dvec3& centralDirection, bool parallel, Workspace& w,
+               SurfaceHit* hits) const {
+        const double segmentLength = settings.segmentLength * (parallel ? SHADOW_SEGMENT_SCALE : 1.0);
+        // The central line: through the mean origin (the camera, for primary rays).
+        glm::dvec3 origin(0.0);
+        for (int k = 0; k < n; ++k) origin += w.rays[ids[k]].ray.origin;
+        origin /= double(n);
+        for (;;) {
+            enter(ids, n, origin, centralDirection, parallel, w);
+            // The bundle: every active ray's next segment.
+            RayBundle bundle;
+            int lane[MAX_RAYS];
+            double segEnd[MAX_RAYS];
+            for (int k = 0; k < n; ++k) {
+                MarchRay& r = w.rays[ids[k]];
+                if (!r.active) continue;
+                const double extra = r.fromSharedEntry ? SHARED_ENTRY_EXTRA : 0.0;
+                r.fromSharedEntry = false;
+                segEnd[bundle.count] = std::min(r.t + (segmentLength * r.segmentScale + extra) * r.hRef, r.tEnd);
+                lane[bundle.count] = ids[k];
+                bundle.add(r.ray.origin, r.ray.direction, r.t, segEnd[bundle.count]);
+            }
+            const int active = bundle.count;
+            if (active == 0) return;
+            // The part of the central line abreast of every segment.
+            double tnear = INFINITY, tfar = -INFINITY;
+            for (int j = 0; j < active; ++j) {
+                const MarchRay& r = w.rays[lane[j]];
+                for (double t : {r.t, segEnd[j]}) {
+                    const double along = glm::dot(r.ray.origin + t * r.ray.direction - origin, centralDirection);
+                    tnear = std::min(tnear, along);
+                    tfar = std::max(tfar, along);
                 }
             }
-            // Particle order, once per round: the merge and the summation order rely on it.
-            std::sort(w.bundleHits.begin(), w.bundleHits.end(), [](const BundleHit& a, const BundleHit& b) {
-                return a.prim < b.prim || (a.prim == b.prim && a.mask < b.mask);
-            });
-            // Combine duplicates (the per-ray fallback can report a particle for several rays).
-            std::size_t k = 0;
-            for (std::size_t j = 0; j < w.bundleHits.size(); ++j) {
-                if (k > 0 && w.bundleHits[k - 1].prim == w.bundleHits[j].prim)
-                    w.bundleHits[k - 1].mask |= w.bundleHits[j].mask;
-                else
-                    w.bundleHits[k++] = w.bundleHits[j];
-            }
-            w.bundleHits.resize(k);
+            // Shift the central origin so that its range starts at 0.
+            const double shift = std::min(tnear, 0.0);
+            const double slack = 1e-6 * std::max(std::abs(tfar - shift), 1.0);
+            w.prims.clear();
+            bundle.finish();
+            bundles->gather(bundle, origin + shift * centralDirection, centralDirection, tnear - shift - slack,
+                            tfar - shift + slack, w.prims);
+            ++w.counters.bundles;
+            // Particle order: it is the summation order, so that it does not depend on
+            // Embree's traversal order.
+            std::sort(w.prims.begin(), w.prims.end());
+            w.batch.assign(w.prims, fieldParticles);
 
-            for (int i = 0; i < n; ++i) {
-                MarchRay& r = w.rays[i];
-                if (!r.active) continue;
-                updateCandidates(i, r, w);
+            for (int j = 0; j < active; ++j) {
+                MarchRay& r = w.rays[lane[j]];
                 ++w.counters.segments;
-                std::vector<Candidate>& cands = w.candidates[i];
-                if (!cands.empty()) {
-                    w.field.assign(cands, r.t);
-                    r.crossing = findFirstCrossing(w.field, r.t, segEnd[i], crossingSettings(r.hRef));
-                    w.counters.evaluations += r.crossing.evaluations;
-                    switch (r.crossing.status) {
+                double hNear = 0.0;
+                if (!w.prims.empty()) {
+                    w.field.build(r.ray.origin, r.ray.direction, r.t, segEnd[j], w.batch);
+                    w.counters.candidates += w.field.candidates();
+                    // phi = 0 before the first support interval begins, and it never
+                    // exceeds the sum of the peaks (a ray grazing the outer layer).
+                    const double start = w.field.peakSum() < settings.surfaceLevel
+                                             ? INFINITY
+                                             : std::max(r.t, w.field.supportStart());
+                    // Primary rays: the block's last crossing, a little before, as a hint.
+                    const double hint = hits ? w.lastCrossing - HINT_BACKOFF * r.hRef : NAN;
+                    const Crossing crossing =
+                        start < segEnd[j] ? findFirstCrossing(w.field, start, segEnd[j], crossingSettings(r.hRef), hint)
+                                          : Crossing{};
+                    w.counters.evaluations += crossing.evaluations;
+                    switch (crossing.status) {
                         case Crossing::Status::Hit:
                         case Crossing::Status::Inside:
                             r.hit = true;
                             r.active = false;
+                            if (hits) {
+                                surfaceHit(r, crossing, w, hits[lane[j]]);
+                                w.lastCrossing = crossing.t;
+                            }
                             continue;
                         case Crossing::Status::Unresolved:
                             ++w.counters.unresolved;
@@ -277,87 +359,101 @@ struct SurfaceTracer::Impl {
                         case Crossing::Status::Miss:
                             break;
                     }
+                    if (crossing.evaluations <= 1)
+                        r.segmentScale = std::min(2.0 * r.segmentScale, MAX_SEGMENT_SCALE);
+                    // The next segment's scale: the particles that reach past this one.
+                    hNear = w.field.largestHBeyond(segEnd[j]);
                 }
-                r.t = segEnd[i];
+                r.t = segEnd[j];
                 if (r.t >= r.tEnd) {
                     r.active = false;
                     continue;
                 }
-                // The next segment's scale: the particles that reach past this one. None:
-                // empty space follows, skip it.
-                double hNear = 0.0;
-                for (const auto& c : cands)
-                    if (c.t0 <= r.t && c.t1 > r.t) hNear = std::max(hNear, 1.0 / c.invH);
+                // None: empty space follows, skip it.
                 if (hNear > 0.0) r.hRef = hNear;
                 else r.needEntry = true;
             }
         }
     }
 
-    // Analytic normal and kernel-weighted attributes at a surface point, from the candidates
-    // whose support contains it (those with t0 < t < t1 on the ray that found it).
-    void surfaceAttributes(const glm::dvec3& p, double t, const std::vector<Candidate>& cands,
-                           SurfaceHit& hit) const {
+    // Everything the AOV image records about a ray's crossing, from the segment's candidates.
+    void surfaceHit(const MarchRay& r, const Crossing& crossing, Workspace& w, SurfaceHit& hit) const {
+        hit.t = crossing.t;
+        hit.position = r.ray.origin + crossing.t * r.ray.direction;
+        hit.outside = r.ray.origin + crossing.tBelow * r.ray.direction;
+        surfaceAttributes(crossing.t, w, hit);
+        if (!(hit.hRef > 0.0)) hit.hRef = r.hRef;
+    }
+
+    // Analytic normal and kernel-weighted attributes at the surface point p(t) of the segment
+    // in w.field.
+    void surfaceAttributes(double t, Workspace& w, SurfaceHit& hit) const {
         const auto& ps = particles.particles;
-        struct Weighted {
-            std::uint32_t index;
-            double w;
-        };
-        thread_local std::vector<Weighted> near;
-        near.clear();
-        glm::dvec3 grad(0.0);
-        // The visible body: the one with the largest summed weight (a few bodies at most).
-        std::uint32_t ids[8];
-        double sums[8];
-        int bodies = 0;
-        for (const auto& c : cands) {
-            if (!(c.t0 < t && c.t1 > t)) continue;
-            const glm::dvec3 r = p - glm::dvec3(ps.position[c.index]);
-            const double q = std::sqrt(glm::dot(r, r)) * c.invH;
-            if (q >= core::M4_SUPPORT) continue;
-            const double w = c.coef * core::m4Shape(q);
-            if (q > 0.0) grad += r * (c.coef * core::m4ShapeDerivative(q) * c.invH * c.invH / q);
-            near.push_back({c.index, w});
-            const std::uint32_t b = ps.body[c.index];
-            int k = 0;
-            while (k < bodies && ids[k] != b) ++k;
-            if (k == bodies && bodies < 8) {
-                ids[bodies] = b;
-                sums[bodies++] = 0.0;
+        const RayField& field = w.field;
+        const SurfacePoint point = field.surfacePoint(t, w.weights);
+        const double length = glm::length(point.gradient);
+        hit.normal = length > 0.0 ? glm::vec3(-point.gradient / length) : glm::vec3(0.0f);
+        hit.hRef = point.hMin;
+        // The particles whose support contains the point are those of positive weight.
+        const std::size_t lanes = field.size();
+        float* weights = w.weights.data();
+        const std::uint32_t* index = field.indices();
+        // The visible body: the one with the largest summed weight (a few bodies at most); the
+        // others' particles are left out from here on.
+        std::uint32_t best = 0;
+        if (particles.bodies.size() > 1) {
+            std::uint32_t ids[8] = {};
+            float sums[8] = {};
+            int bodies = 0;
+            for (std::size_t c = 0; c < lanes; ++c) {
+                if (!(weights[c] > 0.0f)) continue;
+                const std::uint32_t b = ps.body[index[c]];
+                int m = 0;
+                while (m < bodies && ids[m] != b) ++m;
+                if (m == bodies && bodies < 8) {
+                    ids[bodies] = b;
+                    sums[bodies++] = 0.0f;
+                }
+                if (m < bodies) sums[m] += weights[c];
             }
-            if (k < bodies) sums[k] += w;
+            int bestM = 0;
+            for (int m = 1; m < bodies; ++m)
+                if (sums[m] > sums[bestM]) bestM = m;
+            best = ids[bestM];
+            for (std::size_t c = 0; c < lanes; ++c)
+                if (ps.body[index[c]] != best) weights[c] = 0.0f;
         }
-        int bestK = 0;
-        for (int k = 1; k < bodies; ++k)
-            if (sums[k] > sums[bestK]) bestK = k;
-        const std::uint32_t best = bodies > 0 ? ids[bestK] : 0;
-        const double g = glm::length(grad);
-        hit.normal = g > 0.0 ? glm::vec3(-grad / g) : glm::vec3(0.0f);
         // uv and glow: normalised kernel weights over the visible body's particles; u is
-        // unwrapped around the heaviest particle's u so the seam does not average to 0.5.
-        double uRef = 0.0, wMax = -1.0;
-        for (const auto& [index, w] : near)
-            if (ps.body[index] == best && w > wMax) {
-                wMax = w;
-                uRef = ps.uv[index].x;
+        // unwrapped around the heaviest particle's u (the first of equals) so that the seam
+        // does not average to 0.5.
+        std::size_t heaviest = lanes;
+        float heaviestWeight = 0.0f;
+        for (std::size_t c = 0; c < lanes; ++c)
+            if (weights[c] > heaviestWeight) {
+                heaviestWeight = weights[c];
+                heaviest = c;
             }
-        double wsum = 0.0;
-        glm::dvec2 uv(0.0);
-        glm::dvec3 glow(0.0);
-        for (const auto& [index, w] : near) {
-            if (ps.body[index] != best) continue;
-            const glm::vec2 puv = ps.uv[index];
-            uv += w * glm::dvec2(puv.x - std::round(puv.x - uRef), puv.y);
-            glow += w * glm::dvec3(ps.glow[index]);
-            wsum += w;
+        if (heaviest == lanes) return;
+        const float uRef = ps.uv[index[heaviest]].x;
+        float wsum = 0.0f, u = 0.0f, v = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
+        for (std::size_t c = 0; c < lanes; ++c) {
+            const float weight = weights[c];
+            if (!(weight > 0.0f)) continue;
+            const glm::vec2 puv = ps.uv[index[c]];
+            const glm::vec3 glow = ps.glow[index[c]];
+            // u and uRef lie in [0, 1): the nearest integer to their difference (std::round,
+            // a library call on baseline x86-64) is -1, 0 or 1.
+            const float du = puv.x - uRef;
+            u += weight * (puv.x - (du >= 0.5f ? 1.0f : du <= -0.5f ? -1.0f : 0.0f));
+            v += weight * puv.y;
+            r += weight * glow.r;
+            g += weight * glow.g;
+            b += weight * glow.b;
+            wsum += weight;
         }
-        if (wsum > 0.0) {
-            uv /= wsum;
-            glow /= wsum;
-        }
-        uv.x -= std::floor(uv.x);
-        hit.uv = glm::vec2(uv);
-        hit.glow = glm::vec3(glow);
+        u /= wsum;
+        hit.uv = glm::vec2(u - std::floor(u), v / wsum);
+        hit.glow = glm::vec3(r, g, b) / wsum;
         hit.body = best;
         hit.material = particles.bodies.empty() ? 0 : particles.bodies[best].material;
     }
@@ -422,6 +518,7 @@ void SurfaceTracer::tracePrimary(int n, const core::Ray* rays, const double* tne
         for (int i = 0; i < n; ++i) found[i] = im.traceSphere(rays[i], tnear[i], tfar[i], hits[i]);
         return;
     }
+    w.lastCrossing = NAN;
     for (int i = 0; i < n; ++i) {
         MarchRay& r = w.rays[i];
         r = MarchRay{};
@@ -429,30 +526,16 @@ void SurfaceTracer::tracePrimary(int n, const core::Ray* rays, const double* tne
         r.t = tnear[i];
         r.tEnd = tfar[i];
     }
-    im.march(n, central.direction, false, w);
-    for (int i = 0; i < n; ++i) {
-        const MarchRay& r = w.rays[i];
-        found[i] = r.hit;
-        w.carry[i].clear();
-        if (!r.hit) continue;
-        SurfaceHit& hit = hits[i];
-        hit.t = r.crossing.t;
-        hit.position = r.ray.origin + r.crossing.t * r.ray.direction;
-        hit.outside = r.ray.origin + r.crossing.tBelow * r.ray.direction;
-        double hMin = INFINITY;
-        for (const auto& c : w.candidates[i]) {
-            if (c.t0 < r.crossing.t && c.t1 > r.crossing.t) hMin = std::min(hMin, 1.0 / c.invH);
-            if (c.t0 < r.crossing.tBelow && c.t1 > r.crossing.tBelow) w.carry[i].push_back(c.index);
-        }
-        hit.hRef = std::isfinite(hMin) ? hMin : r.hRef;
-        im.surfaceAttributes(hit.position, r.crossing.t, w.candidates[i], hit);
-    }
+    int ids[MAX_RAYS] = {};
+    for (int i = 0; i < n; ++i) ids[i] = i;
+    im.march(ids, n, central.direction, false, w, hits);
+    for (int i = 0; i < n; ++i) found[i] = w.rays[i].hit;
 }
 
 void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* found,
                                  const glm::dvec3& toLight, float* visibility, Workspace& w) const {
     const Impl& im = *mImpl;
-    bool traced[MAX_RAYS] = {};
+    int traced[MAX_RAYS], count = 0;
     for (int i = 0; i < n; ++i) {
         MarchRay& r = w.rays[i];
         r = MarchRay{};
@@ -470,24 +553,22 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
                                 : 1.0f;
             continue;
         }
+        // From just outside the surface; the first gather also reports the support spheres
+        // that contain the origin.
         r.ray = core::Ray{hit.outside, toLight};
         r.t = 2.0 * im.settings.rootTolerance * hit.hRef;
         r.tEnd = im.exitDistance(hit.outside, toLight);
         r.hRef = hit.hRef;
         r.needEntry = false;
         r.active = true;
-        traced[i] = true;
-        // The spheres that contain the origin, handed over by the primary ray (in particle
-        // order), re-expressed along the shadow ray.
-        w.candidates[i].clear();
-        for (std::uint32_t prim : w.carry[i]) {
-            Candidate c;
-            if (im.candidateFor(r.ray, prim, c) && c.t1 > r.t) w.candidates[i].push_back(c);
-        }
+        traced[count++] = i;
     }
-    if (!im.settings.spheres) im.march(n, toLight, true, w);
-    for (int i = 0; i < n; ++i)
-        if (traced[i]) visibility[i] = w.rays[i].hit ? 0.0f : 1.0f;
+    if (count == 0) return;
+    w.groupEnds.clear();
+    im.groupParallel(traced, count, toLight, w, w.groupEnds);
+    for (std::size_t g = 0, begin = 0; g < w.groupEnds.size(); begin = w.groupEnds[g++])
+        im.march(traced + begin, w.groupEnds[g] - int(begin), toLight, true, w, nullptr);
+    for (int k = 0; k < count; ++k) visibility[traced[k]] = w.rays[traced[k]].hit ? 0.0f : 1.0f;
 }
 
 }  // namespace twinrender::raymarch

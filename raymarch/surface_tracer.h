@@ -4,11 +4,13 @@
 //
 // A block's rays advance together in rounds: each round, every unfinished ray takes its next
 // segment (a few h long), one bundle gather (bundle_gather.h) finds the support spheres that
-// overlap each ray's segment, and the ray's first crossing in the segment is searched
-// (implicit_field.h). A ray's candidates are kept in particle order, which is also the
+// overlap some ray's segment, and each ray's first crossing in its segment is searched
+// (implicit_field.h) among them. They are taken in particle order, which is also the
 // summation order, so the result does not depend on Embree's traversal order or on threads.
-// Shadow rays of a block are parallel (a directional light) and march the same way, starting
-// inside the supports around their hit, which the primary ray hands over.
+// Empty space is skipped with one query for the block, and a ray's search starts from the
+// crossing of the block's previous ray when the field is proven below the level up to there.
+// Shadow rays of a block are parallel (a directional light) and march the same way, in
+// bundles that stay within the shadow margin of their central line.
 #pragma once
 
 #include <cstdint>
@@ -37,8 +39,8 @@ struct SurfaceHit {
 
 struct TraceCounters {
     std::uint64_t unresolved = 0;   // rays given up at the iteration limit (reported)
-    std::uint64_t candidates = 0;   // support spheres turned into candidates
-    std::uint64_t evaluations = 0;  // field evaluations
+    std::uint64_t candidates = 0;   // support spheres overlapping a searched segment
+    std::uint64_t evaluations = 0;  // passes over a segment's candidates (samples, bounds)
     std::uint64_t segments = 0;     // ray segments searched
     std::uint64_t bundles = 0;      // bundle gathers
 };
@@ -46,8 +48,8 @@ struct TraceCounters {
 class SurfaceTracer {
 public:
     static constexpr int BLOCK = 4;              // pixel block side
-    static constexpr int MAX_RAYS = 32;          // rays per bundle (one mask bit each)
-    static constexpr double SHADOW_MARGIN = 0.5; // shadow-bundle spread allowed, in units of h
+    static constexpr int MAX_RAYS = 32;          // rays per bundle
+    static constexpr double SHADOW_MARGIN = 0.2; // shadow-bundle spread allowed, in units of h
 
     SurfaceTracer(const EmbreeDevice& device, const core::Camera& camera,
                   const core::SceneParticles& particles, const Settings& settings);
