@@ -210,8 +210,9 @@ int runSuite(const RunOptions& o) {
                            out);
     }
 
-    // One screen: a row per scene.
-    std::printf("%-14s %-5s %8s %8s %8s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM", "normal°",
+    // One screen: a row per scene. printf pads bytes, not columns: the widths of the two
+    // headers with multi-byte characters are widened by their extra bytes (ꟻ 3, ° 2).
+    std::printf("%-14s %-5s %10s %8s %9s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM", "normal°",
                 "cov. IoU", "realtime", "reference", "speed");
     for (const auto& r : run.scenes) {
         auto m = [&](const char* k) {

@@ -33,3 +33,21 @@ function(twinrender_library name)
     gtest_discover_tests(${name}_gl_tests DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "gl")
   endif()
 endfunction()
+
+# twinrender_embed_files(TARGET NAMESPACE ns FUNCTION f ORIGIN dir FILES...): compiles FILES
+# into TARGET as `std::span<const core::EmbeddedFile> ns::f()` (cmake/embed_files.cmake),
+# regenerated when a file changes.
+function(twinrender_embed_files target)
+  cmake_parse_arguments(ARG "" "NAMESPACE;FUNCTION;ORIGIN" "FILES" ${ARGN})
+  set(_script "${TWINRENDER_SOURCE_DIR}/cmake/embed_files.cmake")
+  set(_out "${CMAKE_CURRENT_BINARY_DIR}/embedded_${ARG_FUNCTION}.cpp")
+  add_custom_command(
+    OUTPUT "${_out}"
+    COMMAND "${CMAKE_COMMAND}" "-DOUTPUT=${_out}" "-DFILES=${ARG_FILES}"
+            "-DNAMESPACE=${ARG_NAMESPACE}" "-DFUNCTION=${ARG_FUNCTION}" "-DORIGIN=${ARG_ORIGIN}"
+            -P "${_script}"
+    DEPENDS ${ARG_FILES} "${_script}"
+    COMMENT "Embedding ${ARG_ORIGIN}"
+    VERBATIM)
+  target_sources(${target} PRIVATE "${_out}")
+endfunction()

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <cmath>
+#include <string>
 
 #include <glm/mat4x4.hpp>
 
@@ -13,7 +14,7 @@ namespace {
 std::vector<tc::Material> oneMaterial(double diffuse, double specular, double city) {
     tc::Scene scene;
     tc::MaterialDesc m;
-    m.name = "m";
+    m.name = std::string(1, 'm');  // a literal assignment trips GCC 12's -Wrestrict (PR 105329)
     m.diffuse.value = glm::dvec3(diffuse);
     m.specular.value = glm::dvec3(specular);
     m.cityLights.value = glm::dvec3(city);

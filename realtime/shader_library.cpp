@@ -48,8 +48,7 @@ struct Composer {
 }  // namespace
 
 std::string_view shaderFile(std::string_view name) {
-    for (const auto& f : embeddedShaderFiles())
-        if (f.name == name) return f.text;
+    if (const auto text = core::findEmbeddedFile(embeddedShaderFiles(), name)) return *text;
     throw gl::Error(fmt::format("no embedded shader file '{}' (realtime/shaders/)", name));
 }
 

@@ -1,4 +1,4 @@
-// The GLSL files of realtime/shaders/, embedded at build time (embed_shaders.cmake), and the
+// The GLSL files of realtime/shaders/, embedded at build time (cmake/embed_files.cmake), and the
 // programs built from them. A shader is composed as: "#version 450 core", the variant's
 // #defines, then the file with each `#include "name.glsl"` line replaced by that file (once
 // per shader, like #pragma once), with #line directives so compile errors name the file.
@@ -10,16 +10,14 @@
 #include <string_view>
 #include <vector>
 
+#include "core/embedded_file.h"
 #include "realtime/gl/program.h"
 
 namespace twinrender::realtime {
 
-struct EmbeddedFile {
-    std::string_view name;  // file name, e.g. "gbuffer.frag"
-    std::string_view text;
-};
+using core::EmbeddedFile;
 
-// Every embedded file (defined in the generated embedded_shaders.cpp).
+// Every embedded file (defined in the generated embedded_embeddedShaderFiles.cpp).
 std::span<const EmbeddedFile> embeddedShaderFiles();
 
 // The text of one embedded file; throws gl::Error naming it when there is none.
