@@ -72,7 +72,9 @@ std::string xNumber(double x) {
 
 std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : compare::formatValue(v); }
 
-std::string percent(double fraction) { return fmt::format("{:.0f} %", 100.0 * fraction); }
+std::string percent(double fraction) {
+    return std::abs(fraction) < 0.1 ? fmt::format("{:.1f} %", 100.0 * fraction) : fmt::format("{:.0f} %", 100.0 * fraction);
+}
 
 json jsonOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
@@ -100,53 +102,48 @@ std::vector<StudyPoint> depthPoints(bool quick) {
     return pts;
 }
 
-// A point is broken when id.mismatch is above the study's best value + 0.02 (2 % of the
-// covered pixels show the wrong body) or the bodies are lost (coverage.iou below 0.5, or no
-// pixel covered in both: id.mismatch NaN). A series breaks at the smallest far/near from which
-// every point is broken.
-bool depthBroken(const StudyRow& r, double limit) {
-    const double m = metricOf(r, "id.mismatch"), iou = metricOf(r, "coverage.iou");
-    return !(m <= limit) || !(iou >= 0.5);
-}
-
+// A series breaks at the smallest far/near from which occlusion.error (the reference's
+// covered pixels showing another body or none) stays above the study's best value + 0.02.
 void depthConclude(StudyResult& s) {
+    const std::string metric = "occlusion.error";
     double best = INFINITY;
     for (const StudyRow& r : s.rows)
-        if (std::isfinite(metricOf(r, "id.mismatch"))) best = std::min(best, metricOf(r, "id.mismatch"));
+        if (std::isfinite(metricOf(r, metric))) best = std::min(best, metricOf(r, metric));
     const double limit = (std::isfinite(best) ? best : 0.0) + 0.02;
     s.facts["limit"] = limit;
     std::string finding;
-    s.chart = seriesChart(s, "id.mismatch");
+    s.chart = seriesChart(s, metric);
+    std::map<double, std::string> marks;
     for (const auto& [series, rows] : bySeries(s)) {
-        double breaks = NAN, at = NAN, worst = 0.0;
-        bool lost = false;
-        double breakIou = NAN;
+        double breaks = NAN, worst = 0.0;
+        const StudyRow* at = nullptr;
         for (std::size_t i = 0; i < rows.size(); ++i) {
-            const double v = metricOf(*rows[i], "id.mismatch");
+            const double v = metricOf(*rows[i], metric);
             if (std::isfinite(v)) worst = std::max(worst, v);
             bool above = true;
-            for (std::size_t j = i; j < rows.size(); ++j) above = above && depthBroken(*rows[j], limit);
+            for (std::size_t j = i; j < rows.size(); ++j) above = above && !(metricOf(*rows[j], metric) <= limit);
             if (above && std::isnan(breaks)) {
                 breaks = rows[i]->x;
-                at = v;
-                breakIou = metricOf(*rows[i], "coverage.iou");
-                lost = !(breakIou >= 0.5);
+                at = rows[i];
             }
         }
         const std::string mode = series.substr(0, series.find(' '));
         s.facts["breaks_at"][mode] = jsonOrNull(breaks);
-        s.facts["worst_mismatch"][mode] = worst;
+        s.facts["worst"][mode] = worst;
         finding += finding.empty() ? "" : "; ";
-        if (std::isfinite(breaks)) {
-            finding += lost ? fmt::format("{} depth loses the bodies from far/near {} (coverage.iou {})", mode, xNumber(breaks),
-                                          num(breakIou))
-                            : fmt::format("{} depth orders the bodies wrongly from far/near {} (id.mismatch {})", mode,
-                                          xNumber(breaks), num(at));
-            s.chart.xMarks.push_back({breaks, mode + " breaks"});
+        if (at) {
+            // Wrong order (the other body shows) or lost (nothing shows).
+            const double mismatch = metricOf(*at, "id.mismatch");
+            finding += fmt::format("{} depth {} from far/near {} (occlusion.error {}, id.mismatch {})", mode,
+                                   std::isfinite(mismatch) && mismatch > 0.02 ? "orders the bodies wrongly" : "loses the bodies",
+                                   xNumber(breaks), num(metricOf(*at, metric)), num(mismatch));
+            marks[breaks] += (marks[breaks].empty() ? "" : ", ") + mode;
         } else {
-            finding += fmt::format("{} holds to {} (id.mismatch ≤ {})", mode, rows.empty() ? "-" : xNumber(rows.back()->x), num(worst));
+            finding += fmt::format("{} holds to {} (occlusion.error ≤ {})", mode, rows.empty() ? "-" : xNumber(rows.back()->x),
+                                   num(worst));
         }
     }
+    for (const auto& [x, modes] : marks) s.chart.xMarks.push_back({x, modes + " break"});
     s.finding = finding;
 }
 
@@ -388,10 +385,17 @@ void collisionConclude(StudyResult& s) {
     auto change = [](double a, double b) {
         return std::isfinite(a) && std::isfinite(b) && b > 0 ? fmt::format("{:+.0f} %", 100.0 * (a / b - 1.0)) : std::string("n/a");
     };
+    // Emission is constant per body here: a band error below this is rounding, not bleeding.
+    constexpr double EMISSION_FLOOR = 1e-4;
+    const std::string emission =
+        std::max(eOn, eOff) < EMISSION_FLOOR
+            ? fmt::format("emission does not bleed (band error below {:g} either way)", EMISSION_FLOOR)
+            : fmt::format("emission error {} with SSSS, {} without ({} from smoothing)", num(eOn), num(eOff), change(eOn, eOff));
+    s.facts["contact_over_interior"] = jsonOrNull(uvOn / interior);
     s.finding = fmt::format(
-        "in contact, the band along the bodies' boundary has uv error {} and emission error {} with SSSS, {} and {} without "
-        "({} and {} from smoothing); away from it uv.mean is {}",
-        num(uvOn), num(eOn), num(uvOff), num(eOff), change(uvOn, uvOff), change(eOn, eOff), num(interior));
+        "in contact, the uv error along the bodies' boundary is {} with SSSS and {} without ({} from smoothing), {}x the "
+        "interior's {}; {}",
+        num(uvOn), num(uvOff), change(uvOn, uvOff), num(uvOn / interior), num(interior), emission);
 }
 
 // ---- temporal ---------------------------------------------------------------------------------
@@ -455,40 +459,41 @@ const std::vector<StudyDef>& studies() {
     static const std::vector<StudyDef> all = {
         {"depth_range", "Depth range",
          "Far/near from 1e2 to 1e12 with the scene scaled along: where does each depth mode (standard 24-bit, reversed float, "
-         "log) start to show the far body through the near one (id.mismatch, occlusion-order errors)?",
-         "depth_range.toml", "far / near", true, "id.mismatch",
-         {"id.mismatch", "depth.rel_mean", "coverage.iou", "beauty.flip", "count.unbracketed_rays"}, false, false, depthPoints,
-         nullptr, depthConclude},
+         "log) start to show the far body through the near one, or lose both (occlusion.error: the reference's covered pixels "
+         "where the real-time render shows another body or none)?",
+         "depth_range.toml", "far / near", true, "occlusion.error",
+         {"occlusion.error", "id.mismatch", "coverage.iou", "depth.rel_mean", "beauty.flip", "count.unbracketed_rays"}, false,
+         true, false, depthPoints, nullptr, depthConclude},
         {"thin_casters", "Thin casters",
          "A ring one particle thick shadows its planet: shadow-map resolution and bias against shadow IoU, acne (false shadow) "
          "and leaks (missed shadow), with the per-body occlusion spheres beside them.",
          "thin_casters.toml", "shadow-map resolution (texels per side)", true, "shadow.iou",
          {"shadow.iou", "shadow.false_shadow", "shadow.missed_shadow", "beauty.flip", "count.unbracketed_rays"}, false, false,
-         shadowPoints, nullptr, shadowConclude},
+         false, shadowPoints, nullptr, shadowConclude},
         {"particle_size", "Particle size on screen",
          "The camera backs away from a slab from about 40 pixels per particle to below one: SSSS's normal and uv errors and "
          "smoothness, on and off; where does the filter radius selection stop helping?",
          "particle_size.toml", "particle diameter on screen (px)", true, "normal.mean_deg",
          {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip", "count.unbracketed_rays"}, false,
-         false, sizePoints, particlePixels, sizeConclude},
+         false, false, sizePoints, particlePixels, sizeConclude},
         {"view_angle", "View angle",
          "The camera turns from face-on to grazing over a flat slab: the view dependence of the screen-space smoothing.",
          "view_angle.toml", "view angle from the surface normal (degrees)", false, "normal.mean_deg",
          {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip", "count.unbracketed_rays"}, false,
-         false, anglePoints, nullptr, angleConclude},
+         false, false, anglePoints, nullptr, angleConclude},
         {"temporal", "Temporal stability",
          "A camera orbit in steps of half a degree: flicker as the mean frame-to-frame ꟻLIP of the real-time renders minus the "
          "reference's.",
          "temporal.toml", "frame", false, "temporal.frame_flip",
          {"temporal.frame_flip", "temporal.reference_frame_flip", "beauty.flip", "normal.mean_deg", "count.unbracketed_rays"},
-         false, true, orbitPoints, nullptr, temporalConclude},
+         false, false, true, orbitPoints, nullptr, temporalConclude},
         {"collision", "Two bodies colliding",
          "Two bodies from apart to overlapping: bleeding of uv and emission across the contact, measured in a 3-pixel band "
          "along the boundary between them in the reference.",
          "collision.toml", "gap between the surfaces (scene units; < 0 overlapping)", false, "contact.uv_mean",
          {"contact.uv_mean", "contact.emission_rmse", "contact.pixels", "uv.mean", "emission.rmse", "id.mismatch",
           "count.unbracketed_rays"},
-         true, false, collisionPoints, nullptr, collisionConclude},
+         true, false, false, collisionPoints, nullptr, collisionConclude},
     };
     return all;
 }

@@ -31,6 +31,10 @@ struct StudyDef {
     // Also measure bleeding in the band around the contact of two bodies
     // (contact.uv_mean, contact.emission_rmse, contact.pixels; compare/contact_band.h).
     bool contactBand = false;
+    // Also measure occlusion.error: the fraction of the reference's covered pixels where the
+    // real-time render shows another body or none (id.mismatch counts only pixels covered in
+    // both, so it cannot see bodies that vanish).
+    bool occlusionError = false;
     // The points of one series are consecutive frames: each row also gets the ꟻLIP between
     // its frame and the previous one of its series, for the real-time render
     // (temporal.frame_flip) and the reference (temporal.reference_frame_flip).

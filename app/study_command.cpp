@@ -146,6 +146,16 @@ int runStudies(const StudyOptions& o) {
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
                 const compare::MetricResult m = compare::computeMetrics(ref.frame.image, test.frame.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
+                if (d.contactBand || d.occlusionError) {
+                    compare::MaskSettings maskSettings;
+                    maskSettings.interiorRadius = ms.interiorRadius;
+                    maskSettings.hasLight = ms.hasLight;
+                    maskSettings.lightDirection = ms.lightDirection;
+                    const compare::Masks masks = compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
+                    const double covered = double(masks.referenceCovered.count());
+                    if (d.occlusionError)
+                        row.metrics["occlusion.error"] = covered > 0 ? 1.0 - double(masks.sameBody.count()) / covered : NAN;
+                }
                 if (d.contactBand) {
                     compare::MaskSettings maskSettings;
                     maskSettings.interiorRadius = ms.interiorRadius;

@@ -400,10 +400,13 @@ std::string lineSvg(const LineChart& chart) {
     for (const auto& [x, text] : chart.xMarks) {
         if (!std::isfinite(x) || (logX && x <= 0.0) || !shown) continue;
         const double px = ax.map(x);
+        // Right of the line, or left of it where the text would leave the plot.
+        const bool flip = px + 3 + 6.0 * static_cast<double>(text.size()) > right;
         s += fmt::format(
             "<line class=\"mark\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
-            "<text class=\"mark-label\" x=\"{3:.1f}\" y=\"{4:.1f}\">{5}</text>\n",
-            px, top, bottom, px + 3, top + 11, xmlText(text));
+            "<text class=\"mark-label\" x=\"{3:.1f}\" y=\"{4:.1f}\"{5}>{6}</text>\n",
+            px, top, bottom, flip ? px - 3 : px + 3, top + 11, flip ? " text-anchor=\"end\"" : "",
+            xmlText(text));
     }
 
     for (std::size_t k = 0; k < chart.series.size(); ++k) {
