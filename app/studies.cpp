@@ -135,7 +135,9 @@ void depthConclude(StudyResult& s) {
             // Wrong order (the other body shows) or lost (nothing shows).
             const double mismatch = metricOf(*at, "id.mismatch");
             finding += fmt::format("{} depth {} from far/near {} (occlusion.error {}, id.mismatch {})", mode,
-                                   std::isfinite(mismatch) && mismatch > 0.02 ? "orders the bodies wrongly" : "loses the bodies",
+                                   std::isfinite(mismatch) && mismatch > 0.02 ? "orders the bodies wrongly"
+                                   : metricOf(*at, metric) < 0.5              ? "loses part of the bodies"
+                                                                              : "loses the bodies",
                                    xNumber(breaks), num(metricOf(*at, metric)), num(mismatch));
             marks[breaks] += (marks[breaks].empty() ? "" : ", ") + mode;
         } else {

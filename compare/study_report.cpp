@@ -175,6 +175,9 @@ void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& 
             s.unbracketedRays == 1.0 ? "" : "s", s.wallSeconds, base, base);
         h += "<img src=\"" + base + "study.svg\" alt=\"" + htmlEscape(s.title) +
              ": chart\" style=\"max-width:100%;height:auto\">\n";
+        // The rows fold away: the chart and the finding are the page's reading.
+        h += fmt::format("<details>\n<summary>{} point{}: renders and every metric</summary>\n", s.rows.size(),
+                         s.rows.size() == 1 ? "" : "s");
         h += "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr><th>Real-time</th>"
              "<th>Reference</th><th>Series</th><th class=\"num\">" +
              htmlEscape(s.xLabel) + "</th>";
@@ -217,7 +220,7 @@ void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& 
                     "class=\"fail\">{}</li></ul></td></tr>\n",
                     4 + s.columns.size(), htmlEscape(r.error));
         }
-        h += "</tbody></table></div>\n</section>\n";
+        h += "</tbody></table></div>\n</details>\n</section>\n";
     }
     h += "</main>\n";
     fs::create_directories(dir);
