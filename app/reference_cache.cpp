@@ -95,14 +95,13 @@ const Render& ReferenceCache::get(const LoadedScene& s, const std::string& key, 
     if (auto it = mLoaded.find(key); it != mLoaded.end()) return it->second;
     const fs::path dir = mDir / key;
     Render r;
-    if (fs::is_regular_file(dir / "raymarch.exr") &&
-        fs::is_regular_file(dir / "raymarch.json")) {
+    if (fs::is_regular_file(dir / "raymarch.exr") && fs::is_regular_file(dir / "raymarch.json")) {
         r.frame.image = core::readImage(dir / "raymarch.exr");
         std::ifstream in(dir / "raymarch.json");
         const json j = json::parse(in, nullptr, false);
         if (j.is_discarded())
-            throw core::InputError(fmt::format("{}: not JSON; delete the folder",
-                                               (dir / "raymarch.json").string()));
+            throw core::InputError(
+                fmt::format("{}: not JSON; delete the folder", (dir / "raymarch.json").string()));
         r.frame.renderer = "raymarch";
         r.frame.device = j.value("device", "");
         r.frame.settings = j.value("settings", json());

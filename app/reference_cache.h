@@ -27,8 +27,7 @@ class ReferenceCache {
     ReferenceCache(std::filesystem::path dir, const raymarch::EmbreeDevice& device, bool tty)
         : mDir(std::move(dir)), mDevice(device), mTty(tty) {}
 
-    const Render& get(const LoadedScene& scene, const std::string& key,
-                      const nlohmann::json& what);
+    const Render& get(const LoadedScene& scene, const std::string& key, const nlohmann::json& what);
 
   private:
     std::filesystem::path mDir;

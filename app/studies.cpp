@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <iterator>
+#include <map>
 #include <numbers>
 
 #include "compare/report.h"
@@ -28,7 +28,8 @@ double metricOf(const StudyRow& r, const std::string& metric) {
 std::vector<std::pair<std::string, std::vector<const StudyRow*>>> bySeries(const StudyResult& s) {
     std::vector<std::pair<std::string, std::vector<const StudyRow*>>> out;
     for (const StudyRow& r : s.rows) {
-        auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == r.series; });
+        auto it = std::find_if(out.begin(), out.end(),
+                               [&](const auto& p) { return p.first == r.series; });
         if (it == out.end()) {
             out.push_back({r.series, {}});
             it = std::prev(out.end());
@@ -36,12 +37,14 @@ std::vector<std::pair<std::string, std::vector<const StudyRow*>>> bySeries(const
         it->second.push_back(&r);
     }
     for (auto& [name, rows] : out)
-        std::stable_sort(rows.begin(), rows.end(), [](const StudyRow* a, const StudyRow* b) { return a->x < b->x; });
+        std::stable_sort(rows.begin(), rows.end(),
+                         [](const StudyRow* a, const StudyRow* b) { return a->x < b->x; });
     return out;
 }
 
-const std::vector<const StudyRow*>* seriesRows(const std::vector<std::pair<std::string, std::vector<const StudyRow*>>>& all,
-                                              const std::string& name) {
+const std::vector<const StudyRow*>* seriesRows(
+    const std::vector<std::pair<std::string, std::vector<const StudyRow*>>>& all,
+    const std::string& name) {
     for (const auto& [n, rows] : all)
         if (n == name) return &rows;
     return nullptr;
@@ -65,35 +68,48 @@ double meanOf(const std::vector<const StudyRow*>& rows, const std::string& metri
 std::string xNumber(double x) {
     if (!std::isfinite(x)) return compare::formatValue(x);
     const double e = std::round(std::log10(std::abs(x)));
-    if (std::abs(x) >= 1e4 && std::abs(x - std::pow(10.0, e)) < 1e-9 * std::abs(x)) return fmt::format("1e{}", e);
-    if (std::abs(x) >= 100 && std::abs(x) < 1e6 && x == std::round(x)) return fmt::format("{:.0f}", x);
+    if (std::abs(x) >= 1e4 && std::abs(x - std::pow(10.0, e)) < 1e-9 * std::abs(x))
+        return fmt::format("1e{}", e);
+    if (std::abs(x) >= 100 && std::abs(x) < 1e6 && x == std::round(x))
+        return fmt::format("{:.0f}", x);
     return fmt::format("{:.3g}", x);
 }
 
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : compare::formatValue(v); }
-
-std::string percent(double fraction) {
-    return std::abs(fraction) < 0.1 ? fmt::format("{:.1f} %", 100.0 * fraction) : fmt::format("{:.0f} %", 100.0 * fraction);
+std::string num(double v) {
+    return std::isfinite(v) ? fmt::format("{:.3g}", v) : compare::formatValue(v);
 }
 
-json jsonOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+std::string percent(double fraction) {
+    return std::abs(fraction) < 0.1 ? fmt::format("{:.1f} %", 100.0 * fraction)
+                                    : fmt::format("{:.0f} %", 100.0 * fraction);
+}
 
-std::string set(const std::string& key, const std::string& value) { return key + "=" + value; }
-std::string vec(double x, double y, double z) { return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", x, y, z); }
+json jsonOrNull(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+std::string set(const std::string& key, const std::string& value) {
+    return key + "=" + value;
+}
+std::string vec(double x, double y, double z) {
+    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", x, y, z);
+}
 
 // ---- depth_range ------------------------------------------------------------------------------
 
 // The pair's layout as fractions of far (near stays 1): the planet at 0.5 far, radius 0.05 far;
 // the moon at 0.45 far, radius 0.015 far, off-centre so it covers part of the planet's disc.
 std::vector<StudyPoint> depthPoints(bool quick) {
-    const std::vector<int> exponents = quick ? std::vector<int>{2, 5, 8, 12} : std::vector<int>{2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    const std::vector<int> exponents = quick ? std::vector<int>{2, 5, 8, 12}
+                                             : std::vector<int>{2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
     std::vector<StudyPoint> pts;
     for (const char* mode : {"standard", "reversed", "log"})
         for (int e : exponents) {
             const double far = std::pow(10.0, e);
             pts.push_back({std::string(mode) + " depth",
                            far,
-                           {set("realtime.depth", fmt::format("\"{}\"", mode)), set("camera.far", fmt::format("{:.9g}", far)),
+                           {set("realtime.depth", fmt::format("\"{}\"", mode)),
+                            set("camera.far", fmt::format("{:.9g}", far)),
                             set("bodies.planet.center", vec(0, 0.5 * far, 0)),
                             set("bodies.planet.radius", fmt::format("{:.9g}", 0.05 * far)),
                             set("bodies.moon.center", vec(0.02 * far, 0.45 * far, 0.01 * far)),
@@ -121,7 +137,8 @@ void depthConclude(StudyResult& s) {
             const double v = metricOf(*rows[i], metric);
             if (std::isfinite(v)) worst = std::max(worst, v);
             bool above = true;
-            for (std::size_t j = i; j < rows.size(); ++j) above = above && !(metricOf(*rows[j], metric) <= limit);
+            for (std::size_t j = i; j < rows.size(); ++j)
+                above = above && !(metricOf(*rows[j], metric) <= limit);
             if (above && std::isnan(breaks)) {
                 breaks = rows[i]->x;
                 at = rows[i];
@@ -134,15 +151,16 @@ void depthConclude(StudyResult& s) {
         if (at) {
             // Wrong order (the other body shows) or lost (nothing shows).
             const double mismatch = metricOf(*at, "id.mismatch");
-            finding += fmt::format("{} depth {} from far/near {} (occlusion.error {}, id.mismatch {})", mode,
-                                   std::isfinite(mismatch) && mismatch > 0.02 ? "orders the bodies wrongly"
-                                   : metricOf(*at, metric) < 0.5              ? "loses part of the bodies"
-                                                                              : "loses the bodies",
-                                   xNumber(breaks), num(metricOf(*at, metric)), num(mismatch));
+            finding += fmt::format(
+                "{} depth {} from far/near {} (occlusion.error {}, id.mismatch {})", mode,
+                std::isfinite(mismatch) && mismatch > 0.02 ? "orders the bodies wrongly"
+                : metricOf(*at, metric) < 0.5              ? "loses part of the bodies"
+                                                           : "loses the bodies",
+                xNumber(breaks), num(metricOf(*at, metric)), num(mismatch));
             marks[breaks] += (marks[breaks].empty() ? "" : ", ") + mode;
         } else {
-            finding += fmt::format("{} holds to {} (occlusion.error ≤ {})", mode, rows.empty() ? "-" : xNumber(rows.back()->x),
-                                   num(worst));
+            finding += fmt::format("{} holds to {} (occlusion.error ≤ {})", mode,
+                                   rows.empty() ? "-" : xNumber(rows.back()->x), num(worst));
         }
     }
     for (const auto& [x, modes] : marks) s.chart.xMarks.push_back({x, modes + " break"});
@@ -155,15 +173,17 @@ void depthConclude(StudyResult& s) {
 // distances give about 40, 20, ... 0.6 pixels per particle (fewer, larger particles in quick).
 std::vector<StudyPoint> sizePoints(bool quick) {
     const std::vector<double> distances =
-        quick ? std::vector<double>{0.55, 2.2, 8.8, 35.0} : std::vector<double>{0.37, 0.75, 1.5, 3.0, 6.0, 12.0, 25.0};
+        quick ? std::vector<double>{0.55, 2.2, 8.8, 35.0}
+              : std::vector<double>{0.37, 0.75, 1.5, 3.0, 6.0, 12.0, 25.0};
     const double a = 25.0 * std::numbers::pi / 180.0;
     std::vector<StudyPoint> pts;
     for (const bool ssss : {true, false})
         for (double d : distances)
-            pts.push_back({ssss ? "SSSS on" : "SSSS off",
-                           NAN,
-                           {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                            set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a)))}});
+            pts.push_back(
+                {ssss ? "SSSS on" : "SSSS off",
+                 NAN,
+                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
+                  set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a)))}});
     if (quick)
         for (auto& p : pts) p.sets.push_back("bodies.slab.particles=6000");
     return pts;
@@ -182,8 +202,8 @@ double particlePixels(const LoadedScene& s) {
 }
 
 // The gain of SSSS: 1 - error with it / error without it, per x.
-std::map<double, double> gainOf(const StudyResult& s, const std::string& metric, const std::string& on,
-                                const std::string& off) {
+std::map<double, double> gainOf(const StudyResult& s, const std::string& metric,
+                                const std::string& on, const std::string& off) {
     const auto all = bySeries(s);
     const auto* a = seriesRows(all, on);
     const auto* b = seriesRows(all, off);
@@ -199,7 +219,8 @@ std::map<double, double> gainOf(const StudyResult& s, const std::string& metric,
 void sizeConclude(StudyResult& s) {
     s.chart = seriesChart(s, "normal.mean_deg");
     const auto gain = gainOf(s, "normal.mean_deg", "SSSS on", "SSSS off");
-    for (const auto& [x, g] : gain) s.facts["normal_gain"][fmt::format("{:.4g}", x)] = jsonOrNull(g);
+    for (const auto& [x, g] : gain)
+        s.facts["normal_gain"][fmt::format("{:.4g}", x)] = jsonOrNull(g);
     if (gain.empty()) {
         s.finding = "no pair of SSSS on/off renders to compare";
         return;
@@ -208,7 +229,8 @@ void sizeConclude(StudyResult& s) {
     double stops = NAN;
     for (auto it = gain.begin(); it != gain.end(); ++it) {
         bool below = true;
-        for (auto jt = gain.begin(); jt != std::next(it); ++jt) below = below && !(jt->second >= 0.10);
+        for (auto jt = gain.begin(); jt != std::next(it); ++jt)
+            below = below && !(jt->second >= 0.10);
         if (below) stops = it->first;
     }
     const auto& [xMax, gMax] = *gain.rbegin();
@@ -219,33 +241,38 @@ void sizeConclude(StudyResult& s) {
         if (q->x == onBig->x) offBig = metricOf(*q, "normal.mean_deg");
     s.facts["stops_below_px"] = jsonOrNull(stops);
     s.facts["largest_px"] = xMax;
-    s.finding = fmt::format("SSSS {} the normal error by {} at {} px per particle ({}° vs {}°)", gMax >= 0 ? "lowers" : "raises",
-                            percent(std::abs(gMax)), num(xMax),
+    s.finding = fmt::format("SSSS {} the normal error by {} at {} px per particle ({}° vs {}°)",
+                            gMax >= 0 ? "lowers" : "raises", percent(std::abs(gMax)), num(xMax),
                             num(metricOf(*onBig, "normal.mean_deg")), num(offBig));
     if (std::isfinite(stops)) {
-        s.finding += fmt::format("; at {} px per particle and below it helps less than 10 % (the filter radius no longer "
-                                 "spans the particle bumps)",
-                                 num(stops));
+        s.finding += fmt::format(
+            "; at {} px per particle and below it helps less than 10 % (the filter radius no "
+            "longer "
+            "spans the particle bumps)",
+            num(stops));
         s.chart.xMarks.push_back({stops, "gain < 10 %"});
     } else {
-        s.finding += fmt::format("; it still helps by {} at {} px per particle", percent(gain.begin()->second), num(gain.begin()->first));
+        s.finding += fmt::format("; it still helps by {} at {} px per particle",
+                                 percent(gain.begin()->second), num(gain.begin()->first));
     }
 }
 
 // ---- view_angle -------------------------------------------------------------------------------
 
 std::vector<StudyPoint> anglePoints(bool quick) {
-    const std::vector<double> angles = quick ? std::vector<double>{0, 45, 80} : std::vector<double>{0, 15, 30, 45, 60, 70, 80, 85};
+    const std::vector<double> angles =
+        quick ? std::vector<double>{0, 45, 80} : std::vector<double>{0, 15, 30, 45, 60, 70, 80, 85};
     std::vector<StudyPoint> pts;
     for (const bool ssss : {true, false})
         for (double deg : angles) {
             const double a = deg * std::numbers::pi / 180.0, d = 3.0;
-            pts.push_back({ssss ? "SSSS on" : "SSSS off",
-                           deg,
-                           {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                            set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a))),
-                            // Perpendicular to the view direction at every angle.
-                            set("camera.up", vec(0.0, std::cos(a), std::sin(a)))}});
+            pts.push_back(
+                {ssss ? "SSSS on" : "SSSS off",
+                 deg,
+                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
+                  set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a))),
+                  // Perpendicular to the view direction at every angle.
+                  set("camera.up", vec(0.0, std::cos(a), std::sin(a)))}});
         }
     return pts;
 }
@@ -262,31 +289,37 @@ void angleConclude(StudyResult& s) {
     const StudyRow& first = *on->front();
     const StudyRow& last = *on->back();
     for (const StudyRow* r : *on) {
-        s.facts["normal_deg"][fmt::format("{:g}", r->x)] = jsonOrNull(metricOf(*r, "normal.mean_deg"));
-        s.facts["smoothness"][fmt::format("{:g}", r->x)] = jsonOrNull(metricOf(*r, "smoothness.ratio"));
+        s.facts["normal_deg"][fmt::format("{:g}", r->x)] =
+            jsonOrNull(metricOf(*r, "normal.mean_deg"));
+        s.facts["smoothness"][fmt::format("{:g}", r->x)] =
+            jsonOrNull(metricOf(*r, "smoothness.ratio"));
     }
     for (const auto& [x, g] : gain) s.facts["normal_gain"][fmt::format("{:g}", x)] = jsonOrNull(g);
     const double g0 = gain.begin()->second, g1 = gain.rbegin()->second;
     s.facts["growth"] = metricOf(last, "normal.mean_deg") / metricOf(first, "normal.mean_deg");
     s.finding = fmt::format(
-        "with SSSS the normal error goes from {}° face-on to {}° at {}° ({}x); smoothing's gain over none goes from {} to {}, "
+        "with SSSS the normal error goes from {}° face-on to {}° at {}° ({}x); smoothing's gain "
+        "over none goes from {} to {}, "
         "smoothness.ratio from {} to {}",
-        num(metricOf(first, "normal.mean_deg")), num(metricOf(last, "normal.mean_deg")), num(last.x),
-        num(s.facts["growth"].get<double>()), percent(g0), percent(g1), num(metricOf(first, "smoothness.ratio")),
-        num(metricOf(last, "smoothness.ratio")));
+        num(metricOf(first, "normal.mean_deg")), num(metricOf(last, "normal.mean_deg")),
+        num(last.x), num(s.facts["growth"].get<double>()), percent(g0), percent(g1),
+        num(metricOf(first, "smoothness.ratio")), num(metricOf(last, "smoothness.ratio")));
 }
 
 // ---- thin_casters -----------------------------------------------------------------------------
 
 std::vector<StudyPoint> shadowPoints(bool quick) {
-    const std::vector<int> res = quick ? std::vector<int>{64, 256, 1024} : std::vector<int>{64, 128, 256, 512, 1024, 2048};
-    const std::vector<double> biases = quick ? std::vector<double>{0.1, 2.0} : std::vector<double>{0.1, 0.5, 2.0};
+    const std::vector<int> res =
+        quick ? std::vector<int>{64, 256, 1024} : std::vector<int>{64, 128, 256, 512, 1024, 2048};
+    const std::vector<double> biases =
+        quick ? std::vector<double>{0.1, 2.0} : std::vector<double>{0.1, 0.5, 2.0};
     std::vector<StudyPoint> pts;
     for (double b : biases)
         for (int r : res)
             pts.push_back({fmt::format("map, bias {:g}", b),
                            double(r),
-                           {"realtime.shadows=\"map\"", set("realtime.shadow_map.resolution", std::to_string(r)),
+                           {"realtime.shadows=\"map\"",
+                            set("realtime.shadow_map.resolution", std::to_string(r)),
                             set("realtime.shadow_map.bias", fmt::format("{:g}", b))}});
     // The baseline does not use the map: one render, drawn across the axis.
     pts.push_back({"occlusion spheres", double(res.front()), {"realtime.shadows=\"spheres\""}});
@@ -309,7 +342,8 @@ void shadowConclude(StudyResult& s) {
     std::string bestSeries;
     double bestIou = -INFINITY;
     for (const auto& [name, rows] : all)
-        if (name.rfind("map", 0) == 0 && !rows.empty() && metricOf(*rows.back(), "shadow.iou") > bestIou) {
+        if (name.rfind("map", 0) == 0 && !rows.empty() &&
+            metricOf(*rows.back(), "shadow.iou") > bestIou) {
             bestIou = metricOf(*rows.back(), "shadow.iou");
             bestSeries = name;
         }
@@ -340,15 +374,20 @@ void shadowConclude(StudyResult& s) {
     s.facts["spheres_iou"] = jsonOrNull(sphereIou);
     s.chart.xMarks.push_back({enough, "within 0.02 of best"});
     s.finding = fmt::format(
-        "{} reaches shadow.iou {} (within 0.02 of its {} at {}) from {} texels; {}: acne {} of the pixels facing the light; {}: leaks {}; "
+        "{} reaches shadow.iou {} (within 0.02 of its {} at {}) from {} texels; {}: acne {} of the "
+        "pixels facing the light; {}: leaks {}; "
         "occlusion spheres: IoU {}",
-        bestSeries, num(metricOf(*[&] {
-            for (const StudyRow* r : best)
-                if (r->x == enough) return r;
-            return best.back();
-        }(), "shadow.iou")),
+        bestSeries,
+        num(metricOf(
+            *[&] {
+                for (const StudyRow* r : best)
+                    if (r->x == enough) return r;
+                return best.back();
+            }(),
+            "shadow.iou")),
         num(bestIou), xNumber(best.back()->x), xNumber(enough), all.front().first,
-        percent(metricOf(*smallest.back(), "shadow.false_shadow")), largest.empty() ? "" : largest.back()->series,
+        percent(metricOf(*smallest.back(), "shadow.false_shadow")),
+        largest.empty() ? "" : largest.back()->series,
         percent(metricOf(*largest.back(), "shadow.missed_shadow")), num(sphereIou));
 }
 
@@ -356,14 +395,17 @@ void shadowConclude(StudyResult& s) {
 
 std::vector<StudyPoint> collisionPoints(bool quick) {
     // Gap between the two surfaces (radius 0.6 each), scene units; < 0 overlapping.
-    const std::vector<double> gaps = quick ? std::vector<double>{0.2, 0.0, -0.15} : std::vector<double>{0.3, 0.15, 0.05, 0.0, -0.1, -0.2, -0.3};
+    const std::vector<double> gaps =
+        quick ? std::vector<double>{0.2, 0.0, -0.15}
+              : std::vector<double>{0.3, 0.15, 0.05, 0.0, -0.1, -0.2, -0.3};
     std::vector<StudyPoint> pts;
     for (const bool ssss : {true, false})
         for (double g : gaps) {
             const double c = 0.6 + 0.5 * g;
             pts.push_back({ssss ? "SSSS on" : "SSSS off",
                            g,
-                           {set("realtime.ssss.enabled", ssss ? "true" : "false"), set("bodies.cold.center", vec(-c, 0, 0)),
+                           {set("realtime.ssss.enabled", ssss ? "true" : "false"),
+                            set("bodies.cold.center", vec(-c, 0, 0)),
                             set("bodies.hot.center", vec(c, 0, 0))}});
         }
     return pts;
@@ -385,24 +427,31 @@ void collisionConclude(StudyResult& s) {
             if (r->x <= 0.0) t.push_back(r);
         return t.empty() ? rows : t;
     };
-    const double uvOn = meanOf(touching(*on), "contact.uv_mean"), uvOff = meanOf(touching(*off), "contact.uv_mean");
-    const double eOn = meanOf(touching(*on), "contact.emission_rmse"), eOff = meanOf(touching(*off), "contact.emission_rmse");
+    const double uvOn = meanOf(touching(*on), "contact.uv_mean"),
+                 uvOff = meanOf(touching(*off), "contact.uv_mean");
+    const double eOn = meanOf(touching(*on), "contact.emission_rmse"),
+                 eOff = meanOf(touching(*off), "contact.emission_rmse");
     const double interior = meanOf(touching(*on), "uv.mean");
     s.facts["contact_uv"] = {{"ssss_on", jsonOrNull(uvOn)}, {"ssss_off", jsonOrNull(uvOff)}};
     s.facts["contact_emission"] = {{"ssss_on", jsonOrNull(eOn)}, {"ssss_off", jsonOrNull(eOff)}};
     s.facts["interior_uv"] = jsonOrNull(interior);
     auto change = [](double a, double b) {
-        return std::isfinite(a) && std::isfinite(b) && b > 0 ? fmt::format("{:+.0f} %", 100.0 * (a / b - 1.0)) : std::string("n/a");
+        return std::isfinite(a) && std::isfinite(b) && b > 0
+                   ? fmt::format("{:+.0f} %", 100.0 * (a / b - 1.0))
+                   : std::string("n/a");
     };
     // Emission is constant per body here: a band error below this is rounding, not bleeding.
     constexpr double EMISSION_FLOOR = 1e-4;
     const std::string emission =
         std::max(eOn, eOff) < EMISSION_FLOOR
-            ? fmt::format("emission does not bleed (band error below {:g} either way)", EMISSION_FLOOR)
-            : fmt::format("emission error {} with SSSS, {} without ({} from smoothing)", num(eOn), num(eOff), change(eOn, eOff));
+            ? fmt::format("emission does not bleed (band error below {:g} either way)",
+                          EMISSION_FLOOR)
+            : fmt::format("emission error {} with SSSS, {} without ({} from smoothing)", num(eOn),
+                          num(eOff), change(eOn, eOff));
     s.facts["contact_over_interior"] = jsonOrNull(uvOn / interior);
     s.finding = fmt::format(
-        "in contact, the uv error along the bodies' boundary is {} with SSSS and {} without ({} from smoothing), {}x the "
+        "in contact, the uv error along the bodies' boundary is {} with SSSS and {} without ({} "
+        "from smoothing), {}x the "
         "interior's {}; {}",
         num(uvOn), num(uvOff), change(uvOn, uvOff), num(uvOn / interior), num(interior), emission);
 }
@@ -419,7 +468,8 @@ std::vector<StudyPoint> orbitPoints(bool quick) {
             pts.push_back({ssss ? "SSSS on" : "SSSS off",
                            double(f),
                            {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                            set("camera.position", vec(radius * std::cos(a), radius * std::sin(a), height))}});
+                            set("camera.position",
+                                vec(radius * std::cos(a), radius * std::sin(a), height))}});
         }
     return pts;
 }
@@ -430,10 +480,12 @@ void temporalConclude(StudyResult& s) {
     for (auto& line : s.chart.series) line.name = "real-time, " + line.name;
     if (!all.empty()) {
         compare::LineSeries ref{"reference", {}, true};
-        for (const StudyRow* r : all.front().second) ref.points.push_back({r->x, metricOf(*r, "temporal.reference_frame_flip"), ""});
+        for (const StudyRow* r : all.front().second)
+            ref.points.push_back({r->x, metricOf(*r, "temporal.reference_frame_flip"), ""});
         s.chart.series.push_back(std::move(ref));
     }
-    const double reference = all.empty() ? NAN : meanOf(all.front().second, "temporal.reference_frame_flip");
+    const double reference =
+        all.empty() ? NAN : meanOf(all.front().second, "temporal.reference_frame_flip");
     s.facts["reference"] = jsonOrNull(reference);
     std::string parts, excess;
     for (const auto& [name, rows] : all) {
@@ -443,8 +495,9 @@ void temporalConclude(StudyResult& s) {
         parts += fmt::format("{}{} ({})", parts.empty() ? "" : ", ", num(v), name);
         excess += fmt::format("{}{:+.3g}", excess.empty() ? "" : ", ", v - reference);
     }
-    s.finding = fmt::format("flicker: real-time {} vs reference {} mean frame-to-frame ꟻLIP over {} frames (excess {})", parts,
-                            num(reference), all.empty() ? 0 : all.front().second.size(), excess);
+    s.finding = fmt::format(
+        "flicker: real-time {} vs reference {} mean frame-to-frame ꟻLIP over {} frames (excess {})",
+        parts, num(reference), all.empty() ? 0 : all.front().second.size(), excess);
 }
 
 }  // namespace
@@ -466,43 +519,109 @@ compare::LineChart seriesChart(const StudyResult& s, const std::string& metric) 
 
 const std::vector<StudyDef>& studies() {
     static const std::vector<StudyDef> all = {
-        {"depth_range", "Depth range",
-         "Far/near from 1e2 to 1e12 with the scene scaled along: where does each depth mode (standard 24-bit, reversed float, "
-         "log) start to show the far body through the near one, or lose both (occlusion.error: the reference's covered pixels "
+        {"depth_range",
+         "Depth range",
+         "Far/near from 1e2 to 1e12 with the scene scaled along: where does each depth mode "
+         "(standard 24-bit, reversed float, "
+         "log) start to show the far body through the near one, or lose both (occlusion.error: the "
+         "reference's covered pixels "
          "where the real-time render shows another body or none)?",
-         "depth_range.toml", "far / near", true, "occlusion.error",
-         {"occlusion.error", "id.mismatch", "coverage.iou", "depth.rel_mean", "beauty.flip", "count.unbracketed_rays"}, false,
-         true, false, depthPoints, nullptr, depthConclude},
-        {"thin_casters", "Thin casters",
-         "A ring one particle thick shadows its planet: shadow-map resolution and bias against shadow IoU, acne (false shadow) "
-         "and leaks (missed shadow), with the per-body occlusion spheres beside them.",
-         "thin_casters.toml", "shadow-map resolution (texels per side)", true, "shadow.iou",
-         {"shadow.iou", "shadow.false_shadow", "shadow.missed_shadow", "beauty.flip", "count.unbracketed_rays"}, false, false,
-         false, shadowPoints, nullptr, shadowConclude},
-        {"particle_size", "Particle size on screen",
-         "The camera backs away from a slab from about 40 pixels per particle to below one: SSSS's normal and uv errors and "
-         "smoothness, on and off; where does the filter radius selection stop helping?",
-         "particle_size.toml", "particle diameter on screen (px)", true, "normal.mean_deg",
-         {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip", "count.unbracketed_rays"}, false,
-         false, false, sizePoints, particlePixels, sizeConclude},
-        {"view_angle", "View angle",
-         "The camera turns from face-on to grazing over a flat slab: the view dependence of the screen-space smoothing.",
-         "view_angle.toml", "view angle from the surface normal (degrees)", false, "normal.mean_deg",
-         {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip", "count.unbracketed_rays"}, false,
-         false, false, anglePoints, nullptr, angleConclude},
-        {"temporal", "Temporal stability",
-         "A camera orbit in steps of half a degree: flicker as the mean frame-to-frame ꟻLIP of the real-time renders minus the "
-         "reference's.",
-         "temporal.toml", "frame", false, "temporal.frame_flip",
-         {"temporal.frame_flip", "temporal.reference_frame_flip", "beauty.flip", "normal.mean_deg", "count.unbracketed_rays"},
-         false, false, true, orbitPoints, nullptr, temporalConclude},
-        {"collision", "Two bodies colliding",
-         "Two bodies from apart to overlapping: bleeding of uv and emission across the contact, measured in a 3-pixel band "
-         "along the boundary between them in the reference.",
-         "collision.toml", "gap between the surfaces (scene units; < 0 overlapping)", false, "contact.uv_mean",
-         {"contact.uv_mean", "contact.emission_rmse", "contact.pixels", "uv.mean", "emission.rmse", "id.mismatch",
+         "depth_range.toml",
+         "far / near",
+         true,
+         "occlusion.error",
+         {"occlusion.error", "id.mismatch", "coverage.iou", "depth.rel_mean", "beauty.flip",
           "count.unbracketed_rays"},
-         true, false, false, collisionPoints, nullptr, collisionConclude},
+         false,
+         true,
+         false,
+         depthPoints,
+         nullptr,
+         depthConclude},
+        {"thin_casters",
+         "Thin casters",
+         "A ring one particle thick shadows its planet: shadow-map resolution and bias against "
+         "shadow IoU, acne (false shadow) "
+         "and leaks (missed shadow), with the per-body occlusion spheres beside them.",
+         "thin_casters.toml",
+         "shadow-map resolution (texels per side)",
+         true,
+         "shadow.iou",
+         {"shadow.iou", "shadow.false_shadow", "shadow.missed_shadow", "beauty.flip",
+          "count.unbracketed_rays"},
+         false,
+         false,
+         false,
+         shadowPoints,
+         nullptr,
+         shadowConclude},
+        {"particle_size",
+         "Particle size on screen",
+         "The camera backs away from a slab from about 40 pixels per particle to below one: SSSS's "
+         "normal and uv errors and "
+         "smoothness, on and off; where does the filter radius selection stop helping?",
+         "particle_size.toml",
+         "particle diameter on screen (px)",
+         true,
+         "normal.mean_deg",
+         {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip",
+          "count.unbracketed_rays"},
+         false,
+         false,
+         false,
+         sizePoints,
+         particlePixels,
+         sizeConclude},
+        {"view_angle",
+         "View angle",
+         "The camera turns from face-on to grazing over a flat slab: the view dependence of the "
+         "screen-space smoothing.",
+         "view_angle.toml",
+         "view angle from the surface normal (degrees)",
+         false,
+         "normal.mean_deg",
+         {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip",
+          "count.unbracketed_rays"},
+         false,
+         false,
+         false,
+         anglePoints,
+         nullptr,
+         angleConclude},
+        {"temporal",
+         "Temporal stability",
+         "A camera orbit in steps of half a degree: flicker as the mean frame-to-frame ꟻLIP of the "
+         "real-time renders minus the "
+         "reference's.",
+         "temporal.toml",
+         "frame",
+         false,
+         "temporal.frame_flip",
+         {"temporal.frame_flip", "temporal.reference_frame_flip", "beauty.flip", "normal.mean_deg",
+          "count.unbracketed_rays"},
+         false,
+         false,
+         true,
+         orbitPoints,
+         nullptr,
+         temporalConclude},
+        {"collision",
+         "Two bodies colliding",
+         "Two bodies from apart to overlapping: bleeding of uv and emission across the contact, "
+         "measured in a 3-pixel band "
+         "along the boundary between them in the reference.",
+         "collision.toml",
+         "gap between the surfaces (scene units; < 0 overlapping)",
+         false,
+         "contact.uv_mean",
+         {"contact.uv_mean", "contact.emission_rmse", "contact.pixels", "uv.mean", "emission.rmse",
+          "id.mismatch", "count.unbracketed_rays"},
+         true,
+         false,
+         false,
+         collisionPoints,
+         nullptr,
+         collisionConclude},
     };
     return all;
 }

@@ -73,7 +73,9 @@ int runStudies(const StudyOptions& o) {
         const StudyDef* found = nullptr;
         for (const StudyDef& d : studies())
             if (d.name == n) found = &d;
-        if (!found) throw core::InputError(fmt::format("study {}: no such study; the studies are {}", n, known));
+        if (!found)
+            throw core::InputError(
+                fmt::format("study {}: no such study; the studies are {}", n, known));
         if (!seen.insert(n).second) throw core::InputError(fmt::format("study {}: named twice", n));
         chosen.push_back(found);
     }
@@ -82,7 +84,8 @@ int runStudies(const StudyOptions& o) {
     for (const StudyDef* d : chosen) {
         Planned p{d, scenesDir / d->scene, {}};
         if (!fs::is_regular_file(p.sceneFile))
-            throw core::InputError(fmt::format("{}: the scene of study {} is missing", p.sceneFile.string(), d->name));
+            throw core::InputError(
+                fmt::format("{}: the scene of study {} is missing", p.sceneFile.string(), d->name));
         for (StudyPoint& sp : d->points(o.quick)) {
             Point pt;
             pt.overrides = o.sets;
@@ -90,7 +93,8 @@ int runStudies(const StudyOptions& o) {
             try {
                 pt.scene = loadScene(p.sceneFile, pt.overrides);
             } catch (const core::InputError& e) {
-                throw core::InputError(fmt::format("study {}, {} at x = {}: {}", d->name, sp.series, sp.x, e.what()));
+                throw core::InputError(
+                    fmt::format("study {}, {} at x = {}: {}", d->name, sp.series, sp.x, e.what()));
             }
             if (std::isnan(sp.x) && d->xOf) sp.x = d->xOf(pt.scene);
             pt.point = std::move(sp);
@@ -136,33 +140,40 @@ int runStudies(const StudyOptions& o) {
                 const auto [key, what] = referenceKey(pt.scene, pt.overrides);
                 row.referenceKey = key;
                 const Render& ref = cache.get(pt.scene, key, what);
-                row.referenceMs = ref.frame.timingsMs.count("total") ? ref.frame.timingsMs.at("total") : NAN;
+                row.referenceMs =
+                    ref.frame.timingsMs.count("total") ? ref.frame.timingsMs.at("total") : NAN;
                 const auto u = ref.frame.counters.find("unbracketed_rays");
-                row.metrics["count.unbracketed_rays"] = u == ref.frame.counters.end() ? 0.0 : u->second;
+                row.metrics["count.unbracketed_rays"] =
+                    u == ref.frame.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
                 const Render test = renderRealtime(gl, pt.scene);
                 for (const auto& [stage, ms] : test.frame.timingsMs)
                     if (stage != "compile") row.timingsMs[stage] = ms;
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
-                const compare::MetricResult m = compare::computeMetrics(ref.frame.image, test.frame.image, ms);
+                const compare::MetricResult m =
+                    compare::computeMetrics(ref.frame.image, test.frame.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
                 if (d.contactBand || d.occlusionError) {
                     compare::MaskSettings maskSettings;
                     maskSettings.interiorRadius = ms.interiorRadius;
                     maskSettings.hasLight = ms.hasLight;
                     maskSettings.lightDirection = ms.lightDirection;
-                    const compare::Masks masks = compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
+                    const compare::Masks masks =
+                        compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
                     const double covered = double(masks.referenceCovered.count());
                     if (d.occlusionError)
-                        row.metrics["occlusion.error"] = covered > 0 ? 1.0 - double(masks.sameBody.count()) / covered : NAN;
+                        row.metrics["occlusion.error"] =
+                            covered > 0 ? 1.0 - double(masks.sameBody.count()) / covered : NAN;
                 }
                 if (d.contactBand) {
                     compare::MaskSettings maskSettings;
                     maskSettings.interiorRadius = ms.interiorRadius;
                     maskSettings.hasLight = ms.hasLight;
                     maskSettings.lightDirection = ms.lightDirection;
-                    const compare::Masks masks = compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
-                    const auto band = compare::contactBandError(ref.frame.image, test.frame.image, masks, CONTACT_BAND_PX);
+                    const compare::Masks masks =
+                        compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
+                    const auto band = compare::contactBandError(ref.frame.image, test.frame.image,
+                                                                masks, CONTACT_BAND_PX);
                     row.metrics["contact.uv_mean"] = band.uvMean;
                     row.metrics["contact.emission_rmse"] = band.emissionRmse;
                     row.metrics["contact.pixels"] = double(band.pixels);
@@ -172,8 +183,10 @@ int runStudies(const StudyOptions& o) {
                     compare::FlipSettings fs;
                     fs.ppd = o.ppd;
                     if (prev != previous.end()) {
-                        row.metrics["temporal.frame_flip"] = compare::flip(prev->second.first, test.display, fs).mean;
-                        row.metrics["temporal.reference_frame_flip"] = compare::flip(prev->second.second, ref.display, fs).mean;
+                        row.metrics["temporal.frame_flip"] =
+                            compare::flip(prev->second.first, test.display, fs).mean;
+                        row.metrics["temporal.reference_frame_flip"] =
+                            compare::flip(prev->second.second, ref.display, fs).mean;
                     }
                     previous[row.series] = {test.display, ref.display};
                 }
@@ -184,8 +197,8 @@ int runStudies(const StudyOptions& o) {
                 if (!fs::exists(dir / refPng)) core::writeImage(ref.display, dir / refPng);
                 row.images["reference"] = refPng;
                 const auto y = row.metrics.find(d.metric);
-                std::printf("[%s %zu/%zu] %s, x = %g: %s %s (real-time %.1f ms)\n", d.name.c_str(), i + 1,
-                            plan.points.size(), row.series.c_str(), row.x, d.metric.c_str(),
+                std::printf("[%s %zu/%zu] %s, x = %g: %s %s (real-time %.1f ms)\n", d.name.c_str(),
+                            i + 1, plan.points.size(), row.series.c_str(), row.x, d.metric.c_str(),
                             y == row.metrics.end() ? "-" : compare::formatValue(y->second).c_str(),
                             row.timingsMs.count("total") ? row.timingsMs.at("total") : NAN);
             } catch (const core::InputError&) {
@@ -194,8 +207,8 @@ int runStudies(const StudyOptions& o) {
                 // One point that cannot be rendered fails; the others still run.
                 row.error = e.what();
                 anyError = true;
-                std::printf("[%s %zu/%zu] %s, x = %g: error: %s\n", d.name.c_str(), i + 1, plan.points.size(),
-                            row.series.c_str(), row.x, e.what());
+                std::printf("[%s %zu/%zu] %s, x = %g: error: %s\n", d.name.c_str(), i + 1,
+                            plan.points.size(), row.series.c_str(), row.x, e.what());
             }
             std::fflush(stdout);
             s.rows.push_back(std::move(row));
@@ -203,15 +216,18 @@ int runStudies(const StudyOptions& o) {
         s.references = unbracketed.size();
         for (const auto& [k, n] : unbracketed) s.unbracketedRays += n;
         d.conclude(s);
-        s.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        s.wallSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         compare::writeStudy(s, out);
-        std::printf("%s: %s [reference: %s unbracketed rays in %zu renders; %.1f s]\n", d.name.c_str(), s.finding.c_str(),
+        std::printf("%s: %s [reference: %s unbracketed rays in %zu renders; %.1f s]\n",
+                    d.name.c_str(), s.finding.c_str(),
                     compare::formatValue(s.unbracketedRays).c_str(), s.references, s.wallSeconds);
         std::fflush(stdout);
         results.push_back(std::move(s));
     }
     compare::writeStudiesIndex(results, out, nowUtc(), o.commandLine);
-    std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies", (out / "index.html").c_str());
+    std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies",
+                (out / "index.html").c_str());
     return anyError ? 2 : 0;
 }
 

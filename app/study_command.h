@@ -11,8 +11,8 @@ namespace twinrender::app {
 struct StudyOptions {
     std::vector<std::string> names;  // empty: every study
     std::string out = "out/studies";
-    std::string cache;  // empty: OUT/reference_cache
-    bool quick = false; // fewer points and particles (tests, scripts/run)
+    std::string cache;   // empty: OUT/reference_cache
+    bool quick = false;  // fewer points and particles (tests, scripts/run)
     std::vector<std::string> sets;
     bool requireGpu = false;
     double ppd = 67.0;

@@ -46,8 +46,8 @@ ContactBandResult contactBandError(const core::Image& reference, const core::Ima
     for (std::size_t p = 0; p < band.pixelCount(); ++p) {
         if (!band[p]) continue;
         ++r.pixels;
-        uvSum += uvDistance(reference.at(p, ru), reference.at(p, rv), test.at(p, tu),
-                            test.at(p, tv));
+        uvSum +=
+            uvDistance(reference.at(p, ru), reference.at(p, rv), test.at(p, tu), test.at(p, tv));
         for (int c = 0; c < 3; ++c) {
             const double d = double(test.at(p, te[c])) - reference.at(p, re[c]);
             eSum += d * d;

@@ -99,9 +99,8 @@ json studyJson(const StudyResult& s) {
 }
 
 std::string studyCsv(const StudyResult& s) {
-    const auto stages = columnsOf(
-        s, [](const StudyRow& r) -> const auto& { return r.timingsMs; },
-        {"total", "shadow", "gbuffer", "ssss", "shade", "post"});
+    const auto stages = columnsOf(s, [](const StudyRow& r) -> const auto& { return r.timingsMs; },
+                                  {"total", "shadow", "gbuffer", "ssss", "shade", "post"});
     const auto metrics = columnsOf(
         s, [](const StudyRow& r) -> const auto& { return r.metrics; }, s.columns);
     std::string out = "series,x,sets";
@@ -140,7 +139,8 @@ void writeStudy(const StudyResult& s, const fs::path& dir) {
 void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& dir,
                        const std::string& createdAt, const std::string& commandLine) {
     const std::string title = "twinrender stability studies";
-    std::string h = "<header class=\"top\">\n<h1>" + htmlEscape(title) + "</h1>\n<div class=\"facts\">";
+    std::string h =
+        "<header class=\"top\">\n<h1>" + htmlEscape(title) + "</h1>\n<div class=\"facts\">";
     h += fmt::format("<span>{} stud{}</span>", studies.size(), studies.size() == 1 ? "y" : "ies");
     double unbracketed = 0.0;
     for (const auto& s : studies) unbracketed += s.unbracketedRays;
@@ -176,8 +176,8 @@ void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& 
         h += "<img src=\"" + base + "study.svg\" alt=\"" + htmlEscape(s.title) +
              ": chart\" style=\"max-width:100%;height:auto\">\n";
         // The rows fold away: the chart and the finding are the page's reading.
-        h += fmt::format("<details>\n<summary>{} point{}: renders and every metric</summary>\n", s.rows.size(),
-                         s.rows.size() == 1 ? "" : "s");
+        h += fmt::format("<details>\n<summary>{} point{}: renders and every metric</summary>\n",
+                         s.rows.size(), s.rows.size() == 1 ? "" : "s");
         h += "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr><th>Real-time</th>"
              "<th>Reference</th><th>Series</th><th class=\"num\">" +
              htmlEscape(s.xLabel) + "</th>";
@@ -198,8 +198,8 @@ void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& 
                          : fmt::format("<td><img class=\"thumb\" src=\"{}\" alt=\"{} {}\"></td>",
                                        base + urlPath(it->second), which, htmlEscape(r.series));
             }
-            h += "<td>" + htmlEscape(r.series) + "</td><td class=\"num\">" + htmlEscape(xText(r.x)) +
-                 "</td>";
+            h += "<td>" + htmlEscape(r.series) + "</td><td class=\"num\">" +
+                 htmlEscape(xText(r.x)) + "</td>";
             for (const auto& m : s.columns) {
                 const auto it = r.metrics.find(m);
                 h += std::string("<td class=\"num") + (m == s.metric ? " pass" : "") + "\">" +
@@ -226,14 +226,13 @@ void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& 
     fs::create_directories(dir);
     json all = json::array();
     for (const auto& s : studies) all.push_back(studySummaryJson(s));
-    core::writeTextFile(dir / "studies.json",
-                        json({{"format", "twinrender-studies"},
-                              {"version", 1},
-                              {"created", createdAt},
-                              {"command", commandLine},
-                              {"studies", all}})
-                                .dump(2) +
-                            "\n");
+    core::writeTextFile(dir / "studies.json", json({{"format", "twinrender-studies"},
+                                                    {"version", 1},
+                                                    {"created", createdAt},
+                                                    {"command", commandLine},
+                                                    {"studies", all}})
+                                                      .dump(2) +
+                                                  "\n");
     core::writeTextFile(dir / "index.html", reportPage(title, h, createdAt, commandLine));
 }
 

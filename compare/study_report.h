@@ -28,9 +28,9 @@ struct StudyRow {
     double x = 0.0;                 // the study's x (far/near, pixels per particle, degrees, ...)
     std::vector<std::string> sets;  // the KEY=VALUE overrides that made this point
     MetricValues metrics;           // against the reference; count.unbracketed_rays its failures
-    std::map<std::string, double> timingsMs;  // the real-time frame: "total" and per stage
-    double referenceMs = 0.0;                 // the reference's render time (or cached time)
-    std::string referenceKey;                 // its cache key
+    std::map<std::string, double> timingsMs;    // the real-time frame: "total" and per stage
+    double referenceMs = 0.0;                   // the reference's render time (or cached time)
+    std::string referenceKey;                   // its cache key
     std::map<std::string, std::string> images;  // "realtime", "reference" -> PNG, relative
     std::string error;                          // set when the point could not be rendered
 };
@@ -42,13 +42,13 @@ struct StudyResult {
     std::string sceneFile;
     std::string xLabel;  // with its unit
     bool xLog = false;
-    std::string metric;                // the chart's y
-    std::vector<std::string> columns;  // metrics shown in the page's table, in order
-    std::string finding;               // one line, computed from the rows
+    std::string metric;                               // the chart's y
+    std::vector<std::string> columns;                 // metrics shown in the page's table, in order
+    std::string finding;                              // one line, computed from the rows
     nlohmann::json facts = nlohmann::json::object();  // the numbers the finding states
     LineChart chart;                                  // built from the rows
-    double unbracketedRays = 0.0;  // over the distinct references
-    std::size_t references = 0;    // distinct references rendered or read
+    double unbracketedRays = 0.0;                     // over the distinct references
+    std::size_t references = 0;                       // distinct references rendered or read
     double wallSeconds = 0.0;
     std::vector<StudyRow> rows;
 };

@@ -48,9 +48,9 @@ std::string scatterSvg(const ScatterChart& chart);
 // ---- Line charts: a metric against a setting, one line per series ------------------------
 
 struct LineSeries {
-    std::string name;               // the legend's text: "standard depth", "SSSS on"
-    std::vector<ChartPoint> points; // drawn in the order given; labels become marker tooltips
-    bool dashed = false;            // e.g. a baseline drawn for comparison
+    std::string name;                // the legend's text: "standard depth", "SSSS on"
+    std::vector<ChartPoint> points;  // drawn in the order given; labels become marker tooltips
+    bool dashed = false;             // e.g. a baseline drawn for comparison
 };
 
 struct LineChart {

@@ -52,7 +52,8 @@ json runStudy(const std::string& name, std::size_t points, const std::string& me
     const std::string finding = s["finding"];
     EXPECT_FALSE(finding.empty());
     // The finding is printed, with the reference's unbracketed rays.
-    EXPECT_NE(r.output.find(name + ": " + finding + " [reference: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(name + ": " + finding + " [reference: "), std::string::npos)
+        << r.output;
     EXPECT_TRUE(s["unbracketed_rays"].is_number());
     std::set<std::string> keys;
     for (const json& row : s["rows"]) {
@@ -89,7 +90,8 @@ json runStudy(const std::string& name, std::size_t points, const std::string& me
     // The cache key names the raymarcher's build.
     for (const auto& e : fs::directory_iterator(out / "reference_cache")) {
         const json key = readJson(e.path() / "key.json");
-        EXPECT_TRUE(std::regex_match(key.value("build", ""), std::regex("[0-9]+\\.[0-9]+\\.[0-9]+\\+[0-9a-f]{16}")))
+        EXPECT_TRUE(std::regex_match(key.value("build", ""),
+                                     std::regex("[0-9]+\\.[0-9]+\\.[0-9]+\\+[0-9a-f]{16}")))
             << key;
     }
     return s;
@@ -142,7 +144,8 @@ TEST(Study, ThinCastersShadowMapAgainstOcclusionSpheres) {
         if (r["series"].get<std::string>().rfind("map", 0) == 0 && r["x"] == 1024.0)
             best = std::max(best, metric(r, "shadow.iou"));
     EXPECT_DOUBLE_EQ(f["best_iou"].get<double>(), best);
-    EXPECT_NE(s["finding"].get<std::string>().find(f["best_series"].get<std::string>() + " reaches shadow.iou"),
+    EXPECT_NE(s["finding"].get<std::string>().find(f["best_series"].get<std::string>() +
+                                                   " reaches shadow.iou"),
               std::string::npos);
     // A shadow map at 1024 texels beats one occluding sphere per body on a thin ring.
     EXPECT_GT(best, f["spheres_iou"].get<double>()) << f;
@@ -164,11 +167,13 @@ TEST(Study, ParticleSizeFromFortyPixelsToBelowOne) {
     ASSERT_EQ(on.size(), off.size());
     for (std::size_t i = 0; i < on.size(); ++i) {
         EXPECT_DOUBLE_EQ(on[i]["x"].get<double>(), off[i]["x"].get<double>());
-        const double gain = 1.0 - metric(on[i], "normal.mean_deg") / metric(off[i], "normal.mean_deg");
+        const double gain =
+            1.0 - metric(on[i], "normal.mean_deg") / metric(off[i], "normal.mean_deg");
         const json& g = s["facts"]["normal_gain"];
         bool found = false;
         for (const auto& [k, v] : g.items())
-            if (std::abs(std::stod(k) - on[i]["x"].get<double>()) < 1e-3 * on[i]["x"].get<double>()) {
+            if (std::abs(std::stod(k) - on[i]["x"].get<double>()) <
+                1e-3 * on[i]["x"].get<double>()) {
                 found = true;
                 if (v.is_number()) {
                     EXPECT_NEAR(v.get<double>(), gain, 1e-12);
@@ -234,11 +239,12 @@ std::string selftestInBrowser(const fs::path& page, const fs::path& work) {
     const char* chromium = "/usr/bin/chromium";
     if (!fs::exists(chromium)) return "";
     const fs::path dom = work / "dom.html";
-    const std::string cmd = std::string("timeout 120 ") + chromium +
-                            " --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking"
-                            " --user-data-dir=" +
-                            (work / "profile").string() + " --virtual-time-budget=5000 --dump-dom 'file://" + page.string() +
-                            "' > " + dom.string() + " 2>/dev/null";
+    const std::string cmd =
+        std::string("timeout 120 ") + chromium +
+        " --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking"
+        " --user-data-dir=" +
+        (work / "profile").string() + " --virtual-time-budget=5000 --dump-dom 'file://" +
+        page.string() + "' > " + dom.string() + " 2>/dev/null";
     if (std::system(cmd.c_str()) != 0) return "chromium failed";
     const std::string text = readText(dom);
     const auto at = text.find("id=\"selftest\"");
@@ -254,13 +260,15 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
     // No bounds: the planet at this size is far from the suite's thresholds.
     const fs::path none = tt::freshDir("study_run_thresholds") / "none.toml";
     tt::writeFile(none, "");
-    const auto r = tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
-                                     "/scenes/planet.toml --set camera.width=64 --set camera.height=48"
-                                     " --set bodies.planet.particles=1500 --thresholds " +
-                                     none.string() + " --studies quick --out " + out.string());
+    const auto r =
+        tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
+                          "/scenes/planet.toml --set camera.width=64 --set camera.height=48"
+                          " --set bodies.planet.particles=1500 --thresholds " +
+                          none.string() + " --studies quick --out " + out.string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
     const std::string index = readText(out / "index.html");
-    EXPECT_NE(index.find("<a href=\"studies/index.html\">stability studies</a>"), std::string::npos);
+    EXPECT_NE(index.find("<a href=\"studies/index.html\">stability studies</a>"),
+              std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
     ASSERT_EQ(all["studies"].size(), 6u);
@@ -271,14 +279,16 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
         EXPECT_TRUE(fs::exists(out / "studies" / s["name"].get<std::string>() / "study.svg"));
     }
     // In a browser: every chart and thumbnail loads, no script error.
-    const std::string selftest = selftestInBrowser(out / "studies" / "index.html", tt::freshDir("study_browser"));
+    const std::string selftest =
+        selftestInBrowser(out / "studies" / "index.html", tt::freshDir("study_browser"));
     if (!selftest.empty()) {
         EXPECT_EQ(selftest.rfind("selftest: ok", 0), 0u) << selftest;
     }
     // --studies is not sharded.
-    const auto sharded = tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
-                                           "/scenes/planet.toml --studies quick --shard 1/2 --out " +
-                                           tt::freshDir("study_run_shard").string());
+    const auto sharded =
+        tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
+                          "/scenes/planet.toml --studies quick --shard 1/2 --out " +
+                          tt::freshDir("study_run_shard").string());
     EXPECT_EQ(sharded.exitCode, 4) << sharded.output;
 }
 
@@ -288,7 +298,8 @@ TEST(Study, UnknownStudyIsExitFourWithNoOutput) {
     EXPECT_EQ(r.exitCode, 4) << r.output;
     EXPECT_NE(r.output.find("study nonsense: no such study"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("depth_range, thin_casters"), std::string::npos) << r.output;
-    const auto badSet = tt::runTwinrender("study view_angle --quick --set realtime.nonsense=1 --out " + out.string());
+    const auto badSet = tt::runTwinrender(
+        "study view_angle --quick --set realtime.nonsense=1 --out " + out.string());
     EXPECT_EQ(badSet.exitCode, 4) << badSet.output;
     EXPECT_NE(badSet.output.find("nonsense"), std::string::npos) << badSet.output;
     EXPECT_EQ(tt::countFiles(out), 0u);
