@@ -2,7 +2,9 @@
 // and measures how far the first is from the second. Exit codes (DESIGN.md): 0 pass,
 // 1 warn, 2 fail, 3 images not comparable, 4 bad input or environment.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fmt/format.h>
 #include <memory>
 #include <tbb/global_control.h>
@@ -11,6 +13,7 @@
 
 #include "app/render_job.h"
 #include "app/shard.h"
+#include "app/study_command.h"
 #include "app/sweep_command.h"
 #include "app/suite_commands.h"
 #include "core/error.h"
@@ -115,6 +118,11 @@ int main(int argc, char** argv) {
     runCmd->add_option("--shard", runOpts.shard,
                        "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
         ->type_name("K/N");
+    std::string runStudies;
+    runCmd->add_option("--studies", runStudies,
+                       "also run every stability study into OUT/studies, linked from the report: quick | full")
+        ->check(CLI::IsMember({"quick", "full"}))
+        ->type_name("quick|full");
     addCommon(runCmd, runCommon);
 
     tr::app::SweepOptions sweepOpts;
@@ -140,6 +148,21 @@ int main(int argc, char** argv) {
         ->type_name("K/N");
     addCommon(sweepCmd, sweepCommon);
 
+    tr::app::StudyOptions studyOpts;
+    CommonOptions studyCommon;
+    studyCommon.out = "out/studies";
+    auto* studyCmd = app.add_subcommand(
+        "study", "stability studies: depth range, particle size, view angle, temporal, collision, thin casters");
+    studyCmd->add_option("NAMES", studyOpts.names,
+                         "studies to run (default: all): depth_range, thin_casters, particle_size, view_angle, "
+                         "temporal, collision");
+    studyCmd->add_flag("--quick", studyOpts.quick, "fewer points and particles (seconds per study)");
+    studyCmd->add_option("--cache", studyOpts.cache, "reference cache folder (default: OUT/reference_cache)");
+    studyCmd->add_option("--ppd", studyOpts.ppd, "ꟻLIP pixels per degree")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    addCommon(studyCmd, studyCommon);
+
     tr::app::MergeOptions mergeOpts;
     auto* mergeCmd = app.add_subcommand("merge", "join the output folders of `run|sweep --shard K/N`");
     mergeCmd->add_option("DIRS", mergeOpts.inputs, "the shards' output folders")->required();
@@ -160,6 +183,7 @@ int main(int argc, char** argv) {
     try {
         const int requested = *runCmd     ? runCommon.threads
                               : *sweepCmd ? sweepCommon.threads
+                              : *studyCmd ? studyCommon.threads
                                           : renderOpts.threads;
         std::string commandLine;
         for (int i = 0; i < argc; ++i) commandLine += (i ? " " : "") + std::string(argv[i]);
@@ -175,7 +199,22 @@ int main(int argc, char** argv) {
                 runOpts.sets = runCommon.sets;
                 runOpts.requireGpu = runCommon.requireGpu;
                 runOpts.commandLine = commandLine;
+                runOpts.linkStudies = !runStudies.empty();
+                if (runOpts.linkStudies && !runOpts.shard.empty())
+                    throw tr::core::InputError(
+                        "run --studies with --shard: the studies are not sharded; run them once with "
+                        "`twinrender study`");
                 rc = tr::app::runSuite(runOpts);
+                if (!runStudies.empty()) {
+                    // The study scenes are not the suite's: the run's --set does not apply.
+                    tr::app::StudyOptions so;
+                    so.out = (std::filesystem::path(runCommon.out) / "studies").string();
+                    so.quick = runStudies == "quick";
+                    so.requireGpu = runCommon.requireGpu;
+                    so.ppd = runOpts.ppd;
+                    so.commandLine = commandLine;
+                    rc = std::max(rc, tr::app::runStudies(so));
+                }
             }
             if (*sweepCmd) {
                 sweepOpts.out = sweepCommon.out;
@@ -183,6 +222,13 @@ int main(int argc, char** argv) {
                 sweepOpts.requireGpu = sweepCommon.requireGpu;
                 sweepOpts.commandLine = commandLine;
                 rc = tr::app::runSweep(sweepOpts);
+            }
+            if (*studyCmd) {
+                studyOpts.out = studyCommon.out;
+                studyOpts.sets = studyCommon.sets;
+                studyOpts.requireGpu = studyCommon.requireGpu;
+                studyOpts.commandLine = commandLine;
+                rc = tr::app::runStudies(studyOpts);
             }
             if (*mergeCmd) {
                 mergeOpts.commandLine = commandLine;

@@ -188,6 +188,7 @@ int runSuite(const RunOptions& o) {
         }
         run.scenes.push_back(std::move(report));
     }
+    if (o.linkStudies) run.links.push_back({"stability studies", "studies/index.html"});
     compare::writeReport(run, out);
     if (!o.junit.empty()) compare::writeJunit(run, o.junit);
     if (shard) {

@@ -28,6 +28,9 @@ struct RunOptions {
     double ppd = 67.0;
     std::string commandLine;          // recorded in the report
     std::string shard;                // "K/N" (app/shard.h); empty: every scene
+    // Whether the report links to the stability studies in OUT/studies (main runs them after
+    // the scenes: `run --studies`).
+    bool linkStudies = false;
 };
 int runSuite(const RunOptions& options);
 

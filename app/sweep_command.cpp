@@ -16,6 +16,7 @@
 #include <set>
 
 #include "app/comparison.h"
+#include "app/reference_cache.h"
 #include "app/render_job.h"
 #include "app/shard.h"
 #include "compare/report.h"
@@ -36,9 +37,6 @@ namespace {
 constexpr double TIGHT_ROOT_TOLERANCE = 1e-7;
 constexpr int TIGHT_SPP = 16;
 
-// Bump when the cached reference's format or what goes into its key changes.
-constexpr const char* CACHE_KEY_VERSION = "twinrender-reference-v1";
-
 std::string nowUtc() {
     const std::time_t t = std::time(nullptr);
     char buf[64];
@@ -54,123 +52,12 @@ std::string keyOf(const std::string& assignment) {
     return assignment.substr(0, assignment.find('='));
 }
 
-// FNV-1a, 64 bits: a cache key, not a security boundary.
-class Hash {
-  public:
-    void add(std::string_view bytes) {
-        for (unsigned char c : bytes) {
-            mState ^= c;
-            mState *= 0x100000001b3ULL;
-        }
-        // A separator, so that ("ab", "c") and ("a", "bc") differ.
-        mState ^= 0xff;
-        mState *= 0x100000001b3ULL;
-    }
-    void addFile(const fs::path& file) {
-        std::ifstream in(file, std::ios::binary);
-        if (!in) throw core::InputError(fmt::format("{}: cannot be read", file.string()));
-        add(file.string());
-        add(std::string(std::istreambuf_iterator<char>(in), {}));
-    }
-    std::string hex() const { return fmt::format("{:016x}", mState); }
-
-  private:
-    std::uint64_t mState = 0xcbf29ce484222325ULL;
-};
-
-// The cache key of a reference render, and a readable account of what went into it:
-// everything the raymarcher reads (the scene file and the files it names, the overrides
-// other than realtime.*, the parsed raymarch settings), nothing only the real-time renderer
-// reads. The raymarcher's code is not part of it: delete the cache after changing it.
-std::pair<std::string, json> referenceKey(const LoadedScene& s,
-                                          const std::vector<std::string>& overrides) {
-    Hash h;
-    json what;
-    h.add(CACHE_KEY_VERSION);
-    h.addFile(s.scene.file);
-    what["scene_file"] = s.scene.file.string();
-    std::vector<std::string> used;
-    for (const auto& o : overrides)
-        if (!startsWith(o, "realtime.")) {
-            h.add(o);
-            used.push_back(o);
-        }
-    what["overrides"] = used;
-    json files = json::array();
-    for (const auto& b : s.scene.bodies)
-        if (!b.path.empty()) {
-            h.addFile(b.path);
-            files.push_back(b.path.string());
-        }
-    for (const auto& m : s.scene.materials)
-        for (const core::TextureSource* t : {&m.diffuse, &m.specular, &m.emission, &m.cityLights})
-            if (t->kind == core::TextureSource::Kind::File) {
-                h.addFile(t->path);
-                files.push_back(t->path.string());
-            }
-    what["files"] = files;
-    const json settings = raymarch::toJson(s.raymarch);
-    h.add(settings.dump());
-    what["raymarch"] = settings;
-    what["version"] = CACHE_KEY_VERSION;
-    return {h.hex(), what};
-}
-
 double median(std::vector<double> v) {
     if (v.empty()) return NAN;
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
-
-// A reference render from the cache folder, or rendered and stored there.
-class ReferenceCache {
-  public:
-    ReferenceCache(fs::path dir, const raymarch::EmbreeDevice& device, bool tty)
-        : mDir(std::move(dir)), mDevice(device), mTty(tty) {}
-
-    const Render& get(const LoadedScene& s, const std::string& key, const json& what) {
-        if (auto it = mLoaded.find(key); it != mLoaded.end()) return it->second;
-        const fs::path dir = mDir / key;
-        Render r;
-        if (fs::is_regular_file(dir / "raymarch.exr") &&
-            fs::is_regular_file(dir / "raymarch.json")) {
-            r.frame.image = core::readImage(dir / "raymarch.exr");
-            std::ifstream in(dir / "raymarch.json");
-            const json j = json::parse(in, nullptr, false);
-            if (j.is_discarded())
-                throw core::InputError(fmt::format("{}: not JSON; delete the folder",
-                                                   (dir / "raymarch.json").string()));
-            r.frame.renderer = "raymarch";
-            r.frame.device = j.value("device", "");
-            r.frame.settings = j.value("settings", json());
-            const json timings = j.value("timings_ms", json::object());
-            const json counters = j.value("counters", json::object());
-            for (const auto& [k, v] : timings.items())
-                if (v.is_number()) r.frame.timingsMs[k] = v.get<double>();
-            for (const auto& [k, v] : counters.items())
-                if (v.is_number()) r.frame.counters[k] = v.get<double>();
-            r.frame.particleCount = j.value("particle_count", std::size_t{0});
-            r.display =
-                core::tonemappedBeauty(r.frame.image, static_cast<float>(s.scene.camera.exposure));
-            std::printf("reference %s: cache hit %s\n", key.c_str(), dir.c_str());
-        } else {
-            r = renderRaymarch(mDevice, s, mTty);
-            writeRender(s, r, dir);
-            core::writeTextFile(dir / "key.json", what.dump(2) + "\n");
-            std::printf("reference %s: rendered in %.1f ms, cached in %s\n", key.c_str(),
-                        r.frame.timingsMs.at("total"), dir.c_str());
-        }
-        std::fflush(stdout);
-        return mLoaded.emplace(key, std::move(r)).first->second;
-    }
-
-  private:
-    fs::path mDir;
-    const raymarch::EmbreeDevice& mDevice;
-    bool mTty;
-    std::map<std::string, Render> mLoaded;
-};
 
 // One combination, loaded and checked before anything renders.
 struct Job {

@@ -784,6 +784,8 @@ std::string indexPage(const RunReport& run) {
     h += run.baselineFile.empty()
              ? std::string("<span>no baseline</span>")
              : "<span>baseline <code>" + esc(run.baselineFile) + "</code></span>";
+    for (const auto& [text, href] : run.links)
+        h += "<span><a href=\"" + url(href) + "\">" + esc(text) + "</a></span>";
     h += "</div>\n</header>\n<main>\n<section>\n";
 
     if (run.scenes.empty()) {

@@ -70,6 +70,9 @@ struct RunReport {
     std::string thresholdsFile;
     std::string baselineFile;
     std::vector<SceneReport> scenes;
+    // Pages beside the report shown in the index's header: {text, relative URL}, e.g.
+    // {"stability studies", "studies/index.html"}.
+    std::vector<std::pair<std::string, std::string>> links;
 
     Status status() const;  // the worst scene; Pass when there are none
 };

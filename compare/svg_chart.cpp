@@ -270,4 +270,196 @@ std::string scatterSvg(const ScatterChart& chart) {
     return s;
 }
 
+
+namespace {
+
+// Colour-blind-safe (Okabe and Ito, 2008), in a fixed order so that series keep their colour.
+constexpr const char* PALETTE[8] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                    "#e69f00", "#56b4e9", "#000000", "#f0e442"};
+
+bool usesLog(AxisScale scale, const std::vector<double>& values) {
+    if (scale != AxisScale::Auto) return scale == AxisScale::Log;
+    double lo = INFINITY, hi = 0.0;
+    for (double v : values)
+        if (std::isfinite(v) && v > 0.0) {
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+    return hi > 0.0 && hi / lo > 10.0;
+}
+
+}  // namespace
+
+std::string lineSvg(const LineChart& chart) {
+    std::vector<double> xs, ys;
+    for (const LineSeries& ls : chart.series)
+        for (const ChartPoint& p : ls.points) {
+            xs.push_back(p.x);
+            ys.push_back(p.y);
+        }
+    const bool logX = usesLog(chart.xScale, xs);
+    const bool logY = usesLog(chart.yScale, ys);
+    auto drawn = [&](const ChartPoint& p) {
+        return std::isfinite(p.x) && std::isfinite(p.y) && (!logX || p.x > 0.0) &&
+               (!logY || p.y > 0.0);
+    };
+    const double W = chart.width, H = chart.height;
+    // Legend rows under the plot: up to 4 entries a row.
+    const int legendRows = static_cast<int>((chart.series.size() + 3) / 4);
+    const double left = 78, right = W - 24, top = 44, bottom = H - 62 - 18.0 * legendRows;
+
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    std::size_t total = 0, shown = 0;
+    for (const LineSeries& ls : chart.series)
+        for (const ChartPoint& p : ls.points) {
+            ++total;
+            if (!drawn(p)) continue;
+            ++shown;
+            x0 = std::min(x0, p.x);
+            x1 = std::max(x1, p.x);
+            y0 = std::min(y0, p.y);
+            y1 = std::max(y1, p.y);
+        }
+    for (const auto& [x, text] : chart.xMarks)
+        if (std::isfinite(x) && (!logX || x > 0.0) && shown) {
+            x0 = std::min(x0, x);
+            x1 = std::max(x1, x);
+        }
+    if (!shown) {
+        x0 = logX ? 1.0 : 0.0;
+        x1 = logX ? 10.0 : 1.0;
+        y0 = logY ? 1.0 : 0.0;
+        y1 = logY ? 10.0 : 1.0;
+    }
+    // A linear error axis starts at 0 when the data are not far from it: errors read as sizes.
+    if (!logY && y0 > 0.0 && y0 < 0.5 * y1) y0 = 0.0;
+    const auto [xl, xh] = paddedRange(x0, x1, logX);
+    auto [yl, yh] = paddedRange(y0, y1, logY);
+    if (!logY && y0 == 0.0 && y1 > 0.0) yl = 0.0;
+    const Axis ax{xl, xh, logX, left, right};
+    const Axis ay{yl, yh, logY, bottom, top};
+
+    std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    s += fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
+        "viewBox=\"0 0 {0} {1}\" font-family=\"DejaVu Sans, Arial, sans-serif\" "
+        "font-size=\"12\">\n",
+        chart.width, chart.height);
+    s += "<style>.grid{stroke:#e1e4e8;stroke-width:1}.axis{stroke:#57606a;stroke-width:1;fill:none}"
+         ".tick{fill:#57606a;font-size:11px}.line{fill:none;stroke-width:2}.dashed{stroke-dasharray:"
+         "6 4}.point{stroke:#ffffff;stroke-width:1}.mark{stroke:#8c959f;stroke-width:1;"
+         "stroke-dasharray:3 3}.mark-label{fill:#57606a;font-size:10px}.title{font-size:15px;"
+         "font-weight:600;fill:#24292f}.label{fill:#24292f;font-size:12px}";
+    for (int k = 0; k < 8; ++k)
+        s += fmt::format(".series-{0}.line{{stroke:{1}}}.series-{0}.point{{fill:{1}}}", k,
+                         PALETTE[k]);
+    s += "</style>\n";
+    s += fmt::format("<rect x=\"0\" y=\"0\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>\n", W, H);
+    s += fmt::format("<text class=\"title\" x=\"{}\" y=\"24\">{}</text>\n", left,
+                     xmlText(chart.title));
+
+    const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
+    std::vector<double> yt = logY ? logTicks(yl, yh) : linearTicks(yl, yh, 6);
+    // Many decades: every other one keeps the labels apart.
+    auto thin = [](std::vector<double> t, std::size_t most) {
+        while (t.size() > most) {
+            std::vector<double> half;
+            for (std::size_t i = 0; i < t.size(); i += 2) half.push_back(t[i]);
+            t = std::move(half);
+        }
+        return t;
+    };
+    const std::vector<double> xtShown = thin(xt, 12);
+    yt = thin(yt, 10);
+    s += "<g class=\"ticks\">\n";
+    for (double t : xtShown) {
+        const double px = ax.map(t);
+        s += fmt::format(
+            "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
+            "<text class=\"tick\" x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\">{4}</text>\n",
+            px, top, bottom, bottom + 16, xmlText(tickText(t)));
+    }
+    for (double t : yt) {
+        const double py = ay.map(t);
+        s += fmt::format(
+            "<line class=\"grid\" x1=\"{1:.1f}\" y1=\"{0:.1f}\" x2=\"{2:.1f}\" y2=\"{0:.1f}\"/>"
+            "<text class=\"tick\" x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
+            py, left, right, left - 6, py + 4, xmlText(tickText(t)));
+    }
+    s += "</g>\n";
+    s += fmt::format("<rect class=\"axis\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n", left,
+                     top, right - left, bottom - top);
+    s += fmt::format(
+        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}{}</text>\n",
+        (left + right) / 2, bottom + 36, xmlText(chart.xLabel), logX ? " — log scale" : "");
+    s += fmt::format(
+        "<text class=\"label\" transform=\"translate(18 {:.1f}) rotate(-90)\" "
+        "text-anchor=\"middle\">{}{}</text>\n",
+        (top + bottom) / 2, xmlText(chart.yLabel), logY ? " — log scale" : "");
+
+    for (const auto& [x, text] : chart.xMarks) {
+        if (!std::isfinite(x) || (logX && x <= 0.0) || !shown) continue;
+        const double px = ax.map(x);
+        // Right of the line, or left of it where the text would leave the plot.
+        const bool flip = px + 3 + 6.0 * static_cast<double>(text.size()) > right;
+        s += fmt::format(
+            "<line class=\"mark\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
+            "<text class=\"mark-label\" x=\"{3:.1f}\" y=\"{4:.1f}\"{5}>{6}</text>\n",
+            px, top, bottom, flip ? px - 3 : px + 3, top + 11, flip ? " text-anchor=\"end\"" : "",
+            xmlText(text));
+    }
+
+    for (std::size_t k = 0; k < chart.series.size(); ++k) {
+        const LineSeries& ls = chart.series[k];
+        const std::string cls = fmt::format("series-{}", k % 8);
+        s += fmt::format("<g class=\"series\" data-series=\"{}\">\n", xmlText(ls.name));
+        // A line through consecutive drawable points; an undrawable point breaks it.
+        std::vector<std::string> runs(1);
+        for (const ChartPoint& p : ls.points) {
+            if (!drawn(p)) {
+                if (!runs.back().empty()) runs.emplace_back();
+                continue;
+            }
+            runs.back() += fmt::format("{}{:.1f},{:.1f}", runs.back().empty() ? "" : " ",
+                                       ax.map(p.x), ay.map(p.y));
+        }
+        for (const std::string& r : runs)
+            if (r.find(' ') != std::string::npos)
+                s += fmt::format("<polyline class=\"line {}{}\" points=\"{}\"/>\n", cls,
+                                 ls.dashed ? " dashed" : "", r);
+        for (const ChartPoint& p : ls.points) {
+            if (!drawn(p)) continue;
+            s += fmt::format(
+                "<circle class=\"point {}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\"><title>{}{}x {}, "
+                "y {}</title></circle>\n",
+                cls, ax.map(p.x), ay.map(p.y), xmlText(ls.name),
+                p.label.empty() ? " — " : " — " + xmlText(p.label) + ": ", xmlText(tickText(p.x)),
+                xmlText(fmt::format("{:.4g}", p.y)));
+        }
+        s += "</g>\n";
+    }
+
+    s += "<g class=\"legend\">\n";
+    for (std::size_t k = 0; k < chart.series.size(); ++k) {
+        const double lx = left + static_cast<double>(k % 4) * ((right - left) / 4.0);
+        const double ly = bottom + 56 + 18.0 * static_cast<double>(k / 4);
+        const std::string cls = fmt::format("series-{}", k % 8);
+        s += fmt::format(
+            "<g class=\"legend-entry\"><line class=\"line {0}{1}\" x1=\"{2:.1f}\" y1=\"{3:.1f}\" "
+            "x2=\"{4:.1f}\" y2=\"{3:.1f}\"/><circle class=\"point {0}\" cx=\"{5:.1f}\" "
+            "cy=\"{3:.1f}\" r=\"4\"/><text class=\"label\" x=\"{6:.1f}\" y=\"{7:.1f}\">{8}</text>"
+            "</g>\n",
+            cls, chart.series[k].dashed ? " dashed" : "", lx, ly, lx + 24, lx + 12, lx + 30,
+            ly + 4, xmlText(chart.series[k].name));
+    }
+    s += "</g>\n";
+    if (shown < total)
+        s += fmt::format(
+            "<text class=\"tick\" x=\"{}\" y=\"{:.1f}\">{} of {} points not drawn (no finite{} "
+            "value)</text>\n",
+            left, H - 4, total - shown, total, logX || logY ? " positive" : "");
+    s += "</svg>\n";
+    return s;
+}
+
 }  // namespace twinrender::compare

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace twinrender::compare {
@@ -43,5 +44,34 @@ bool usesLogX(const ScatterChart& chart);
 // <title> and a <text class="point-label">, the Pareto front as <polyline class="pareto">
 // (marked points get class="point pareto-point"), and a legend.
 std::string scatterSvg(const ScatterChart& chart);
+
+// ---- Line charts: a metric against a setting, one line per series ------------------------
+
+struct LineSeries {
+    std::string name;                // the legend's text: "standard depth", "SSSS on"
+    std::vector<ChartPoint> points;  // drawn in the order given; labels become marker tooltips
+    bool dashed = false;             // e.g. a baseline drawn for comparison
+};
+
+struct LineChart {
+    std::string title;
+    std::string xLabel;  // with its unit: "far / near", "view angle (degrees)"
+    std::string yLabel;  // with its unit and direction
+    std::vector<LineSeries> series;
+    AxisScale xScale = AxisScale::Linear;  // Auto: log when positive x spans more than a decade
+    AxisScale yScale = AxisScale::Linear;  // Log: only positive y values are drawn
+    // Vertical marks at an x (e.g. where a series breaks): {x, text}.
+    std::vector<std::pair<double, std::string>> xMarks;
+    int width = 760;   // px
+    int height = 440;  // px
+};
+
+// A complete SVG document like scatterSvg's: frame, ticks with values (log axes by decades),
+// axis labels, the title, per series a <polyline class="line series-K"> through its drawable
+// points (a break at an undrawable one) and one <circle class="point series-K"> per drawable
+// point with a <title>; a legend with one <g class="legend-entry"> per series, below the
+// plot; the x marks as <line class="mark">. Series colours come from a fixed palette of 8
+// (K = index mod 8), so equal series orders give equal colours across charts.
+std::string lineSvg(const LineChart& chart);
 
 }  // namespace twinrender::compare

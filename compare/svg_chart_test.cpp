@@ -75,3 +75,46 @@ TEST(ScatterSvg, NoDrawablePointsStillMakesAChart) {
     EXPECT_EQ(xml.classCounts.at("point"), 2);  // the legend's only
     EXPECT_NE(svg.find("1 of 1 points not drawn"), std::string::npos);
 }
+
+TEST(LineSvg, OneLineAndMarkerPerSeriesOnLogAxes) {
+    tc::LineChart chart;
+    chart.title = "depth: id.mismatch <against> far/near";
+    chart.xLabel = "far / near";
+    chart.yLabel = "id.mismatch (lower is better)";
+    chart.xScale = tc::AxisScale::Log;
+    chart.series = {{"standard", {{1e2, 0.0, "a"}, {1e6, 0.3, ""}, {1e12, 0.4, ""}}, false},
+                    {"log & co", {{1e2, 0.0, ""}, {1e6, NAN, ""}, {1e12, 0.01, ""}}, true}};
+    chart.xMarks = {{1e6, "standard breaks"}};
+    const std::string svg = tc::lineSvg(chart);
+    const auto xml = twinrender::test::checkXml(svg);
+    ASSERT_EQ(xml.error, "") << svg;
+    // 5 drawable points and one legend marker per series; the NaN breaks the second line.
+    EXPECT_EQ(xml.classCounts.at("point"), 5 + 2);
+    EXPECT_EQ(xml.classCounts.at("series-0"), 3 + 1 + 2);  // markers, line, legend line+marker
+    EXPECT_EQ(xml.classCounts.at("line"), 1 + 0 + 2);      // runs of one point draw no line
+    EXPECT_EQ(xml.classCounts.at("legend-entry"), 2);
+    EXPECT_EQ(xml.classCounts.at("mark"), 1);
+    EXPECT_EQ(xml.classCounts.at("dashed"), 1);  // the legend's; the dashed series has no run
+    EXPECT_NE(svg.find("far / near — log scale"), std::string::npos);
+    EXPECT_NE(svg.find("1e+12"), std::string::npos);  // decade ticks
+    EXPECT_NE(svg.find("log &amp; co"), std::string::npos);
+    EXPECT_NE(svg.find("1 of 6 points not drawn"), std::string::npos);
+}
+
+TEST(LineSvg, LinearAxesStartErrorsAtZeroAndLogYDropsNonPositive) {
+    tc::LineChart chart;
+    chart.xLabel = "view angle (degrees)";
+    chart.yLabel = "normal.mean_deg (°)";
+    chart.series = {{"SSSS on", {{0, 3.0, ""}, {45, 4.0, ""}, {85, 9.0, ""}}, false}};
+    std::string svg = tc::lineSvg(chart);
+    ASSERT_EQ(twinrender::test::checkXml(svg).error, "");
+    EXPECT_NE(svg.find(">0</text>"), std::string::npos);  // the y axis reaches 0
+    EXPECT_EQ(svg.find("log scale"), std::string::npos);
+    chart.yScale = tc::AxisScale::Log;
+    chart.series[0].points[0].y = 0.0;
+    svg = tc::lineSvg(chart);
+    const auto xml = twinrender::test::checkXml(svg);
+    ASSERT_EQ(xml.error, "");
+    EXPECT_EQ(xml.classCounts.at("point"), 2 + 1);
+    EXPECT_NE(svg.find("finite positive"), std::string::npos);
+}

@@ -1,0 +1,10 @@
+// Which code renders the reference: "<project version>+<16 hex digits of a SHA-256 over the
+// sources of core/ and raymarch/>", generated at build time (app/build_identity.cmake). Part
+// of every reference cache key: a changed raymarcher never reuses a stale render.
+#pragma once
+
+namespace twinrender::app {
+
+const char* referenceBuildIdentity();
+
+}  // namespace twinrender::app

@@ -1,0 +1,54 @@
+// The stability studies (docs/studies.md): each one a small scene of scenes/studies/, a list of
+// settings points (series, x, the overrides that make them) and the conclusion drawn from the
+// measured rows: the chart and a one-line finding, both computed from the data.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/render_job.h"
+#include "compare/study_report.h"
+
+namespace twinrender::app {
+
+struct StudyPoint {
+    std::string series;             // the chart's line this point belongs to
+    double x = NAN;                 // NaN: StudyDef::xOf computes it from the loaded scene
+    std::vector<std::string> sets;  // KEY=VALUE overrides, applied after the user's --set
+};
+
+struct StudyDef {
+    std::string name;      // "depth_range": the CLI name, the output folder
+    std::string title;     // "Depth range"
+    std::string question;  // one sentence: what it measures and how
+    std::string scene;     // file name in scenes/studies/
+    std::string xLabel;    // with its unit
+    bool xLog = false;
+    std::string metric;                // the chart's y
+    std::vector<std::string> columns;  // metrics in the page's table
+    // Also measure bleeding in the band around the contact of two bodies
+    // (contact.uv_mean, contact.emission_rmse, contact.pixels; compare/contact_band.h).
+    bool contactBand = false;
+    // Also measure occlusion.error: the fraction of the reference's covered pixels where the
+    // real-time render shows another body or none (id.mismatch counts only pixels covered in
+    // both, so it cannot see bodies that vanish).
+    bool occlusionError = false;
+    // The points of one series are consecutive frames: each row also gets the ꟻLIP between
+    // its frame and the previous one of its series, for the real-time render
+    // (temporal.frame_flip) and the reference (temporal.reference_frame_flip).
+    bool frameToFrame = false;
+    std::function<std::vector<StudyPoint>(bool quick)> points;
+    std::function<double(const LoadedScene&)> xOf;  // for points without an x
+    // Fills finding, facts and chart from the rows (and the fields above).
+    std::function<void(compare::StudyResult&)> conclude;
+};
+
+// Every study, in the order `twinrender study` runs them.
+const std::vector<StudyDef>& studies();
+
+// The lines of a chart: one per series (in order of first appearance) of `metric` against x.
+compare::LineChart seriesChart(const compare::StudyResult& study, const std::string& metric);
+
+}  // namespace twinrender::app

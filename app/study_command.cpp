@@ -1,0 +1,234 @@
+#include "app/study_command.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "app/comparison.h"
+#include "app/reference_cache.h"
+#include "app/studies.h"
+#include "compare/contact_band.h"
+#include "compare/flip.h"
+#include "compare/masks.h"
+#include "compare/metrics.h"
+#include "compare/report.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "realtime/gl/context.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Radius of the contact band, pixels: the blur's reach at the study's sizes plus the pixel
+// the footprint mixes.
+constexpr int CONTACT_BAND_PX = 3;
+
+std::string nowUtc() {
+    const std::time_t t = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+    return buf;
+}
+
+fs::path defaultStudyScenes() {
+    if (fs::is_directory("scenes/studies")) return "scenes/studies";
+    return fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies";
+}
+
+struct Point {
+    StudyPoint point;
+    std::vector<std::string> overrides;
+    LoadedScene scene;
+};
+
+struct Planned {
+    const StudyDef* def;
+    fs::path sceneFile;
+    std::vector<Point> points;
+};
+
+}  // namespace
+
+int runStudies(const StudyOptions& o) {
+    const bool tty = isatty(STDERR_FILENO);
+    // ---- Everything is read and checked before the first render. ----
+    std::vector<const StudyDef*> chosen;
+    std::string known;
+    for (const StudyDef& d : studies()) known += (known.empty() ? "" : ", ") + d.name;
+    if (o.names.empty())
+        for (const StudyDef& d : studies()) chosen.push_back(&d);
+    std::set<std::string> seen;
+    for (const std::string& n : o.names) {
+        const StudyDef* found = nullptr;
+        for (const StudyDef& d : studies())
+            if (d.name == n) found = &d;
+        if (!found)
+            throw core::InputError(
+                fmt::format("study {}: no such study; the studies are {}", n, known));
+        if (!seen.insert(n).second) throw core::InputError(fmt::format("study {}: named twice", n));
+        chosen.push_back(found);
+    }
+    const fs::path scenesDir = o.scenesDir.empty() ? defaultStudyScenes() : fs::path(o.scenesDir);
+    std::vector<Planned> plans;
+    for (const StudyDef* d : chosen) {
+        Planned p{d, scenesDir / d->scene, {}};
+        if (!fs::is_regular_file(p.sceneFile))
+            throw core::InputError(
+                fmt::format("{}: the scene of study {} is missing", p.sceneFile.string(), d->name));
+        for (StudyPoint& sp : d->points(o.quick)) {
+            Point pt;
+            pt.overrides = o.sets;
+            pt.overrides.insert(pt.overrides.end(), sp.sets.begin(), sp.sets.end());
+            try {
+                pt.scene = loadScene(p.sceneFile, pt.overrides);
+            } catch (const core::InputError& e) {
+                throw core::InputError(
+                    fmt::format("study {}, {} at x = {}: {}", d->name, sp.series, sp.x, e.what()));
+            }
+            if (std::isnan(sp.x) && d->xOf) sp.x = d->xOf(pt.scene);
+            pt.point = std::move(sp);
+            p.points.push_back(std::move(pt));
+        }
+        plans.push_back(std::move(p));
+    }
+
+    const fs::path out(o.out);
+    const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
+    realtime::gl::Context context(realtime::gl::ContextOptions{o.requireGpu});
+    realtime::Renderer gl(context);
+    raymarch::EmbreeDevice device;
+    ReferenceCache cache(cacheDir, device, tty);
+
+    std::vector<compare::StudyResult> results;
+    bool anyError = false;
+    for (const Planned& plan : plans) {
+        const StudyDef& d = *plan.def;
+        const auto start = std::chrono::steady_clock::now();
+        compare::StudyResult s;
+        s.name = d.name;
+        s.title = d.title;
+        s.question = d.question;
+        s.sceneFile = plan.sceneFile.string();
+        s.xLabel = d.xLabel;
+        s.xLog = d.xLog;
+        s.metric = d.metric;
+        s.columns = d.columns;
+        const fs::path dir = out / d.name;
+        fs::create_directories(dir / "points");
+        fs::create_directories(dir / "references");
+        std::map<std::string, double> unbracketed;  // per distinct reference
+        // Frame-to-frame: the previous frame's two display images, per series.
+        std::map<std::string, std::pair<core::Image, core::Image>> previous;
+        for (std::size_t i = 0; i < plan.points.size(); ++i) {
+            const Point& pt = plan.points[i];
+            compare::StudyRow row;
+            row.series = pt.point.series;
+            row.x = pt.point.x;
+            row.sets = pt.point.sets;
+            try {
+                const auto [key, what] = referenceKey(pt.scene, pt.overrides);
+                row.referenceKey = key;
+                const Render& ref = cache.get(pt.scene, key, what);
+                row.referenceMs =
+                    ref.frame.timingsMs.count("total") ? ref.frame.timingsMs.at("total") : NAN;
+                const auto u = ref.frame.counters.find("unbracketed_rays");
+                row.metrics["count.unbracketed_rays"] =
+                    u == ref.frame.counters.end() ? 0.0 : u->second;
+                unbracketed[key] = row.metrics["count.unbracketed_rays"];
+                const Render test = renderRealtime(gl, pt.scene);
+                for (const auto& [stage, ms] : test.frame.timingsMs)
+                    if (stage != "compile") row.timingsMs[stage] = ms;
+                const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
+                const compare::MetricResult m =
+                    compare::computeMetrics(ref.frame.image, test.frame.image, ms);
+                for (const auto& [k, v] : m.values) row.metrics[k] = v;
+                if (d.contactBand || d.occlusionError) {
+                    compare::MaskSettings maskSettings;
+                    maskSettings.interiorRadius = ms.interiorRadius;
+                    maskSettings.hasLight = ms.hasLight;
+                    maskSettings.lightDirection = ms.lightDirection;
+                    const compare::Masks masks =
+                        compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
+                    const double covered = double(masks.referenceCovered.count());
+                    if (d.occlusionError)
+                        row.metrics["occlusion.error"] =
+                            covered > 0 ? 1.0 - double(masks.sameBody.count()) / covered : NAN;
+                }
+                if (d.contactBand) {
+                    compare::MaskSettings maskSettings;
+                    maskSettings.interiorRadius = ms.interiorRadius;
+                    maskSettings.hasLight = ms.hasLight;
+                    maskSettings.lightDirection = ms.lightDirection;
+                    const compare::Masks masks =
+                        compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
+                    const auto band = compare::contactBandError(ref.frame.image, test.frame.image,
+                                                                masks, CONTACT_BAND_PX);
+                    row.metrics["contact.uv_mean"] = band.uvMean;
+                    row.metrics["contact.emission_rmse"] = band.emissionRmse;
+                    row.metrics["contact.pixels"] = double(band.pixels);
+                }
+                if (d.frameToFrame) {
+                    const auto prev = previous.find(row.series);
+                    compare::FlipSettings fs;
+                    fs.ppd = o.ppd;
+                    if (prev != previous.end()) {
+                        row.metrics["temporal.frame_flip"] =
+                            compare::flip(prev->second.first, test.display, fs).mean;
+                        row.metrics["temporal.reference_frame_flip"] =
+                            compare::flip(prev->second.second, ref.display, fs).mean;
+                    }
+                    previous[row.series] = {test.display, ref.display};
+                }
+                const std::string png = fmt::format("points/{:03}.realtime.png", i);
+                core::writeImage(test.display, dir / png);
+                row.images["realtime"] = png;
+                const std::string refPng = "references/" + key + ".png";
+                if (!fs::exists(dir / refPng)) core::writeImage(ref.display, dir / refPng);
+                row.images["reference"] = refPng;
+                const auto y = row.metrics.find(d.metric);
+                std::printf("[%s %zu/%zu] %s, x = %g: %s %s (real-time %.1f ms)\n", d.name.c_str(),
+                            i + 1, plan.points.size(), row.series.c_str(), row.x, d.metric.c_str(),
+                            y == row.metrics.end() ? "-" : compare::formatValue(y->second).c_str(),
+                            row.timingsMs.count("total") ? row.timingsMs.at("total") : NAN);
+            } catch (const core::InputError&) {
+                throw;
+            } catch (const std::exception& e) {
+                // One point that cannot be rendered fails; the others still run.
+                row.error = e.what();
+                anyError = true;
+                std::printf("[%s %zu/%zu] %s, x = %g: error: %s\n", d.name.c_str(), i + 1,
+                            plan.points.size(), row.series.c_str(), row.x, e.what());
+            }
+            std::fflush(stdout);
+            s.rows.push_back(std::move(row));
+        }
+        s.references = unbracketed.size();
+        for (const auto& [k, n] : unbracketed) s.unbracketedRays += n;
+        d.conclude(s);
+        s.wallSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        compare::writeStudy(s, out);
+        std::printf("%s: %s [reference: %s unbracketed rays in %zu renders; %.1f s]\n",
+                    d.name.c_str(), s.finding.c_str(),
+                    compare::formatValue(s.unbracketedRays).c_str(), s.references, s.wallSeconds);
+        std::fflush(stdout);
+        results.push_back(std::move(s));
+    }
+    compare::writeStudiesIndex(results, out, nowUtc(), o.commandLine);
+    std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies",
+                (out / "index.html").c_str());
+    return anyError ? 2 : 0;
+}
+
+}  // namespace twinrender::app

@@ -1,0 +1,306 @@
+// `twinrender study` end to end, every study in its quick form (a few points, small scenes):
+// the rows, the chart, the page, and a finding computed from the rows (checked against them).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "compare/testdata/xml_check.h"
+#include "tests/cli_harness.h"
+
+namespace tt = twinrender::test;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json readJson(const fs::path& file) {
+    std::ifstream in(file);
+    return json::parse(in, nullptr, false);
+}
+
+std::string readText(const fs::path& file) {
+    std::ifstream in(file);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+double metric(const json& row, const std::string& name) {
+    const json& v = row["metrics"][name];
+    return v.is_number() ? v.get<double>() : NAN;
+}
+
+// Runs one quick study into a fresh folder; checks what every study leaves and returns its
+// study.json.
+json runStudy(const std::string& name, std::size_t points, const std::string& metricName) {
+    const fs::path out = tt::freshDir("study_" + name);
+    const auto r = tt::runTwinrender("study " + name + " --quick --out " + out.string());
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    const json s = readJson(out / name / "study.json");
+    EXPECT_FALSE(s.is_discarded()) << r.output;
+    if (s.is_discarded()) return s;
+    EXPECT_EQ(s["format"], "twinrender-study");
+    EXPECT_EQ(s["name"], name);
+    EXPECT_EQ(s["metric"], metricName);
+    EXPECT_EQ(s["rows"].size(), points);
+    const std::string finding = s["finding"];
+    EXPECT_FALSE(finding.empty());
+    // The finding is printed, with the reference's unbracketed rays.
+    EXPECT_NE(r.output.find(name + ": " + finding + " [reference: "), std::string::npos)
+        << r.output;
+    EXPECT_TRUE(s["unbracketed_rays"].is_number());
+    std::set<std::string> keys;
+    for (const json& row : s["rows"]) {
+        EXPECT_FALSE(row.contains("error")) << row;
+        EXPECT_TRUE(row["metrics"]["count.unbracketed_rays"].is_number()) << row;
+        EXPECT_TRUE(row["timings_ms"]["total"].is_number()) << row;
+        EXPECT_TRUE(fs::exists(out / name / row["images"]["realtime"].get<std::string>()));
+        EXPECT_TRUE(fs::exists(out / name / row["images"]["reference"].get<std::string>()));
+        keys.insert(row["reference_key"].get<std::string>());
+    }
+    EXPECT_EQ(s["references"].get<std::size_t>(), keys.size());
+    // CSV: a header and a line per row.
+    std::istringstream csv(readText(out / name / "study.csv"));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line.rfind("series,x,sets,time.total_ms", 0), 0u) << line;
+    EXPECT_NE(line.find(metricName), std::string::npos) << line;
+    std::size_t lines = 0;
+    while (std::getline(csv, line)) ++lines;
+    EXPECT_EQ(lines, points);
+    // The chart: well-formed, a marker per drawn point, a legend entry per series.
+    const std::string svg = readText(out / name / "study.svg");
+    auto xml = tt::checkXml(svg);
+    EXPECT_EQ(xml.error, "") << svg;
+    EXPECT_GE(xml.classCounts["legend-entry"], 1);
+    EXPECT_GE(xml.classCounts["point"], 2);
+    // The page: the finding, the chart, the table.
+    const std::string html = readText(out / "index.html");
+    EXPECT_NE(html.find("<img src=\"" + name + "/study.svg\""), std::string::npos);
+    EXPECT_NE(html.find("id=\"" + name + "\""), std::string::npos);
+    const json all = readJson(out / "studies.json");
+    EXPECT_EQ(all["studies"].size(), 1u);
+    EXPECT_EQ(all["studies"][0]["finding"], finding);
+    // The cache key names the raymarcher's build.
+    for (const auto& e : fs::directory_iterator(out / "reference_cache")) {
+        const json key = readJson(e.path() / "key.json");
+        EXPECT_TRUE(std::regex_match(key.value("build", ""),
+                                     std::regex("[0-9]+\\.[0-9]+\\.[0-9]+\\+[0-9a-f]{16}")))
+            << key;
+    }
+    return s;
+}
+
+// The rows of a series, in file order.
+std::vector<json> series(const json& s, const std::string& name) {
+    std::vector<json> rows;
+    for (const json& r : s["rows"])
+        if (r["series"] == name) rows.push_back(r);
+    return rows;
+}
+
+}  // namespace
+
+TEST(Study, DepthRangeStandardDepthBreaksBeforeLog) {
+    const json s = runStudy("depth_range", 3 * 4, "occlusion.error");
+    ASSERT_FALSE(s.is_discarded());
+    EXPECT_EQ(s["x_log"], true);
+    const json& breaks = s["facts"]["breaks_at"];
+    // Standard (24-bit z/w) loses the moon in front of the planet within the range; log depth
+    // keeps it, or loses it only at a larger far/near.
+    ASSERT_TRUE(breaks["standard"].is_number()) << s["facts"];
+    const double standard = breaks["standard"];
+    EXPECT_TRUE(breaks["log"].is_null() || breaks["log"].get<double>() > standard) << s["facts"];
+    // The finding states what the rows show: the break point and its mismatch.
+    const double limit = s["facts"]["limit"];
+    for (const json& r : series(s, "standard depth")) {
+        // Broken: the wrong body shows, or none.
+        const double x = r["x"], m = metric(r, "occlusion.error");
+        if (x >= standard) {
+            EXPECT_GT(m, limit) << x;
+        }
+    }
+    const std::string finding = s["finding"];
+    EXPECT_NE(finding.find("standard depth "), std::string::npos) << finding;
+    EXPECT_NE(finding.find(" from far/near 1e"), std::string::npos) << finding;
+    EXPECT_NE(finding.find("log "), std::string::npos) << finding;
+}
+
+TEST(Study, ThinCastersShadowMapAgainstOcclusionSpheres) {
+    const json s = runStudy("thin_casters", 2 * 3 + 2, "shadow.iou");
+    ASSERT_FALSE(s.is_discarded());
+    // One reference for every point: only realtime.* settings vary.
+    EXPECT_EQ(s["references"], 1);
+    const json& f = s["facts"];
+    // The best map series' IoU at the finest resolution is the one the finding names.
+    double best = -1.0;
+    for (const json& r : s["rows"])
+        if (r["series"].get<std::string>().rfind("map", 0) == 0 && r["x"] == 1024.0)
+            best = std::max(best, metric(r, "shadow.iou"));
+    EXPECT_DOUBLE_EQ(f["best_iou"].get<double>(), best);
+    EXPECT_NE(s["finding"].get<std::string>().find(f["best_series"].get<std::string>() +
+                                                   " reaches shadow.iou"),
+              std::string::npos);
+    // A shadow map at 1024 texels beats one occluding sphere per body on a thin ring.
+    EXPECT_GT(best, f["spheres_iou"].get<double>()) << f;
+}
+
+TEST(Study, ParticleSizeFromFortyPixelsToBelowOne) {
+    const json s = runStudy("particle_size", 2 * 4, "normal.mean_deg");
+    ASSERT_FALSE(s.is_discarded());
+    double lo = INFINITY, hi = 0.0;
+    for (const json& r : s["rows"]) {
+        lo = std::min(lo, r["x"].get<double>());
+        hi = std::max(hi, r["x"].get<double>());
+    }
+    EXPECT_GT(hi, 25.0);
+    EXPECT_LT(lo, 1.0);
+    EXPECT_DOUBLE_EQ(s["facts"]["largest_px"].get<double>(), hi);
+    // The gain of SSSS at each size is 1 - on/off of the rows.
+    const auto on = series(s, "SSSS on"), off = series(s, "SSSS off");
+    ASSERT_EQ(on.size(), off.size());
+    for (std::size_t i = 0; i < on.size(); ++i) {
+        EXPECT_DOUBLE_EQ(on[i]["x"].get<double>(), off[i]["x"].get<double>());
+        const double gain =
+            1.0 - metric(on[i], "normal.mean_deg") / metric(off[i], "normal.mean_deg");
+        const json& g = s["facts"]["normal_gain"];
+        bool found = false;
+        for (const auto& [k, v] : g.items())
+            if (std::abs(std::stod(k) - on[i]["x"].get<double>()) <
+                1e-3 * on[i]["x"].get<double>()) {
+                found = true;
+                if (v.is_number()) {
+                    EXPECT_NEAR(v.get<double>(), gain, 1e-12);
+                }
+            }
+        EXPECT_TRUE(found) << on[i]["x"];
+    }
+}
+
+TEST(Study, ViewAngleFromFaceOnToGrazing) {
+    const json s = runStudy("view_angle", 2 * 3, "normal.mean_deg");
+    ASSERT_FALSE(s.is_discarded());
+    const auto on = series(s, "SSSS on");
+    ASSERT_EQ(on.size(), 3u);
+    EXPECT_DOUBLE_EQ(s["facts"]["growth"].get<double>(),
+                     metric(on.back(), "normal.mean_deg") / metric(on.front(), "normal.mean_deg"));
+}
+
+TEST(Study, TemporalFlickerIsTheRealTimeFrameToFrameFlipMinusTheReferences) {
+    const json s = runStudy("temporal", 2 * 4, "temporal.frame_flip");
+    ASSERT_FALSE(s.is_discarded());
+    // 4 frames: the first of each series has nothing to compare with.
+    EXPECT_EQ(s["references"], 4);
+    double ref = 0.0, on = 0.0;
+    for (const json& r : series(s, "SSSS on")) {
+        if (r["x"] == 0.0) {
+            EXPECT_FALSE(r["metrics"].contains("temporal.frame_flip"));
+            continue;
+        }
+        ref += metric(r, "temporal.reference_frame_flip") / 3.0;
+        on += metric(r, "temporal.frame_flip") / 3.0;
+    }
+    EXPECT_GT(ref, 0.0);  // the camera moves: the reference changes too
+    EXPECT_NEAR(s["facts"]["reference"].get<double>(), ref, 1e-12);
+    EXPECT_NEAR(s["facts"]["flicker"]["SSSS on"].get<double>(), on - ref, 1e-12);
+    EXPECT_NE(s["finding"].get<std::string>().find("flicker: real-time "), std::string::npos);
+}
+
+TEST(Study, CollisionBleedingInTheContactBand) {
+    const json s = runStudy("collision", 2 * 3, "contact.uv_mean");
+    ASSERT_FALSE(s.is_discarded());
+    for (const json& r : s["rows"]) {
+        // Touching or overlapping bodies share a boundary on screen: the band is not empty.
+        if (r["x"].get<double>() <= 0.0) {
+            EXPECT_GT(metric(r, "contact.pixels"), 0.0) << r;
+        }
+    }
+    double on = 0.0;
+    int n = 0;
+    for (const json& r : series(s, "SSSS on"))
+        if (r["x"].get<double>() <= 0.0) {
+            on += metric(r, "contact.uv_mean");
+            ++n;
+        }
+    EXPECT_NEAR(s["facts"]["contact_uv"]["ssss_on"].get<double>(), on / n, 1e-12);
+}
+
+namespace {
+
+// The page's self-test verdict in headless Chromium (as tests/report_browser_test.cpp opens
+// pages); empty when Chromium is not installed.
+std::string selftestInBrowser(const fs::path& page, const fs::path& work) {
+    const char* chromium = "/usr/bin/chromium";
+    if (!fs::exists(chromium)) return "";
+    const fs::path dom = work / "dom.html";
+    const std::string cmd =
+        std::string("timeout 120 ") + chromium +
+        " --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking"
+        " --user-data-dir=" +
+        (work / "profile").string() + " --virtual-time-budget=5000 --dump-dom 'file://" +
+        page.string() + "' > " + dom.string() + " 2>/dev/null";
+    if (std::system(cmd.c_str()) != 0) return "chromium failed";
+    const std::string text = readText(dom);
+    const auto at = text.find("id=\"selftest\"");
+    if (at == std::string::npos) return "no selftest element";
+    const auto start = text.find('>', at) + 1;
+    return text.substr(start, text.find('<', start) - start);
+}
+
+}  // namespace
+
+TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
+    const fs::path out = tt::freshDir("study_run");
+    // No bounds: the planet at this size is far from the suite's thresholds.
+    const fs::path none = tt::freshDir("study_run_thresholds") / "none.toml";
+    tt::writeFile(none, "");
+    const auto r =
+        tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
+                          "/scenes/planet.toml --set camera.width=64 --set camera.height=48"
+                          " --set bodies.planet.particles=1500 --thresholds " +
+                          none.string() + " --studies quick --out " + out.string());
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    const std::string index = readText(out / "index.html");
+    EXPECT_NE(index.find("<a href=\"studies/index.html\">stability studies</a>"),
+              std::string::npos);
+    const json all = readJson(out / "studies" / "studies.json");
+    ASSERT_FALSE(all.is_discarded()) << r.output;
+    ASSERT_EQ(all["studies"].size(), 6u);
+    const std::string page = readText(out / "studies" / "index.html");
+    for (const json& s : all["studies"]) {
+        EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;
+        EXPECT_NE(page.find("id=\"" + s["name"].get<std::string>() + "\""), std::string::npos);
+        EXPECT_TRUE(fs::exists(out / "studies" / s["name"].get<std::string>() / "study.svg"));
+    }
+    // In a browser: every chart and thumbnail loads, no script error.
+    const std::string selftest =
+        selftestInBrowser(out / "studies" / "index.html", tt::freshDir("study_browser"));
+    if (!selftest.empty()) {
+        EXPECT_EQ(selftest.rfind("selftest: ok", 0), 0u) << selftest;
+    }
+    // --studies is not sharded.
+    const auto sharded =
+        tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
+                          "/scenes/planet.toml --studies quick --shard 1/2 --out " +
+                          tt::freshDir("study_run_shard").string());
+    EXPECT_EQ(sharded.exitCode, 4) << sharded.output;
+}
+
+TEST(Study, UnknownStudyIsExitFourWithNoOutput) {
+    const fs::path out = tt::freshDir("study_bad");
+    const auto r = tt::runTwinrender("study depth_range nonsense --quick --out " + out.string());
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_NE(r.output.find("study nonsense: no such study"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("depth_range, thin_casters"), std::string::npos) << r.output;
+    const auto badSet = tt::runTwinrender(
+        "study view_angle --quick --set realtime.nonsense=1 --out " + out.string());
+    EXPECT_EQ(badSet.exitCode, 4) << badSet.output;
+    EXPECT_NE(badSet.output.find("nonsense"), std::string::npos) << badSet.output;
+    EXPECT_EQ(tt::countFiles(out), 0u);
+}
