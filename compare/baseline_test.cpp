@@ -8,6 +8,7 @@
 
 #include "compare/report.h"
 #include "core/error.h"
+#include "tests/scratch_dir.h"
 
 namespace twinrender::compare {
 namespace {
@@ -203,7 +204,7 @@ TEST(BaselineFile, RoundTripsThroughJsonAndDisk) {
     EXPECT_EQ(j["scenes"]["planet"]["metrics"]["beauty.psnr"], "Infinity");
     EXPECT_EQ(j["tolerances"]["beauty.flip"]["better"], "lower");
 
-    const auto path = std::filesystem::temp_directory_path() / "twinrender_baseline_test.json";
+    const auto path = twinrender::testing::scratchFile("baseline_test.json");
     writeBaseline(b, path);
     const Baseline r = readBaseline(path);
     EXPECT_EQ(r.file, path.string());

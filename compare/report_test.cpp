@@ -11,6 +11,7 @@
 #include "compare/testdata/synthetic_report.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "tests/scratch_dir.h"
 
 namespace twinrender::compare {
 namespace {
@@ -18,12 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("twinrender_report_test_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path freshDir(const std::string& name) { return twinrender::testing::freshDir("report_" + name); }
 
 std::string readText(const fs::path& path) {
     std::ifstream in(path);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "compare/testdata/xml_check.h"
+#include "tests/scratch_dir.h"
 
 namespace tc = twinrender::compare;
 namespace fs = std::filesystem;
@@ -86,8 +87,7 @@ TEST(StudyReport, JsonKeepsFindingFactsAndNonFiniteValues) {
 }
 
 TEST(StudyReport, FilesAndThePageOfAllStudies) {
-    const fs::path dir = fs::temp_directory_path() / "twinrender_study_report_test";
-    fs::remove_all(dir);
+    const fs::path dir = twinrender::testing::freshDir("study_report_test");
     const tc::StudyResult s = twoRows();
     tc::writeStudy(s, dir);
     tc::writeStudiesIndex({s}, dir, "2026-01-01 00:00 UTC", "twinrender study depth_range");

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "tests/scratch_dir.h"
 
 namespace twinrender::compare {
 namespace {
@@ -146,7 +147,7 @@ TEST(Thresholds, WarnBoundBeyondItsFailBoundIsRejected) {
 }
 
 TEST(Thresholds, ParsesAFile) {
-    const auto path = std::filesystem::temp_directory_path() / "twinrender_thresholds_test.toml";
+    const auto path = twinrender::testing::scratchFile("thresholds_test.toml");
     std::ofstream(path) << EXAMPLE;
     const Thresholds t = Thresholds::parseFile(path);
     EXPECT_EQ(t.file(), path.string());

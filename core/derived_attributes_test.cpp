@@ -16,6 +16,7 @@
 #include "core/particles.h"
 #include "core/scene.h"
 #include "core/sph_kernel.h"
+#include "tests/scratch_dir.h"
 
 namespace twinrender::core {
 namespace {
@@ -347,8 +348,7 @@ TEST(BuildParticles, BodiesRangesMaterialsGlowAndBounds) {
 }
 
 TEST(BuildParticles, FileBody) {
-    const auto dir = std::filesystem::temp_directory_path() / "twinrender_derived_test";
-    std::filesystem::create_directories(dir);
+    const auto dir = twinrender::testing::freshDir("derived_test");
     const auto path = dir / "two_bodies.csv";
     {
         std::ofstream f(path);

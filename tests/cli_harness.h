@@ -8,6 +8,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "tests/scratch_dir.h"
+
 namespace twinrender::test {
 
 struct CommandResult {
@@ -30,12 +32,7 @@ inline CommandResult runTwinrender(const std::string& args, const std::string& e
 }
 
 // A fresh folder for one test.
-inline std::filesystem::path freshDir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("twinrender_test_" + name);
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+using twinrender::testing::freshDir;
 
 inline void writeFile(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path) << text;
