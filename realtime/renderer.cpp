@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "core/camera.h"
 #include "core/error.h"
@@ -90,21 +91,27 @@ bool sceneEmits(const core::ParticleSet& ps, const std::vector<core::Material>& 
     return false;
 }
 
-// A read-back of an RGBA32F texture, bottom row first.
-std::vector<float> readTexture(const gl::Texture& texture, const char* name) {
+// Reads an RGBA32F texture, bottom row first, into `out` (resized; kept by the renderer between
+// frames, so that its pages are not faulted in again every frame).
+void readTexture(const gl::Texture& texture, const char* name, std::vector<float>& out) {
     gl::Framebuffer fb(name, {{&texture}});
-    return fb.read(0, 4);
+    out.resize(static_cast<std::size_t>(texture.width()) * texture.height() * 4);
+    fb.readInto(0, 4, out);
 }
 
 }  // namespace
 
 struct Renderer::Impl {
+    explicit Impl(const gl::Context& c) : context(c) {}
     const gl::Context& context;
     ProgramCache programs;
     gl::Limits limits;
+    OcclusionCuller culler;  // keeps the last particle set's answer (view-independent)
+    // Read-back buffers, RGBA floats, kept between frames.
+    std::vector<float> normalUv, emission, surface, beautyShadow, display;
 };
 
-Renderer::Renderer(const gl::Context& context) : mImpl(new Impl{context, {}, {}}) {
+Renderer::Renderer(const gl::Context& context) : mImpl(new Impl(context)) {
     context.makeCurrent();
     mImpl->limits = gl::queryLimits();
 }
@@ -174,11 +181,11 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
         fitLightFrustum(particles.boundsMin, particles.boundsMax, scene.camera.position,
                         scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(scene, camera, particles, settings, light);
-    std::vector<std::uint32_t> drawn;
+    std::span<const std::uint32_t> drawn;
     if (settings.particles.cullHidden &&
         cullingIsExact(particles.particles, camera, settings.particles.radiusScale)) {
         const auto cullStart = Clock::now();
-        drawn = unoccludedParticles(particles.particles, settings.particles.radiusScale);
+        drawn = m.culler.unoccluded(particles.particles, settings.particles.radiusScale);
         frame.timingsMs["cull"] = msSince(cullStart);
     }
     frame.counters["particles_drawn"] =
@@ -274,13 +281,17 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
 
     // Read back and assemble the AOV image, top row first.
     stageStart = Clock::now();
-    const std::vector<float> normalUv = readTexture(*shadeInputs.normalUv, "read normal");
+    readTexture(*shadeInputs.normalUv, "read normal", m.normalUv);
     // Without emitters the emission buffer is zero, as the image's channels already are.
-    const std::vector<float> emission =
-        emits ? readTexture(*shadeInputs.emissionBuffer, "read emission") : std::vector<float>{};
-    const std::vector<float> surface = readTexture(gbuffer->surface, "read surface");
-    const std::vector<float> beautyShadow = readTexture(*beauty, "read beauty");
-    const std::vector<float> displayPixels = readTexture(*display, "read display");
+    if (emits) readTexture(*shadeInputs.emissionBuffer, "read emission", m.emission);
+    readTexture(gbuffer->surface, "read surface", m.surface);
+    readTexture(*beauty, "read beauty", m.beautyShadow);
+    readTexture(*display, "read display", m.display);
+    const std::vector<float>& normalUv = m.normalUv;
+    const std::vector<float>& emission = m.emission;
+    const std::vector<float>& surface = m.surface;
+    const std::vector<float>& beautyShadow = m.beautyShadow;
+    const std::vector<float>& displayPixels = m.display;
 
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
     // written in the same pass as the covered pixels: filling the 15 channels first costs
