@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -62,8 +63,9 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
         glm::vec4(light.nearDepth, light.farDepth, light.texelSize, settings.shadowMap.resolution);
     u.shadowBias = glm::vec4(settings.shadowMap.bias, settings.shadowMap.slopeBias,
                              settings.shadowMap.pcfRadius, 0.0);
+    const bool blend = settings.particles.normal == NormalModel::Blend;
     u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale,
-                       settings.particles.sphereNormalWeight, 0.0);
+                       blend ? settings.particles.sphereNormalWeight : 0.0, 0.0);
     (void)particles;
     return u;
 }
@@ -107,8 +109,11 @@ struct Renderer::Impl {
     ProgramCache programs;
     gl::Limits limits;
     OcclusionCuller culler;  // keeps the last particle set's answer (view-independent)
+    FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
+    // Images handed back by recycle(), reused when the size and channels match.
+    core::Image spareImage, spareDisplay;
 };
 
 Renderer::Renderer(const gl::Context& context) : mImpl(new Impl(context)) {
@@ -117,6 +122,23 @@ Renderer::Renderer(const gl::Context& context) : mImpl(new Impl(context)) {
 }
 
 Renderer::~Renderer() = default;
+
+void Renderer::recycle(RenderResult&& old) {
+    mImpl->spareImage = std::move(old.frame.image);
+    mImpl->spareDisplay = std::move(old.display);
+}
+
+namespace {
+
+// `spare` when it has the size and channels asked for (its values are stale), else a new
+// image of zeros.
+core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::string> channels) {
+    if (spare.width() == w && spare.height() == h && spare.channelNames() == channels)
+        return std::move(spare);
+    return core::Image(w, h, std::move(channels));
+}
+
+}  // namespace
 
 RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticles& particles,
                               const std::vector<core::Material>& materials,
@@ -190,8 +212,13 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     }
     frame.counters["particles_drawn"] =
         static_cast<double>(drawn.empty() ? particles.particles.size() : drawn.size());
-    const std::vector<GpuParticle> gpuParticles = packParticles(
-        particles.particles, scene.camera.position, settings.particles.radiusScale, drawn);
+    std::span<const FieldNormal> fieldNormalModels;
+    if (settings.particles.normal == NormalModel::Field)
+        fieldNormalModels =
+            m.fieldNormals.normals(particles.particles, settings.particles.radiusScale, drawn);
+    const std::vector<GpuParticle> gpuParticles =
+        packParticles(particles.particles, scene.camera.position, settings.particles.radiusScale,
+                      drawn, fieldNormalModels);
     const GpuMaterials gpuMaterials = packMaterials(materials);
     if (static_cast<long long>(gpuParticles.size() * sizeof(GpuParticle)) >
         limits.maxStorageBlockBytes)
@@ -296,7 +323,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
     // written in the same pass as the covered pixels: filling the 15 channels first costs
     // as much as the whole read-back.
-    frame.image = core::Image(w, h, core::aov::channelNames());
+    frame.image = reuseOrCreate(m.spareImage, w, h, core::aov::channelNames());
     core::Image& image = frame.image;
     const auto channel = [&](const char* name) { return image.requireChannel(name); };
     const int cR = channel("R"), cG = channel("G"), cB = channel("B"), cA = channel("A"),
@@ -305,7 +332,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
               cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
               cShadow = channel("shadow");
     const std::size_t stride = static_cast<std::size_t>(image.channelCount());
-    result.display = core::Image(w, h, {"R", "G", "B"});
+    result.display = reuseOrCreate(m.spareDisplay, w, h, {"R", "G", "B"});
     float* aov = image.pixels().data();
     float* shown = result.display.pixels().data();
     tbb::parallel_for(0, h, [&](int y) {
@@ -321,6 +348,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
             const float body = surface[g + 1];
             float* o = aov + p * stride;
             if (body < 0.0f) {
+                std::fill(o, o + stride, 0.0f);  // a recycled image holds an older frame
                 o[cZ] = std::numeric_limits<float>::infinity();
                 o[cId] = -1.0f;
                 continue;
@@ -338,11 +366,9 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
             o[cNZ] = n.z;
             o[cU] = normalUv[g + 2];
             o[cV] = normalUv[g + 3];
-            if (emits) {
-                o[cER] = emission[g + 0];
-                o[cEG] = emission[g + 1];
-                o[cEB] = emission[g + 2];
-            }
+            o[cER] = emits ? emission[g + 0] : 0.0f;
+            o[cEG] = emits ? emission[g + 1] : 0.0f;
+            o[cEB] = emits ? emission[g + 2] : 0.0f;
         }
     });
     frame.timingsMs["readback"] = msSince(stageStart);
