@@ -204,11 +204,11 @@ void accumulateRange(const GridLevel& g, std::uint32_t begin, std::uint32_t end,
     }
 }
 
-// grad c(x) at q, in a fixed order (levels, then z, y rows of cells, then particles in grid
-// order, in LANES partial sums).
-FieldSample colourFieldGradient(const std::vector<GridLevel>& grids, const glm::vec3& q) {
-    const glm::dvec3 p(q);
-    Lanes acc;
+// Calls visit(level, begin, end) for the runs of particles of every grid level whose cells the
+// support sphere around p may reach, in a fixed order (levels, then z, y rows of cells, then
+// particles in grid order).
+template <typename Visit>
+void visitSupport(const std::vector<GridLevel>& grids, const glm::dvec3& p, Visit&& visit) {
     for (const GridLevel& g : grids) {
         const double reach = M4_SUPPORT * g.hMax;
         const double reach2 = reach * reach;
@@ -236,10 +236,19 @@ FieldSample colourFieldGradient(const std::vector<GridLevel>& grids, const glm::
                 const std::int64_t x1 = std::min(rawX1, g.nx - 1);
                 const auto first = static_cast<std::size_t>(g.cellIndex(x0, iy, iz));
                 const auto last = static_cast<std::size_t>(g.cellIndex(x1, iy, iz));
-                accumulateRange(g, g.cellStart[first], g.cellStart[last + 1], q, acc);
+                visit(g, g.cellStart[first], g.cellStart[last + 1]);
             }
         }
     }
+}
+
+// grad c(x) at q, in a fixed order (visitSupport's, in LANES partial sums).
+FieldSample colourFieldGradient(const std::vector<GridLevel>& grids, const glm::vec3& q) {
+    Lanes acc;
+    visitSupport(grids, glm::dvec3(q),
+                 [&](const GridLevel& g, std::uint32_t begin, std::uint32_t end) {
+                     accumulateRange(g, begin, end, q, acc);
+                 });
     FieldSample out;
     for (std::uint32_t l = 0; l < LANES; ++l) {
         out.gradient += glm::dvec3(acc.gx[l], acc.gy[l], acc.gz[l]);
@@ -319,6 +328,40 @@ void deriveNormals(ParticleSet& set, std::span<const BodyInfo> bodies) {
                               }
                           });
     }
+}
+
+std::vector<FieldDerivatives> colourFieldDerivatives(const ParticleSet& set,
+                                                    std::span<const glm::dvec3> points) {
+    std::vector<FieldDerivatives> out(points.size());
+    if (set.size() == 0 || points.empty()) return out;
+    const std::vector<GridLevel> grids = buildGrids(set);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, points.size(), 64),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                const glm::dvec3 p = points[k];
+                FieldDerivatives& d = out[k];
+                visitSupport(grids, p, [&](const GridLevel& g, std::uint32_t begin,
+                                           std::uint32_t end) {
+                    for (std::uint32_t j = begin; j < end; ++j) {
+                        const glm::dvec3 delta = p - glm::dvec3(g.px[j], g.py[j], g.pz[j]);
+                        const double r = glm::length(delta);
+                        const double invH = g.invH[j];
+                        const double q = r * invH;
+                        if (q >= M4_SUPPORT || r == 0.0) continue;
+                        // dW/dr = coef w'(q), d2W/dr2 = coef w''(q) / h (coef = v / (pi h^4)).
+                        const double dWdr = g.coef[j] * m4ShapeDerivative(q);
+                        const double d2Wdr2 = g.coef[j] * invH * m4ShapeSecondDerivative(q);
+                        const glm::dvec3 u = delta / r;
+                        d.gradient += dWdr * u;
+                        // Hessian of W(|x - x_j|): W'' u u^T + (W' / r) (I - u u^T).
+                        d.hessian += (d2Wdr2 - dWdr / r) * glm::outerProduct(u, u) +
+                                     glm::dmat3(dWdr / r);
+                    }
+                });
+            }
+        });
+    return out;
 }
 
 void deriveGlow(ParticleSet& set) {

@@ -240,6 +240,50 @@ TEST(Normals, GridMatchesBruteForce) {
     EXPECT_GT(compared, 1000);
 }
 
+// Gradient against the brute-force sum, Hessian against central differences of the gradient,
+// at points between particles of uneven h (several grid levels).
+TEST(FieldDerivatives, MatchBruteForceAndFiniteDifferences) {
+    SplitMix64 rng(9);
+    ParticleSet set;
+    const std::size_t n = 800;
+    set.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        set.position[i] = glm::vec3(glm::dvec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        set.h[i] = static_cast<float>(0.05 * std::pow(2.0, 2.0 * rng.uniform()));  // 0.05..0.2
+        set.volume[i] = static_cast<float>(maxParticleVolume(double(set.h[i])));
+    }
+    auto bruteGradient = [&](const glm::dvec3& p) {
+        glm::dvec3 g(0.0);
+        for (std::size_t j = 0; j < n; ++j) {
+            const glm::dvec3 d = p - glm::dvec3(set.position[j]);
+            const double r = glm::length(d);
+            if (r == 0.0 || r >= 2.0 * set.h[j]) continue;
+            g += set.volume[j] * m4KernelDerivative(r, double(set.h[j])) / r * d;
+        }
+        return g;
+    };
+    std::vector<glm::dvec3> points;
+    for (int k = 0; k < 40; ++k)
+        points.emplace_back(0.2 + 0.6 * rng.uniform(), 0.2 + 0.6 * rng.uniform(),
+                            0.2 + 0.6 * rng.uniform());
+    const std::vector<FieldDerivatives> d = colourFieldDerivatives(set, points);
+    ASSERT_EQ(d.size(), points.size());
+    const double e = 1e-5;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const glm::dvec3 g = bruteGradient(points[k]);
+        EXPECT_LT(glm::length(d[k].gradient - g), 1e-5 * glm::length(g) + 1e-9) << k;
+        double scale = 0.0;
+        for (int a = 0; a < 3; ++a) scale = std::max(scale, glm::length(d[k].hessian[a]));
+        for (int a = 0; a < 3; ++a) {
+            glm::dvec3 step(0.0);
+            step[a] = e;
+            const glm::dvec3 column =
+                (bruteGradient(points[k] + step) - bruteGradient(points[k] - step)) / (2.0 * e);
+            EXPECT_LT(glm::length(d[k].hessian[a] - column), 1e-3 * scale) << k << " " << a;
+        }
+    }
+}
+
 TEST(Normals, SameResultOnAnyThreadCount) {
     const Scene scene = sceneWith({ballBody(30000, Lattice::Random)});
     SceneParticles one, many;

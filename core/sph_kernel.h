@@ -33,6 +33,15 @@ constexpr T m4ShapeDerivative(T q) {
     return T(0);
 }
 
+// d2w/dq2 (continuous; undefined at q = 0 only as a limit of the 3-D Hessian, see
+// core::colourFieldDerivatives, which skips r = 0).
+template <typename T>
+constexpr T m4ShapeSecondDerivative(T q) {
+    if (q < T(1)) return T(-3) + T(4.5) * q;
+    if (q < T(2)) return T(1.5) * (T(2) - q);
+    return T(0);
+}
+
 template <typename T>
 constexpr T m4Kernel(T r, T h) {
     return m4Shape(r / h) / (std::numbers::pi_v<T> * h * h * h);

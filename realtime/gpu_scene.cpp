@@ -13,8 +13,12 @@ constexpr std::uint32_t MAX_EXACT_INDEX = 1u << 24;
 }  // namespace
 
 std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::dvec3& camera,
-                                       double radiusScale, std::span<const std::uint32_t> indices) {
+                                       double radiusScale, std::span<const std::uint32_t> indices,
+                                       std::span<const FieldNormal> fieldNormals) {
     const std::size_t n = indices.empty() ? ps.size() : indices.size();
+    if (!fieldNormals.empty() && fieldNormals.size() != n)
+        throw std::invalid_argument(fmt::format("packParticles: {} field normals for {} particles",
+                                                fieldNormals.size(), n));
     std::vector<GpuParticle> out(n);
     for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = indices.empty() ? k : indices[k];
@@ -30,6 +34,12 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
         g.dudxV = glm::vec4(ps.dudx[i], ps.uv[i].y);
         g.dvdxBody = glm::vec4(ps.dvdx[i], static_cast<float>(ps.body[i]));
         g.glowMaterial = glm::vec4(ps.glow[i], static_cast<float>(ps.material[i]));
+        if (!fieldNormals.empty()) {
+            const FieldNormal& f = fieldNormals[k];
+            g.normalU = glm::vec4(f.outward, ps.uv[i].x);
+            g.hessianDiagonal = glm::vec4(f.diagonal, 0.0f);
+            g.hessianOffDiagonal = glm::vec4(f.offDiagonal, 0.0f);
+        }
     }
     return out;
 }

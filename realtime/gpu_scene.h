@@ -11,6 +11,7 @@
 
 #include "core/particles.h"
 #include "core/texture.h"
+#include "realtime/field_normal.h"
 
 namespace twinrender::realtime {
 
@@ -21,14 +22,20 @@ struct GpuParticle {
     glm::vec4 dudxV;
     glm::vec4 dvdxBody;      // w: body index as float
     glm::vec4 glowMaterial;  // w: material index as float
+    // The G-buffer normal's change over the impostor (field_normal.h; zero for "blend"): the
+    // normal at x is normalize(normalU.xyz + H (x - centre)), H symmetric.
+    glm::vec4 hessianDiagonal;     // xx, yy, zz, 0
+    glm::vec4 hessianOffDiagonal;  // xy, xz, yz, 0
 };
-static_assert(sizeof(GpuParticle) == 80);
+static_assert(sizeof(GpuParticle) == 112);
 
 // Impostor radius = radiusScale * h. Body and material indices must stay below 2^24.
-// `indices`: the particles to pack, in order (all of them when empty).
+// `indices`: the particles to pack, in order (all of them when empty). `fieldNormals`: one per
+// packed particle (realtime.particles.normal = "field"), or empty for the particle normal.
 std::vector<GpuParticle> packParticles(const core::ParticleSet& particles,
                                        const glm::dvec3& cameraPosition, double radiusScale,
-                                       std::span<const std::uint32_t> indices = {});
+                                       std::span<const std::uint32_t> indices = {},
+                                       std::span<const FieldNormal> fieldNormals = {});
 
 // shaders/textures.glsl, struct MaterialRecord (std430).
 struct GpuMaterial {

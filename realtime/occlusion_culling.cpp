@@ -317,4 +317,20 @@ std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps, doub
     return out;
 }
 
+const std::vector<std::uint32_t>& OcclusionCuller::unoccluded(const core::ParticleSet& ps,
+                                                              double radiusScale) {
+    mReused = mValid && radiusScale == mRadiusScale && ps.position == mPosition && ps.h == mH &&
+              ps.body == mBody;
+    if (!mReused) {
+        mValid = false;
+        mUnoccluded = unoccludedParticles(ps, radiusScale);
+        mRadiusScale = radiusScale;
+        mPosition = ps.position;
+        mH = ps.h;
+        mBody = ps.body;
+        mValid = true;
+    }
+    return mUnoccluded;
+}
+
 }  // namespace twinrender::realtime

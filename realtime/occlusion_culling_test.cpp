@@ -88,5 +88,26 @@ TEST(OcclusionCulling, EdgeCases) {
     EXPECT_EQ(unoccludedParticles(ps, 1.0), (std::vector<std::uint32_t>{0, 2}));
 }
 
+TEST(OcclusionCulling, TheCullerReusesItsAnswerOnlyForTheSameSpheres) {
+    core::ParticleSet ps = cube(5, 1.0f, 1.3f);
+    OcclusionCuller culler;
+    const auto first = culler.unoccluded(ps, 0.95);
+    EXPECT_FALSE(culler.reused());
+    EXPECT_EQ(first, unoccludedParticles(ps, 0.95));
+    EXPECT_EQ(culler.unoccluded(ps, 0.95), first);
+    EXPECT_TRUE(culler.reused());
+    // Any change of the spheres or the scale recomputes.
+    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_FALSE(culler.reused());
+    ps.position[62].x += 0.5f;  // the centre particle moves
+    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_FALSE(culler.reused());
+    ps.h[0] = 2.0f;
+    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_FALSE(culler.reused());
+    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_TRUE(culler.reused());
+}
+
 }  // namespace
 }  // namespace twinrender::realtime

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "core/camera.h"
 #include "core/error.h"
@@ -61,8 +63,9 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
         glm::vec4(light.nearDepth, light.farDepth, light.texelSize, settings.shadowMap.resolution);
     u.shadowBias = glm::vec4(settings.shadowMap.bias, settings.shadowMap.slopeBias,
                              settings.shadowMap.pcfRadius, 0.0);
+    const bool blend = settings.particles.normal == NormalModel::Blend;
     u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale,
-                       settings.particles.sphereNormalWeight, 0.0);
+                       blend ? settings.particles.sphereNormalWeight : 0.0, 0.0);
     (void)particles;
     return u;
 }
@@ -90,26 +93,52 @@ bool sceneEmits(const core::ParticleSet& ps, const std::vector<core::Material>& 
     return false;
 }
 
-// A read-back of an RGBA32F texture, bottom row first.
-std::vector<float> readTexture(const gl::Texture& texture, const char* name) {
+// Reads an RGBA32F texture, bottom row first, into `out` (resized; kept by the renderer between
+// frames, so that its pages are not faulted in again every frame).
+void readTexture(const gl::Texture& texture, const char* name, std::vector<float>& out) {
     gl::Framebuffer fb(name, {{&texture}});
-    return fb.read(0, 4);
+    out.resize(static_cast<std::size_t>(texture.width()) * texture.height() * 4);
+    fb.readInto(0, 4, out);
 }
 
 }  // namespace
 
 struct Renderer::Impl {
+    explicit Impl(const gl::Context& c) : context(c) {}
     const gl::Context& context;
     ProgramCache programs;
     gl::Limits limits;
+    OcclusionCuller culler;  // keeps the last particle set's answer (view-independent)
+    FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
+    // Read-back buffers, RGBA floats, kept between frames.
+    std::vector<float> normalUv, emission, surface, beautyShadow, display;
+    // Images handed back by recycle(), reused when the size and channels match.
+    core::Image spareImage, spareDisplay;
 };
 
-Renderer::Renderer(const gl::Context& context) : mImpl(new Impl{context, {}, {}}) {
+Renderer::Renderer(const gl::Context& context) : mImpl(new Impl(context)) {
     context.makeCurrent();
     mImpl->limits = gl::queryLimits();
 }
 
 Renderer::~Renderer() = default;
+
+void Renderer::recycle(RenderResult&& old) {
+    mImpl->spareImage = std::move(old.frame.image);
+    mImpl->spareDisplay = std::move(old.display);
+}
+
+namespace {
+
+// `spare` when it has the size and channels asked for (its values are stale), else a new
+// image of zeros.
+core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::string> channels) {
+    if (spare.width() == w && spare.height() == h && spare.channelNames() == channels)
+        return std::move(spare);
+    return core::Image(w, h, std::move(channels));
+}
+
+}  // namespace
 
 RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticles& particles,
                               const std::vector<core::Material>& materials,
@@ -174,17 +203,22 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
         fitLightFrustum(particles.boundsMin, particles.boundsMax, scene.camera.position,
                         scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(scene, camera, particles, settings, light);
-    std::vector<std::uint32_t> drawn;
+    std::span<const std::uint32_t> drawn;
     if (settings.particles.cullHidden &&
         cullingIsExact(particles.particles, camera, settings.particles.radiusScale)) {
         const auto cullStart = Clock::now();
-        drawn = unoccludedParticles(particles.particles, settings.particles.radiusScale);
+        drawn = m.culler.unoccluded(particles.particles, settings.particles.radiusScale);
         frame.timingsMs["cull"] = msSince(cullStart);
     }
     frame.counters["particles_drawn"] =
         static_cast<double>(drawn.empty() ? particles.particles.size() : drawn.size());
-    const std::vector<GpuParticle> gpuParticles = packParticles(
-        particles.particles, scene.camera.position, settings.particles.radiusScale, drawn);
+    std::span<const FieldNormal> fieldNormalModels;
+    if (settings.particles.normal == NormalModel::Field)
+        fieldNormalModels =
+            m.fieldNormals.normals(particles.particles, settings.particles.radiusScale, drawn);
+    const std::vector<GpuParticle> gpuParticles =
+        packParticles(particles.particles, scene.camera.position, settings.particles.radiusScale,
+                      drawn, fieldNormalModels);
     const GpuMaterials gpuMaterials = packMaterials(materials);
     if (static_cast<long long>(gpuParticles.size() * sizeof(GpuParticle)) >
         limits.maxStorageBlockBytes)
@@ -274,18 +308,22 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
 
     // Read back and assemble the AOV image, top row first.
     stageStart = Clock::now();
-    const std::vector<float> normalUv = readTexture(*shadeInputs.normalUv, "read normal");
+    readTexture(*shadeInputs.normalUv, "read normal", m.normalUv);
     // Without emitters the emission buffer is zero, as the image's channels already are.
-    const std::vector<float> emission =
-        emits ? readTexture(*shadeInputs.emissionBuffer, "read emission") : std::vector<float>{};
-    const std::vector<float> surface = readTexture(gbuffer->surface, "read surface");
-    const std::vector<float> beautyShadow = readTexture(*beauty, "read beauty");
-    const std::vector<float> displayPixels = readTexture(*display, "read display");
+    if (emits) readTexture(*shadeInputs.emissionBuffer, "read emission", m.emission);
+    readTexture(gbuffer->surface, "read surface", m.surface);
+    readTexture(*beauty, "read beauty", m.beautyShadow);
+    readTexture(*display, "read display", m.display);
+    const std::vector<float>& normalUv = m.normalUv;
+    const std::vector<float>& emission = m.emission;
+    const std::vector<float>& surface = m.surface;
+    const std::vector<float>& beautyShadow = m.beautyShadow;
+    const std::vector<float>& displayPixels = m.display;
 
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
     // written in the same pass as the covered pixels: filling the 15 channels first costs
     // as much as the whole read-back.
-    frame.image = core::Image(w, h, core::aov::channelNames());
+    frame.image = reuseOrCreate(m.spareImage, w, h, core::aov::channelNames());
     core::Image& image = frame.image;
     const auto channel = [&](const char* name) { return image.requireChannel(name); };
     const int cR = channel("R"), cG = channel("G"), cB = channel("B"), cA = channel("A"),
@@ -294,7 +332,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
               cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
               cShadow = channel("shadow");
     const std::size_t stride = static_cast<std::size_t>(image.channelCount());
-    result.display = core::Image(w, h, {"R", "G", "B"});
+    result.display = reuseOrCreate(m.spareDisplay, w, h, {"R", "G", "B"});
     float* aov = image.pixels().data();
     float* shown = result.display.pixels().data();
     tbb::parallel_for(0, h, [&](int y) {
@@ -310,6 +348,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
             const float body = surface[g + 1];
             float* o = aov + p * stride;
             if (body < 0.0f) {
+                std::fill(o, o + stride, 0.0f);  // a recycled image holds an older frame
                 o[cZ] = std::numeric_limits<float>::infinity();
                 o[cId] = -1.0f;
                 continue;
@@ -327,11 +366,9 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
             o[cNZ] = n.z;
             o[cU] = normalUv[g + 2];
             o[cV] = normalUv[g + 3];
-            if (emits) {
-                o[cER] = emission[g + 0];
-                o[cEG] = emission[g + 1];
-                o[cEB] = emission[g + 2];
-            }
+            o[cER] = emits ? emission[g + 0] : 0.0f;
+            o[cEG] = emits ? emission[g + 1] : 0.0f;
+            o[cEB] = emits ? emission[g + 2] : 0.0f;
         }
     });
     frame.timingsMs["readback"] = msSince(stageStart);

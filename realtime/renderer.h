@@ -44,6 +44,11 @@ class Renderer {
     RenderResult render(const core::Scene& scene, const core::SceneParticles& particles,
                         const std::vector<core::Material>& materials, const Settings& settings);
 
+    // Hands a finished result back (optional): the next render of the same size writes its
+    // images into that memory instead of fresh pages. A frame loop at 1280 x 720 otherwise
+    // faults in ~65 MB of new pages per frame, 60-100 ms on the 2-core CPU machines.
+    void recycle(RenderResult&& old);
+
   private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;

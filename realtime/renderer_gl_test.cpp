@@ -305,7 +305,9 @@ TEST_F(RendererTest, SmoothingNeverMixesTwoBodies) {
         settings.ssss.separable = separable;
         settings.ssss.radiusScale = 4.0;
         settings.ssss.iterations = 3;
-        settings.particles.sphereNormalWeight = 0.0;  // one normal per body, to recognise it
+        // One normal per body, to recognise it (the field model turns at the slabs' edges).
+        settings.particles.normal = NormalModel::Blend;
+        settings.particles.sphereNormalWeight = 0.0;
         const RenderResult r = render(t, settings);
         const Channels c{r.frame.image};
         int pixels[2] = {0, 0};
@@ -415,6 +417,31 @@ TEST_F(RendererTest, CullingHiddenParticlesLeavesTheImageUnchanged) {
     EXPECT_LT(culled.frame.counters.at("particles_drawn"),
               0.6 * all.frame.counters.at("particles_drawn"));
     EXPECT_TRUE(culled.frame.image == all.frame.image);
+}
+
+// A recycled result's memory holds an older frame: the next frame overwrites all of it, and
+// the cached culling answer is recomputed for a changed particle set.
+TEST_F(RendererTest, RecycledFramesEqualFreshOnes) {
+    auto scene = [](float shift) {
+        TestScene t;
+        for (int z = -3; z <= 3; ++z)
+            for (int y = -3; y <= 3; ++y)
+                for (int x = -3; x <= 3; ++x)
+                    t.add(0, glm::vec3(x + shift, y, z) * 0.2f, 0.26f,
+                          {0.5f + 0.05f * x, 0.5f + 0.05f * y},
+                          glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.01f)));
+        return t;
+    };
+    Settings s = quiet();
+    s.shadows = ShadowMode::Map;
+    s.ssss.enabled = true;
+    TestScene a = scene(0.0f), b = scene(2.0f);
+    renderer.recycle(render(a, s));
+    const RenderResult second = render(b, s);
+    Renderer fresh(context);
+    const RenderResult expected = fresh.render(b.scene, b.particles, b.materials, s);
+    EXPECT_TRUE(second.frame.image == expected.frame.image);
+    EXPECT_TRUE(second.display == expected.display);
 }
 
 // A small ball between the light and a slab: its shadow falls where the light's rays put it.

@@ -45,6 +45,10 @@ std::string_view toString(ShadowMode mode) {
     return "map";
 }
 
+std::string_view toString(NormalModel model) {
+    return model == NormalModel::Blend ? "blend" : "field";
+}
+
 Settings parseSettings(const core::ParameterTable& t) {
     const Settings d;  // defaults
     Settings s;
@@ -54,6 +58,11 @@ Settings parseSettings(const core::ParameterTable& t) {
         t.getEnum("shadows", std::string(toString(d.shadows)), {"map", "pcf", "spheres", "none"}));
     s.particles.radiusScale =
         t.getDouble("particles.radius_scale", d.particles.radiusScale, 1e-6, 10.0);
+    s.particles.normal =
+        t.getEnum("particles.normal", std::string(toString(d.particles.normal)),
+                  {"field", "blend"}) == "blend"
+            ? NormalModel::Blend
+            : NormalModel::Field;
     s.particles.sphereNormalWeight =
         t.getDouble("particles.sphere_normal_weight", d.particles.sphereNormalWeight, 0.0, 1.0);
     s.particles.cullHidden = t.getBool("particles.cull_hidden", d.particles.cullHidden);
@@ -84,6 +93,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.depth", toString(s.depth)},
         {"realtime.shadows", toString(s.shadows)},
         {"realtime.particles.radius_scale", s.particles.radiusScale},
+        {"realtime.particles.normal", toString(s.particles.normal)},
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},
         {"realtime.shadow_map.resolution", s.shadowMap.resolution},

@@ -24,6 +24,14 @@ enum class ShadowMode {
     Spheres,  // "spheres": the old baseline; one occluding sphere per body over 5 % of particles
 };
 
+// What normal the G-buffer writes per fragment (particles.normal).
+enum class NormalModel {
+    Field,  // "field": the colour field's gradient, modelled to first order over each
+            // impostor (realtime/field_normal.h)
+    Blend,  // "blend": the particle normal blended with the impostor sphere's normal by
+            // sphere_normal_weight (one direction per particle, plus the sphere's bulge)
+};
+
 struct ParticleSettings {
     // particles.radius_scale: impostor sphere radius / smoothing length h, (0, 10].
     // The M4 level set at 0.13 lies 0.92 h (hcp) to 0.94 h (cubic) above the outermost layer
@@ -31,10 +39,15 @@ struct ParticleSettings {
     // it best a little lower: 0.9 gives the least depth error against the raymarcher on the
     // planet, opensph_ball and contact scenes (coverage IoU 0.98; realtime/README.md).
     double radiusScale = 0.9;
-    // particles.sphere_normal_weight: the G-buffer normal is normalize(mix(particle normal,
-    // impostor sphere normal, weight)), 0..1. The particle normal is the colour-field gradient
-    // at the particle's centre; at a surface point the particle's own kernel adds a term along
-    // the sphere normal. 0.25 minimises the normal error against the raymarcher (README).
+    // particles.normal: "field" | "blend". The particle normal (the colour-field gradient at
+    // the centre) is one direction per particle, while the rendered surface turns across a
+    // particle; "field" follows the field's gradient over the impostor to first order: mean
+    // normal error on the planet 2.9 degrees without SSSS, against 5.4 for "blend" (README).
+    NormalModel normal = NormalModel::Field;
+    // particles.sphere_normal_weight ("blend" only): the G-buffer normal is
+    // normalize(mix(particle normal, impostor sphere normal, weight)), 0..1. At a surface point
+    // the particle's own kernel adds a term along the sphere normal. 0.25 minimises the normal
+    // error against the raymarcher (README).
     double sphereNormalWeight = 0.25;
     // particles.cull_hidden: skip particles whose impostor lies inside the union of its
     // neighbours' (realtime/occlusion_culling.h); the image does not change, only the cost.
@@ -57,8 +70,8 @@ struct SsssSettings {
     // ssss.radius_scale: blur radius / projected particle radius, 0..16 (0 = no blur). Larger
     // hides more of the particles in uv (texture), smaller keeps the surface's real ripples in
     // the normals. 0.6 gave the lowest mean normal error against the raymarcher on the default
-    // scenes (planet 3.55 degrees; 3.74 at 0.75, 4.35 at 1.0, 5.37 with SSSS off) at the same
-    // FLIP and uv error (README).
+    // scenes (planet, field normal: 2.31 degrees; 2.31 at 0.4, 2.82 at 0.8, 3.50 at 1.0, 2.94
+    // with SSSS off) at the same FLIP and uv error (README).
     double radiusScale = 0.6;
     // ssss.depth_limit: largest eye-depth difference between blurred pixels, in radii of the
     // centre pixel's particle, (0, 1000].
@@ -95,5 +108,6 @@ nlohmann::json toJson(const Settings& settings);
 
 std::string_view toString(DepthMode mode);
 std::string_view toString(ShadowMode mode);
+std::string_view toString(NormalModel model);
 
 }  // namespace twinrender::realtime

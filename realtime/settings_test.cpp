@@ -31,6 +31,7 @@ TEST(Settings, ReadsEveryKey) {
                                             {"shadows", std::string("pcf")},
                                             {"particles.radius_scale", 1.1},
                                             {"particles.cull_hidden", false},
+                                            {"particles.normal", std::string("blend")},
                                             {"particles.sphere_normal_weight", 0.5},
                                             {"shadow_map.resolution", std::int64_t(512)},
                                             {"shadow_map.bias", 0.25},
@@ -49,6 +50,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(s.shadows, ShadowMode::Pcf);
     EXPECT_DOUBLE_EQ(s.particles.radiusScale, 1.1);
     EXPECT_FALSE(s.particles.cullHidden);
+    EXPECT_EQ(s.particles.normal, NormalModel::Blend);
     EXPECT_DOUBLE_EQ(s.particles.sphereNormalWeight, 0.5);
     EXPECT_EQ(s.shadowMap.resolution, 512);
     EXPECT_DOUBLE_EQ(s.shadowMap.bias, 0.25);
@@ -67,7 +69,8 @@ TEST(Settings, ReadsEveryKey) {
     const nlohmann::json j = toJson(s);
     EXPECT_EQ(j.at("realtime.depth"), "reversed");
     EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
-    EXPECT_EQ(j.size(), 18u);
+    EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
+    EXPECT_EQ(j.size(), 19u);
 }
 
 void expectError(const core::ParameterTable& t, const std::string& fragment) {
@@ -87,6 +90,7 @@ TEST(Settings, UnknownKeyNamesFileLineAndKey) {
 TEST(Settings, RejectsBadValues) {
     expectError(table({{"depth", std::string("logarithmic")}}), "realtime.depth");
     expectError(table({{"shadows", std::string("esm")}}), "realtime.shadows");
+    expectError(table({{"particles.normal", std::string("sphere")}}), "realtime.particles.normal");
     expectError(table({{"shadow_map.resolution", std::int64_t(1 << 20)}}), "out of range");
     expectError(table({{"ssss.iterations", std::int64_t(0)}}), "out of range");
     expectError(table({{"ssss.enabled", std::int64_t(1)}}), "wrong type");

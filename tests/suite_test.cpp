@@ -86,18 +86,28 @@ TEST(Suite, LogDepthKeepsTheTelescopeInOrderWhereStandardDoesNot) {
 }
 
 TEST(Suite, SmoothingBringsNormalsCloserToTheExactSurface) {
-    // SSSS on the textured planet, against the raymarcher's analytic normals: measured 3.55
-    // degrees with SSSS, 5.37 without (34 % lower), at an unchanged silhouette. (The issue
-    // asks for 40 %; the bound here is what the renderer does now, so a regression shows.)
+    // SSSS on the textured planet, against the raymarcher's analytic normals, at an unchanged
+    // silhouette. With the G-buffer's field normal (realtime.particles.normal = "field"):
+    // measured 2.31 degrees with SSSS, 2.94 without (21 % lower). The issue asks for 40 %
+    // lower than without SSSS, which held for neither normal model: the former one-normal-
+    // per-particle "blend" gave 3.55 with SSSS and 5.37 without (34 %); the field normal
+    // brings the G-buffer itself below what SSSS made of "blend", and blurring the exact
+    // field's normal would make it worse (realtime/README.md). Against the impostors' former
+    // unsmoothed normals the error is 57 % lower.
     const auto on = run("ssss_on", SCENES + "planet.toml");
     const auto off = run("ssss_off", SCENES + "planet.toml --set realtime.ssss.enabled=false");
+    const auto blendOff = run("blend_off", SCENES + "planet.toml --set realtime.ssss.enabled=false"
+                                           " --set realtime.particles.normal=blend");
     const double normalOn = metric(on, "planet", "normal.mean_deg");
     const double normalOff = metric(off, "planet", "normal.mean_deg");
-    EXPECT_LT(normalOn, 0.72 * normalOff) << normalOn << " vs " << normalOff;
+    EXPECT_LT(normalOn, 0.85 * normalOff) << normalOn << " vs " << normalOff;
+    EXPECT_LT(normalOn, 0.5 * metric(blendOff, "planet", "normal.mean_deg"));
+    EXPECT_LT(normalOn, 2.6);
     EXPECT_GE(metric(on, "planet", "coverage.iou"), 0.95);
-    // Without SSSS the particles show: the normal field is twice as rough as the exact one.
-    EXPECT_GT(metric(off, "planet", "smoothness.ratio"), 1.5);
-    EXPECT_LT(metric(on, "planet", "smoothness.ratio"), 1.1);
+    // Without SSSS the particles show: the normal field is rougher than the exact one (1.24;
+    // 1.9 with "blend"); with it, about as smooth (0.79).
+    EXPECT_GT(metric(off, "planet", "smoothness.ratio"), 1.15);
+    EXPECT_LT(metric(on, "planet", "smoothness.ratio"), 0.95);
     EXPECT_EQ(off.exitCode, 2) << off.output;
     EXPECT_TRUE(failedMetrics(off, "planet").count("smoothness.ratio"));
 }
@@ -131,9 +141,9 @@ TEST(Suite, ABaselineCatchesARegressionInsideTheBounds) {
     // The same run again: deterministic renders reproduce the blessed metrics.
     const auto same = run("bless_same", SCENES + "planet.toml --baseline " + (out / "baseline.json").string());
     EXPECT_EQ(same.exitCode, 0) << same.output;
-    // A larger blur: still inside every absolute bound (normal error 4.35 degrees against a
-    // bound of 6), but worse than the baseline.
-    const auto worse = run("bless_worse", SCENES + "planet.toml --set realtime.ssss.radius_scale=1.0 --baseline " +
+    // A larger blur: still inside every absolute bound (normal error 2.82 degrees against a
+    // bound of 3.5), but worse than the baseline (2.31).
+    const auto worse = run("bless_worse", SCENES + "planet.toml --set realtime.ssss.radius_scale=0.8 --baseline " +
                                               (out / "baseline.json").string());
     EXPECT_EQ(worse.exitCode, 2) << worse.output;
     bool namedTheChange = false;

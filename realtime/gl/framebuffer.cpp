@@ -3,6 +3,8 @@
 #include <epoxy/gl.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "realtime/gl/error.h"
 
 namespace twinrender::realtime::gl {
@@ -85,18 +87,27 @@ void Framebuffer::clearDepth(float value) const {
 }
 
 std::vector<float> Framebuffer::read(int attachment, int components) const {
+    std::vector<float> pixels(static_cast<std::size_t>(mWidth) * mHeight *
+                              static_cast<std::size_t>(std::clamp(components, 1, 4)));
+    readInto(attachment, components, pixels);
+    return pixels;
+}
+
+void Framebuffer::readInto(int attachment, int components, std::span<float> out) const {
     static constexpr GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
     if (attachment < 0 || attachment >= mColourCount || components < 1 || components > 4)
         throw Error(fmt::format("framebuffer '{}': no colour attachment {} with {} components",
                                 mName, attachment, components));
-    std::vector<float> pixels(static_cast<std::size_t>(mWidth) * mHeight * components);
+    const std::size_t size = static_cast<std::size_t>(mWidth) * mHeight * components;
+    if (out.size() != size)
+        throw Error(fmt::format("framebuffer '{}': read into {} floats, needs {}", mName,
+                                out.size(), size));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, mHandle.id());
     glNamedFramebufferReadBuffer(mHandle.id(), GL_COLOR_ATTACHMENT0 + attachment);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadnPixels(0, 0, mWidth, mHeight, formats[components - 1], GL_FLOAT,
-                  static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
+                  static_cast<GLsizei>(size * sizeof(float)), out.data());
     checkErrors("read back " + mName);
-    return pixels;
 }
 
 }  // namespace twinrender::realtime::gl

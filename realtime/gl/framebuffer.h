@@ -3,6 +3,7 @@
 
 #include <glm/vec4.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ class Framebuffer {
     // Colour attachment `attachment` as floats, `components` (1..4) per pixel, OpenGL order:
     // the bottom row first.
     std::vector<float> read(int attachment, int components) const;
+    // The same into `out` (width * height * components floats), which the caller may keep
+    // between frames: a fresh buffer of a full-screen float image costs its page faults again.
+    void readInto(int attachment, int components, std::span<float> out) const;
 
     int width() const { return mWidth; }
     int height() const { return mHeight; }

@@ -10,6 +10,8 @@ flat in float vCentreDistance;
 flat in float vRadius;
 flat in vec3 vCentre;
 flat in vec3 vNormal;
+flat in vec3 vHessianDiagonal;
+flat in vec3 vHessianOffDiagonal;
 flat in vec2 vUv;
 flat in vec3 vDudx;
 flat in vec3 vDvdx;
@@ -42,11 +44,16 @@ void main() {
     float u = fract(vUv.x + dot(vDudx, offset));
     float v = clamp(vUv.y + dot(vDvdx, offset), 0.0, 1.0);
     vec3 emission = sampleTexture(vEmissionTexture, vec2(u, v)) + vGlowMaterial.rgb;
-    // The particle's colour-field normal, tilted towards the impostor's own normal: at a surface
-    // point the particle's own kernel adds a gradient along (x - x_i), which the normal taken
-    // at the particle's centre lacks (realtime.particles.sphere_normal_weight).
+    // realtime.particles.normal: "field", the colour field's gradient modelled to first order
+    // over the impostor (realtime/field_normal.h), misc.z = 0; "blend", the particle's normal
+    // (no Hessian) tilted towards the impostor's own normal by misc.z: at a surface point the
+    // particle's own kernel adds a gradient along (x - x_i), which the normal taken at the
+    // particle's centre lacks.
+    vec3 d = vHessianDiagonal, o = vHessianOffDiagonal;
+    vec3 model = vNormal + vec3(dot(vec3(d.x, o.x, o.y), offset), dot(vec3(o.x, d.y, o.z), offset),
+                                dot(vec3(o.y, o.z, d.z), offset));
     vec3 sphereNormal = worldFromView * ((hit - vCentre) / vRadius);
-    outNormalUv = vec4(octEncode(normalize(mix(vNormal, sphereNormal, misc.z))), u, v);
+    outNormalUv = vec4(octEncode(normalize(mix(model, sphereNormal, misc.z))), u, v);
     outEmission = vec4(emission, 0.0);
     outSurface = vec4(z, vBody, vRadius * pixelsPerUnitAt(-vCentre.z), vGlowMaterial.w);
 }

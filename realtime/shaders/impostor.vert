@@ -22,7 +22,9 @@ flat out float vRadius;
 #ifndef SHADOW_PASS
 // The particle's attributes, fetched once per vertex rather than once per fragment.
 flat out vec3 vCentre;        // eye space
-flat out vec3 vNormal;        // world
+flat out vec3 vNormal;        // world (field_normal.h: not unit)
+flat out vec3 vHessianDiagonal;
+flat out vec3 vHessianOffDiagonal;
 flat out vec2 vUv;
 flat out vec3 vDudx;
 flat out vec3 vDvdx;
@@ -51,6 +53,8 @@ void main() {
     Particle p = particles[particle];
     vCentre = c;
     vNormal = p.normalU.xyz;
+    vHessianDiagonal = p.hessianDiagonal.xyz;
+    vHessianOffDiagonal = p.hessianOffDiagonal.xyz;
     vUv = vec2(p.normalU.w, p.dudxV.w);
     vDudx = p.dudxV.xyz;
     vDvdx = p.dvdxBody.xyz;
