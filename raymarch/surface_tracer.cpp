@@ -69,6 +69,7 @@ public:
     std::vector<std::uint32_t> prims;  // this round's gather, in particle order
     ParticleBatch batch;               // their data
     std::vector<float> weights;        // kernel weights at a hit
+    std::vector<std::uint32_t> inside; // the candidates of positive weight there
     std::vector<int> groupEnds;  // shadow bundles
     double lastCrossing = NAN;   // the block's last primary crossing
     MarchRay rays[MAX_RAYS];
@@ -425,20 +426,26 @@ struct SurfaceTracer::Impl {
         }
         // uv and glow: normalised kernel weights over the visible body's particles; u is
         // unwrapped around the heaviest particle's u (the first of equals) so that the seam
-        // does not average to 0.5.
-        std::size_t heaviest = lanes;
+        // does not average to 0.5. The candidates of positive weight are listed first (in
+        // order, without branches: which candidates weigh is unpredictable).
+        w.inside.resize(lanes);
+        std::uint32_t* inside = w.inside.data();
+        std::size_t count = 0, heaviest = lanes;
         float heaviestWeight = 0.0f;
-        for (std::size_t c = 0; c < lanes; ++c)
-            if (weights[c] > heaviestWeight) {
-                heaviestWeight = weights[c];
-                heaviest = c;
-            }
+        for (std::size_t c = 0; c < lanes; ++c) {
+            const float weight = weights[c];
+            inside[count] = static_cast<std::uint32_t>(c);
+            count += weight > 0.0f;
+            const bool heavier = weight > heaviestWeight;
+            heaviest = heavier ? c : heaviest;
+            heaviestWeight = heavier ? weight : heaviestWeight;
+        }
         if (heaviest == lanes) return;
         const float uRef = ps.uv[index[heaviest]].x;
         float wsum = 0.0f, u = 0.0f, v = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
-        for (std::size_t c = 0; c < lanes; ++c) {
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::uint32_t c = inside[k];
             const float weight = weights[c];
-            if (!(weight > 0.0f)) continue;
             const glm::vec2 puv = ps.uv[index[c]];
             const glm::vec3 glow = ps.glow[index[c]];
             // u and uRef lie in [0, 1): the nearest integer to their difference (std::round,
