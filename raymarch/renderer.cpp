@@ -115,6 +115,8 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                     double coverage[N] = {}, shadow[N] = {}, bestDist[N];
                     std::fill_n(bestDist, N, INFINITY);
                     const core::Ray central = mCamera.ray(bx + 0.5 * B, by + 0.5 * B);
+                    // Background (written above) where no ray of the block can meet a surface.
+                    if (!mTracer.blockMayHit(central)) continue;
                     for (int k = 0; k < st.spp; ++k) {
                         core::Ray rays[N];
                         double tnear[N], tfar[N], cosAxis[N], jx[N], jy[N];

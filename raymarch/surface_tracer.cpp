@@ -517,6 +517,20 @@ void SurfaceTracer::WorkspaceDeleter::operator()(Workspace* w) const { delete w;
 const TraceCounters& SurfaceTracer::counters(const Workspace& w) const { return w.counters; }
 void SurfaceTracer::resetCounters(Workspace& w) const { w.counters = {}; }
 
+bool SurfaceTracer::blockMayHit(const core::Ray& central) const {
+    const Impl& im = *mImpl;
+    if (im.settings.spheres) return true;
+    for (const auto& b : im.bodyRanges) {
+        // A point of a block ray at distance D from the camera lies within D sinBlock of the
+        // central ray, at a parameter of it below D: the central ray meets the body's box
+        // grown by that spread before the box's farthest distance.
+        const double far = glm::length(0.5 * (b.lo + b.hi) - central.origin) + 0.5 * glm::length(b.hi - b.lo);
+        const double grow = 1.01 * far * im.sinBlock;
+        if (rayMeetsBox(central, 0.0, far, b.lo - grow, b.hi + grow)) return true;
+    }
+    return false;
+}
+
 void SurfaceTracer::tracePrimary(int n, const core::Ray* rays, const double* tnear, const double* tfar,
                                  const core::Ray& central, SurfaceHit* hits, bool* found,
                                  Workspace& w) const {
