@@ -82,6 +82,11 @@ struct SurfaceTracer::Impl {
     Settings settings;
     std::vector<float> supportRadius, margin;
     std::vector<FieldParticle> fieldParticles;
+    // What a hit reads of each particle around it, in one record (one cache line).
+    struct alignas(32) HitAttributes {
+        float u, v, r, g, b;
+    };
+    std::vector<HitAttributes> hitAttributes;
     std::unique_ptr<SphereScene> spheres;   // plain spheres (spheres mode)
     std::unique_ptr<BundleGather> bundles;  // support spheres grown by the margin
     std::vector<BodyRange> bodyRanges;
@@ -114,6 +119,9 @@ struct SurfaceTracer::Impl {
             margin[i] = static_cast<float>(std::max(primary, SHADOW_MARGIN * ps.h[i]));
         }
         fieldParticles = makeFieldParticles(ps);
+        hitAttributes.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            hitAttributes[i] = {ps.uv[i].x, ps.uv[i].y, ps.glow[i].r, ps.glow[i].g, ps.glow[i].b};
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin);
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), INFINITY};
@@ -441,13 +449,14 @@ struct SurfaceTracer::Impl {
             heaviestWeight = heavier ? weight : heaviestWeight;
         }
         if (heaviest == lanes) return;
-        const float uRef = ps.uv[index[heaviest]].x;
+        const float uRef = hitAttributes[index[heaviest]].u;
         float wsum = 0.0f, u = 0.0f, v = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
         for (std::size_t k = 0; k < count; ++k) {
             const std::uint32_t c = inside[k];
             const float weight = weights[c];
-            const glm::vec2 puv = ps.uv[index[c]];
-            const glm::vec3 glow = ps.glow[index[c]];
+            const HitAttributes& a = hitAttributes[index[c]];
+            const glm::vec2 puv(a.u, a.v);
+            const glm::vec3 glow(a.r, a.g, a.b);
             // u and uRef lie in [0, 1): the nearest integer to their difference (std::round,
             // a library call on baseline x86-64) is -1, 0 or 1.
             const float du = puv.x - uRef;
