@@ -4,6 +4,7 @@
 // implicit surface is built on. Run: build/bench/raymarch_bench [--benchmark_repetitions=5]
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
+#include <ctime>
 
 #include "core/camera.h"
 #include "raymarch/renderer.h"
@@ -13,6 +14,14 @@
 namespace tr = twinrender;
 
 namespace {
+
+// CPU time of the whole process (every thread), in ms: steadier than wall time on a machine
+// that other jobs share.
+double processCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
 
 struct BallScene {
     tr::core::Scene scene;
@@ -39,6 +48,7 @@ void renderBall(benchmark::State& state, bool spheres, bool shadows) {
     settings.shadows = shadows;
     tr::raymarch::EmbreeDevice device;
     double unresolved = 0;
+    const double cpuStart = processCpuMs();
     for (auto _ : state) {
         tr::raymarch::Renderer renderer(device, s.scene, s.particles, s.materials, settings);
         tr::core::Frame frame = renderer.render();
@@ -46,6 +56,7 @@ void renderBall(benchmark::State& state, bool spheres, bool shadows) {
         benchmark::DoNotOptimize(frame.image.pixels().data());
     }
     state.counters["unbracketed"] = unresolved;
+    state.counters["process_cpu_ms"] = (processCpuMs() - cpuStart) / double(state.iterations());
 }
 
 void BM_BallImplicitShadows(benchmark::State& state) { renderBall(state, false, true); }

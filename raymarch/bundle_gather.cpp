@@ -13,9 +13,8 @@ struct BundleContext {
     RTCIntersectContext context;
     const RayBundle* bundle;
     std::vector<std::uint32_t>* out;
-    const glm::vec3* centers;
+    const BundleGather::Sphere* spheres;
     const float* radius;
-    const float* margin;
 };
 
 RTCRayHit makeRayHit(const glm::dvec3& o, const glm::dvec3& d, double tnear, double tfar) {
@@ -72,6 +71,9 @@ void RayBundle::finish() {
 BundleGather::BundleGather(const EmbreeDevice& device, std::span<const glm::vec3> centers,
                            std::span<const float> supportRadius, std::span<const float> margin)
     : mDevice(device), mCenters(centers), mRadius(supportRadius), mMargin(margin) {
+    mSpheres.resize(centers.size());
+    for (std::size_t i = 0; i < centers.size(); ++i)
+        mSpheres[i] = {centers[i].x, centers[i].y, centers[i].z, (supportRadius[i] + margin[i]) * (1.0f + SLACK)};
     mScene = rtcNewScene(device.get());
     // The quick (Morton) build: gathers ran as fast on its tree as on the medium one's, and it
     // takes half the time to build.
@@ -95,8 +97,9 @@ BundleGather::~BundleGather() {
 
 void BundleGather::bounds(const RTCBoundsFunctionArguments* args) {
     const auto* self = static_cast<const BundleGather*>(args->geometryUserPtr);
-    const glm::vec3 c = self->mCenters[args->primID];
-    const float r = (self->mRadius[args->primID] + self->mMargin[args->primID]) * (1.0f + SLACK);
+    const Sphere& s = self->mSpheres[args->primID];
+    const glm::vec3 c(s.x, s.y, s.z);
+    const float r = s.grown;
     args->bounds_o->lower_x = c.x - r;
     args->bounds_o->lower_y = c.y - r;
     args->bounds_o->lower_z = c.z - r;
@@ -115,12 +118,13 @@ void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
         return;
     }
     const RayBundle& b = *ctx->bundle;
-    const glm::vec3 c = ctx->centers[args->primID];
-    const float r = ctx->radius[args->primID];
+    const BundleGather::Sphere s = ctx->spheres[args->primID];
+    const glm::vec3 c(s.x, s.y, s.z);
     // The central ray first: Embree calls for every box it crosses, and the grown sphere
     // inside the box is missed a good part of the time; then no ray of the bundle can meet
     // the support sphere.
-    if (!centralRayMeets(args, c, (r + ctx->margin[args->primID]) * (1.0f + SLACK))) return;
+    if (!centralRayMeets(args, c, s.grown)) return;
+    const float r = ctx->radius[args->primID];
     const float r2 = r * r * (1.0f + 2.0f * SLACK);
     const float slack = r * SLACK;
     const int n = b.count;
@@ -149,8 +153,9 @@ void BundleGather::firstEntryTest(const RTCIntersectFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const BundleContext*>(args->context);
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
-    const glm::vec3 c = ctx->centers[args->primID];
-    const float r = (ctx->radius[args->primID] + ctx->margin[args->primID]) * (1.0f + SLACK);
+    const BundleGather::Sphere s = ctx->spheres[args->primID];
+    const glm::vec3 c(s.x, s.y, s.z);
+    const float r = s.grown;
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const glm::vec3 o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
@@ -182,9 +187,8 @@ bool BundleGather::firstEntry(const glm::dvec3& o, const glm::dvec3& d, double t
     rtcInitIntersectContext(&ctx.context);
     ctx.bundle = nullptr;
     ctx.out = nullptr;
-    ctx.centers = mCenters.data();
+    ctx.spheres = mSpheres.data();
     ctx.radius = mRadius.data();
-    ctx.margin = mMargin.data();
     RTCRayHit rh = makeRayHit(o, d, tnear, tfar);
     rtcIntersect1(mScene, &ctx.context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
@@ -198,9 +202,8 @@ std::uint32_t BundleGather::firstEntries(int count, const Query* queries, Entry*
     ctx.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     ctx.bundle = nullptr;
     ctx.out = nullptr;
-    ctx.centers = mCenters.data();
+    ctx.spheres = mSpheres.data();
     ctx.radius = mRadius.data();
-    ctx.margin = mMargin.data();
     alignas(32) int valid[PACKET];
     RTCRayHit8 rh;
     for (int i = 0; i < PACKET; ++i) {
@@ -237,9 +240,8 @@ void BundleGather::gather(const RayBundle& bundle, const glm::dvec3& o, const gl
     rtcInitIntersectContext(&ctx.context);
     ctx.bundle = &bundle;
     ctx.out = &out;
-    ctx.centers = mCenters.data();
+    ctx.spheres = mSpheres.data();
     ctx.radius = mRadius.data();
-    ctx.margin = mMargin.data();
     RTCRayHit rh = makeRayHit(o, d, tnear, tfar);
     rtcIntersect1(mScene, &ctx.context, &rh);
 }

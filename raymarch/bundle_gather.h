@@ -71,6 +71,12 @@ public:
     };
     std::uint32_t firstEntries(int count, const Query* queries, Entry* entries) const;
 
+    // What a query reads of a particle first, in one record: its centre and the radius of its
+    // support sphere grown by the margin (and the float slack).
+    struct alignas(16) Sphere {
+        float x, y, z, grown;
+    };
+
 private:
     static void bounds(const RTCBoundsFunctionArguments* args);
     static void intersect(const RTCIntersectFunctionNArguments* args);
@@ -81,6 +87,7 @@ private:
     std::span<const glm::vec3> mCenters;
     std::span<const float> mRadius;
     std::span<const float> mMargin;
+    std::vector<Sphere> mSpheres;
     RTCScene mScene = nullptr;
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <pmmintrin.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -68,7 +69,10 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
     const int tileCount = tilesX * tilesY;
     core::Frame frame;
     frame.renderer = "raymarch";
-    frame.image = core::aov::makeImage(width, height);
+    // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
+    // written by the tiles, in parallel, with the pixels they cover: filling the channels
+    // first is a serial pass over the whole image.
+    frame.image = core::Image(width, height, core::aov::channelNames());
     frame.particleCount = mParticles.particles.size();
     core::Image& img = frame.image;
     const int cR = img.channelIndex("R"), cA = img.channelIndex("A"), cZ = img.channelIndex("Z"),
@@ -101,6 +105,8 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                             px[n] = x;
                             py[n] = y;
                             ++n;
+                            img.at(x, y, cZ) = std::numeric_limits<float>::infinity();
+                            img.at(x, y, cId) = -1.0f;
                         }
                     // Per pixel of the block, summed over its samples (glm does not zero).
                     glm::dvec3 beauty[N], emission[N];
@@ -109,6 +115,8 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                     double coverage[N] = {}, shadow[N] = {}, bestDist[N];
                     std::fill_n(bestDist, N, INFINITY);
                     const core::Ray central = mCamera.ray(bx + 0.5 * B, by + 0.5 * B);
+                    // Background (written above) where no ray of the block can meet a surface.
+                    if (!mTracer.blockMayHit(central)) continue;
                     for (int k = 0; k < st.spp; ++k) {
                         core::Ray rays[N];
                         double tnear[N], tfar[N], cosAxis[N], jx[N], jy[N];

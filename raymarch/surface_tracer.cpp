@@ -69,6 +69,7 @@ public:
     std::vector<std::uint32_t> prims;  // this round's gather, in particle order
     ParticleBatch batch;               // their data
     std::vector<float> weights;        // kernel weights at a hit
+    std::vector<std::uint32_t> inside; // the candidates of positive weight there
     std::vector<int> groupEnds;  // shadow bundles
     double lastCrossing = NAN;   // the block's last primary crossing
     MarchRay rays[MAX_RAYS];
@@ -81,6 +82,11 @@ struct SurfaceTracer::Impl {
     Settings settings;
     std::vector<float> supportRadius, margin;
     std::vector<FieldParticle> fieldParticles;
+    // What a hit reads of each particle around it, in one record (one cache line).
+    struct alignas(32) HitAttributes {
+        float u, v, r, g, b;
+    };
+    std::vector<HitAttributes> hitAttributes;
     std::unique_ptr<SphereScene> spheres;   // plain spheres (spheres mode)
     std::unique_ptr<BundleGather> bundles;  // support spheres grown by the margin
     std::vector<BodyRange> bodyRanges;
@@ -113,6 +119,9 @@ struct SurfaceTracer::Impl {
             margin[i] = static_cast<float>(std::max(primary, SHADOW_MARGIN * ps.h[i]));
         }
         fieldParticles = makeFieldParticles(ps);
+        hitAttributes.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            hitAttributes[i] = {ps.uv[i].x, ps.uv[i].y, ps.glow[i].r, ps.glow[i].g, ps.glow[i].b};
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin);
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), INFINITY};
@@ -425,22 +434,29 @@ struct SurfaceTracer::Impl {
         }
         // uv and glow: normalised kernel weights over the visible body's particles; u is
         // unwrapped around the heaviest particle's u (the first of equals) so that the seam
-        // does not average to 0.5.
-        std::size_t heaviest = lanes;
+        // does not average to 0.5. The candidates of positive weight are listed first (in
+        // order, without branches: which candidates weigh is unpredictable).
+        w.inside.resize(lanes);
+        std::uint32_t* inside = w.inside.data();
+        std::size_t count = 0, heaviest = lanes;
         float heaviestWeight = 0.0f;
-        for (std::size_t c = 0; c < lanes; ++c)
-            if (weights[c] > heaviestWeight) {
-                heaviestWeight = weights[c];
-                heaviest = c;
-            }
-        if (heaviest == lanes) return;
-        const float uRef = ps.uv[index[heaviest]].x;
-        float wsum = 0.0f, u = 0.0f, v = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
         for (std::size_t c = 0; c < lanes; ++c) {
             const float weight = weights[c];
-            if (!(weight > 0.0f)) continue;
-            const glm::vec2 puv = ps.uv[index[c]];
-            const glm::vec3 glow = ps.glow[index[c]];
+            inside[count] = static_cast<std::uint32_t>(c);
+            count += weight > 0.0f;
+            const bool heavier = weight > heaviestWeight;
+            heaviest = heavier ? c : heaviest;
+            heaviestWeight = heavier ? weight : heaviestWeight;
+        }
+        if (heaviest == lanes) return;
+        const float uRef = hitAttributes[index[heaviest]].u;
+        float wsum = 0.0f, u = 0.0f, v = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::uint32_t c = inside[k];
+            const float weight = weights[c];
+            const HitAttributes& a = hitAttributes[index[c]];
+            const glm::vec2 puv(a.u, a.v);
+            const glm::vec3 glow(a.r, a.g, a.b);
             // u and uRef lie in [0, 1): the nearest integer to their difference (std::round,
             // a library call on baseline x86-64) is -1, 0 or 1.
             const float du = puv.x - uRef;
@@ -509,6 +525,20 @@ void SurfaceTracer::WorkspaceDeleter::operator()(Workspace* w) const { delete w;
 
 const TraceCounters& SurfaceTracer::counters(const Workspace& w) const { return w.counters; }
 void SurfaceTracer::resetCounters(Workspace& w) const { w.counters = {}; }
+
+bool SurfaceTracer::blockMayHit(const core::Ray& central) const {
+    const Impl& im = *mImpl;
+    if (im.settings.spheres) return true;
+    for (const auto& b : im.bodyRanges) {
+        // A point of a block ray at distance D from the camera lies within D sinBlock of the
+        // central ray, at a parameter of it below D: the central ray meets the body's box
+        // grown by that spread before the box's farthest distance.
+        const double far = glm::length(0.5 * (b.lo + b.hi) - central.origin) + 0.5 * glm::length(b.hi - b.lo);
+        const double grow = 1.01 * far * im.sinBlock;
+        if (rayMeetsBox(central, 0.0, far, b.lo - grow, b.hi + grow)) return true;
+    }
+    return false;
+}
 
 void SurfaceTracer::tracePrimary(int n, const core::Ray* rays, const double* tnear, const double* tfar,
                                  const core::Ray& central, SurfaceHit* hits, bool* found,

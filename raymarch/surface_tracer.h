@@ -63,6 +63,9 @@ public:
     using WorkspacePtr = std::unique_ptr<Workspace, WorkspaceDeleter>;
     WorkspacePtr makeWorkspace() const;
 
+    // Whether a camera ray of the pixel block whose centre `central` passes through may meet
+    // the surface (false: none can; always true with plain spheres).
+    bool blockMayHit(const core::Ray& central) const;
     // Camera rays of one pixel block (n <= MAX_RAYS, samples anywhere inside the block's
     // pixels); `central` is the ray through the block's centre.
     void tracePrimary(int n, const core::Ray* rays, const double* tnear, const double* tfar,
