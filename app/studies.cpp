@@ -504,7 +504,9 @@ void temporalConclude(StudyResult& s) {
 
 compare::LineChart seriesChart(const StudyResult& s, const std::string& metric) {
     compare::LineChart c;
-    c.title = fmt::format("{}: {} against {}", s.title, metric, s.xLabel);
+    // The x axis carries its own label: the title names the study and the metric only, so that
+    // it fits over the plot.
+    c.title = fmt::format("{}: {}", s.title, metric);
     c.xLabel = s.xLabel;
     const std::string unit = compare::metricUnit(metric);
     c.yLabel = unit.empty() ? metric : fmt::format("{} ({})", metric, unit);
