@@ -27,11 +27,13 @@ void main() {
     // The eye ray through the quad point q: with rho = |q - c| in the plane perpendicular to
     // the centre direction, the ray passes the centre at distance D rho / sqrt(D^2 + rho^2)
     // and its closest approach lies at D^2 / sqrt(D^2 + rho^2). No large-number cancellation,
-    // whatever the distance to the particle.
+    // whatever the distance to the particle, and no product of two squares (D^2 rho^2
+    // overflows a float once D and rho reach about 1e10 and 1e9, as in a scene of far/near
+    // 1e11).
     float d2 = vCentreDistance * vCentreDistance;
     float rho2 = dot(vOffset, vOffset);
     float r2 = vRadius * vRadius;
-    float miss2 = d2 * rho2 / (d2 + rho2);
+    float miss2 = rho2 * (d2 / (d2 + rho2));
     if (miss2 >= r2) discard;
     float t = d2 / sqrt(d2 + rho2) - sqrt(r2 - miss2);
     vec3 hit = normalize(vQuadPoint) * t;  // eye space
