@@ -1,7 +1,7 @@
 // Gathering support spheres for a bundle of nearly parallel rays with one Embree traversal.
 //
 // Gathering per ray costs one Embree callback per sphere crossed (~70 per ray near a
-// surface). Neighbouring pixels cross almost the same spheres, so a bundle of up to 32 rays
+// surface). Neighbouring pixels cross almost the same spheres, so a bundle of up to 64 rays
 // (a pixel block, or the shadow rays of one) is gathered at once: an Embree user geometry
 // holds every particle with its support sphere (radius 2h) inflated by a margin, the bundle's
 // central ray is traced through it, and the callback tests the real support sphere against
@@ -21,7 +21,7 @@
 namespace twinrender::raymarch {
 
 struct RayBundle {
-    static constexpr int MAX_RAYS = 32;
+    static constexpr int MAX_RAYS = 64;
     static constexpr int LANES = 8;  // the test runs this many rays at a time
     int count = 0;
     // Per ray, in float: the test only selects spheres; the field build tests them again.

@@ -96,12 +96,14 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
         constexpr int N = B * B;
         for (int ti = range.begin(); ti != range.end(); ++ti) {
             const int tx0 = (ti % tilesX) * tile, ty0 = (ti / tilesX) * tile;
+            // Blocks are cut at the tile's edge (a tile may be smaller than a block).
+            const int tx1 = std::min(tx0 + tile, width), ty1 = std::min(ty0 + tile, height);
             std::int64_t tPrimary = 0, tShade = 0;
-            for (int by = ty0; by < std::min(ty0 + tile, height); by += B)
-                for (int bx = tx0; bx < std::min(tx0 + tile, width); bx += B) {
+            for (int by = ty0; by < ty1; by += B)
+                for (int bx = tx0; bx < tx1; bx += B) {
                     int px[N], py[N], n = 0;
-                    for (int y = by; y < std::min(by + B, height); ++y)
-                        for (int x = bx; x < std::min(bx + B, width); ++x) {
+                    for (int y = by; y < std::min(by + B, ty1); ++y)
+                        for (int x = bx; x < std::min(bx + B, tx1); ++x) {
                             px[n] = x;
                             py[n] = y;
                             ++n;

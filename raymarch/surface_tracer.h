@@ -47,8 +47,8 @@ struct TraceCounters {
 
 class SurfaceTracer {
 public:
-    static constexpr int BLOCK = 4;              // pixel block side
-    static constexpr int MAX_RAYS = 32;          // rays per bundle
+    static constexpr int BLOCK = 8;              // pixel block side (of 4, 6, 8, 16: the fastest)
+    static constexpr int MAX_RAYS = 64;          // rays per bundle
     static constexpr double SHADOW_MARGIN = 0.2; // shadow-bundle spread allowed, in units of h
 
     SurfaceTracer(const EmbreeDevice& device, const core::Camera& camera,
