@@ -68,6 +68,32 @@ struct Axis {
     }
 };
 
+// The grid lines and tick labels at the given ticks, then the plot's frame (the axes' pixel
+// ranges: x from left to right, y from bottom to top).
+std::string gridAndFrame(const Axis& ax, const Axis& ay, const std::vector<double>& xt,
+                         const std::vector<double>& yt) {
+    const double left = ax.pixLo, right = ax.pixHi, bottom = ay.pixLo, top = ay.pixHi;
+    std::string s = "<g class=\"ticks\">\n";
+    for (double t : xt) {
+        const double px = ax.map(t);
+        s += fmt::format(
+            "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
+            "<text class=\"tick\" x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\">{4}</text>\n",
+            px, top, bottom, bottom + 16, xmlText(tickText(t)));
+    }
+    for (double t : yt) {
+        const double py = ay.map(t);
+        s += fmt::format(
+            "<line class=\"grid\" x1=\"{1:.1f}\" y1=\"{0:.1f}\" x2=\"{2:.1f}\" y2=\"{0:.1f}\"/>"
+            "<text class=\"tick\" x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
+            py, left, right, left - 6, py + 4, xmlText(tickText(t)));
+    }
+    s += "</g>\n";
+    s += fmt::format("<rect class=\"axis\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n", left,
+                     top, right - left, bottom - top);
+    return s;
+}
+
 // The data range padded so that markers do not sit on the frame.
 std::pair<double, double> paddedRange(double lo, double hi, bool log) {
     if (log) {
@@ -159,24 +185,7 @@ std::string scatterSvg(const ScatterChart& chart) {
     // Grid and ticks.
     const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
     const std::vector<double> yt = linearTicks(yl, yh, 6);
-    s += "<g class=\"ticks\">\n";
-    for (double t : xt) {
-        const double px = ax.map(t);
-        s += fmt::format(
-            "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
-            "<text class=\"tick\" x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\">{4}</text>\n",
-            px, top, bottom, bottom + 16, xmlText(tickText(t)));
-    }
-    for (double t : yt) {
-        const double py = ay.map(t);
-        s += fmt::format(
-            "<line class=\"grid\" x1=\"{1:.1f}\" y1=\"{0:.1f}\" x2=\"{2:.1f}\" y2=\"{0:.1f}\"/>"
-            "<text class=\"tick\" x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
-            py, left, right, left - 6, py + 4, xmlText(tickText(t)));
-    }
-    s += "</g>\n";
-    s += fmt::format("<rect class=\"axis\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n", left,
-                     top, right - left, bottom - top);
+    s += gridAndFrame(ax, ay, xt, yt);
     s += fmt::format(
         "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}{}</text>\n",
         (left + right) / 2, H - 22, xmlText(chart.xLabel), logX ? " — log scale" : "");
@@ -371,24 +380,7 @@ std::string lineSvg(const LineChart& chart) {
     };
     const std::vector<double> xtShown = thin(xt, 12);
     yt = thin(yt, 10);
-    s += "<g class=\"ticks\">\n";
-    for (double t : xtShown) {
-        const double px = ax.map(t);
-        s += fmt::format(
-            "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
-            "<text class=\"tick\" x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\">{4}</text>\n",
-            px, top, bottom, bottom + 16, xmlText(tickText(t)));
-    }
-    for (double t : yt) {
-        const double py = ay.map(t);
-        s += fmt::format(
-            "<line class=\"grid\" x1=\"{1:.1f}\" y1=\"{0:.1f}\" x2=\"{2:.1f}\" y2=\"{0:.1f}\"/>"
-            "<text class=\"tick\" x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
-            py, left, right, left - 6, py + 4, xmlText(tickText(t)));
-    }
-    s += "</g>\n";
-    s += fmt::format("<rect class=\"axis\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n", left,
-                     top, right - left, bottom - top);
+    s += gridAndFrame(ax, ay, xtShown, yt);
     s += fmt::format(
         "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}{}</text>\n",
         (left + right) / 2, bottom + 36, xmlText(chart.xLabel), logX ? " — log scale" : "");

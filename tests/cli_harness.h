@@ -4,7 +4,10 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
@@ -43,6 +46,40 @@ inline std::size_t countFiles(const std::filesystem::path& dir) {
     std::size_t n = 0;
     for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) n += e.is_regular_file();
     return n;
+}
+
+inline std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// The parsed file, or a discarded value when it is not JSON.
+inline nlohmann::json readJson(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in, nullptr, false);
+}
+
+// The page's self-test verdict in headless Chromium (as tests/report_browser_test.cpp opens
+// pages); empty when Chromium is not installed.
+inline std::string selftestInBrowser(const std::filesystem::path& page,
+                                     const std::filesystem::path& work) {
+    const char* chromium = "/usr/bin/chromium";
+    if (!std::filesystem::exists(chromium)) return "";
+    const std::filesystem::path dom = work / "dom.html";
+    const std::string cmd =
+        std::string("timeout 120 ") + chromium +
+        " --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking"
+        " --user-data-dir=" +
+        (work / "profile").string() + " --virtual-time-budget=5000 --dump-dom 'file://" +
+        page.string() + "' > " + dom.string() + " 2>/dev/null";
+    if (std::system(cmd.c_str()) != 0) return "chromium failed";
+    const std::string text = readText(dom);
+    const auto at = text.find("id=\"selftest\"");
+    if (at == std::string::npos) return "no selftest element";
+    const auto start = text.find('>', at) + 1;
+    return text.substr(start, text.find('<', start) - start);
 }
 
 }  // namespace twinrender::test

@@ -10,6 +10,8 @@
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
+using tt::readJson;
+using tt::readText;
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -17,18 +19,6 @@ namespace {
 
 const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
 const std::string SMALL = " --set camera.width=64 --set camera.height=48";
-
-json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return json::parse(in, nullptr, false);
-}
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // Times are measured anew by every run; the rest must be equal. Drops time.* metrics,
 // timings_ms, and times in check messages' metrics (no check is on a time by default).

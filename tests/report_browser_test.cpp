@@ -23,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace tc = twinrender::compare;
 namespace tt = twinrender::test;
+using tt::readText;
 
 // $TWINRENDER_CHROMIUM, else Debian's /usr/bin/chromium; empty when neither exists.
 std::string findChromium() {
@@ -70,13 +71,6 @@ PageResult openPage(const std::string& chromium, const fs::path& page, const fs:
     if (start != std::string::npos && end != std::string::npos)
         r.selftest = r.dom.substr(start + 1, end - start - 1);
     return r;
-}
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 std::string stderrTail(const fs::path& work) {

@@ -14,22 +14,13 @@
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
+using tt::readJson;
+using tt::readText;
+using tt::selftestInBrowser;
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return json::parse(in, nullptr, false);
-}
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 double metric(const json& row, const std::string& name) {
     const json& v = row["metrics"][name];
@@ -232,30 +223,6 @@ TEST(Study, CollisionBleedingInTheContactBand) {
         }
     EXPECT_NEAR(s["facts"]["contact_uv"]["ssss_on"].get<double>(), on / n, 1e-12);
 }
-
-namespace {
-
-// The page's self-test verdict in headless Chromium (as tests/report_browser_test.cpp opens
-// pages); empty when Chromium is not installed.
-std::string selftestInBrowser(const fs::path& page, const fs::path& work) {
-    const char* chromium = "/usr/bin/chromium";
-    if (!fs::exists(chromium)) return "";
-    const fs::path dom = work / "dom.html";
-    const std::string cmd =
-        std::string("timeout 120 ") + chromium +
-        " --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking"
-        " --user-data-dir=" +
-        (work / "profile").string() + " --virtual-time-budget=5000 --dump-dom 'file://" +
-        page.string() + "' > " + dom.string() + " 2>/dev/null";
-    if (std::system(cmd.c_str()) != 0) return "chromium failed";
-    const std::string text = readText(dom);
-    const auto at = text.find("id=\"selftest\"");
-    if (at == std::string::npos) return "no selftest element";
-    const auto start = text.find('>', at) + 1;
-    return text.substr(start, text.find('<', start) - start);
-}
-
-}  // namespace
 
 TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
     const fs::path out = tt::freshDir("study_run");

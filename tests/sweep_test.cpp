@@ -15,6 +15,9 @@
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
+using tt::readJson;
+using tt::readText;
+using tt::selftestInBrowser;
 namespace tc = twinrender::compare;
 namespace fs = std::filesystem;
 
@@ -25,38 +28,6 @@ const std::string SMALL =
     " --set camera.width=64 --set camera.height=48 --set bodies.planet.particles=1500";
 const std::string GRID =
     " --vary realtime.ssss.enabled=true,false --vary realtime.shadow_map.resolution=256,1024";
-
-nlohmann::json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return nlohmann::json::parse(in, nullptr, false);
-}
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-// The page's self-test verdict in headless Chromium (as tests/report_browser_test.cpp opens
-// pages); empty when Chromium is not installed.
-std::string selftestInBrowser(const fs::path& page, const fs::path& work) {
-    const char* chromium = "/usr/bin/chromium";
-    if (!fs::exists(chromium)) return "";
-    const fs::path dom = work / "dom.html";
-    const std::string cmd =
-        std::string("timeout 120 ") + chromium +
-        " --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking"
-        " --user-data-dir=" +
-        (work / "profile").string() + " --virtual-time-budget=5000 --dump-dom 'file://" +
-        page.string() + "' > " + dom.string() + " 2>/dev/null";
-    if (std::system(cmd.c_str()) != 0) return "chromium failed";
-    const std::string text = readText(dom);
-    const auto at = text.find("id=\"selftest\"");
-    if (at == std::string::npos) return "no selftest element";
-    const auto start = text.find('>', at) + 1;
-    return text.substr(start, text.find('<', start) - start);
-}
 
 std::size_t count(const std::string& text, const std::string& what) {
     std::size_t n = 0;
