@@ -13,8 +13,7 @@ struct BundleContext {
     RTCIntersectContext context;
     const RayBundle* bundle;
     std::vector<std::uint32_t>* out;
-    const BundleGather::Sphere* spheres;
-    const float* radius;
+    const BundleGather::Group* groups;
 };
 
 RTCRayHit makeRayHit(const glm::dvec3& o, const glm::dvec3& d, double tnear, double tfar) {
@@ -36,18 +35,61 @@ RTCRayHit makeRayHit(const glm::dvec3& o, const glm::dvec3& d, double tnear, dou
 // (the field build tests it again), never miss one.
 constexpr float SLACK = 1e-4f;
 
-// Whether the sphere (c, radius) meets the query's (single) ray within its [tnear, tfar]. It
-// uses the ray as Embree holds it, so that its float rounding is Embree's.
-inline bool centralRayMeets(const RTCIntersectFunctionNArguments* args, const glm::vec3& c, float radius) {
+// Marks in `meets` the members of a group whose grown sphere meets the query's (single) ray
+// within its [tnear, tfar]. It uses the ray as Embree holds it, so that its float rounding is
+// Embree's.
+inline void centralRayMeets(const RTCIntersectFunctionNArguments* args, const BundleGather::Group& g,
+                            int meets[BundleGather::GROUP]) {
     const RTCRay& ray = reinterpret_cast<const RTCRayHit*>(args->rayhit)->ray;
-    const glm::vec3 w(c.x - ray.org_x, c.y - ray.org_y, c.z - ray.org_z);
-    const glm::vec3 d(ray.dir_x, ray.dir_y, ray.dir_z);
-    const float tc = glm::dot(w, d);
-    const glm::vec3 p = w - tc * d;
-    const float chord2 = radius * radius - glm::dot(p, p);
-    // The chord (tc -+ sqrt(chord2)) meets [tnear, tfar], without the square root.
-    const float gap = std::max(std::max(ray.tnear - tc, tc - ray.tfar), 0.0f) - radius * SLACK;
-    return chord2 > 0.0f && (gap <= 0.0f || gap * gap <= chord2);
+    const float ox = ray.org_x, oy = ray.org_y, oz = ray.org_z, dx = ray.dir_x, dy = ray.dir_y, dz = ray.dir_z,
+                tnear = ray.tnear, tfar = ray.tfar;
+#pragma omp simd
+    for (int k = 0; k < BundleGather::GROUP; ++k) {
+        const float wx = g.x[k] - ox, wy = g.y[k] - oy, wz = g.z[k] - oz, radius = g.grown[k];
+        const float tc = wx * dx + wy * dy + wz * dz;
+        const float px = wx - tc * dx, py = wy - tc * dy, pz = wz - tc * dz;
+        const float chord2 = radius * radius - (px * px + py * py + pz * pz);
+        // The chord (tc -+ sqrt(chord2)) meets [tnear, tfar], without the square root.
+        const float before = tnear - tc, after = tc - tfar;
+        const float outside = before > after ? before : after;
+        const float gap = (outside > 0.0f ? outside : 0.0f) - radius * SLACK;
+        meets[k] = (chord2 > 0.0f) & ((gap <= 0.0f) | (gap * gap <= chord2));
+    }
+}
+
+// Splits ids[0, n) at a multiple of GROUP across the widest extent of their centres, until
+// each part fits a group; appends the groups.
+void makeGroups(std::uint32_t* ids, std::size_t n, std::span<const glm::vec3> centers,
+                std::span<const float> supportRadius, std::span<const float> margin,
+                std::vector<BundleGather::Group>& out) {
+    constexpr std::size_t G = BundleGather::GROUP;
+    if (n <= G) {
+        BundleGather::Group g{};
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::uint32_t i = ids[k];
+            g.x[k] = centers[i].x;
+            g.y[k] = centers[i].y;
+            g.z[k] = centers[i].z;
+            g.grown[k] = (supportRadius[i] + margin[i]) * (1.0f + SLACK);
+            g.radius[k] = supportRadius[i];
+            g.prim[k] = i;
+        }
+        out.push_back(g);
+        return;
+    }
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (std::size_t k = 0; k < n; ++k) {
+        lo = glm::min(lo, centers[ids[k]]);
+        hi = glm::max(hi, centers[ids[k]]);
+    }
+    const glm::vec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const std::size_t half = std::min((n / 2 + G - 1) / G * G, n - 1);
+    std::nth_element(ids, ids + half, ids + n, [&](std::uint32_t a, std::uint32_t b) {
+        return centers[a][axis] < centers[b][axis] || (centers[a][axis] == centers[b][axis] && a < b);
+    });
+    makeGroups(ids, half, centers, supportRadius, margin, out);
+    makeGroups(ids + half, n - half, centers, supportRadius, margin, out);
 }
 
 }  // namespace
@@ -70,16 +112,17 @@ void RayBundle::finish() {
 
 BundleGather::BundleGather(const EmbreeDevice& device, std::span<const glm::vec3> centers,
                            std::span<const float> supportRadius, std::span<const float> margin)
-    : mDevice(device), mCenters(centers), mRadius(supportRadius), mMargin(margin) {
-    mSpheres.resize(centers.size());
-    for (std::size_t i = 0; i < centers.size(); ++i)
-        mSpheres[i] = {centers[i].x, centers[i].y, centers[i].z, (supportRadius[i] + margin[i]) * (1.0f + SLACK)};
+    : mDevice(device) {
+    std::vector<std::uint32_t> ids(centers.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::uint32_t>(i);
+    mGroups.reserve((ids.size() + GROUP - 1) / GROUP + 1);
+    if (!ids.empty()) makeGroups(ids.data(), ids.size(), centers, supportRadius, margin, mGroups);
     mScene = rtcNewScene(device.get());
     // The quick (Morton) build: gathers ran as fast on its tree as on the medium one's, and it
     // takes half the time to build.
     rtcSetSceneBuildQuality(mScene, RTC_BUILD_QUALITY_LOW);
     RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(centers.size()));
+    rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(mGroups.size()));
     rtcSetGeometryUserData(geom, this);
     rtcSetGeometryBoundsFunction(geom, &BundleGather::bounds, this);
     rtcSetGeometryIntersectFunction(geom, &BundleGather::intersect);
@@ -97,15 +140,20 @@ BundleGather::~BundleGather() {
 
 void BundleGather::bounds(const RTCBoundsFunctionArguments* args) {
     const auto* self = static_cast<const BundleGather*>(args->geometryUserPtr);
-    const Sphere& s = self->mSpheres[args->primID];
-    const glm::vec3 c(s.x, s.y, s.z);
-    const float r = s.grown;
-    args->bounds_o->lower_x = c.x - r;
-    args->bounds_o->lower_y = c.y - r;
-    args->bounds_o->lower_z = c.z - r;
-    args->bounds_o->upper_x = c.x + r;
-    args->bounds_o->upper_y = c.y + r;
-    args->bounds_o->upper_z = c.z + r;
+    const Group& g = self->mGroups[args->primID];
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (int k = 0; k < GROUP; ++k) {
+        if (!(g.grown[k] > 0.0f)) continue;
+        const glm::vec3 c(g.x[k], g.y[k], g.z[k]);
+        lo = glm::min(lo, c - g.grown[k]);
+        hi = glm::max(hi, c + g.grown[k]);
+    }
+    args->bounds_o->lower_x = lo.x;
+    args->bounds_o->lower_y = lo.y;
+    args->bounds_o->lower_z = lo.z;
+    args->bounds_o->upper_x = hi.x;
+    args->bounds_o->upper_y = hi.y;
+    args->bounds_o->upper_z = hi.z;
 }
 
 // Eight rays at a time where the CPU has x86-64-v3 (AVX2, FMA; chosen at run time), four
@@ -118,63 +166,76 @@ void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
         return;
     }
     const RayBundle& b = *ctx->bundle;
-    const BundleGather::Sphere s = ctx->spheres[args->primID];
-    const glm::vec3 c(s.x, s.y, s.z);
-    // The central ray first: Embree calls for every box it crosses, and the grown sphere
-    // inside the box is missed a good part of the time; then no ray of the bundle can meet
-    // the support sphere.
-    if (!centralRayMeets(args, c, s.grown)) return;
-    const float r = ctx->radius[args->primID];
-    const float r2 = r * r * (1.0f + 2.0f * SLACK);
-    const float slack = r * SLACK;
+    const Group& g = ctx->groups[args->primID];
+    // The central ray first: Embree calls for every leaf box it crosses, and a member's grown
+    // sphere is missed a good part of the time; then no ray of the bundle can meet its
+    // support sphere.
+    int central[GROUP];
+    centralRayMeets(args, g, central);
     const int n = b.count;
     if (n % RayBundle::LANES != 0) __builtin_unreachable();
-    // A vector of rays at a time (branch-free within it), until one meets the sphere.
-    int meets = 0;
-    for (int v = 0; v < n && !meets; v += RayBundle::LANES) {
+    for (int m = 0; m < GROUP; ++m) {
+        if (!central[m]) continue;
+        const glm::vec3 c(g.x[m], g.y[m], g.z[m]);
+        const float r = g.radius[m];
+        const float r2 = r * r * (1.0f + 2.0f * SLACK);
+        const float slack = r * SLACK;
+        // A vector of rays at a time (branch-free within it), until one meets the sphere.
+        int meets = 0;
+        for (int v = 0; v < n && !meets; v += RayBundle::LANES) {
 #pragma omp simd reduction(| : meets)
-        for (int i = v; i < v + RayBundle::LANES; ++i) {
-            const float wx = c.x - b.ox[i], wy = c.y - b.oy[i], wz = c.z - b.oz[i];
-            const float tc = wx * b.dx[i] + wy * b.dy[i] + wz * b.dz[i];
-            const float px = wx - tc * b.dx[i], py = wy - tc * b.dy[i], pz = wz - tc * b.dz[i];
-            const float chord2 = r2 - (px * px + py * py + pz * pz);
-            // The chord meets [tMin, tMax]: its centre lies within sqrt(chord2) of the interval.
-            const float gap = (b.tMin[i] - tc > tc - b.tMax[i] ? b.tMin[i] - tc : tc - b.tMax[i]) - slack;
-            meets |= (chord2 > 0.0f) & ((gap <= 0.0f) | (gap * gap <= chord2));
+            for (int i = v; i < v + RayBundle::LANES; ++i) {
+                const float wx = c.x - b.ox[i], wy = c.y - b.oy[i], wz = c.z - b.oz[i];
+                const float tc = wx * b.dx[i] + wy * b.dy[i] + wz * b.dz[i];
+                const float px = wx - tc * b.dx[i], py = wy - tc * b.dy[i], pz = wz - tc * b.dz[i];
+                const float chord2 = r2 - (px * px + py * py + pz * pz);
+                // The chord meets [tMin, tMax]: its centre lies within sqrt(chord2) of the
+                // interval.
+                const float gap = (b.tMin[i] - tc > tc - b.tMax[i] ? b.tMin[i] - tc : tc - b.tMax[i]) - slack;
+                meets |= (chord2 > 0.0f) & ((gap <= 0.0f) | (gap * gap <= chord2));
+            }
         }
+        if (meets) ctx->out->push_back(g.prim[m]);
     }
-    if (meets) ctx->out->push_back(args->primID);
-    // No hit is reported: traversal goes on through every sphere along the central ray.
+    // No hit is reported: traversal goes on through every group along the central ray.
 }
 
 // A first-entry query (one ray): reports the sphere as a hit where the ray enters it, so that
 // Embree keeps the nearest and prunes what lies beyond.
+__attribute__((target_clones("arch=x86-64-v3", "default")))
 void BundleGather::firstEntryTest(const RTCIntersectFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const BundleContext*>(args->context);
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
-    const BundleGather::Sphere s = ctx->spheres[args->primID];
-    const glm::vec3 c(s.x, s.y, s.z);
-    const float r = s.grown;
+    const Group& g = ctx->groups[args->primID];
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        const glm::vec3 o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
-                          RTCRayN_org_z(ray, args->N, i));
-        const glm::vec3 d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
-                          RTCRayN_dir_z(ray, args->N, i));
-        const glm::vec3 w = c - o;
-        const float tc = glm::dot(w, d);
-        const glm::vec3 p = w - tc * d;
-        const float chord2 = r * r - glm::dot(p, p);
-        if (chord2 <= 0.0f) continue;
-        const float half = std::sqrt(chord2);
+        const float ox = RTCRayN_org_x(ray, args->N, i), oy = RTCRayN_org_y(ray, args->N, i),
+                    oz = RTCRayN_org_z(ray, args->N, i);
+        const float dx = RTCRayN_dir_x(ray, args->N, i), dy = RTCRayN_dir_y(ray, args->N, i),
+                    dz = RTCRayN_dir_z(ray, args->N, i);
         const float tnear = RTCRayN_tnear(ray, args->N, i);
         float& tfar = RTCRayN_tfar(ray, args->N, i);
-        if (tc + half < tnear) continue;
-        const float t = std::max(tc - half - r * SLACK, tnear);
-        if (t > tfar) continue;
-        tfar = t;
-        RTCHitN_primID(hit, args->N, i) = args->primID;
+        // Each member's entry (infinite where the ray misses it), then the first of them.
+        float entry[GROUP];
+#pragma omp simd
+        for (int k = 0; k < GROUP; ++k) {
+            const float r = g.grown[k];
+            const float wx = g.x[k] - ox, wy = g.y[k] - oy, wz = g.z[k] - oz;
+            const float tc = wx * dx + wy * dy + wz * dz;
+            const float px = wx - tc * dx, py = wy - tc * dy, pz = wz - tc * dz;
+            const float chord2 = r * r - (px * px + py * py + pz * pz);
+            const float half = std::sqrt(chord2 > 0.0f ? chord2 : 0.0f);
+            const float t = tc - half - r * SLACK;
+            const bool meets = (chord2 > 0.0f) & (tc + half >= tnear);
+            entry[k] = meets ? (t > tnear ? t : tnear) : INFINITY;
+        }
+        int first = -1;
+        for (int k = 0; k < GROUP; ++k)
+            if (entry[k] <= tfar && (first < 0 || entry[k] < entry[first])) first = k;
+        if (first < 0) continue;
+        tfar = entry[first];
+        RTCHitN_primID(hit, args->N, i) = g.prim[first];
         RTCHitN_geomID(hit, args->N, i) = args->geomID;
     }
 }
@@ -187,8 +248,7 @@ bool BundleGather::firstEntry(const glm::dvec3& o, const glm::dvec3& d, double t
     rtcInitIntersectContext(&ctx.context);
     ctx.bundle = nullptr;
     ctx.out = nullptr;
-    ctx.spheres = mSpheres.data();
-    ctx.radius = mRadius.data();
+    ctx.groups = mGroups.data();
     RTCRayHit rh = makeRayHit(o, d, tnear, tfar);
     rtcIntersect1(mScene, &ctx.context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
@@ -202,8 +262,7 @@ std::uint32_t BundleGather::firstEntries(int count, const Query* queries, Entry*
     ctx.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     ctx.bundle = nullptr;
     ctx.out = nullptr;
-    ctx.spheres = mSpheres.data();
-    ctx.radius = mRadius.data();
+    ctx.groups = mGroups.data();
     alignas(32) int valid[PACKET];
     RTCRayHit8 rh;
     for (int i = 0; i < PACKET; ++i) {
@@ -240,8 +299,7 @@ void BundleGather::gather(const RayBundle& bundle, const glm::dvec3& o, const gl
     rtcInitIntersectContext(&ctx.context);
     ctx.bundle = &bundle;
     ctx.out = &out;
-    ctx.spheres = mSpheres.data();
-    ctx.radius = mRadius.data();
+    ctx.groups = mGroups.data();
     RTCRayHit rh = makeRayHit(o, d, tnear, tfar);
     rtcIntersect1(mScene, &ctx.context, &rh);
 }

@@ -3,9 +3,10 @@
 // Gathering per ray costs one Embree callback per sphere crossed (~70 per ray near a
 // surface). Neighbouring pixels cross almost the same spheres, so a bundle of up to 64 rays
 // (a pixel block, or the shadow rays of one) is gathered at once: an Embree user geometry
-// holds every particle with its support sphere (radius 2h) inflated by a margin, the bundle's
-// central ray is traced through it, and the callback tests the real support sphere against
-// every ray of the bundle over that ray's own interval. The result is exact as long as every
+// holds the particles, in groups of neighbours, with their support spheres (radius 2h)
+// inflated by a margin, the bundle's central ray is traced through it, and the callback tests
+// each member's real support sphere against every ray of the bundle over that ray's own
+// interval. The result is exact as long as every
 // ray of the bundle stays within the margin of the central ray near the spheres it crosses;
 // the caller guarantees it. The same scene answers first-entry queries along lines.
 #pragma once
@@ -38,7 +39,8 @@ struct RayBundle {
 class BundleGather {
 public:
     // `margin[i]`: how far (scene units) any bundle ray may pass from the central ray near
-    // particle i; the Embree bounds are the support spheres grown by it.
+    // particle i; the Embree bounds are the support spheres grown by it. The spans need not
+    // outlive the object.
     BundleGather(const EmbreeDevice& device, std::span<const glm::vec3> centers,
                  std::span<const float> supportRadius, std::span<const float> margin);
     ~BundleGather();
@@ -71,10 +73,17 @@ public:
     };
     std::uint32_t firstEntries(int count, const Query* queries, Entry* entries) const;
 
-    // What a query reads of a particle first, in one record: its centre and the radius of its
-    // support sphere grown by the margin (and the float slack).
-    struct alignas(16) Sphere {
-        float x, y, z, grown;
+    // Particles are handed to Embree in groups of up to GROUP neighbours (in Morton order):
+    // one callback then tests the whole group against the central ray, in one vector, instead
+    // of one callback per particle (most of which miss: Embree calls for every leaf whose box
+    // the ray crosses).
+    static constexpr int GROUP = 8;
+    struct alignas(32) Group {
+        // Centre and the support radius grown by the margin (and the float slack) of each
+        // member; unused members have radius 0 and meet nothing.
+        float x[GROUP], y[GROUP], z[GROUP], grown[GROUP];
+        float radius[GROUP];  // the support radius itself
+        std::uint32_t prim[GROUP];
     };
 
 private:
@@ -84,10 +93,7 @@ private:
     static void firstEntryTest(const RTCIntersectFunctionNArguments* args);
 
     const EmbreeDevice& mDevice;
-    std::span<const glm::vec3> mCenters;
-    std::span<const float> mRadius;
-    std::span<const float> mMargin;
-    std::vector<Sphere> mSpheres;
+    std::vector<Group> mGroups;
     RTCScene mScene = nullptr;
 };
 
