@@ -31,6 +31,9 @@ constexpr double BELOW_MARGIN = 0.01;
 // The lower bound is solved for a bracket only once the bracket's estimate, (M - m) step^2 /
 // (2 phi'), is within this factor of the tolerance (a square root saved on most steps).
 constexpr double BRACKET_ESTIMATE_SLACK = 4.0;
+// The bound that lets a search jump to its hint is taken over [ta, hint] in pieces that end
+// these fractions of the step window before the hint.
+constexpr double HINT_PIECES[] = {0.2, 0.05};
 
 // The M4 shape w(q) and w'(q)/q for q in [0, 2]; the inner branch of w'/q needs no division
 // and stays finite at q = 0.
@@ -325,6 +328,34 @@ double RayField::intervalBound(double t, double tEnd) const {
 }
 
 TWINRENDER_VECTOR_CLONES
+void RayField::piecewiseBound(const double (&points)[PIECES + 1], double (&bounds)[PIECES]) const {
+    float x[PIECES + 1];
+    for (int k = 0; k <= PIECES; ++k) x[k] = static_cast<float>(points[k] - mBase);
+    const std::size_t n = mPadded;
+    if (n % LANES != 0) __builtin_unreachable();
+    const float *tcs = mTc, *d2s = mD2, *t0s = mT0, *t1s = mT1, *coefs = mCoef, *ih2s = mIh2;
+    float b0 = 0.0f, b1 = 0.0f, b2 = 0.0f;
+    static_assert(PIECES == 3);
+#pragma omp simd reduction(+ : b0, b1, b2)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float tc = tcs[i], d2 = d2s[i], t0 = t0s[i], t1 = t1s[i], coef = coefs[i], ih2 = ih2s[i];
+        float largest[PIECES];
+        for (int k = 0; k < PIECES; ++k) {
+            const float tn = minf(maxf(tc, x[k]), x[k + 1]) - tc;
+            const float value = coef * shape(std::sqrt(minf((tn * tn + d2) * ih2, 4.0f)));
+            largest[k] = (t1 > x[k]) & (t0 < x[k + 1]) ? value : 0.0f;
+        }
+        b0 += largest[0];
+        b1 += largest[1];
+        b2 += largest[2];
+    }
+    // Float rounding must not turn the bounds into underestimates.
+    bounds[0] = b0 * (1.0 + 1e-5);
+    bounds[1] = b1 * (1.0 + 1e-5);
+    bounds[2] = b2 * (1.0 + 1e-5);
+}
+
+TWINRENDER_VECTOR_CLONES
 SurfacePoint RayField::surfacePoint(double t, std::vector<float>& weights) const {
     const float s = static_cast<float>(t - mBase);
     const std::size_t n = mPadded;
@@ -373,7 +404,13 @@ Crossing findFirstCrossing(const RayField& field, double ta, double tb,
     double a = ta;
     if (hint > ta && hint < tb) {
         ++out.evaluations;
-        if (field.intervalBound(ta, hint) < level) a = hint;
+        // Pieces shorter toward the hint, where phi comes closest to the level; the search
+        // starts after the last of the pieces that begin it proven below the level.
+        const double points[] = {ta, std::max(ta, hint - HINT_PIECES[0] * settings.maxStep),
+                                 std::max(ta, hint - HINT_PIECES[1] * settings.maxStep), hint};
+        double bounds[RayField::PIECES];
+        field.piecewiseBound(points, bounds);
+        for (int k = 0; k < RayField::PIECES && bounds[k] < level; ++k) a = points[k + 1];
     }
     double previous = a;
     // The curvature bounds of the last full sample hold up to boundsEnd: while the window left

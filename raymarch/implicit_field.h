@@ -138,6 +138,10 @@ public:
     // A tighter upper bound of phi on [t, tEnd]: each particle at its largest value there,
     // exactly (at the point of [t, tEnd] closest to it).
     double intervalBound(double t, double tEnd) const;
+    // intervalBound over each of the pieces between consecutive points (ascending) at once.
+    // Tighter than one bound over the whole: each particle's peak counts only in its own piece.
+    static constexpr int PIECES = 3;
+    void piecewiseBound(const double (&points)[PIECES + 1], double (&bounds)[PIECES]) const;
 
     // The kernel weight v_i W(|p - x_i|, h_i) of each candidate at the ray point p(t) into
     // `weights` (0 outside its support; one per candidate, padding included), and grad(phi)

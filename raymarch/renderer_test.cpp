@@ -137,6 +137,36 @@ TEST(ImplicitField, RemainingBoundIsAnUpperBound) {
     }
 }
 
+TEST(ImplicitField, PiecewiseBoundsBoundEachPieceAndAreTighterThanOne) {
+    const double h = 1.0, v = 1.0;
+    std::vector<tr::raymarch::Candidate> cands;
+    const double origin[3] = {0.0, 0.0, 0.0}, dir[3] = {1.0, 0.0, 0.0};
+    for (int i = 0; i < 8; ++i) {
+        const double center[3] = {0.6 * i, 0.5 * std::sin(1.3 * i), 0.4 * std::cos(2.0 * i)};
+        tr::raymarch::Candidate c;
+        if (tr::raymarch::makeCandidate(origin, dir, center, h, v, i, c)) cands.push_back(c);
+    }
+    tr::raymarch::RayField field;
+    field.assign(cands, 0.5);
+    int tighter = 0;
+    for (double t = -2.0; t < 5.0; t += 0.37) {
+        const double points[] = {t, t + 0.9, t + 1.3, t + 1.4};
+        double bounds[tr::raymarch::RayField::PIECES];
+        field.piecewiseBound(points, bounds);
+        const double whole = field.intervalBound(points[0], points[3]);
+        for (int k = 0; k < tr::raymarch::RayField::PIECES; ++k) {
+            // Each piece's bound holds over the piece (sampled finely) and never exceeds the
+            // bound over the whole interval.
+            for (double s = points[k]; s <= points[k + 1]; s += 0.002)
+                ASSERT_LE(field.sample(s, 0.0).value, bounds[k]) << t << " piece " << k << " at " << s;
+            EXPECT_LE(bounds[k], whole * (1.0 + 1e-6));
+        }
+        tighter += *std::max_element(bounds, bounds + tr::raymarch::RayField::PIECES) < 0.9 * whole;
+    }
+    // Where particles peak in different pieces, the pieces' bounds are well below the whole's.
+    EXPECT_GT(tighter, 5);
+}
+
 TEST(Raymarch, OneParticleIsASphereOfTheAnalyticRadius) {
     TestScene s;
     const float h = 0.5f;

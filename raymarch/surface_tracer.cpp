@@ -60,6 +60,10 @@ constexpr double MAX_SEGMENT_SCALE = 4.0;
 // A primary ray's search is hinted to start this many h before the crossing of the block's
 // last ray that found one (neighbouring pixels' crossings lie close).
 constexpr double HINT_BACKOFF = 0.1;
+// ... and this many h (along the normal) before the tangent plane of a neighbour's crossing,
+// when the ray meets that plane at an angle of at most acos(MIN_PLANE_HINT_COSINE) from the normal.
+constexpr double PLANE_HINT_BACKOFF = 0.01;
+constexpr double MIN_PLANE_HINT_COSINE = 0.2;
 
 }  // namespace
 
@@ -72,6 +76,7 @@ public:
     std::vector<std::uint32_t> inside; // the candidates of positive weight there
     std::vector<int> groupEnds;  // shadow bundles
     double lastCrossing = NAN;   // the block's last primary crossing
+    int rowLength = 0;           // primary rays come in rows of this many
     MarchRay rays[MAX_RAYS];
     TraceCounters counters;
 };
@@ -345,8 +350,7 @@ struct SurfaceTracer::Impl {
                     const double start = w.field.peakSum() < settings.surfaceLevel
                                              ? INFINITY
                                              : std::max(r.t, w.field.supportStart());
-                    // Primary rays: the block's last crossing, a little before, as a hint.
-                    const double hint = hits ? w.lastCrossing - HINT_BACKOFF * r.hRef : NAN;
+                    const double hint = hits ? primaryHint(lane[j], w, hits) : NAN;
                     const Crossing crossing =
                         start < segEnd[j] ? findFirstCrossing(w.field, start, segEnd[j], crossingSettings(r.hRef), hint)
                                           : Crossing{};
@@ -383,6 +387,23 @@ struct SurfaceTracer::Impl {
                 else r.needEntry = true;
             }
         }
+    }
+
+    // Where a primary ray's search may start: a little before where the tangent plane of a
+    // neighbour's crossing (the ray before it in its row, else the one above it) meets the
+    // ray; else a little before the block's last crossing.
+    double primaryHint(int id, const Workspace& w, const SurfaceHit* hits) const {
+        const MarchRay& r = w.rays[id];
+        for (const int neighbour : {id % w.rowLength != 0 ? id - 1 : -1, id - w.rowLength}) {
+            if (neighbour < 0 || !w.rays[neighbour].hit) continue;
+            const SurfaceHit& h = hits[neighbour];
+            const glm::dvec3 normal(h.normal);
+            const double facing = -glm::dot(r.ray.direction, normal);
+            if (facing < MIN_PLANE_HINT_COSINE) continue;
+            const double t = glm::dot(h.position - r.ray.origin, normal) / -facing;
+            return t - PLANE_HINT_BACKOFF * r.hRef / facing;
+        }
+        return w.lastCrossing - HINT_BACKOFF * r.hRef;
     }
 
     // Everything the AOV image records about a ray's crossing, from the segment's candidates.
@@ -540,8 +561,8 @@ bool SurfaceTracer::blockMayHit(const core::Ray& central) const {
     return false;
 }
 
-void SurfaceTracer::tracePrimary(int n, const core::Ray* rays, const double* tnear, const double* tfar,
-                                 const core::Ray& central, SurfaceHit* hits, bool* found,
+void SurfaceTracer::tracePrimary(int n, int rowLength, const core::Ray* rays, const double* tnear,
+                                 const double* tfar, const core::Ray& central, SurfaceHit* hits, bool* found,
                                  Workspace& w) const {
     const Impl& im = *mImpl;
     if (im.settings.spheres) {
@@ -549,6 +570,7 @@ void SurfaceTracer::tracePrimary(int n, const core::Ray* rays, const double* tne
         return;
     }
     w.lastCrossing = NAN;
+    w.rowLength = rowLength;
     for (int i = 0; i < n; ++i) {
         MarchRay& r = w.rays[i];
         r = MarchRay{};

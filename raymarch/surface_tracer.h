@@ -7,8 +7,9 @@
 // overlap some ray's segment, and each ray's first crossing in its segment is searched
 // (implicit_field.h) among them. They are taken in particle order, which is also the
 // summation order, so the result does not depend on Embree's traversal order or on threads.
-// Empty space is skipped with one query for the block, and a ray's search starts from the
-// crossing of the block's previous ray when the field is proven below the level up to there.
+// Empty space is skipped with one query for the block, and a ray's search starts just before
+// where the tangent plane of a neighbouring pixel's crossing meets it, when the field is
+// proven below the level up to there.
 // Shadow rays of a block are parallel (a directional light) and march the same way, in
 // bundles that stay within the shadow margin of their central line.
 #pragma once
@@ -67,8 +68,8 @@ public:
     // the surface (false: none can; always true with plain spheres).
     bool blockMayHit(const core::Ray& central) const;
     // Camera rays of one pixel block (n <= MAX_RAYS, samples anywhere inside the block's
-    // pixels); `central` is the ray through the block's centre.
-    void tracePrimary(int n, const core::Ray* rays, const double* tnear, const double* tfar,
+    // pixels, in rows of `rowLength` rays); `central` is the ray through the block's centre.
+    void tracePrimary(int n, int rowLength, const core::Ray* rays, const double* tnear, const double* tfar,
                       const core::Ray& central, SurfaceHit* hits, bool* found, Workspace& w) const;
     // 1 where the light reaches the hit, 0 where the surface occludes it, for the hits of the
     // last tracePrimary call on this workspace.
