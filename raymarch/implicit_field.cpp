@@ -144,10 +144,24 @@ void RayField::assign(const std::vector<Candidate>& candidates, double base) {
 // clone, so results stay bit-identical run to run.
 #define TWINRENDER_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 
-void ParticleBatch::assign(std::span<const std::uint32_t> prims, const std::vector<FieldParticle>& particles) {
+void ParticleBatch::assign(std::span<const std::uint32_t> prims, const std::vector<FieldParticle>& particles,
+                           const HitAttributes* attributes) {
     const std::size_t n = prims.size(), padded = (n + RayField::LANES - 1) / RayField::LANES * RayField::LANES;
     for (auto* v : {&mX, &mY, &mZ, &mSupport2, &mCoef, &mInvH2}) v->resize(padded);
     mIndex.resize(padded);
+    if (attributes) {
+        for (auto* v : {&mU, &mV, &mR, &mG, &mB}) v->resize(padded);
+        for (std::size_t i = 0; i < padded; ++i) {
+            const HitAttributes a = i < n ? attributes[prims[i]] : HitAttributes{0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+            mU[i] = a.u;
+            mV[i] = a.v;
+            mR[i] = a.r;
+            mG[i] = a.g;
+            mB[i] = a.b;
+        }
+    } else {
+        for (auto* v : {&mU, &mV, &mR, &mG, &mB}) v->clear();
+    }
     for (std::size_t i = 0; i < padded; ++i) {
         const FieldParticle& p = i < n ? particles[prims[i]] : INERT_PARTICLE;
         mX[i] = p.x;
@@ -158,6 +172,36 @@ void ParticleBatch::assign(std::span<const std::uint32_t> prims, const std::vect
         mInvH2[i] = p.invH2;
         mIndex[i] = i < n ? prims[i] : 0;
     }
+}
+
+TWINRENDER_VECTOR_CLONES
+bool ParticleBatch::average(const float* weights, std::size_t count, HitAttributes& out) const {
+    if (count % RayField::LANES != 0) __builtin_unreachable();
+    float heaviest = 0.0f;
+#pragma omp simd reduction(max : heaviest)
+    for (std::size_t i = 0; i < count; ++i) heaviest = maxf(heaviest, weights[i]);
+    if (!(heaviest > 0.0f)) return false;
+    std::size_t first = 0;
+    while (weights[first] != heaviest) ++first;
+    const float uRef = mU[first];
+    const float *us = mU.data(), *vs = mV.data(), *rs = mR.data(), *gs = mG.data(), *bs = mB.data();
+    float wsum = 0.0f, u = 0.0f, v = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
+#pragma omp simd reduction(+ : wsum, u, v, r, g, b)
+    for (std::size_t i = 0; i < count; ++i) {
+        // Weights outside the support are 0, never negative.
+        const float weight = weights[i];
+        // u and uRef lie in [0, 1): the nearest integer to their difference is -1, 0 or 1.
+        const float du = us[i] - uRef;
+        u += weight * (us[i] - (du >= 0.5f ? 1.0f : du <= -0.5f ? -1.0f : 0.0f));
+        v += weight * vs[i];
+        r += weight * rs[i];
+        g += weight * gs[i];
+        b += weight * bs[i];
+        wsum += weight;
+    }
+    u /= wsum;
+    out = {u - std::floor(u), v / wsum, r / wsum, g / wsum, b / wsum};
+    return true;
 }
 
 TWINRENDER_VECTOR_CLONES

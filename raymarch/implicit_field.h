@@ -64,17 +64,31 @@ struct FieldParticle {
 };
 std::vector<FieldParticle> makeFieldParticles(const core::ParticleSet& particles);
 
+// What a surface point averages over the particles around it (kernel weights).
+struct HitAttributes {
+    float u, v;     // texture coordinates; u wraps around at 1
+    float r, g, b;  // glow
+};
+
 // Particles that the fields of several rays are built from (those one bundle gather found),
 // in summation order, as float arrays padded to whole vectors with particles that meet no ray.
 class ParticleBatch {
 public:
-    // particles[prims[i]] for each i.
-    void assign(std::span<const std::uint32_t> prims, const std::vector<FieldParticle>& particles);
+    // particles[prims[i]] for each i, and attributes[prims[i]] when given (for average()).
+    void assign(std::span<const std::uint32_t> prims, const std::vector<FieldParticle>& particles,
+                const HitAttributes* attributes = nullptr);
     std::size_t size() const { return mIndex.size(); }
+
+    // The attributes averaged with one weight per particle of the batch (padding included, 0
+    // for those that do not count; `count` of them, padding included), u unwrapped around the
+    // heaviest particle's u (the first of equals) so that the seam does not average to 0.5.
+    // False when no weight is positive.
+    bool average(const float* weights, std::size_t count, HitAttributes& out) const;
 
 private:
     friend class RayField;
     std::vector<float> mX, mY, mZ, mSupport2, mCoef, mInvH2;
+    std::vector<float> mU, mV, mR, mG, mB;
     std::vector<std::uint32_t> mIndex;
 };
 

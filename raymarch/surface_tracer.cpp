@@ -73,7 +73,6 @@ public:
     std::vector<std::uint32_t> prims;  // this round's gather, in particle order
     ParticleBatch batch;               // their data
     std::vector<float> weights;        // kernel weights at a hit
-    std::vector<std::uint32_t> inside; // the candidates of positive weight there
     std::vector<int> groupEnds;  // shadow bundles
     double lastCrossing = NAN;   // the block's last primary crossing
     int rowLength = 0;           // primary rays come in rows of this many
@@ -87,11 +86,7 @@ struct SurfaceTracer::Impl {
     Settings settings;
     std::vector<float> supportRadius, margin;
     std::vector<FieldParticle> fieldParticles;
-    // What a hit reads of each particle around it, in one record (one cache line).
-    struct alignas(32) HitAttributes {
-        float u, v, r, g, b;
-    };
-    std::vector<HitAttributes> hitAttributes;
+    std::vector<HitAttributes> hitAttributes;  // per particle
     std::unique_ptr<SphereScene> spheres;   // plain spheres (spheres mode)
     std::unique_ptr<BundleGather> bundles;  // support spheres grown by the margin
     std::vector<BodyRange> bodyRanges;
@@ -336,7 +331,7 @@ struct SurfaceTracer::Impl {
             // Particle order: it is the summation order, so that it does not depend on
             // Embree's traversal order.
             std::sort(w.prims.begin(), w.prims.end());
-            w.batch.assign(w.prims, fieldParticles);
+            w.batch.assign(w.prims, fieldParticles, hits ? hitAttributes.data() : nullptr);
 
             for (int j = 0; j < active; ++j) {
                 MarchRay& r = w.rays[lane[j]];
@@ -453,44 +448,11 @@ struct SurfaceTracer::Impl {
             for (std::size_t c = 0; c < lanes; ++c)
                 if (ps.body[index[c]] != best) weights[c] = 0.0f;
         }
-        // uv and glow: normalised kernel weights over the visible body's particles; u is
-        // unwrapped around the heaviest particle's u (the first of equals) so that the seam
-        // does not average to 0.5. The candidates of positive weight are listed first (in
-        // order, without branches: which candidates weigh is unpredictable).
-        w.inside.resize(lanes);
-        std::uint32_t* inside = w.inside.data();
-        std::size_t count = 0, heaviest = lanes;
-        float heaviestWeight = 0.0f;
-        for (std::size_t c = 0; c < lanes; ++c) {
-            const float weight = weights[c];
-            inside[count] = static_cast<std::uint32_t>(c);
-            count += weight > 0.0f;
-            const bool heavier = weight > heaviestWeight;
-            heaviest = heavier ? c : heaviest;
-            heaviestWeight = heavier ? weight : heaviestWeight;
-        }
-        if (heaviest == lanes) return;
-        const float uRef = hitAttributes[index[heaviest]].u;
-        float wsum = 0.0f, u = 0.0f, v = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
-        for (std::size_t k = 0; k < count; ++k) {
-            const std::uint32_t c = inside[k];
-            const float weight = weights[c];
-            const HitAttributes& a = hitAttributes[index[c]];
-            const glm::vec2 puv(a.u, a.v);
-            const glm::vec3 glow(a.r, a.g, a.b);
-            // u and uRef lie in [0, 1): the nearest integer to their difference (std::round,
-            // a library call on baseline x86-64) is -1, 0 or 1.
-            const float du = puv.x - uRef;
-            u += weight * (puv.x - (du >= 0.5f ? 1.0f : du <= -0.5f ? -1.0f : 0.0f));
-            v += weight * puv.y;
-            r += weight * glow.r;
-            g += weight * glow.g;
-            b += weight * glow.b;
-            wsum += weight;
-        }
-        u /= wsum;
-        hit.uv = glm::vec2(u - std::floor(u), v / wsum);
-        hit.glow = glm::vec3(r, g, b) / wsum;
+        // uv and glow: normalised kernel weights over the visible body's particles.
+        HitAttributes average;
+        if (!w.batch.average(weights, lanes, average)) return;
+        hit.uv = glm::vec2(average.u, average.v);
+        hit.glow = glm::vec3(average.r, average.g, average.b);
         hit.body = best;
         hit.material = particles.bodies.empty() ? 0 : particles.bodies[best].material;
     }
