@@ -27,11 +27,6 @@ struct MarchRay {
     bool hit = false;
 };
 
-struct BodyRange {
-    glm::dvec3 lo, hi;  // support bounds
-    double hMin;
-};
-
 // Whether the ray meets the box within [t0, t1] (slab test).
 bool rayMeetsBox(const core::Ray& ray, double t0, double t1, const glm::dvec3& lo, const glm::dvec3& hi) {
     for (int k = 0; k < 3; ++k) {
@@ -43,6 +38,27 @@ bool rayMeetsBox(const core::Ray& ray, double t0, double t1, const glm::dvec3& l
     }
     return t0 <= t1;
 }
+
+struct BodyRange {
+    glm::dvec3 lo, hi;  // support bounds
+    glm::dvec3 center;  // a sphere around every support: the box's centre ...
+    double radius;      // ... and the largest distance of a support's edge from it
+    double hMin;
+};
+
+// Whether the ray meets the sphere within [t0, t1].
+bool rayMeetsSphere(const core::Ray& ray, double t0, double t1, const glm::dvec3& center, double radius) {
+    const glm::dvec3 w = center - ray.origin;
+    const double t = std::clamp(glm::dot(w, ray.direction), t0, t1);
+    const glm::dvec3 off = w - t * ray.direction;
+    return glm::dot(off, off) <= radius * radius;
+}
+
+// Whether the ray meets the body's supports' bounds within [t0, t1].
+bool rayMeetsBody(const core::Ray& ray, double t0, double t1, const BodyRange& b) {
+    return rayMeetsSphere(ray, t0, t1, b.center, b.radius) && rayMeetsBox(ray, t0, t1, b.lo, b.hi);
+}
+
 
 // An entry found in float may land a little after the true one: the segment starts this many
 // h before it.
@@ -124,13 +140,18 @@ struct SurfaceTracer::Impl {
             hitAttributes[i] = {ps.uv[i].x, ps.uv[i].y, ps.glow[i].r, ps.glow[i].g, ps.glow[i].b};
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin);
         auto addRange = [&](std::size_t begin, std::size_t end) {
-            BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), INFINITY};
+            BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0, INFINITY};
             for (std::size_t i = begin; i < end; ++i) {
                 const double s = supportRadius[i];
                 r.lo = glm::min(r.lo, glm::dvec3(ps.position[i]) - s);
                 r.hi = glm::max(r.hi, glm::dvec3(ps.position[i]) + s);
                 r.hMin = std::min(r.hMin, double(ps.h[i]));
             }
+            r.center = 0.5 * (r.lo + r.hi);
+            for (std::size_t i = begin; i < end; ++i)
+                r.radius = std::max(r.radius, glm::length(glm::dvec3(ps.position[i]) - r.center) + supportRadius[i]);
+            // Rounding of the float positions and of the tests.
+            r.radius *= 1.0 + 1e-6;
             bodyRanges.push_back(r);
         };
         for (const auto& b : p.bodies) addRange(b.begin, b.end);
@@ -161,7 +182,7 @@ struct SurfaceTracer::Impl {
             bool meets = false;
             for (int k = 0; k < count && !meets && b.hMin < hMin; ++k) {
                 const MarchRay& r = w.rays[ids[k]];
-                meets = rayMeetsBox(r.ray, r.t, r.tEnd, b.lo, b.hi);
+                meets = rayMeetsBody(r.ray, r.t, r.tEnd, b);
             }
             if (meets) hMin = std::min(hMin, b.hMin);
         }
@@ -210,18 +231,19 @@ struct SurfaceTracer::Impl {
         for (int k = 0; k < n; ++k) {
             MarchRay& r = w.rays[ids[k]];
             if (!r.active || !r.needEntry) continue;
-            if (!r.sharedEntry) {
-                own[ownCount++] = ids[k];
-                continue;
-            }
-            r.sharedEntry = false;
+            // Rays whose rest misses every body's bounds end here.
             bool meets = false;
-            for (const auto& b : bodyRanges) meets = meets || rayMeetsBox(r.ray, r.t, r.tEnd, b.lo, b.hi);
+            for (const auto& b : bodyRanges) meets = meets || rayMeetsBody(r.ray, r.t, r.tEnd, b);
             if (!meets) {
                 r.active = false;
                 continue;
             }
-            shared[sharedCount++] = ids[k];
+            if (r.sharedEntry) {
+                r.sharedEntry = false;
+                shared[sharedCount++] = ids[k];
+            } else {
+                own[ownCount++] = ids[k];
+            }
         }
         if (sharedCount > 0) {
             // Ray i's parameter s lies abreast of origin + a direction with a = along_i + s cos_i.
@@ -515,10 +537,12 @@ bool SurfaceTracer::blockMayHit(const core::Ray& central) const {
     for (const auto& b : im.bodyRanges) {
         // A point of a block ray at distance D from the camera lies within D sinBlock of the
         // central ray, at a parameter of it below D: the central ray meets the body's box
-        // grown by that spread before the box's farthest distance.
+        // (and sphere) grown by that spread before the box's farthest distance.
         const double far = glm::length(0.5 * (b.lo + b.hi) - central.origin) + 0.5 * glm::length(b.hi - b.lo);
         const double grow = 1.01 * far * im.sinBlock;
-        if (rayMeetsBox(central, 0.0, far, b.lo - grow, b.hi + grow)) return true;
+        if (rayMeetsSphere(central, 0.0, far, b.center, b.radius + grow) &&
+            rayMeetsBox(central, 0.0, far, b.lo - grow, b.hi + grow))
+            return true;
     }
     return false;
 }
