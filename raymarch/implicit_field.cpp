@@ -19,9 +19,8 @@ inline float maxf(float a, float b) { return a > b ? a : b; }
 namespace {
 
 // An inert candidate (padding, or a particle whose support misses the segment): outside its
-// support everywhere (q^2 = (dt^2 + 4) * 1 >= 4), weightless, with an empty support interval.
+// support everywhere (q^2 = (dt^2 + 4) * 1 >= 4) and weightless.
 constexpr float INERT_D2 = 4.0f;
-constexpr float INERT_T = -FLT_MAX;
 // A batch's padding: a zero support meets no ray.
 constexpr FieldParticle INERT_PARTICLE{0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f};
 
@@ -46,13 +45,6 @@ inline float shapeDerivativeOverQ(float q) {
     return q < 1.0f ? -3.0f + 2.25f * q : -0.75f * a * a / q;
 }
 
-// A double split into a float and the float of what remains: x - (head + tail) computed as
-// (x - head) - tail in float is then within an ulp of the (small) difference.
-struct SplitFloat {
-    float head, tail;
-    explicit SplitFloat(double v)
-        : head(static_cast<float>(v)), tail(static_cast<float>(v - double(static_cast<float>(v)))) {}
-};
 
 }  // namespace
 
@@ -96,12 +88,12 @@ void RayField::resize(std::size_t n) {
     mCount = n;
     mPadded = (n + LANES - 1) / LANES * LANES;
     if (mIndex.size() < mPadded) {
-        constexpr std::size_t ARRAYS = 10;
+        constexpr std::size_t ARRAYS = 8;
         const std::size_t capacity = 2 * mPadded;
         mStore.resize(ARRAYS * capacity);
         mIndex.resize(capacity);
         float* p = mStore.data();
-        for (float** a : {&mTc, &mD2, &mT0, &mT1, &mCoef, &mIh2, &mPeak, &mEx, &mEy, &mEz}) {
+        for (float** a : {&mTc, &mD2, &mCoef, &mIh2, &mPeak, &mEx, &mEy, &mEz}) {
             *a = p;
             p += capacity;
         }
@@ -109,7 +101,6 @@ void RayField::resize(std::size_t n) {
     for (std::size_t i = n; i < mPadded; ++i) {
         mTc[i] = 0.0f;
         mD2[i] = INERT_D2;
-        mT0[i] = mT1[i] = INERT_T;
         mCoef[i] = mPeak[i] = 0.0f;
         mIh2[i] = 1.0f;
         mEx[i] = mEy[i] = mEz[i] = 0.0f;
@@ -125,8 +116,6 @@ void RayField::assign(const std::vector<Candidate>& candidates, double base) {
         const Candidate& c = candidates[i];
         mTc[i] = static_cast<float>(c.tc - base);
         mD2[i] = static_cast<float>(c.d2);
-        mT0[i] = static_cast<float>(c.t0 - base);
-        mT1[i] = static_cast<float>(c.t1 - base);
         mCoef[i] = static_cast<float>(c.coef);
         mIh2[i] = static_cast<float>(c.invH * c.invH);
         mPeak[i] = static_cast<float>(c.peak);
@@ -135,8 +124,6 @@ void RayField::assign(const std::vector<Candidate>& candidates, double base) {
     mCandidates = n;
     mPeakSum = 0.0;
     for (const Candidate& c : candidates) mPeakSum += c.peak;
-    mFirstT0 = INFINITY;
-    for (std::size_t i = 0; i < n; ++i) mFirstT0 = std::min(mFirstT0, mT0[i]);
 }
 
 // The vector loops run 8 lanes wide with fused multiply-adds where the CPU has x86-64-v3
@@ -162,11 +149,14 @@ void ParticleBatch::assign(std::span<const std::uint32_t> prims, const std::vect
     } else {
         for (auto* v : {&mU, &mV, &mR, &mG, &mB}) v->clear();
     }
+    // Relative to a particle of the batch, the positions keep float's relative precision at
+    // the scale of the batch (a few h), wherever it lies.
+    mOrigin = n > 0 ? glm::dvec3(particles[prims[0]].x, particles[prims[0]].y, particles[prims[0]].z) : glm::dvec3(0.0);
     for (std::size_t i = 0; i < padded; ++i) {
         const FieldParticle& p = i < n ? particles[prims[i]] : INERT_PARTICLE;
-        mX[i] = p.x;
-        mY[i] = p.y;
-        mZ[i] = p.z;
+        mX[i] = static_cast<float>(double(p.x) - mOrigin.x);
+        mY[i] = static_cast<float>(double(p.y) - mOrigin.y);
+        mZ[i] = static_cast<float>(double(p.z) - mOrigin.z);
         mSupport2[i] = p.support2;
         mCoef[i] = p.coef;
         mInvH2[i] = p.invH2;
@@ -213,51 +203,46 @@ void RayField::build(const glm::dvec3& origin, const glm::dvec3& direction, doub
     resize(n);
     float* tc = mTc;
     float* d2 = mD2;
-    float* t0 = mT0;
-    float* t1 = mT1;
     float* coef = mCoef;
     float* ih2 = mIh2;
     float* peak = mPeak;
     const float *px = batch.mX.data(), *py = batch.mY.data(), *pz = batch.mZ.data(),
                 *support2 = batch.mSupport2.data(), *pcoef = batch.mCoef.data(), *pih2 = batch.mInvH2.data();
-    const glm::dvec3 start = origin + tMin * direction;
-    const SplitFloat sx(start.x), sy(start.y), sz(start.z);
+    // The segment's start relative to the batch's origin.
+    const glm::dvec3 start = (origin - batch.mOrigin) + tMin * direction;
+    const float sx = static_cast<float>(start.x), sy = static_cast<float>(start.y), sz = static_cast<float>(start.z);
     const float dx = static_cast<float>(direction.x), dy = static_cast<float>(direction.y),
                 dz = static_cast<float>(direction.z);
     const float length = static_cast<float>(tMax - tMin);
     mDirection = {dx, dy, dz};
     float *ex = mEx, *ey = mEy, *ez = mEz;
     // Every particle of the batch, in its order (the summation order).
-    float first = INFINITY;
     float peaks = 0.0f;
     int overlapping = 0;
-#pragma omp simd reduction(min : first) reduction(+ : overlapping, peaks)
+#pragma omp simd reduction(+ : overlapping, peaks)
     for (std::size_t i = 0; i < n; ++i) {
-        const float wx = (px[i] - sx.head) - sx.tail, wy = (py[i] - sy.head) - sy.tail,
-                    wz = (pz[i] - sz.head) - sz.tail;
+        const float wx = px[i] - sx, wy = py[i] - sy, wz = pz[i] - sz;
         const float c = wx * dx + wy * dy + wz * dz;
         // Perpendicular offset computed directly (not |w|^2 - c^2, which cancels).
         const float ox = wx - c * dx, oy = wy - c * dy, oz = wz - c * dz;
         const float e2 = ox * ox + oy * oy + oz * oz;
         const float chord2 = support2[i] - e2;
-        const float half = std::sqrt(maxf(chord2, 0.0f));
-        const float c0 = c - half, c1 = c + half;
-        const bool overlaps = (chord2 > 0.0f) & (c1 > 0.0f) & (c0 < length);
+        // The support interval (c -+ sqrt(chord2)) overlaps [0, length]: the point of the
+        // segment nearest its centre lies inside it (no square root).
+        const float outside = minf(maxf(c, 0.0f), length) - c;
+        const bool overlaps = (chord2 > 0.0f) & (outside * outside < chord2);
         // Loaded unconditionally: a load under a condition becomes a masked load.
         const float pc = pcoef[i], h2 = pih2[i];
         const float largest = pc * shape(std::sqrt(minf(e2 * h2, 4.0f)));
         // The others become inert.
         tc[i] = overlaps ? c : 0.0f;
         d2[i] = overlaps ? e2 : INERT_D2;
-        t0[i] = overlaps ? c0 : INERT_T;
-        t1[i] = overlaps ? c1 : INERT_T;
         coef[i] = overlaps ? pc : 0.0f;
         ih2[i] = overlaps ? h2 : 1.0f;
         peak[i] = overlaps ? largest : 0.0f;
         ex[i] = ox;
         ey[i] = oy;
         ez[i] = oz;
-        first = minf(first, overlaps ? c0 : INFINITY);
         overlapping += overlaps;
         peaks += overlaps ? largest : 0.0f;
     }
@@ -265,7 +250,22 @@ void RayField::build(const glm::dvec3& origin, const glm::dvec3& direction, doub
     // Float rounding must not turn the bound into an underestimate.
     mPeakSum = peaks * (1.0 + 1e-5);
     std::copy(batch.mIndex.begin(), batch.mIndex.end(), mIndex.begin());
-    mFirstT0 = first;
+}
+
+TWINRENDER_VECTOR_CLONES
+double RayField::supportStart() const {
+    const std::size_t n = mPadded;
+    if (n % LANES != 0) __builtin_unreachable();
+    const float *tcs = mTc, *d2s = mD2, *ih2s = mIh2;
+    float first = INFINITY;
+#pragma omp simd reduction(min : first)
+    for (std::size_t i = 0; i < n; ++i) {
+        // Half the chord of the support sphere: sqrt((2h)^2 - d2) = sqrt((4 - d2 / h^2) / (1 / h^2)).
+        const float delta2 = d2s[i] * ih2s[i];
+        const float half = std::sqrt(maxf(4.0f - delta2, 0.0f) / ih2s[i]);
+        first = minf(first, delta2 < 4.0f ? tcs[i] - half : INFINITY);
+    }
+    return mBase + first;
 }
 
 TWINRENDER_VECTOR_CLONES
@@ -276,13 +276,12 @@ FieldSample RayField::sample(double t, double window, double horizon) const {
     const std::size_t n = mPadded;
     // Whole vectors only (the padding is inert): no scalar remainder loop.
     if (n % LANES != 0) __builtin_unreachable();
-    const float *tcs = mTc, *d2s = mD2, *t0s = mT0, *t1s = mT1, *coefs = mCoef, *ih2s = mIh2, *peaks = mPeak;
+    const float *tcs = mTc, *d2s = mD2, *coefs = mCoef, *ih2s = mIh2, *peaks = mPeak;
     float value = 0.0f, slope = 0.0f, curvature = 0.0f, curvatureLow = 0.0f, ahead = 0.0f;
 #pragma omp simd reduction(+ : value, slope, curvature, curvatureLow, ahead)
     for (std::size_t i = 0; i < n; ++i) {
         // Every operand loaded up front: a load under a condition becomes a masked load.
-        const float tc = tcs[i], d2 = d2s[i], t0 = t0s[i], t1 = t1s[i], coef = coefs[i], ih2 = ih2s[i],
-                    peak = peaks[i];
+        const float tc = tcs[i], d2 = d2s[i], coef = coefs[i], ih2 = ih2s[i], peak = peaks[i];
         const float k = coef * ih2;
         const float dt = x - tc;
         const float q2 = (dt * dt + d2) * ih2;
@@ -306,10 +305,12 @@ FieldSample RayField::sample(double t, double window, double horizon) const {
         const bool inWindow = qmin2 < 4.0f;
         curvature += inWindow ? k * upper : 0.0f;
         curvatureLow += inWindow ? k * lower : 0.0f;
-        // Each particle at its largest value over [x, xAhead]: its peak when the closest
-        // approach lies ahead, its value at x when it lies behind.
-        const float largest = tc >= x ? peak : coef * w;
-        ahead += (t1 > x) & (t0 < xAhead) ? largest : 0.0f;
+        // Each particle at its largest value over [x, xAhead]: its value at x when the closest
+        // approach lies behind (0 past its support), else its peak when its support begins
+        // before xAhead (q^2 < 4 at the nearer of xAhead and the closest approach).
+        const float dtAhead = minf(tc, xAhead) - tc;
+        const bool reached = (dtAhead * dtAhead + d2) * ih2 < 4.0f;
+        ahead += tc >= x ? (reached ? peak : 0.0f) : coef * w;
     }
     // Float rounding must not turn the bounds into underestimates.
     constexpr double SAFETY = 1e-5;
@@ -322,10 +323,15 @@ double RayField::largestHBeyond(double t) const {
     const float x = static_cast<float>(t - mBase);
     const std::size_t n = mPadded;
     if (n % LANES != 0) __builtin_unreachable();
-    const float *t1s = mT1, *ih2s = mIh2;
+    const float *tcs = mTc, *d2s = mD2, *ih2s = mIh2;
     float smallest = INFINITY;  // of 1 / h^2
 #pragma omp simd reduction(min : smallest)
-    for (std::size_t i = 0; i < n; ++i) smallest = minf(smallest, t1s[i] > x ? ih2s[i] : INFINITY);
+    for (std::size_t i = 0; i < n; ++i) {
+        // The support interval ends after x: its centre lies ahead, or x lies inside it.
+        const float ih2 = ih2s[i], delta2 = d2s[i] * ih2, dt = x - tcs[i];
+        const bool beyond = (delta2 < 4.0f) & ((dt < 0.0f) | (dt * dt * ih2 + delta2 < 4.0f));
+        smallest = minf(smallest, beyond ? ih2 : INFINITY);
+    }
     return std::isfinite(smallest) ? 1.0 / std::sqrt(double(smallest)) : 0.0;
 }
 
@@ -358,14 +364,14 @@ double RayField::intervalBound(double t, double tEnd) const {
     const float xEnd = static_cast<float>(tEnd - mBase);
     const std::size_t n = mPadded;
     if (n % LANES != 0) __builtin_unreachable();
-    const float *tcs = mTc, *d2s = mD2, *t0s = mT0, *t1s = mT1, *coefs = mCoef, *ih2s = mIh2;
+    const float *tcs = mTc, *d2s = mD2, *coefs = mCoef, *ih2s = mIh2;
     float bound = 0.0f;
 #pragma omp simd reduction(+ : bound)
     for (std::size_t i = 0; i < n; ++i) {
-        const float tc = tcs[i], d2 = d2s[i], t0 = t0s[i], t1 = t1s[i], coef = coefs[i], ih2 = ih2s[i];
+        // Each particle at the point of [x, xEnd] nearest it (0 where its support misses).
+        const float tc = tcs[i], d2 = d2s[i], coef = coefs[i], ih2 = ih2s[i];
         const float tn = minf(maxf(tc, x), xEnd) - tc;
-        const float largest = coef * shape(std::sqrt(minf((tn * tn + d2) * ih2, 4.0f)));
-        bound += (t1 > x) & (t0 < xEnd) ? largest : 0.0f;
+        bound += coef * shape(std::sqrt(minf((tn * tn + d2) * ih2, 4.0f)));
     }
     // Float rounding must not turn the bound into an underestimate.
     return bound * (1.0 + 1e-5);
@@ -377,17 +383,16 @@ void RayField::piecewiseBound(const double (&points)[PIECES + 1], double (&bound
     for (int k = 0; k <= PIECES; ++k) x[k] = static_cast<float>(points[k] - mBase);
     const std::size_t n = mPadded;
     if (n % LANES != 0) __builtin_unreachable();
-    const float *tcs = mTc, *d2s = mD2, *t0s = mT0, *t1s = mT1, *coefs = mCoef, *ih2s = mIh2;
+    const float *tcs = mTc, *d2s = mD2, *coefs = mCoef, *ih2s = mIh2;
     float b0 = 0.0f, b1 = 0.0f, b2 = 0.0f;
     static_assert(PIECES == 3);
 #pragma omp simd reduction(+ : b0, b1, b2)
     for (std::size_t i = 0; i < n; ++i) {
-        const float tc = tcs[i], d2 = d2s[i], t0 = t0s[i], t1 = t1s[i], coef = coefs[i], ih2 = ih2s[i];
+        const float tc = tcs[i], d2 = d2s[i], coef = coefs[i], ih2 = ih2s[i];
         float largest[PIECES];
         for (int k = 0; k < PIECES; ++k) {
             const float tn = minf(maxf(tc, x[k]), x[k + 1]) - tc;
-            const float value = coef * shape(std::sqrt(minf((tn * tn + d2) * ih2, 4.0f)));
-            largest[k] = (t1 > x[k]) & (t0 < x[k + 1]) ? value : 0.0f;
+            largest[k] = coef * shape(std::sqrt(minf((tn * tn + d2) * ih2, 4.0f)));
         }
         b0 += largest[0];
         b1 += largest[1];

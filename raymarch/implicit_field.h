@@ -87,6 +87,7 @@ public:
 
 private:
     friend class RayField;
+    glm::dvec3 mOrigin{0.0};  // the positions are relative to it (the first particle's)
     std::vector<float> mX, mY, mZ, mSupport2, mCoef, mInvH2;
     std::vector<float> mU, mV, mR, mG, mB;
     std::vector<std::uint32_t> mIndex;
@@ -136,8 +137,9 @@ public:
     const std::uint32_t* indices() const { return mIndex.data(); }
     // The sum of the candidates' peaks: phi stays below it along the whole ray.
     double peakSum() const { return mPeakSum; }
-    // Where the first support interval begins (phi = 0 before it); +inf if none.
-    double supportStart() const { return mBase + mFirstT0; }
+    // Where the first support interval begins (phi = 0 before it); +inf if none. (A pass
+    // over the candidates.)
+    double supportStart() const;
     // The largest h of the particles whose support reaches past t; 0 if none.
     double largestHBeyond(double t) const;
 
@@ -170,11 +172,10 @@ private:
     std::size_t mCount = 0;
     std::size_t mPadded = 0;  // mCount rounded up to LANES
     std::size_t mCandidates = 0;
-    float mFirstT0 = 0.0f;
     double mPeakSum = 0.0;
     // Ray parameters relative to mBase; one allocation, grown as needed and never shrunk.
     std::vector<float> mStore;
-    float *mTc = nullptr, *mD2 = nullptr, *mT0 = nullptr, *mT1 = nullptr, *mCoef = nullptr,
+    float *mTc = nullptr, *mD2 = nullptr, *mCoef = nullptr,
           *mIh2 = nullptr, *mPeak = nullptr;
     // build(): the ray direction and each particle's offset from its closest-approach point.
     glm::vec3 mDirection{0.0f};

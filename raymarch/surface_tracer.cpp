@@ -362,12 +362,14 @@ struct SurfaceTracer::Impl {
                 if (!w.prims.empty()) {
                     w.field.build(r.ray.origin, r.ray.direction, r.t, segEnd[j], w.batch);
                     w.counters.candidates += w.field.candidates();
-                    // phi = 0 before the first support interval begins, and it never
-                    // exceeds the sum of the peaks (a ray grazing the outer layer).
-                    const double start = w.field.peakSum() < settings.surfaceLevel
-                                             ? INFINITY
-                                             : std::max(r.t, w.field.supportStart());
+                    // phi never exceeds the sum of the peaks (a ray grazing the outer layer),
+                    // and it is 0 before the first support interval begins: a primary search
+                    // without a hint starts there (with one, the bound up to the hint covers
+                    // the way; shadow rays start inside the supports).
                     const double hint = hits ? primaryHint(lane[j], w, hits) : NAN;
+                    double start = r.t;
+                    if (w.field.peakSum() < settings.surfaceLevel) start = INFINITY;
+                    else if (hits && !(hint > r.t && hint < segEnd[j])) start = std::max(r.t, w.field.supportStart());
                     const Crossing crossing =
                         start < segEnd[j] ? findFirstCrossing(w.field, start, segEnd[j], crossingSettings(r.hRef), hint)
                                           : Crossing{};
