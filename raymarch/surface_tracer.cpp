@@ -60,6 +60,29 @@ bool rayMeetsBody(const core::Ray& ray, double t0, double t1, const BodyRange& b
 }
 
 
+// Sorts distinct values (particle indices below 2^31) in increasing order. A gather returns a
+// few dozen; each one's rank (how many are smaller) is counted in vectors, without the
+// branches of a comparison sort, whose outcomes are unpredictable here.
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+void sortDistinct(std::vector<std::uint32_t>& values, std::vector<std::uint32_t>& scratch) {
+    constexpr std::size_t RANK_SORT_LIMIT = 128;
+    const std::size_t n = values.size();
+    if (n > RANK_SORT_LIMIT) {
+        std::sort(values.begin(), values.end());
+        return;
+    }
+    scratch.resize(n);
+    const std::int32_t* v = reinterpret_cast<const std::int32_t*>(values.data());
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::int32_t x = v[i];
+        std::uint32_t rank = 0;
+#pragma omp simd reduction(+ : rank)
+        for (std::size_t j = 0; j < n; ++j) rank += v[j] < x;
+        scratch[rank] = static_cast<std::uint32_t>(x);
+    }
+    values.swap(scratch);
+}
+
 // An entry found in float may land a little after the true one: the segment starts this many
 // h before it.
 constexpr double ENTRY_BACKOFF = 1e-3;
@@ -87,6 +110,7 @@ class SurfaceTracer::Workspace {
 public:
     RayField field;                    // the segment being searched
     std::vector<std::uint32_t> prims;  // this round's gather, in particle order
+    std::vector<std::uint32_t> sorted; // sortDistinct's scratch
     ParticleBatch batch;               // their data
     std::vector<float> weights;        // kernel weights at a hit
     std::vector<int> groupEnds;  // shadow bundles
@@ -352,7 +376,7 @@ struct SurfaceTracer::Impl {
             ++w.counters.bundles;
             // Particle order: it is the summation order, so that it does not depend on
             // Embree's traversal order.
-            std::sort(w.prims.begin(), w.prims.end());
+            sortDistinct(w.prims, w.sorted);
             w.batch.assign(w.prims, fieldParticles, hits ? hitAttributes.data() : nullptr);
 
             for (int j = 0; j < active; ++j) {
