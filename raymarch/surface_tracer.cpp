@@ -124,11 +124,12 @@ struct SurfaceTracer::Impl {
     const core::Camera& camera;
     const core::SceneParticles& particles;
     Settings settings;
-    std::vector<float> supportRadius, margin;
     std::vector<FieldParticle> fieldParticles;
     std::vector<HitAttributes> hitAttributes;  // per particle
     std::unique_ptr<SphereScene> spheres;   // plain spheres (spheres mode)
-    std::unique_ptr<BundleGather> bundles;  // support spheres grown by the margin
+    // Support spheres grown by the spread of a pixel block's rays (camera rays), and by the
+    // shadow margin (shadow rays; only with shadows on).
+    std::unique_ptr<BundleGather> bundles, shadowBundles;
     std::vector<BodyRange> bodyRanges;
     double sinBlock = 0.0;
 
@@ -147,22 +148,26 @@ struct SurfaceTracer::Impl {
             spheres = std::make_unique<SphereScene>(device, ps.position, radii);
             return;
         }
-        supportRadius.resize(n);
-        margin.resize(n);
+        std::vector<float> supportRadius(n), margin(n), shadowMargin(n);
         for (std::size_t i = 0; i < n; ++i) {
             supportRadius[i] = static_cast<float>(core::M4_SUPPORT) * ps.h[i];
             // Near particle i a camera ray of the block passes within
             // (|x_i - camera| + 2h) sinBlock of the central ray; a shadow ray of a bundle
-            // within SHADOW_MARGIN h (groupParallel).
+            // within SHADOW_MARGIN h (groupParallel). Two trees: shadow bundles spread more
+            // than most pixel blocks, and growing every sphere by the larger margin would
+            // cost the camera rays' gathers more callbacks.
             const double primary =
                 (glm::length(glm::dvec3(ps.position[i]) - cam.position()) + supportRadius[i]) * sinBlock;
-            margin[i] = static_cast<float>(std::max(primary, SHADOW_MARGIN * ps.h[i]));
+            margin[i] = static_cast<float>(primary);
+            shadowMargin[i] = static_cast<float>(SHADOW_MARGIN * ps.h[i]);
         }
         fieldParticles = makeFieldParticles(ps);
         hitAttributes.resize(n);
         for (std::size_t i = 0; i < n; ++i)
             hitAttributes[i] = {ps.uv[i].x, ps.uv[i].y, ps.glow[i].r, ps.glow[i].g, ps.glow[i].b};
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin);
+        if (st.shadows)
+            shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, shadowMargin);
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0, INFINITY};
             for (std::size_t i = begin; i < end; ++i) {
@@ -283,7 +288,8 @@ struct SurfaceTracer::Impl {
             }
             BundleGather::Entry e{};
             const double shift = std::min(a0, 0.0);
-            const bool found = !positive || bundles->firstEntry(origin + shift * centralDirection, centralDirection,
+            const BundleGather& bundles = parallel ? *shadowBundles : *this->bundles;
+            const bool found = !positive || bundles.firstEntry(origin + shift * centralDirection, centralDirection,
                                                                 a0 - shift, a1 - shift, e);
             e.t += shift;
             for (int k = 0; k < sharedCount; ++k) {
@@ -314,7 +320,7 @@ struct SurfaceTracer::Impl {
         for (int k = 0; k < ownCount; k += BundleGather::PACKET) {
             const int m = std::min(BundleGather::PACKET, ownCount - k);
             BundleGather::Entry entries[BundleGather::PACKET];
-            const std::uint32_t found = bundles->firstEntries(m, queries + k, entries);
+            const std::uint32_t found = (parallel ? shadowBundles : bundles)->firstEntries(m, queries + k, entries);
             for (int j = 0; j < m; ++j) {
                 MarchRay& r = w.rays[own[k + j]];
                 if (!(found >> j & 1u)) {
@@ -371,7 +377,7 @@ struct SurfaceTracer::Impl {
             const double slack = 1e-6 * std::max(std::abs(tfar - shift), 1.0);
             w.prims.clear();
             bundle.finish();
-            bundles->gather(bundle, origin + shift * centralDirection, centralDirection, tnear - shift - slack,
+            (parallel ? shadowBundles : bundles)->gather(bundle, origin + shift * centralDirection, centralDirection, tnear - shift - slack,
                             tfar - shift + slack, w.prims);
             ++w.counters.bundles;
             // Particle order: it is the summation order, so that it does not depend on

@@ -50,7 +50,7 @@ class SurfaceTracer {
 public:
     static constexpr int BLOCK = 8;              // pixel block side (of 4, 6, 8, 16: the fastest)
     static constexpr int MAX_RAYS = 64;          // rays per bundle
-    static constexpr double SHADOW_MARGIN = 0.2; // shadow-bundle spread allowed, in units of h
+    static constexpr double SHADOW_MARGIN = 0.3; // shadow-bundle spread allowed, in units of h
 
     SurfaceTracer(const EmbreeDevice& device, const core::Camera& camera,
                   const core::SceneParticles& particles, const Settings& settings);
