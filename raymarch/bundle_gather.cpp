@@ -57,26 +57,11 @@ inline void centralRayMeets(const RTCIntersectFunctionNArguments* args, const Bu
     }
 }
 
-// Splits ids[0, n) at a multiple of GROUP across the widest extent of their centres, until
-// each part fits a group; appends the groups.
-void makeGroups(std::uint32_t* ids, std::size_t n, std::span<const glm::vec3> centers,
-                std::span<const float> supportRadius, std::span<const float> margin,
-                std::vector<BundleGather::Group>& out) {
+// Orders ids[0, n) so that each run of GROUP holds neighbours: splits at a multiple of
+// GROUP across the widest extent of their centres until each part fits a group.
+void orderForGroups(std::uint32_t* ids, std::size_t n, std::span<const glm::vec3> centers) {
     constexpr std::size_t G = BundleGather::GROUP;
-    if (n <= G) {
-        BundleGather::Group g{};
-        for (std::size_t k = 0; k < n; ++k) {
-            const std::uint32_t i = ids[k];
-            g.x[k] = centers[i].x;
-            g.y[k] = centers[i].y;
-            g.z[k] = centers[i].z;
-            g.grown[k] = (supportRadius[i] + margin[i]) * (1.0f + SLACK);
-            g.radius[k] = supportRadius[i];
-            g.prim[k] = i;
-        }
-        out.push_back(g);
-        return;
-    }
+    if (n <= G) return;
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (std::size_t k = 0; k < n; ++k) {
         lo = glm::min(lo, centers[ids[k]]);
@@ -88,8 +73,8 @@ void makeGroups(std::uint32_t* ids, std::size_t n, std::span<const glm::vec3> ce
     std::nth_element(ids, ids + half, ids + n, [&](std::uint32_t a, std::uint32_t b) {
         return centers[a][axis] < centers[b][axis] || (centers[a][axis] == centers[b][axis] && a < b);
     });
-    makeGroups(ids, half, centers, supportRadius, margin, out);
-    makeGroups(ids + half, n - half, centers, supportRadius, margin, out);
+    orderForGroups(ids, half, centers);
+    orderForGroups(ids + half, n - half, centers);
 }
 
 }  // namespace
@@ -110,13 +95,34 @@ void RayBundle::finish() {
     while (count % LANES != 0) add(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), INFINITY, -INFINITY);
 }
 
-BundleGather::BundleGather(const EmbreeDevice& device, std::span<const glm::vec3> centers,
-                           std::span<const float> supportRadius, std::span<const float> margin)
-    : mDevice(device) {
+std::vector<std::uint32_t> BundleGather::groupOrder(std::span<const glm::vec3> centers) {
     std::vector<std::uint32_t> ids(centers.size());
     for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::uint32_t>(i);
-    mGroups.reserve((ids.size() + GROUP - 1) / GROUP + 1);
-    if (!ids.empty()) makeGroups(ids.data(), ids.size(), centers, supportRadius, margin, mGroups);
+    orderForGroups(ids.data(), ids.size(), centers);
+    return ids;
+}
+
+BundleGather::BundleGather(const EmbreeDevice& device, std::span<const glm::vec3> centers,
+                           std::span<const float> supportRadius, std::span<const float> margin,
+                           std::span<const std::uint32_t> order)
+    : mDevice(device) {
+    std::vector<std::uint32_t> own;
+    if (order.empty()) {
+        own = groupOrder(centers);
+        order = own;
+    }
+    mGroups.resize((order.size() + GROUP - 1) / GROUP);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        Group& g = mGroups[k / GROUP];
+        const std::size_t m = k % GROUP;
+        const std::uint32_t i = order[k];
+        g.x[m] = centers[i].x;
+        g.y[m] = centers[i].y;
+        g.z[m] = centers[i].z;
+        g.grown[m] = (supportRadius[i] + margin[i]) * (1.0f + SLACK);
+        g.radius[m] = supportRadius[i];
+        g.prim[m] = i;
+    }
     mScene = rtcNewScene(device.get());
     // The quick (Morton) build: gathers ran as fast on its tree as on the medium one's, and it
     // takes half the time to build.

@@ -41,8 +41,11 @@ public:
     // `margin[i]`: how far (scene units) any bundle ray may pass from the central ray near
     // particle i; the Embree bounds are the support spheres grown by it. The spans need not
     // outlive the object.
+    // `order`: groupOrder(centers), when the caller has it already (two gathers over the same
+    // particles share it); computed when empty.
     BundleGather(const EmbreeDevice& device, std::span<const glm::vec3> centers,
-                 std::span<const float> supportRadius, std::span<const float> margin);
+                 std::span<const float> supportRadius, std::span<const float> margin,
+                 std::span<const std::uint32_t> order = {});
     ~BundleGather();
     BundleGather(const BundleGather&) = delete;
     BundleGather& operator=(const BundleGather&) = delete;
@@ -78,6 +81,9 @@ public:
     // of one callback per particle (most of which miss: Embree calls for every leaf whose box
     // the ray crosses).
     static constexpr int GROUP = 8;
+    // The particles in group order: each run of GROUP (the last may be shorter) are
+    // neighbours (median splits across the widest extent).
+    static std::vector<std::uint32_t> groupOrder(std::span<const glm::vec3> centers);
     struct alignas(32) Group {
         // Centre and the support radius grown by the margin (and the float slack) of each
         // member; unused members have radius 0 and meet nothing.

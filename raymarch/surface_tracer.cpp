@@ -165,9 +165,10 @@ struct SurfaceTracer::Impl {
         hitAttributes.resize(n);
         for (std::size_t i = 0; i < n; ++i)
             hitAttributes[i] = {ps.uv[i].x, ps.uv[i].y, ps.glow[i].r, ps.glow[i].g, ps.glow[i].b};
-        bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin);
+        const std::vector<std::uint32_t> order = BundleGather::groupOrder(ps.position);
+        bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin, order);
         if (st.shadows)
-            shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, shadowMargin);
+            shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, shadowMargin, order);
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0, INFINITY};
             for (std::size_t i = begin; i < end; ++i) {
