@@ -118,6 +118,30 @@ TEST(ImplicitField, NeverStepsOverAThinBump) {
     EXPECT_GT(crossing.t, 4.9);
 }
 
+TEST(ImplicitField, AHintBeyondAThinBumpDoesNotSkipIt) {
+    // The same grazed particle, and a hint (a neighbour's crossing) well past it, as where a
+    // ray passes the edge of a near body and its neighbour meets a far one: the bound up to
+    // the hint must see the bump, and the crossing found must be the bump's.
+    const double h = 1.0, v = tr::core::maxParticleVolume(h);
+    const double d = 0.3;
+    const double peak = v * tr::core::m4Kernel(d, h);
+    tr::raymarch::CrossingSettings cs;
+    cs.level = peak * 0.9999;
+    cs.tolerance = 1e-6;
+    cs.maxStep = 0.5;
+    const double origin[3] = {0.0, d, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
+    tr::raymarch::Candidate c;
+    ASSERT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
+    tr::raymarch::RayField field;
+    field.assign({c}, 0.0);
+    for (const double hint : {5.001, 5.05, 6.0, 7.5}) {
+        const auto crossing = tr::raymarch::findFirstCrossing(field, 0.0, 10.0, cs, hint);
+        ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit) << hint;
+        EXPECT_LT(crossing.t, 5.0) << hint;
+        EXPECT_GT(crossing.t, 4.9) << hint;
+    }
+}
+
 TEST(ImplicitField, RemainingBoundIsAnUpperBound) {
     const double h = 1.0, v = 1.0;
     std::vector<tr::raymarch::Candidate> cands;
