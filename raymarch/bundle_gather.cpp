@@ -41,8 +41,9 @@ constexpr float SLACK = 1e-4f;
 inline void centralRayMeets(const RTCIntersectFunctionNArguments* args, const BundleGather::Group& g,
                             int meets[BundleGather::GROUP]) {
     const RTCRay& ray = reinterpret_cast<const RTCRayHit*>(args->rayhit)->ray;
-    const float ox = ray.org_x, oy = ray.org_y, oz = ray.org_z, dx = ray.dir_x, dy = ray.dir_y, dz = ray.dir_z,
-                tnear = ray.tnear, tfar = ray.tfar;
+    const float ox = ray.org_x, oy = ray.org_y, oz = ray.org_z;
+    const float dx = ray.dir_x, dy = ray.dir_y, dz = ray.dir_z;
+    const float tnear = ray.tnear, tfar = ray.tfar;
 #pragma omp simd
     for (int k = 0; k < BundleGather::GROUP; ++k) {
         const float wx = g.x[k] - ox, wy = g.y[k] - oy, wz = g.z[k] - oz, radius = g.grown[k];

@@ -4,10 +4,11 @@
 #include "raymarch/bundle_gather.h"
 
 #include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <glm/geometric.hpp>
+#include <random>
 
 namespace tr = twinrender;
 using tr::raymarch::BundleGather;
@@ -33,7 +34,8 @@ Spheres randomSpheres(std::mt19937& rng, int n, float margin) {
 }
 
 // Distance-based overlap of a sphere with the ray segment o + t d, t in [t0, t1] (double).
-double segmentDistance(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1, const glm::dvec3& c) {
+double segmentDistance(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
+                       const glm::dvec3& c) {
     const double t = std::clamp(glm::dot(c - o, d), t0, t1);
     return glm::length(o + t * d - c);
 }
@@ -51,7 +53,8 @@ void checkGather(const BundleGather& gather, const Spheres& s, const std::vector
     for (const TestRay& r : rays) {
         bundle.add(r.origin, r.direction, r.t0, r.t1);
         for (double t : {r.t0, r.t1}) {
-            const double along = glm::dot(r.origin + t * r.direction - centralOrigin, centralDirection);
+            const double along =
+                glm::dot(r.origin + t * r.direction - centralOrigin, centralDirection);
             tnear = std::min(tnear, along);
             tfar = std::max(tfar, along);
         }
@@ -61,11 +64,13 @@ void checkGather(const BundleGather& gather, const Spheres& s, const std::vector
     gather.gather(bundle, centralOrigin, centralDirection, std::max(tnear, 0.0), tfar, out);
     std::vector<std::uint32_t> sorted = out;
     std::sort(sorted.begin(), sorted.end());
-    ASSERT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a sphere reported twice";
+    ASSERT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end())
+        << "a sphere reported twice";
     for (std::size_t i = 0; i < s.centers.size(); ++i) {
         double nearest = INFINITY;
         for (const TestRay& r : rays)
-            nearest = std::min(nearest, segmentDistance(r.origin, r.direction, r.t0, r.t1, glm::dvec3(s.centers[i])));
+            nearest = std::min(nearest, segmentDistance(r.origin, r.direction, r.t0, r.t1,
+                                                        glm::dvec3(s.centers[i])));
         const bool reported = std::binary_search(sorted.begin(), sorted.end(), std::uint32_t(i));
         // Float slack: a sphere within 1e-3 of its radius of a ray may go either way.
         if (nearest < s.radius[i] * (1.0 - 1e-3)) {
@@ -89,7 +94,8 @@ TEST(BundleGather, ParallelBundleFindsExactlyTheSpheresItsRaysCross) {
         const glm::dvec3 dir = glm::normalize(glm::dvec3(unit(rng), unit(rng), unit(rng)));
         const glm::dvec3 mean = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 8.0 - 12.0 * dir;
         // Two axes across the direction: the rays stay within the margin of the central line.
-        const glm::dvec3 a = glm::normalize(glm::cross(dir, std::abs(dir.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+        const glm::dvec3 a = glm::normalize(
+            glm::cross(dir, std::abs(dir.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
         const glm::dvec3 b = glm::cross(dir, a);
         std::vector<TestRay> rays;
         for (int k = 0; k < 37; ++k) {
@@ -120,7 +126,8 @@ TEST(BundleGather, DivergingBundleFindsExactlyTheSpheresItsRaysCross) {
         const glm::dvec3 b = glm::cross(dir, a);
         std::vector<TestRay> rays;
         for (int k = 0; k < 64; ++k) {
-            const glm::dvec3 d = glm::normalize(dir + (unit(rng) * a + unit(rng) * b) * (spread * 0.7));
+            const glm::dvec3 d =
+                glm::normalize(dir + (unit(rng) * a + unit(rng) * b) * (spread * 0.7));
             const double t0 = 15.0 + 8.0 * unit(rng);
             rays.push_back({eye, d, t0, t0 + len(rng)});
         }
@@ -169,7 +176,8 @@ TEST(BundleGather, FirstEntryIsNeverAfterTheTrueOne) {
         EXPECT_GE(e.t, earliest) << "trial " << trial;
         // The packet query agrees with the single one for the same line.
         BundleGather::Entry packet[BundleGather::PACKET];
-        const std::uint32_t mask = gather.firstEntries(1, &queries[trial % BundleGather::PACKET], packet);
+        const std::uint32_t mask =
+            gather.firstEntries(1, &queries[trial % BundleGather::PACKET], packet);
         ASSERT_EQ(mask, 1u);
         EXPECT_NEAR(packet[0].t, e.t, 1e-4);
     }

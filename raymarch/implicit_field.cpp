@@ -139,7 +139,7 @@ void ParticleBatch::assign(std::span<const std::uint32_t> prims, const std::vect
     if (attributes) {
         for (auto* v : {&mU, &mV, &mR, &mG, &mB}) v->resize(padded);
         for (std::size_t i = 0; i < padded; ++i) {
-            const HitAttributes a = i < n ? attributes[prims[i]] : HitAttributes{0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+            const HitAttributes a = i < n ? attributes[prims[i]] : HitAttributes{};
             mU[i] = a.u;
             mV[i] = a.v;
             mR[i] = a.r;
@@ -151,7 +151,8 @@ void ParticleBatch::assign(std::span<const std::uint32_t> prims, const std::vect
     }
     // Relative to a particle of the batch, the positions keep float's relative precision at
     // the scale of the batch (a few h), wherever it lies.
-    mOrigin = n > 0 ? glm::dvec3(particles[prims[0]].x, particles[prims[0]].y, particles[prims[0]].z) : glm::dvec3(0.0);
+    const FieldParticle& first = n > 0 ? particles[prims[0]] : INERT_PARTICLE;
+    mOrigin = glm::dvec3(first.x, first.y, first.z);
     for (std::size_t i = 0; i < padded; ++i) {
         const FieldParticle& p = i < n ? particles[prims[i]] : INERT_PARTICLE;
         mX[i] = static_cast<float>(double(p.x) - mOrigin.x);
@@ -210,7 +211,8 @@ void RayField::build(const glm::dvec3& origin, const glm::dvec3& direction, doub
                 *support2 = batch.mSupport2.data(), *pcoef = batch.mCoef.data(), *pih2 = batch.mInvH2.data();
     // The segment's start relative to the batch's origin.
     const glm::dvec3 start = (origin - batch.mOrigin) + tMin * direction;
-    const float sx = static_cast<float>(start.x), sy = static_cast<float>(start.y), sz = static_cast<float>(start.z);
+    const float sx = static_cast<float>(start.x), sy = static_cast<float>(start.y),
+                sz = static_cast<float>(start.z);
     const float dx = static_cast<float>(direction.x), dy = static_cast<float>(direction.y),
                 dz = static_cast<float>(direction.z);
     const float length = static_cast<float>(tMax - tMin);

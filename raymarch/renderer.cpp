@@ -137,7 +137,8 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                         bool found[N];
                         float vis[N];
                         const auto t0 = Clock::now();
-                        mTracer.tracePrimary(n, std::min(bx + B, tx1) - bx, rays, tnear, tfar, central, hits, found, w);
+                        const int rowLength = std::min(bx + B, tx1) - bx;
+                        mTracer.tracePrimary(n, rowLength, rays, tnear, tfar, central, hits, found, w);
                         if (st.shadows) mTracer.traceShadows(n, hits, found, toLight, vis, w);
                         else std::fill_n(vis, n, 1.0f);
                         const auto t1 = Clock::now();

@@ -59,7 +59,6 @@ bool rayMeetsBody(const core::Ray& ray, double t0, double t1, const BodyRange& b
     return rayMeetsSphere(ray, t0, t1, b.center, b.radius) && rayMeetsBox(ray, t0, t1, b.lo, b.hi);
 }
 
-
 // Sorts distinct values (particle indices below 2^31) in increasing order. A gather returns a
 // few dozen; each one's rank (how many are smaller) is counted in vectors, without the
 // branches of a comparison sort, whose outcomes are unpredictable here.
@@ -168,7 +167,8 @@ struct SurfaceTracer::Impl {
         const std::vector<std::uint32_t> order = BundleGather::groupOrder(ps.position);
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin, order);
         if (st.shadows)
-            shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, shadowMargin, order);
+            shadowBundles =
+                std::make_unique<BundleGather>(device, ps.position, supportRadius, shadowMargin, order);
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0, INFINITY};
             for (std::size_t i = begin; i < end; ++i) {
@@ -179,7 +179,8 @@ struct SurfaceTracer::Impl {
             }
             r.center = 0.5 * (r.lo + r.hi);
             for (std::size_t i = begin; i < end; ++i)
-                r.radius = std::max(r.radius, glm::length(glm::dvec3(ps.position[i]) - r.center) + supportRadius[i]);
+                r.radius = std::max(r.radius,
+                                    glm::length(glm::dvec3(ps.position[i]) - r.center) + supportRadius[i]);
             // Rounding of the float positions and of the tests.
             r.radius *= 1.0 + 1e-6;
             bodyRanges.push_back(r);
@@ -289,9 +290,9 @@ struct SurfaceTracer::Impl {
             }
             BundleGather::Entry e{};
             const double shift = std::min(a0, 0.0);
-            const BundleGather& bundles = parallel ? *shadowBundles : *this->bundles;
-            const bool found = !positive || bundles.firstEntry(origin + shift * centralDirection, centralDirection,
-                                                                a0 - shift, a1 - shift, e);
+            const BundleGather& tree = gatherFor(parallel);
+            const bool found = !positive || tree.firstEntry(origin + shift * centralDirection, centralDirection,
+                                                             a0 - shift, a1 - shift, e);
             e.t += shift;
             for (int k = 0; k < sharedCount; ++k) {
                 MarchRay& r = w.rays[shared[k]];
@@ -322,7 +323,7 @@ struct SurfaceTracer::Impl {
         for (int k = 0; k < ownCount; k += BundleGather::PACKET) {
             const int m = std::min(BundleGather::PACKET, ownCount - k);
             BundleGather::Entry entries[BundleGather::PACKET];
-            const std::uint32_t found = (parallel ? shadowBundles : bundles)->firstEntries(m, queries + k, entries);
+            const std::uint32_t found = gatherFor(parallel).firstEntries(m, queries + k, entries);
             for (int j = 0; j < m; ++j) {
                 MarchRay& r = w.rays[own[k + j]];
                 if (!(found >> j & 1u)) {
@@ -335,6 +336,9 @@ struct SurfaceTracer::Impl {
             }
         }
     }
+
+    // The gather of camera-ray bundles, or of shadow bundles (parallel rays).
+    const BundleGather& gatherFor(bool parallel) const { return parallel ? *shadowBundles : *bundles; }
 
     // A camera ray's first segment is the segment length deep measured along the normal of
     // the entered body's bounding sphere, not along the ray: one entering at a slant (toward
@@ -393,8 +397,8 @@ struct SurfaceTracer::Impl {
             const double slack = 1e-6 * std::max(std::abs(tfar - shift), 1.0);
             w.prims.clear();
             bundle.finish();
-            (parallel ? shadowBundles : bundles)->gather(bundle, origin + shift * centralDirection, centralDirection, tnear - shift - slack,
-                            tfar - shift + slack, w.prims);
+            gatherFor(parallel).gather(bundle, origin + shift * centralDirection, centralDirection,
+                                       tnear - shift - slack, tfar - shift + slack, w.prims);
             ++w.counters.bundles;
             // Particle order: it is the summation order, so that it does not depend on
             // Embree's traversal order.
@@ -415,7 +419,8 @@ struct SurfaceTracer::Impl {
                     const double hint = hits ? primaryHint(lane[j], w, hits) : NAN;
                     double start = r.t;
                     if (w.field.peakSum() < settings.surfaceLevel) start = INFINITY;
-                    else if (hits && !(hint > r.t && hint < segEnd[j])) start = std::max(r.t, w.field.supportStart());
+                    else if (hits && !(hint > r.t && hint < segEnd[j]))
+                        start = std::max(r.t, w.field.supportStart());
                     const Crossing crossing =
                         start < segEnd[j] ? findFirstCrossing(w.field, start, segEnd[j], crossingSettings(r.hRef), hint)
                                           : Crossing{};
