@@ -109,6 +109,28 @@ std::pair<double, double> paddedRange(double lo, double hi, bool log) {
     return {lo - pad, hi + pad};
 }
 
+// The XML declaration, the <svg> element, the style sheet (the shared rules around a chart's
+// own: `styles` after the tick rule, `after` at the end), the white background and the title.
+std::string chartOpening(int width, int height, const std::string& title, double titleX,
+                         std::string_view styles, std::string_view after) {
+    std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    s += fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
+        "viewBox=\"0 0 {0} {1}\" font-family=\"DejaVu Sans, Arial, sans-serif\" "
+        "font-size=\"12\">\n",
+        width, height);
+    s += "<style>.grid{stroke:#e1e4e8;stroke-width:1}.axis{stroke:#57606a;stroke-width:1;fill:none}"
+         ".tick{fill:#57606a;font-size:11px}";
+    s += styles;
+    s += ".title{font-size:15px;font-weight:600;fill:#24292f}.label{fill:#24292f;font-size:12px}";
+    s += after;
+    s += "</style>\n";
+    s += fmt::format("<rect x=\"0\" y=\"0\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>\n",
+                     double(width), double(height));
+    s += fmt::format("<text class=\"title\" x=\"{}\" y=\"24\">{}</text>\n", titleX, xmlText(title));
+    return s;
+}
+
 }  // namespace
 
 std::vector<std::size_t> paretoFront(const std::vector<ChartPoint>& points, bool lowerYIsBetter) {
@@ -167,20 +189,11 @@ std::string scatterSvg(const ScatterChart& chart) {
     const Axis ax{xl, xh, logX, left, right};
     const Axis ay{yl, yh, false, bottom, top};
 
-    std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    s += fmt::format(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
-        "viewBox=\"0 0 {0} {1}\" font-family=\"DejaVu Sans, Arial, sans-serif\" "
-        "font-size=\"12\">\n",
-        chart.width, chart.height);
-    s += "<style>.grid{stroke:#e1e4e8;stroke-width:1}.axis{stroke:#57606a;stroke-width:1;fill:none}"
-         ".tick{fill:#57606a;font-size:11px}.point{fill:#0969da;fill-opacity:0.75;stroke:#ffffff;"
-         "stroke-width:1}.pareto-point{fill:#cf222e}.pareto{stroke:#cf222e;stroke-width:2;"
-         "fill:none}.point-label{fill:#24292f;font-size:10px}.title{font-size:15px;"
-         "font-weight:600;fill:#24292f}.label{fill:#24292f;font-size:12px}</style>\n";
-    s += fmt::format("<rect x=\"0\" y=\"0\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>\n", W, H);
-    s += fmt::format("<text class=\"title\" x=\"{}\" y=\"24\">{}</text>\n", left,
-                     xmlText(chart.title));
+    std::string s = chartOpening(chart.width, chart.height, chart.title, left,
+                                 ".point{fill:#0969da;fill-opacity:0.75;stroke:#ffffff;stroke-width:1}"
+                                 ".pareto-point{fill:#cf222e}.pareto{stroke:#cf222e;stroke-width:2;"
+                                 "fill:none}.point-label{fill:#24292f;font-size:10px}",
+                                 "");
 
     // Grid and ticks.
     const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
@@ -348,24 +361,16 @@ std::string lineSvg(const LineChart& chart) {
     const Axis ax{xl, xh, logX, left, right};
     const Axis ay{yl, yh, logY, bottom, top};
 
-    std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    s += fmt::format(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
-        "viewBox=\"0 0 {0} {1}\" font-family=\"DejaVu Sans, Arial, sans-serif\" "
-        "font-size=\"12\">\n",
-        chart.width, chart.height);
-    s += "<style>.grid{stroke:#e1e4e8;stroke-width:1}.axis{stroke:#57606a;stroke-width:1;fill:none}"
-         ".tick{fill:#57606a;font-size:11px}.line{fill:none;stroke-width:2}.dashed{stroke-dasharray:"
-         "6 4}.point{stroke:#ffffff;stroke-width:1}.mark{stroke:#8c959f;stroke-width:1;"
-         "stroke-dasharray:3 3}.mark-label{fill:#57606a;font-size:10px}.title{font-size:15px;"
-         "font-weight:600;fill:#24292f}.label{fill:#24292f;font-size:12px}";
+    std::string series;
     for (int k = 0; k < 8; ++k)
-        s += fmt::format(".series-{0}.line{{stroke:{1}}}.series-{0}.point{{fill:{1}}}", k,
-                         PALETTE[k]);
-    s += "</style>\n";
-    s += fmt::format("<rect x=\"0\" y=\"0\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>\n", W, H);
-    s += fmt::format("<text class=\"title\" x=\"{}\" y=\"24\">{}</text>\n", left,
-                     xmlText(chart.title));
+        series += fmt::format(".series-{0}.line{{stroke:{1}}}.series-{0}.point{{fill:{1}}}", k,
+                              PALETTE[k]);
+    std::string s = chartOpening(chart.width, chart.height, chart.title, left,
+                                 ".line{fill:none;stroke-width:2}.dashed{stroke-dasharray:6 4}"
+                                 ".point{stroke:#ffffff;stroke-width:1}.mark{stroke:#8c959f;"
+                                 "stroke-width:1;stroke-dasharray:3 3}.mark-label{fill:#57606a;"
+                                 "font-size:10px}",
+                                 series);
 
     const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
     std::vector<double> yt = logY ? logTicks(yl, yh) : linearTicks(yl, yh, 6);
