@@ -43,6 +43,13 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
                   "refuse to run the real-time renderer on a software rasteriser");
 }
 
+// ꟻLIP's viewing condition, for the commands that compare.
+void addPpd(CLI::App* cmd, double& ppd) {
+    cmd->add_option("--ppd", ppd, "ꟻLIP pixels per degree")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+}
+
 void printRender(const tr::app::LoadedScene& s, const tr::app::Render& r, const std::filesystem::path& dir) {
     const auto& f = r.frame;
     std::printf("%s: %s %dx%d, %zu particles, %.1f ms on %s -> %s\n", s.scene.name.c_str(),
@@ -99,9 +106,7 @@ int main(int argc, char** argv) {
     compareCmd->add_option("TEST", compareOpts.test, "image to measure")->required();
     compareCmd->add_option("--out", compareOpts.out, "output folder")->capture_default_str();
     compareCmd->add_option("--thresholds", compareOpts.thresholds, "thresholds file (TOML)");
-    compareCmd->add_option("--ppd", compareOpts.ppd, "ꟻLIP pixels per degree")
-        ->check(CLI::PositiveNumber)
-        ->capture_default_str();
+    addPpd(compareCmd, compareOpts.ppd);
 
     tr::app::RunOptions runOpts;
     CommonOptions runCommon;
@@ -112,9 +117,7 @@ int main(int argc, char** argv) {
                        "thresholds file (default: thresholds.toml beside the scenes)");
     runCmd->add_option("--baseline", runOpts.baseline, "baseline from `twinrender bless`");
     runCmd->add_option("--junit", runOpts.junit, "also write JUnit XML here");
-    runCmd->add_option("--ppd", runOpts.ppd, "ꟻLIP pixels per degree")
-        ->check(CLI::PositiveNumber)
-        ->capture_default_str();
+    addPpd(runCmd, runOpts.ppd);
     runCmd->add_option("--shard", runOpts.shard,
                        "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
         ->type_name("K/N");
@@ -140,9 +143,7 @@ int main(int argc, char** argv) {
                          "frames per combination, timed as their median (default 5; 1 when varying raymarch.*)")
         ->check(CLI::Range(1, 1000));
     sweepCmd->add_option("--cache", sweepOpts.cache, "reference cache folder (default: OUT/reference_cache)");
-    sweepCmd->add_option("--ppd", sweepOpts.ppd, "ꟻLIP pixels per degree")
-        ->check(CLI::PositiveNumber)
-        ->capture_default_str();
+    addPpd(sweepCmd, sweepOpts.ppd);
     sweepCmd->add_option("--shard", sweepOpts.shard,
                          "K/N: every N-th combination starting at the K-th; join with `merge`")
         ->type_name("K/N");
@@ -158,9 +159,7 @@ int main(int argc, char** argv) {
                          "temporal, collision");
     studyCmd->add_flag("--quick", studyOpts.quick, "fewer points and particles (seconds per study)");
     studyCmd->add_option("--cache", studyOpts.cache, "reference cache folder (default: OUT/reference_cache)");
-    studyCmd->add_option("--ppd", studyOpts.ppd, "ꟻLIP pixels per degree")
-        ->check(CLI::PositiveNumber)
-        ->capture_default_str();
+    addPpd(studyCmd, studyOpts.ppd);
     addCommon(studyCmd, studyCommon);
 
     tr::app::MergeOptions mergeOpts;
