@@ -98,44 +98,43 @@ TEST(ImplicitField, SingleCandidateCrossingIsTheAnalyticRadius) {
     EXPECT_LT(crossing.tBelow, 5.0 - radius);
 }
 
-TEST(ImplicitField, NeverStepsOverAThinBump) {
-    // A particle grazed by the ray: its field peaks just above the level over a short stretch.
-    const double h = 1.0, v = tr::core::maxParticleVolume(h);
-    const double d = 0.3;  // distance of the ray from the particle
-    const double peak = v * tr::core::m4Kernel(d, h);
-    tr::raymarch::CrossingSettings cs;
-    cs.level = peak * 0.9999;  // the crossing region is a few 1e-3 h long
-    cs.tolerance = 1e-6;
-    cs.maxStep = 0.5;
-    const double origin[3] = {0.0, d, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
-    tr::raymarch::Candidate c;
-    ASSERT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
+namespace {
+
+// A particle grazed by a ray along z at t = 5: its field peaks just above the level over a
+// short stretch (a few 1e-3 h), a crossing that a careless step would pass over.
+struct ThinBump {
+    tr::raymarch::CrossingSettings settings;
     tr::raymarch::RayField field;
-    field.assign({c}, 0.0);
-    const auto crossing = tr::raymarch::findFirstCrossing(field, 0.0, 10.0, cs);
+    ThinBump() {
+        const double h = 1.0, v = tr::core::maxParticleVolume(h);
+        const double d = 0.3;  // distance of the ray from the particle
+        settings.level = v * tr::core::m4Kernel(d, h) * 0.9999;
+        settings.tolerance = 1e-6;
+        settings.maxStep = 0.5;
+        const double origin[3] = {0.0, d, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
+        tr::raymarch::Candidate c;
+        EXPECT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
+        field.assign({c}, 0.0);
+    }
+};
+
+}  // namespace
+
+TEST(ImplicitField, NeverStepsOverAThinBump) {
+    const ThinBump bump;
+    const auto crossing = tr::raymarch::findFirstCrossing(bump.field, 0.0, 10.0, bump.settings);
     ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit);
     EXPECT_LT(crossing.t, 5.0);
     EXPECT_GT(crossing.t, 4.9);
 }
 
 TEST(ImplicitField, AHintBeyondAThinBumpDoesNotSkipIt) {
-    // The same grazed particle, and a hint (a neighbour's crossing) well past it, as where a
-    // ray passes the edge of a near body and its neighbour meets a far one: the bound up to
-    // the hint must see the bump, and the crossing found must be the bump's.
-    const double h = 1.0, v = tr::core::maxParticleVolume(h);
-    const double d = 0.3;
-    const double peak = v * tr::core::m4Kernel(d, h);
-    tr::raymarch::CrossingSettings cs;
-    cs.level = peak * 0.9999;
-    cs.tolerance = 1e-6;
-    cs.maxStep = 0.5;
-    const double origin[3] = {0.0, d, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
-    tr::raymarch::Candidate c;
-    ASSERT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
-    tr::raymarch::RayField field;
-    field.assign({c}, 0.0);
+    // A hint (a neighbour's crossing) well past the bump, as where a ray passes the edge of a
+    // near body and its neighbour meets a far one: the bound up to the hint must see the
+    // bump, and the crossing found must be the bump's.
+    const ThinBump bump;
     for (const double hint : {5.001, 5.05, 6.0, 7.5}) {
-        const auto crossing = tr::raymarch::findFirstCrossing(field, 0.0, 10.0, cs, hint);
+        const auto crossing = tr::raymarch::findFirstCrossing(bump.field, 0.0, 10.0, bump.settings, hint);
         ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit) << hint;
         EXPECT_LT(crossing.t, 5.0) << hint;
         EXPECT_GT(crossing.t, 4.9) << hint;
