@@ -520,6 +520,10 @@ compare::LineChart seriesChart(const StudyResult& s, const std::string& metric) 
 }
 
 const std::vector<StudyDef>& studies() {
+    // What the studies of the screen-space smoothing tabulate.
+    const std::vector<std::string> smoothingColumns = {"normal.mean_deg", "normal.p95_deg", "uv.mean",
+                                                       "smoothness.ratio", "beauty.flip",
+                                                       "count.unbracketed_rays"};
     static const std::vector<StudyDef> all = {
         {"depth_range",
          "Depth range",
@@ -566,8 +570,7 @@ const std::vector<StudyDef>& studies() {
          "particle diameter on screen (px)",
          true,
          "normal.mean_deg",
-         {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip",
-          "count.unbracketed_rays"},
+         smoothingColumns,
          false,
          false,
          false,
@@ -582,8 +585,7 @@ const std::vector<StudyDef>& studies() {
          "view angle from the surface normal (degrees)",
          false,
          "normal.mean_deg",
-         {"normal.mean_deg", "normal.p95_deg", "uv.mean", "smoothness.ratio", "beauty.flip",
-          "count.unbracketed_rays"},
+         smoothingColumns,
          false,
          false,
          false,

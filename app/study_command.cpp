@@ -154,29 +154,20 @@ int runStudies(const StudyOptions& o) {
                     compare::computeMetrics(ref.frame.image, test.frame.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
                 if (d.contactBand || d.occlusionError) {
-                    compare::MaskSettings maskSettings;
-                    maskSettings.interiorRadius = ms.interiorRadius;
-                    maskSettings.hasLight = ms.hasLight;
-                    maskSettings.lightDirection = ms.lightDirection;
-                    const compare::Masks masks =
-                        compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
-                    const double covered = double(masks.referenceCovered.count());
-                    if (d.occlusionError)
+                    const compare::Masks masks = compare::computeMasks(ref.frame.image, test.frame.image,
+                                                                       compare::maskSettings(ms));
+                    if (d.occlusionError) {
+                        const double covered = double(masks.referenceCovered.count());
                         row.metrics["occlusion.error"] =
                             covered > 0 ? 1.0 - double(masks.sameBody.count()) / covered : NAN;
-                }
-                if (d.contactBand) {
-                    compare::MaskSettings maskSettings;
-                    maskSettings.interiorRadius = ms.interiorRadius;
-                    maskSettings.hasLight = ms.hasLight;
-                    maskSettings.lightDirection = ms.lightDirection;
-                    const compare::Masks masks =
-                        compare::computeMasks(ref.frame.image, test.frame.image, maskSettings);
-                    const auto band = compare::contactBandError(ref.frame.image, test.frame.image,
-                                                                masks, CONTACT_BAND_PX);
-                    row.metrics["contact.uv_mean"] = band.uvMean;
-                    row.metrics["contact.emission_rmse"] = band.emissionRmse;
-                    row.metrics["contact.pixels"] = double(band.pixels);
+                    }
+                    if (d.contactBand) {
+                        const auto band = compare::contactBandError(ref.frame.image, test.frame.image,
+                                                                    masks, CONTACT_BAND_PX);
+                        row.metrics["contact.uv_mean"] = band.uvMean;
+                        row.metrics["contact.emission_rmse"] = band.emissionRmse;
+                        row.metrics["contact.pixels"] = double(band.pixels);
+                    }
                 }
                 if (d.frameToFrame) {
                     const auto prev = previous.find(row.series);

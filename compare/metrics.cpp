@@ -83,6 +83,14 @@ bool isAovImage(const core::Image& image) {
     return true;
 }
 
+MaskSettings maskSettings(const MetricSettings& settings) {
+    MaskSettings m;
+    m.interiorRadius = settings.interiorRadius;
+    m.hasLight = settings.hasLight;
+    m.lightDirection = settings.lightDirection;
+    return m;
+}
+
 MetricResult computeMetrics(const core::Image& reference, const core::Image& test,
                             const MetricSettings& settings) {
     validate(settings);
@@ -130,11 +138,7 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
     }
     if (!refAov) return result;
 
-    MaskSettings maskSettings;
-    maskSettings.interiorRadius = settings.interiorRadius;
-    maskSettings.hasLight = settings.hasLight;
-    maskSettings.lightDirection = settings.lightDirection;
-    const Masks masks = computeMasks(reference, test, maskSettings);
+    const Masks masks = computeMasks(reference, test, maskSettings(settings));
 
     result.values["coverage.iou"] = coverageIou(masks);
     result.values["silhouette.mean_px"] = silhouetteMeanPx(masks);

@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 
+#include "compare/masks.h"
 #include "core/image.h"
 
 namespace twinrender::compare {
@@ -28,6 +29,9 @@ struct MetricSettings {
     // Radius of the interior mask's erosion, pixels, >= 0 (masks.h).
     int interiorRadius = 2;
 };
+
+// The masks the metrics are taken over (masks.h), for these settings.
+MaskSettings maskSettings(const MetricSettings& settings);
 
 struct MetricResult {
     // By metric key: beauty.psnr (dB; +inf for identical images), beauty.ssim, beauty.flip,
