@@ -1,5 +1,7 @@
 #include "app/comparison.h"
 
+#include <ctime>
+
 namespace twinrender::app {
 
 const std::vector<ErrorMapStyle>& errorMapStyles() {
@@ -72,6 +74,13 @@ compare::SceneReport compareScene(const LoadedScene& s, const Render& ref, const
         report.errorMaps[style.buffer] = {file, style.label, style.lo, style.hi, style.unit};
     }
     return report;
+}
+
+std::string nowUtc() {
+    const std::time_t t = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+    return buf;
 }
 
 }  // namespace twinrender::app

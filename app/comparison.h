@@ -33,6 +33,9 @@ compare::SceneReport compareScene(const LoadedScene& scene, const Render& ref, c
                                   const compare::Bounds& bounds, const compare::Baseline* baseline,
                                   double ppd, const std::filesystem::path& sceneDir);
 
+// The time a report is written, "2026-11-21 16:40 UTC".
+std::string nowUtc();
+
 // The time metrics of a pair of renders: time.realtime_ms and time.raymarch_ms (total).
 void addTimeMetrics(const Render& ref, const Render& test, compare::MetricValues& metrics);
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "app/comparison.h"
 #include "compare/report.h"
 #include "compare/sweep_report.h"
 #include "core/error.h"
@@ -84,13 +85,6 @@ void copyTree(const fs::path& from, const fs::path& to) {
 }
 
 namespace {
-
-std::string nowUtc() {
-    const std::time_t t = std::time(nullptr);
-    char buf[64];
-    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-    return buf;
-}
 
 int mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
              const fs::path& out, const std::string& commandLine) {

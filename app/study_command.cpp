@@ -34,13 +34,6 @@ namespace {
 // the footprint mixes.
 constexpr int CONTACT_BAND_PX = 3;
 
-std::string nowUtc() {
-    const std::time_t t = std::time(nullptr);
-    char buf[64];
-    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-    return buf;
-}
-
 fs::path defaultStudyScenes() {
     if (fs::is_directory("scenes/studies")) return "scenes/studies";
     return fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies";

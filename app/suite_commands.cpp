@@ -24,13 +24,6 @@ namespace {
 
 int exitCode(compare::Status s) { return static_cast<int>(s); }  // pass 0, warn 1, fail 2
 
-std::string nowUtc() {
-    const std::time_t t = std::time(nullptr);
-    char buf[64];
-    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-    return buf;
-}
-
 // The status of a metric's checks, for the terminal table.
 std::string statusOf(const std::vector<compare::Check>& checks, const std::string& metric) {
     compare::Status s = compare::Status::Pass;

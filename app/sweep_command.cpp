@@ -37,13 +37,6 @@ namespace {
 constexpr double TIGHT_ROOT_TOLERANCE = 1e-7;
 constexpr int TIGHT_SPP = 16;
 
-std::string nowUtc() {
-    const std::time_t t = std::time(nullptr);
-    char buf[64];
-    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-    return buf;
-}
-
 bool startsWith(const std::string& s, const char* prefix) {
     return s.rfind(prefix, 0) == 0;
 }
