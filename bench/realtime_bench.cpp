@@ -20,6 +20,7 @@
 #include "core/particles.h"
 #include "core/scene.h"
 #include "core/texture.h"
+#include "realtime/impostor_radius.h"
 #include "realtime/gl/context.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/renderer.h"
@@ -121,7 +122,8 @@ void BM_Cull100k(benchmark::State& state) {
     const LoadedScene& s = planet(100000, 1280, 720);
     std::size_t kept = 0;
     for (auto _ : state)
-        kept = tr::realtime::unoccludedParticles(s.particles.particles, 0.9).size();
+        kept = tr::realtime::unoccludedParticles(
+                       s.particles.particles, tr::realtime::fixedRadii(s.particles.particles, 0.9)).size();
     state.counters["kept"] = double(kept);
 }
 

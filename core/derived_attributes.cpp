@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "core/blackbody.h"
+#include "core/particle_grid.h"
 #include "core/sph_kernel.h"
 
 namespace twinrender::core {
@@ -23,128 +24,13 @@ namespace {
 
 constexpr double PI = std::numbers::pi;
 constexpr std::size_t GRAIN = 1024;  // particles per task
-constexpr std::uint32_t LANES = 4;   // partial sums of the gradient loop (one SSE vector)
+constexpr std::uint32_t LANES = ParticleGrid::LANES;  // partial sums of the gradient loop
 
 // u in [0, 1) after the cast to float (1 - 1e-9 rounds to 1.0f: that is the seam, u = 0).
 float wrapU(double u) {
     u -= std::floor(u);
     const auto f = static_cast<float>(u);
     return f >= 1.0f ? 0.0f : f;
-}
-
-// floor(x) as an integer for |x| < 2^62 (std::floor is a library call without SSE4.1).
-inline std::int64_t floorToInt(double x) {
-    const auto i = static_cast<std::int64_t>(x);
-    return static_cast<double>(i) > x ? i - 1 : i;
-}
-
-// ---- neighbour grids ---------------------------------------------------------------------
-
-struct GridLevel {
-    double hMax = 0.0;
-    double cell = 0.0;
-    double invCell = 0.0;
-    glm::dvec3 origin{0.0};
-    std::int64_t nx = 1, ny = 1, nz = 1;
-    std::vector<std::uint32_t> cellStart;  // nx*ny*nz + 1 offsets into the arrays below
-    std::vector<float> px, py, pz;         // position
-    std::vector<float> invH;               // 1 / h
-    std::vector<float> coef;               // v / (pi h^4): dW/dr = coef * w'(r / h)
-    std::vector<std::uint32_t> index;      // the particle's index in the set
-
-    std::int64_t cellIndex(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {
-        return (iz * ny + iy) * nx + ix;
-    }
-    std::int64_t coord(double p, double o, std::int64_t n) const {
-        return std::clamp<std::int64_t>(floorToInt((p - o) * invCell), 0, n - 1);
-    }
-};
-
-GridLevel buildLevel(const ParticleSet& set, const std::vector<std::uint32_t>& members) {
-    GridLevel g;
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (std::uint32_t i : members) {
-        const glm::dvec3 p(set.position[i]);
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-        g.hMax = std::max(g.hMax, static_cast<double>(set.h[i]));
-    }
-    g.origin = lo;
-    const glm::dvec3 extent = hi - lo;
-    // Cells of h (half the support): a query visits 5 cells per axis, clipped to the sphere
-    // row by row. Coarser where the box is sparse (bodies far apart), so that the dense grid
-    // never has more than about 4 cells per particle.
-    const double maxCells = std::max(4.0 * static_cast<double>(members.size()), 4096.0);
-    g.cell = g.hMax;
-    for (;;) {
-        const glm::dvec3 n = glm::floor(extent / g.cell) + 1.0;
-        const double total = n.x * n.y * n.z;
-        if (total <= maxCells) {
-            g.nx = static_cast<std::int64_t>(n.x);
-            g.ny = static_cast<std::int64_t>(n.y);
-            g.nz = static_cast<std::int64_t>(n.z);
-            break;
-        }
-        g.cell *= std::max(1.01, std::cbrt(total / maxCells));
-    }
-
-    g.invCell = 1.0 / g.cell;
-    const std::size_t cells = static_cast<std::size_t>(g.nx * g.ny * g.nz);
-    std::vector<std::uint32_t> cellOf(members.size());
-    g.cellStart.assign(cells + 1, 0);
-    for (std::size_t m = 0; m < members.size(); ++m) {
-        const glm::dvec3 p(set.position[members[m]]);
-        const auto c = g.cellIndex(g.coord(p.x, g.origin.x, g.nx), g.coord(p.y, g.origin.y, g.ny),
-                                   g.coord(p.z, g.origin.z, g.nz));
-        cellOf[m] = static_cast<std::uint32_t>(c);
-        ++g.cellStart[static_cast<std::size_t>(c) + 1];
-    }
-    for (std::size_t c = 0; c < cells; ++c) g.cellStart[c + 1] += g.cellStart[c];
-    // Stable counting sort: members are in ascending index order, and stay so within a cell.
-    std::vector<std::uint32_t> fill(g.cellStart.begin(), g.cellStart.end() - 1);
-    // LANES - 1 padding entries (copies of a real position, coef 0) so that the vector loop
-    // may read past the end of the last row.
-    for (auto* v : {&g.px, &g.py, &g.pz, &g.invH, &g.coef}) v->resize(members.size() + LANES - 1);
-    g.index.resize(members.size());
-    for (std::size_t m = 0; m < members.size(); ++m) {
-        const std::uint32_t i = members[m];
-        const glm::vec3& p = set.position[i];
-        const double h = set.h[i];
-        const std::uint32_t k = fill[cellOf[m]]++;
-        g.px[k] = p.x;
-        g.py[k] = p.y;
-        g.pz[k] = p.z;
-        g.invH[k] = static_cast<float>(1.0 / h);
-        g.coef[k] = static_cast<float>(set.volume[i] / (PI * h * h * h * h));
-        g.index[k] = i;
-    }
-    for (std::size_t k = members.size(); k < g.px.size(); ++k) {
-        g.px[k] = g.px[0];
-        g.py[k] = g.py[0];
-        g.pz[k] = g.pz[0];
-        g.invH[k] = g.invH[0];
-        g.coef[k] = 0.0f;
-    }
-    return g;
-}
-
-// One grid per octave of h: particle i goes to level floor(log2(h_i / h_min)).
-std::vector<GridLevel> buildGrids(const ParticleSet& set) {
-    const std::size_t n = set.size();
-    float hMin = INFINITY;
-    for (std::size_t i = 0; i < n; ++i) hMin = std::min(hMin, set.h[i]);
-    std::vector<std::vector<std::uint32_t>> members;
-    for (std::size_t i = 0; i < n; ++i) {
-        int e = 0;
-        std::frexp(static_cast<double>(set.h[i]) / hMin, &e);  // ratio in [2^(e-1), 2^e)
-        const auto level = static_cast<std::size_t>(std::clamp(e - 1, 0, 63));
-        if (members.size() <= level) members.resize(level + 1);
-        members[level].push_back(static_cast<std::uint32_t>(i));
-    }
-    std::vector<GridLevel> grids;
-    for (const auto& m : members)
-        if (!m.empty()) grids.push_back(buildLevel(set, m));
-    return grids;
 }
 
 struct FieldSample {
@@ -180,7 +66,7 @@ struct Lanes {
 // candidates lie outside the support, and a branch per candidate costs more than computing
 // its (zero) term. Beyond the support (s >= 2) the M4 expression is exactly 0, and so is the
 // particle's own term (d = 0); lanes past `end` are multiplied by 0.
-void accumulateRange(const GridLevel& g, std::uint32_t begin, std::uint32_t end, const glm::vec3& q,
+void accumulateRange(const ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end, const glm::vec3& q,
                      Lanes& acc) {
     for (std::uint32_t j = begin; j < end; j += LANES) {
         for (std::uint32_t l = 0; l < LANES; ++l) {
@@ -204,49 +90,11 @@ void accumulateRange(const GridLevel& g, std::uint32_t begin, std::uint32_t end,
     }
 }
 
-// Calls visit(level, begin, end) for the runs of particles of every grid level whose cells the
-// support sphere around p may reach, in a fixed order (levels, then z, y rows of cells, then
-// particles in grid order).
-template <typename Visit>
-void visitSupport(const std::vector<GridLevel>& grids, const glm::dvec3& p, Visit&& visit) {
-    for (const GridLevel& g : grids) {
-        const double reach = M4_SUPPORT * g.hMax;
-        const double reach2 = reach * reach;
-        const std::int64_t rawZ0 = floorToInt((p.z - reach - g.origin.z) * g.invCell);
-        const std::int64_t rawZ1 = floorToInt((p.z + reach - g.origin.z) * g.invCell);
-        const std::int64_t rawY0 = floorToInt((p.y - reach - g.origin.y) * g.invCell);
-        const std::int64_t rawY1 = floorToInt((p.y + reach - g.origin.y) * g.invCell);
-        if (rawZ1 < 0 || rawZ0 >= g.nz || rawY1 < 0 || rawY0 >= g.ny) continue;
-        const std::int64_t z0 = std::max<std::int64_t>(rawZ0, 0), z1 = std::min(rawZ1, g.nz - 1);
-        const std::int64_t y0 = std::max<std::int64_t>(rawY0, 0), y1 = std::min(rawY1, g.ny - 1);
-        for (std::int64_t iz = z0; iz <= z1; ++iz) {
-            const double zLo = g.origin.z + static_cast<double>(iz) * g.cell;
-            const double dz = std::max({0.0, zLo - p.z, p.z - (zLo + g.cell)});
-            for (std::int64_t iy = y0; iy <= y1; ++iy) {
-                const double yLo = g.origin.y + static_cast<double>(iy) * g.cell;
-                const double dy = std::max({0.0, yLo - p.y, p.y - (yLo + g.cell)});
-                const double rest = reach2 - dy * dy - dz * dz;
-                if (rest < 0.0) continue;
-                // The row's cells that the support sphere reaches.
-                const double half = std::sqrt(rest);
-                const std::int64_t rawX0 = floorToInt((p.x - half - g.origin.x) * g.invCell);
-                const std::int64_t rawX1 = floorToInt((p.x + half - g.origin.x) * g.invCell);
-                if (rawX1 < 0 || rawX0 >= g.nx) continue;
-                const std::int64_t x0 = std::max<std::int64_t>(rawX0, 0);
-                const std::int64_t x1 = std::min(rawX1, g.nx - 1);
-                const auto first = static_cast<std::size_t>(g.cellIndex(x0, iy, iz));
-                const auto last = static_cast<std::size_t>(g.cellIndex(x1, iy, iz));
-                visit(g, g.cellStart[first], g.cellStart[last + 1]);
-            }
-        }
-    }
-}
-
 // grad c(x) at q, in a fixed order (visitSupport's, in LANES partial sums).
-FieldSample colourFieldGradient(const std::vector<GridLevel>& grids, const glm::vec3& q) {
+FieldSample colourFieldGradient(const ParticleGrid& grids, const glm::vec3& q) {
     Lanes acc;
-    visitSupport(grids, glm::dvec3(q),
-                 [&](const GridLevel& g, std::uint32_t begin, std::uint32_t end) {
+    grids.visitSupport(glm::dvec3(q),
+                 [&](const ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
                      accumulateRange(g, begin, end, q, acc);
                  });
     FieldSample out;
@@ -297,11 +145,11 @@ void deriveUv(ParticleSet& set, const BodyInfo& body, bool keepUv) {
 void deriveNormals(ParticleSet& set, std::span<const BodyInfo> bodies) {
     const std::size_t n = set.size();
     if (n == 0) return;
-    const std::vector<GridLevel> grids = buildGrids(set);
+    const ParticleGrid grids(set);
     // Particles are visited in grid order, so that neighbouring queries touch the same cells
     // (random sets are 3-4x slower in index order); each particle's sum does not depend on
     // the visiting order.
-    for (const GridLevel& level : grids) {
+    for (const ParticleGrid::Level& level : grids.levels()) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, level.index.size(), GRAIN),
                           [&](const tbb::blocked_range<std::size_t>& range) {
                               for (std::size_t k = range.begin(); k != range.end(); ++k) {
@@ -328,40 +176,6 @@ void deriveNormals(ParticleSet& set, std::span<const BodyInfo> bodies) {
                               }
                           });
     }
-}
-
-std::vector<FieldDerivatives> colourFieldDerivatives(const ParticleSet& set,
-                                                    std::span<const glm::dvec3> points) {
-    std::vector<FieldDerivatives> out(points.size());
-    if (set.size() == 0 || points.empty()) return out;
-    const std::vector<GridLevel> grids = buildGrids(set);
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, points.size(), 64),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-            for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                const glm::dvec3 p = points[k];
-                FieldDerivatives& d = out[k];
-                visitSupport(grids, p, [&](const GridLevel& g, std::uint32_t begin,
-                                           std::uint32_t end) {
-                    for (std::uint32_t j = begin; j < end; ++j) {
-                        const glm::dvec3 delta = p - glm::dvec3(g.px[j], g.py[j], g.pz[j]);
-                        const double r = glm::length(delta);
-                        const double invH = g.invH[j];
-                        const double q = r * invH;
-                        if (q >= M4_SUPPORT || r == 0.0) continue;
-                        // dW/dr = coef w'(q), d2W/dr2 = coef w''(q) / h (coef = v / (pi h^4)).
-                        const double dWdr = g.coef[j] * m4ShapeDerivative(q);
-                        const double d2Wdr2 = g.coef[j] * invH * m4ShapeSecondDerivative(q);
-                        const glm::dvec3 u = delta / r;
-                        d.gradient += dWdr * u;
-                        // Hessian of W(|x - x_j|): W'' u u^T + (W' / r) (I - u u^T).
-                        d.hessian += (d2Wdr2 - dWdr / r) * glm::outerProduct(u, u) +
-                                     glm::dmat3(dWdr / r);
-                    }
-                });
-            }
-        });
-    return out;
 }
 
 void deriveGlow(ParticleSet& set) {

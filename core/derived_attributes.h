@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "core/colour_field.h"
 #include "core/particles.h"
 
 namespace twinrender::core {
@@ -56,18 +57,6 @@ void deriveUv(ParticleSet& particles, const BodyInfo& body, bool keepUv);
 // so sets whose smoothing lengths span orders of magnitude still cost O(neighbours).
 inline constexpr double NORMAL_FALLBACK_RATIO = 1e-5;
 void deriveNormals(ParticleSet& particles, std::span<const BodyInfo> bodies);
-
-// The colour field c(x) = sum_j v_j W(|x - x_j|, h_j) of deriveNormals, differentiated once and
-// twice at arbitrary points (every particle of the set whose support covers the point): its
-// gradient (1/scene unit of c per scene unit) and its Hessian. For models of the surface
-// normal that vary over a particle (realtime/field_normal.h). Parallel over points; each
-// point's sums run in a fixed order, so results do not depend on the thread count.
-struct FieldDerivatives {
-    glm::dvec3 gradient{0.0};
-    glm::dmat3 hessian{0.0};
-};
-std::vector<FieldDerivatives> colourFieldDerivatives(const ParticleSet& particles,
-                                                    std::span<const glm::dvec3> points);
 
 // glow = blackbodyRadiance(temperature) (blackbody.h).
 void deriveGlow(ParticleSet& particles);

@@ -7,15 +7,14 @@
 
 namespace twinrender::realtime {
 
-std::vector<FieldNormal> fieldNormals(const core::ParticleSet& ps, double radiusScale,
+std::vector<FieldNormal> fieldNormals(const core::ParticleSet& ps, std::span<const float> radii,
                                       std::span<const std::uint32_t> indices) {
     const std::size_t n = indices.empty() ? ps.size() : indices.size();
     auto particle = [&](std::size_t k) { return indices.empty() ? k : indices[k]; };
     std::vector<glm::dvec3> tops(n);
     for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = particle(k);
-        tops[k] = glm::dvec3(ps.position[i]) +
-                  radiusScale * ps.h[i] * glm::dvec3(ps.normal[i]);
+        tops[k] = glm::dvec3(ps.position[i]) + double(radii[i]) * glm::dvec3(ps.normal[i]);
     }
     const std::vector<core::FieldDerivatives> d = core::colourFieldDerivatives(ps, tops);
     std::vector<FieldNormal> out(n);
@@ -30,7 +29,7 @@ std::vector<FieldNormal> fieldNormals(const core::ParticleSet& ps, double radius
         // -grad c(x) / |g_top| = -(g_top + H (x - x_top)) / |g_top|, rewritten about the centre:
         // x - x_top = (x - x_i) - r n_i.
         const glm::dmat3 h = -d[k].hessian / length;
-        const glm::dvec3 offsetTop = radiusScale * ps.h[i] * glm::dvec3(ps.normal[i]);
+        const glm::dvec3 offsetTop = double(radii[i]) * glm::dvec3(ps.normal[i]);
         f.outward = glm::vec3(-d[k].gradient / length - h * offsetTop);
         f.diagonal = glm::vec3(h[0][0], h[1][1], h[2][2]);
         f.offDiagonal = glm::vec3(h[0][1], h[0][2], h[1][2]);
@@ -39,16 +38,16 @@ std::vector<FieldNormal> fieldNormals(const core::ParticleSet& ps, double radius
 }
 
 const std::vector<FieldNormal>& FieldNormalCache::normals(const core::ParticleSet& ps,
-                                                          double radiusScale,
+                                                          std::span<const float> radii,
                                                           std::span<const std::uint32_t> indices) {
-    mReused = mValid && radiusScale == mRadiusScale &&
+    mReused = mValid && std::equal(radii.begin(), radii.end(), mRadii.begin(), mRadii.end()) &&
               std::equal(indices.begin(), indices.end(), mIndices.begin(), mIndices.end()) &&
               ps.position == mPosition && ps.h == mH && ps.volume == mVolume &&
               ps.normal == mNormal;
     if (!mReused) {
         mValid = false;
-        mNormals = fieldNormals(ps, radiusScale, indices);
-        mRadiusScale = radiusScale;
+        mNormals = fieldNormals(ps, radii, indices);
+        mRadii.assign(radii.begin(), radii.end());
         mIndices.assign(indices.begin(), indices.end());
         mPosition = ps.position;
         mH = ps.h;

@@ -29,9 +29,10 @@ struct FieldNormal {
     glm::vec3 offDiagonal{0.0f};  // -H: xy, xz, yz
 };
 
-// The models of particles `indices` (all when empty), impostor radius = radiusScale * h. Where
-// the gradient at x_top vanishes, the model is the particle normal (no Hessian).
-std::vector<FieldNormal> fieldNormals(const core::ParticleSet& particles, double radiusScale,
+// The models of particles `indices` (all when empty), impostor radius radii[i]. Where the
+// gradient at x_top vanishes, the model is the particle normal (no Hessian).
+std::vector<FieldNormal> fieldNormals(const core::ParticleSet& particles,
+                                      std::span<const float> radii,
                                       std::span<const std::uint32_t> indices = {});
 
 // fieldNormals with the last answer kept: the models depend on the particles (position, h,
@@ -41,16 +42,15 @@ std::vector<FieldNormal> fieldNormals(const core::ParticleSet& particles, double
 class FieldNormalCache {
   public:
     const std::vector<FieldNormal>& normals(const core::ParticleSet& particles,
-                                            double radiusScale,
+                                            std::span<const float> radii,
                                             std::span<const std::uint32_t> indices);
     bool reused() const { return mReused; }
 
   private:
     bool mValid = false;
     bool mReused = false;
-    double mRadiusScale = 0.0;
     std::vector<glm::vec3> mPosition, mNormal;
-    std::vector<float> mH, mVolume;
+    std::vector<float> mH, mVolume, mRadii;
     std::vector<std::uint32_t> mIndices;
     std::vector<FieldNormal> mNormals;
 };

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/trigonometric.hpp>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "realtime/impostor_radius.h"
 
 namespace twinrender::realtime {
 namespace {
@@ -33,15 +35,14 @@ TEST(FieldNormal, FollowsALoneParticlesSphere) {
     ps.volume[0] = 0.05f;
     ps.normal[0] = glm::normalize(glm::vec3(0.0f, 0.6f, 0.8f));
     const double scale = 0.9, r = scale * 0.5;
-    const std::vector<FieldNormal> f = fieldNormals(ps, scale);
+    const std::vector<FieldNormal> f = fieldNormals(ps, fixedRadii(ps, scale));
     ASSERT_EQ(f.size(), 1u);
     const glm::dvec3 n(ps.normal[0]);
     EXPECT_LT(degreesBetween(modelNormal(f[0], r * n), n), 1e-3);
     const glm::dvec3 across = glm::normalize(glm::cross(n, glm::dvec3(1, 0, 0)));
     for (double angle : {0.05, 0.1}) {
         const glm::dvec3 sphere = std::cos(angle) * n + std::sin(angle) * across;
-        EXPECT_LT(degreesBetween(modelNormal(f[0], r * sphere), sphere),
-                  0.1 * glm::degrees(angle))
+        EXPECT_LT(degreesBetween(modelNormal(f[0], r * sphere), sphere), 0.1 * glm::degrees(angle))
             << angle;
     }
 }
@@ -62,7 +63,7 @@ TEST(FieldNormal, PointsOutOfAFlatLatticeForTheChosenParticles) {
             }
     const std::uint32_t centreTop = static_cast<std::uint32_t>((2 * n + 4) * n + 4);
     const std::uint32_t chosen[] = {centreTop};
-    const std::vector<FieldNormal> f = fieldNormals(ps, 0.9, chosen);
+    const std::vector<FieldNormal> f = fieldNormals(ps, fixedRadii(ps, 0.9), chosen);
     ASSERT_EQ(f.size(), 1u);
     const double r = 0.9 * 1.3 * s;
     EXPECT_LT(degreesBetween(modelNormal(f[0], {0.0, 0.0, r}), {0.0, 0.0, 1.0}), 1e-3);
@@ -81,19 +82,19 @@ TEST(FieldNormal, TheCacheReusesItsAnswerOnlyForTheSameInputs) {
     ps.normal = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     FieldNormalCache cache;
     const std::uint32_t some[] = {0, 2};
-    const auto first = cache.normals(ps, 0.9, some);
+    const auto first = cache.normals(ps, fixedRadii(ps, 0.9), some);
     EXPECT_FALSE(cache.reused());
     ASSERT_EQ(first.size(), 2u);
-    EXPECT_EQ(cache.normals(ps, 0.9, some)[1].outward, first[1].outward);
+    EXPECT_EQ(cache.normals(ps, fixedRadii(ps, 0.9), some)[1].outward, first[1].outward);
     EXPECT_TRUE(cache.reused());
-    EXPECT_EQ(cache.normals(ps, 0.9, {}).size(), 3u);
+    EXPECT_EQ(cache.normals(ps, fixedRadii(ps, 0.9), {}).size(), 3u);
     EXPECT_FALSE(cache.reused());
     ps.volume[1] = 0.002f;
-    cache.normals(ps, 0.9, {});
+    cache.normals(ps, fixedRadii(ps, 0.9), {});
     EXPECT_FALSE(cache.reused());
-    cache.normals(ps, 0.8, {});
+    cache.normals(ps, fixedRadii(ps, 0.8), {});
     EXPECT_FALSE(cache.reused());
-    cache.normals(ps, 0.8, {});
+    cache.normals(ps, fixedRadii(ps, 0.8), {});
     EXPECT_TRUE(cache.reused());
 }
 

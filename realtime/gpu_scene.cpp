@@ -13,7 +13,8 @@ constexpr std::uint32_t MAX_EXACT_INDEX = 1u << 24;
 }  // namespace
 
 std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::dvec3& camera,
-                                       double radiusScale, std::span<const std::uint32_t> indices,
+                                       std::span<const float> radii,
+                                       std::span<const std::uint32_t> indices,
                                        std::span<const FieldNormal> fieldNormals) {
     const std::size_t n = indices.empty() ? ps.size() : indices.size();
     if (!fieldNormals.empty() && fieldNormals.size() != n)
@@ -29,7 +30,7 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
         const glm::dvec3 relative = glm::dvec3(ps.position[i]) - camera;
         GpuParticle& g = out[k];
         g.positionRadius =
-            glm::vec4(glm::vec3(relative), static_cast<float>(radiusScale * ps.h[i]));
+            glm::vec4(glm::vec3(relative), radii[i]);
         g.normalU = glm::vec4(ps.normal[i], ps.uv[i].x);
         g.dudxV = glm::vec4(ps.dudx[i], ps.uv[i].y);
         g.dvdxBody = glm::vec4(ps.dvdx[i], static_cast<float>(ps.body[i]));

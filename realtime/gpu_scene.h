@@ -29,11 +29,12 @@ struct GpuParticle {
 };
 static_assert(sizeof(GpuParticle) == 112);
 
-// Impostor radius = radiusScale * h. Body and material indices must stay below 2^24.
+// Impostor radius = radii[i]. Body and material indices must stay below 2^24.
 // `indices`: the particles to pack, in order (all of them when empty). `fieldNormals`: one per
 // packed particle (realtime.particles.normal = "field"), or empty for the particle normal.
 std::vector<GpuParticle> packParticles(const core::ParticleSet& particles,
-                                       const glm::dvec3& cameraPosition, double radiusScale,
+                                       const glm::dvec3& cameraPosition,
+                                       std::span<const float> radii,
                                        std::span<const std::uint32_t> indices = {},
                                        std::span<const FieldNormal> fieldNormals = {});
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "realtime/impostor_radius.h"
+
 namespace twinrender::realtime {
 namespace {
 
@@ -14,7 +16,7 @@ TEST(GpuScene, PacksParticlesCameraRelative) {
     ps.material = {1, 2};
     ps.uv = {{0.25f, 0.75f}, {0.5f, 0.5f}};
     const std::uint32_t second[] = {1};
-    const auto all = packParticles(ps, glm::dvec3(1e6, 0.0, 0.0), 2.0);
+    const auto all = packParticles(ps, glm::dvec3(1e6, 0.0, 0.0), fixedRadii(ps, 2.0));
     ASSERT_EQ(all.size(), 2u);
     EXPECT_EQ(all[0].positionRadius, glm::vec4(0.0f, 2.0f, 3.0f, 1.0f));
     EXPECT_EQ(all[1].positionRadius.x, 1.0f);
@@ -22,7 +24,7 @@ TEST(GpuScene, PacksParticlesCameraRelative) {
     EXPECT_EQ(all[0].dudxV.w, 0.75f);
     EXPECT_EQ(all[1].dvdxBody.w, 7.0f);
     EXPECT_EQ(all[1].glowMaterial.w, 2.0f);
-    const auto some = packParticles(ps, glm::dvec3(1e6, 0.0, 0.0), 2.0, second);
+    const auto some = packParticles(ps, glm::dvec3(1e6, 0.0, 0.0), fixedRadii(ps, 2.0), second);
     ASSERT_EQ(some.size(), 1u);
     EXPECT_EQ(some[0].dvdxBody.w, 7.0f);
 }

@@ -81,7 +81,7 @@ constexpr double MAX_RADIUS_RATIO = 8.0;
 
 // Culls within one group of particles (a body): marks visible[i] = 0 for its buried members.
 void cullGroup(const core::ParticleSet& ps, const std::vector<std::uint32_t>& members,
-               double radiusScale, std::vector<unsigned char>& visibleOut) {
+               std::span<const float> allRadii, std::vector<unsigned char>& visibleOut) {
     const std::size_t n = members.size();
     if (n < 2) return;
 
@@ -91,7 +91,7 @@ void cullGroup(const core::ParticleSet& ps, const std::vector<std::uint32_t>& me
     std::vector<double> radii(n);
     glm::dvec3 lo(std::numeric_limits<double>::max());
     for (std::size_t k = 0; k < n; ++k) {
-        radii[k] = radiusScale * ps.h[members[k]];
+        radii[k] = allRadii[members[k]];
         lo = glm::min(lo, glm::dvec3(ps.position[members[k]]));
     }
     // The grid's cells are twice the largest radius, so a few huge spheres would make it
@@ -302,7 +302,8 @@ void cullGroup(const core::ParticleSet& ps, const std::vector<std::uint32_t>& me
 
 }  // namespace
 
-std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps, double radiusScale) {
+std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps,
+                                               std::span<const float> radii) {
     // Bodies are culled one by one: each in its own coordinates (so float keeps precision in
     // scenes spanning many orders of magnitude) and with its own grid. Spheres of one body
     // covering another body's are not used, which can only keep more spheres.
@@ -310,7 +311,7 @@ std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps, doub
     for (std::size_t i = 0; i < ps.size(); ++i)
         bodies[ps.body.empty() ? 0u : ps.body[i]].push_back(static_cast<std::uint32_t>(i));
     std::vector<unsigned char> visible(ps.size(), 1);
-    for (const auto& [body, members] : bodies) cullGroup(ps, members, radiusScale, visible);
+    for (const auto& [body, members] : bodies) cullGroup(ps, members, radii, visible);
     std::vector<std::uint32_t> out;
     for (std::size_t i = 0; i < ps.size(); ++i)
         if (visible[i]) out.push_back(static_cast<std::uint32_t>(i));
@@ -318,15 +319,14 @@ std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps, doub
 }
 
 const std::vector<std::uint32_t>& OcclusionCuller::unoccluded(const core::ParticleSet& ps,
-                                                              double radiusScale) {
-    mReused = mValid && radiusScale == mRadiusScale && ps.position == mPosition && ps.h == mH &&
-              ps.body == mBody;
+                                                              std::span<const float> radii) {
+    mReused = mValid && ps.position == mPosition && ps.body == mBody &&
+              std::equal(radii.begin(), radii.end(), mRadii.begin(), mRadii.end());
     if (!mReused) {
         mValid = false;
-        mUnoccluded = unoccludedParticles(ps, radiusScale);
-        mRadiusScale = radiusScale;
+        mUnoccluded = unoccludedParticles(ps, radii);
         mPosition = ps.position;
-        mH = ps.h;
+        mRadii.assign(radii.begin(), radii.end());
         mBody = ps.body;
         mValid = true;
     }

@@ -18,35 +18,35 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <span>
 #include <vector>
 
 #include "core/particles.h"
 
 namespace twinrender::realtime {
 
-// Indices (ascending) of the particles whose sphere, of radius radiusScale * h, may be visible.
+// Indices (ascending) of the particles whose sphere, of radius radii[i], may be visible.
 std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& particles,
-                                               double radiusScale);
+                                               std::span<const float> radii);
 
 // unoccludedParticles with the last answer kept: the test depends on the spheres only, not on
 // the camera or the light, so the frames of an unchanged particle set (a camera moving around
 // a stored snapshot, a sweep, a benchmark) reuse it. The inputs are kept and compared exactly
-// (positions, h, bodies, radiusScale), which costs about 1 ms per 100k particles against the
+// (positions, bodies, radii), which costs about 1 ms per 100k particles against the
 // test's 100-300 ms.
 class OcclusionCuller {
   public:
-    // The same indices as unoccludedParticles(particles, radiusScale).
+    // The same indices as unoccludedParticles(particles, radii).
     const std::vector<std::uint32_t>& unoccluded(const core::ParticleSet& particles,
-                                                 double radiusScale);
+                                                 std::span<const float> radii);
     // Whether the last call reused the previous answer.
     bool reused() const { return mReused; }
 
   private:
     bool mValid = false;
     bool mReused = false;
-    double mRadiusScale = 0.0;
     std::vector<glm::vec3> mPosition;
-    std::vector<float> mH;
+    std::vector<float> mRadii;
     std::vector<std::uint32_t> mBody;
     std::vector<std::uint32_t> mUnoccluded;
 };

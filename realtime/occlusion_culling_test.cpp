@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <random>
 
+#include "realtime/impostor_radius.h"
+
 namespace twinrender::realtime {
 namespace {
 
@@ -28,7 +30,7 @@ bool contains(const std::vector<std::uint32_t>& v, std::uint32_t i) {
 TEST(OcclusionCulling, KeepsTheSurfaceLayerOfALatticeAndCullsTheInside) {
     const int n = 6;
     const core::ParticleSet ps = cube(n, 1.0f, 1.3f);
-    const auto kept = unoccludedParticles(ps, 0.95);
+    const auto kept = unoccludedParticles(ps, fixedRadii(ps, 0.95));
     ASSERT_TRUE(std::is_sorted(kept.begin(), kept.end()));
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
@@ -57,7 +59,7 @@ TEST(OcclusionCulling, CulledSpheresAreCoveredByOthers) {
         ps.h.push_back(hd(rng));
     }
     const double scale = 0.95;
-    const auto kept = unoccludedParticles(ps, scale);
+    const auto kept = unoccludedParticles(ps, fixedRadii(ps, scale));
     std::size_t culled = 0;
     std::normal_distribution<double> g;
     for (std::uint32_t i = 0; i < ps.size(); ++i) {
@@ -79,33 +81,37 @@ TEST(OcclusionCulling, EdgeCases) {
     core::ParticleSet one;
     one.position = {{0, 0, 0}};
     one.h = {1.0f};
-    EXPECT_EQ(unoccludedParticles(one, 1.0).size(), 1u);
+    EXPECT_EQ(unoccludedParticles(one, fixedRadii(one, 1.0)).size(), 1u);
 
     // Two equal coincident spheres: one stays. A small sphere inside a big one goes.
     core::ParticleSet ps;
     ps.position = {{0, 0, 0}, {0, 0, 0}, {5, 0, 0}, {5.1f, 0, 0}};
     ps.h = {1.0f, 1.0f, 2.0f, 0.5f};
-    EXPECT_EQ(unoccludedParticles(ps, 1.0), (std::vector<std::uint32_t>{0, 2}));
+    EXPECT_EQ(unoccludedParticles(ps, fixedRadii(ps, 1.0)), (std::vector<std::uint32_t>{0, 2}));
 }
 
 TEST(OcclusionCulling, TheCullerReusesItsAnswerOnlyForTheSameSpheres) {
     core::ParticleSet ps = cube(5, 1.0f, 1.3f);
     OcclusionCuller culler;
-    const auto first = culler.unoccluded(ps, 0.95);
+    const auto first = culler.unoccluded(ps, fixedRadii(ps, 0.95));
     EXPECT_FALSE(culler.reused());
-    EXPECT_EQ(first, unoccludedParticles(ps, 0.95));
-    EXPECT_EQ(culler.unoccluded(ps, 0.95), first);
+    EXPECT_EQ(first, unoccludedParticles(ps, fixedRadii(ps, 0.95)));
+    EXPECT_EQ(culler.unoccluded(ps, fixedRadii(ps, 0.95)), first);
     EXPECT_TRUE(culler.reused());
     // Any change of the spheres or the scale recomputes.
-    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_EQ(culler.unoccluded(ps, fixedRadii(ps, 0.5)),
+              unoccludedParticles(ps, fixedRadii(ps, 0.5)));
     EXPECT_FALSE(culler.reused());
     ps.position[62].x += 0.5f;  // the centre particle moves
-    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_EQ(culler.unoccluded(ps, fixedRadii(ps, 0.5)),
+              unoccludedParticles(ps, fixedRadii(ps, 0.5)));
     EXPECT_FALSE(culler.reused());
     ps.h[0] = 2.0f;
-    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_EQ(culler.unoccluded(ps, fixedRadii(ps, 0.5)),
+              unoccludedParticles(ps, fixedRadii(ps, 0.5)));
     EXPECT_FALSE(culler.reused());
-    EXPECT_EQ(culler.unoccluded(ps, 0.5), unoccludedParticles(ps, 0.5));
+    EXPECT_EQ(culler.unoccluded(ps, fixedRadii(ps, 0.5)),
+              unoccludedParticles(ps, fixedRadii(ps, 0.5)));
     EXPECT_TRUE(culler.reused());
 }
 

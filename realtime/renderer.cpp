@@ -18,6 +18,7 @@
 #include "realtime/gl/pipeline.h"
 #include "realtime/gl/timer_query.h"
 #include "realtime/gpu_scene.h"
+#include "realtime/impostor_radius.h"
 #include "realtime/light_frustum.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/octahedral.h"
@@ -73,13 +74,13 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
 // Occlusion culling assumes that every ray starts outside all spheres. Rays start at the near
 // plane; every point of the frustum in front of it lies within nearReach of the eye, so no
 // sphere reaching into that ball means the near plane cannot cut a body open.
-bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera, double radiusScale) {
+bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera,
+                    std::span<const float> radii) {
     const double t = camera.tanHalfFovY();
     const double nearReach =
         camera.settings().near * std::sqrt(1.0 + t * t * (1.0 + camera.aspect() * camera.aspect()));
     for (std::size_t i = 0; i < ps.size(); ++i)
-        if (glm::length(glm::dvec3(ps.position[i]) - camera.position()) - radiusScale * ps.h[i] <=
-            nearReach)
+        if (glm::length(glm::dvec3(ps.position[i]) - camera.position()) - radii[i] <= nearReach)
             return false;
     return true;
 }
@@ -108,7 +109,7 @@ struct Renderer::Impl {
     const gl::Context& context;
     ProgramCache programs;
     gl::Limits limits;
-    OcclusionCuller culler;  // keeps the last particle set's answer (view-independent)
+    OcclusionCuller culler;         // keeps the last particle set's answer (view-independent)
     FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
@@ -173,7 +174,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     frame.settings = toJson(settings);
     frame.particleCount = particles.particles.size();
     for (const char* stage :
-         {"cull", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
+         {"radius", "cull", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
         frame.timingsMs[stage] = 0.0;
 
     // Whether anything emits: otherwise the emission buffer is zero and SSSS leaves it alone.
@@ -203,22 +204,40 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
         fitLightFrustum(particles.boundsMin, particles.boundsMax, scene.camera.position,
                         scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(scene, camera, particles, settings, light);
+    const auto radiusStart = Clock::now();
+    const std::vector<float> radii = impostorRadii(particles.particles, settings.particles);
+    frame.timingsMs["radius"] = msSince(radiusStart);
     std::span<const std::uint32_t> drawn;
-    if (settings.particles.cullHidden &&
-        cullingIsExact(particles.particles, camera, settings.particles.radiusScale)) {
+    if (settings.particles.cullHidden && cullingIsExact(particles.particles, camera, radii)) {
         const auto cullStart = Clock::now();
-        drawn = m.culler.unoccluded(particles.particles, settings.particles.radiusScale);
+        drawn = m.culler.unoccluded(particles.particles, radii);
         frame.timingsMs["cull"] = msSince(cullStart);
     }
+    // Particles without a surface of their own (radius 0) are not drawn.
+    std::vector<std::uint32_t> withSurface;
+    bool nothingDrawn = false;
+    if (std::find(radii.begin(), radii.end(), 0.0f) != radii.end()) {
+        if (drawn.empty()) {
+            for (std::size_t i = 0; i < radii.size(); ++i)
+                if (radii[i] > 0.0f) withSurface.push_back(static_cast<std::uint32_t>(i));
+        } else {
+            for (std::uint32_t i : drawn)
+                if (radii[i] > 0.0f) withSurface.push_back(i);
+        }
+        drawn = withSurface;
+        nothingDrawn = withSurface.empty();
+    }
     frame.counters["particles_drawn"] =
-        static_cast<double>(drawn.empty() ? particles.particles.size() : drawn.size());
+        nothingDrawn
+            ? 0.0
+            : static_cast<double>(drawn.empty() ? particles.particles.size() : drawn.size());
     std::span<const FieldNormal> fieldNormalModels;
     if (settings.particles.normal == NormalModel::Field)
-        fieldNormalModels =
-            m.fieldNormals.normals(particles.particles, settings.particles.radiusScale, drawn);
+        fieldNormalModels = m.fieldNormals.normals(particles.particles, radii, drawn);
     const std::vector<GpuParticle> gpuParticles =
-        packParticles(particles.particles, scene.camera.position, settings.particles.radiusScale,
-                      drawn, fieldNormalModels);
+        nothingDrawn ? std::vector<GpuParticle>{}
+                     : packParticles(particles.particles, scene.camera.position, radii, drawn,
+                                     fieldNormalModels);
     const GpuMaterials gpuMaterials = packMaterials(materials);
     if (static_cast<long long>(gpuParticles.size() * sizeof(GpuParticle)) >
         limits.maxStorageBlockBytes)
@@ -241,7 +260,8 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
                          gpuParticles.size()};
     gl::checkErrors("upload");
     gl::finish();
-    frame.timingsMs["upload"] = msSince(stageStart) - frame.timingsMs["cull"];
+    frame.timingsMs["upload"] =
+        msSince(stageStart) - frame.timingsMs["cull"] - frame.timingsMs["radius"];
 
     // Passes, each timed by a GL timer query.
     std::vector<std::pair<std::string, gl::TimerQuery>> timers;

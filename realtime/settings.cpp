@@ -49,6 +49,10 @@ std::string_view toString(NormalModel model) {
     return model == NormalModel::Blend ? "blend" : "field";
 }
 
+std::string_view toString(RadiusModel model) {
+    return model == RadiusModel::Fixed ? "fixed" : "field";
+}
+
 Settings parseSettings(const core::ParameterTable& t) {
     const Settings d;  // defaults
     Settings s;
@@ -58,6 +62,12 @@ Settings parseSettings(const core::ParameterTable& t) {
         t.getEnum("shadows", std::string(toString(d.shadows)), {"map", "pcf", "spheres", "none"}));
     s.particles.radiusScale =
         t.getDouble("particles.radius_scale", d.particles.radiusScale, 1e-6, 10.0);
+    s.particles.radius = t.getEnum("particles.radius", std::string(toString(d.particles.radius)),
+                                   {"field", "fixed"}) == "fixed"
+                             ? RadiusModel::Fixed
+                             : RadiusModel::Field;
+    s.particles.surfaceLevel =
+        t.getDouble("particles.surface_level", d.particles.surfaceLevel, 1e-6, 1e6);
     s.particles.normal =
         t.getEnum("particles.normal", std::string(toString(d.particles.normal)),
                   {"field", "blend"}) == "blend"
@@ -93,6 +103,8 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.depth", toString(s.depth)},
         {"realtime.shadows", toString(s.shadows)},
         {"realtime.particles.radius_scale", s.particles.radiusScale},
+        {"realtime.particles.radius", toString(s.particles.radius)},
+        {"realtime.particles.surface_level", s.particles.surfaceLevel},
         {"realtime.particles.normal", toString(s.particles.normal)},
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},

@@ -32,6 +32,12 @@ enum class NormalModel {
             // sphere_normal_weight (one direction per particle, plus the sphere's bulge)
 };
 
+// How each particle's impostor radius is chosen (particles.radius; realtime/impostor_radius.h).
+enum class RadiusModel {
+    Field,  // "field": the distance along the normal to the level set, at most radius_scale * h
+    Fixed,  // "fixed": radius_scale * h for every particle
+};
+
 struct ParticleSettings {
     // particles.radius_scale: impostor sphere radius / smoothing length h, (0, 10].
     // The M4 level set at 0.13 lies 0.92 h (hcp) to 0.94 h (cubic) above the outermost layer
@@ -39,6 +45,11 @@ struct ParticleSettings {
     // it best a little lower: 0.9 gives the least depth error against the raymarcher on the
     // planet, opensph_ball and contact scenes (coverage IoU 0.98; realtime/README.md).
     double radiusScale = 0.9;
+    // particles.radius: "field" | "fixed" (realtime/impostor_radius.h).
+    RadiusModel radius = RadiusModel::Field;
+    // particles.surface_level: the colour-field level whose surface "field" radii reach, > 0;
+    // the raymarcher's raymarch.surface_level (0.13, as OpenSPH) unless set.
+    double surfaceLevel = 0.13;
     // particles.normal: "field" | "blend". The particle normal (the colour-field gradient at
     // the centre) is one direction per particle, while the rendered surface turns across a
     // particle; "field" follows the field's gradient over the impostor to first order: mean
@@ -109,5 +120,6 @@ nlohmann::json toJson(const Settings& settings);
 std::string_view toString(DepthMode mode);
 std::string_view toString(ShadowMode mode);
 std::string_view toString(NormalModel model);
+std::string_view toString(RadiusModel model);
 
 }  // namespace twinrender::realtime

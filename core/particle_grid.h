@@ -1,0 +1,102 @@
+// Neighbour grids over a particle set, for sums over the particles whose support (radius
+// 2 h, sph_kernel.h) covers a point: one uniform grid per octave of h (cells of the octave's
+// largest h), so that sets whose smoothing lengths span orders of magnitude still cost
+// O(neighbours) per query. Queries visit the particles in a fixed order, so sums over them do
+// not depend on the thread count.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "core/particles.h"
+#include "core/sph_kernel.h"
+
+namespace twinrender::core {
+
+// floor(x) as an integer for |x| < 2^62 (std::floor is a library call without SSE4.1).
+inline std::int64_t floorToInt(double x) {
+    const auto i = static_cast<std::int64_t>(x);
+    return static_cast<double>(i) > x ? i - 1 : i;
+}
+
+class ParticleGrid {
+  public:
+    // LANES - 1 padding entries follow the last particle of each level (copies of a real
+    // position, coef 0), so that vector loops of LANES may read past the end of the last row.
+    static constexpr std::uint32_t LANES = 4;
+
+    // The particles of one octave of h, sorted by cell (ascending index within a cell).
+    struct Level {
+        double hMax = 0.0;
+        double cell = 0.0;
+        double invCell = 0.0;
+        glm::dvec3 origin{0.0};
+        std::int64_t nx = 1, ny = 1, nz = 1;
+        std::vector<std::uint32_t> cellStart;  // nx*ny*nz + 1 offsets into the arrays below
+        std::vector<float> px, py, pz;         // position
+        std::vector<float> invH;               // 1 / h
+        std::vector<float> coef;               // v / (pi h^4): dW/dr = coef * w'(r / h)
+        std::vector<std::uint32_t> index;      // the particle's index in the set
+
+        std::int64_t cellIndex(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {
+            return (iz * ny + iy) * nx + ix;
+        }
+        std::int64_t coord(double p, double o, std::int64_t n) const {
+            return std::clamp<std::int64_t>(floorToInt((p - o) * invCell), 0, n - 1);
+        }
+    };
+
+    explicit ParticleGrid(const ParticleSet& set);
+
+    const std::vector<Level>& levels() const { return mLevels; }
+
+    // Calls visit(level, begin, end) for the runs [begin, end) of particles of every level
+    // whose cells the support sphere around p may reach, in a fixed order (levels, then z, y
+    // rows of cells, then particles in grid order). Runs may hold particles beyond the
+    // support: the caller tests the distance.
+    template <typename Visit>
+    void visitSupport(const glm::dvec3& p, Visit&& visit) const;
+
+  private:
+    std::vector<Level> mLevels;
+};
+
+template <typename Visit>
+void ParticleGrid::visitSupport(const glm::dvec3& p, Visit&& visit) const {
+    for (const Level& g : mLevels) {
+        const double reach = M4_SUPPORT * g.hMax;
+        const double reach2 = reach * reach;
+        const std::int64_t rawZ0 = floorToInt((p.z - reach - g.origin.z) * g.invCell);
+        const std::int64_t rawZ1 = floorToInt((p.z + reach - g.origin.z) * g.invCell);
+        const std::int64_t rawY0 = floorToInt((p.y - reach - g.origin.y) * g.invCell);
+        const std::int64_t rawY1 = floorToInt((p.y + reach - g.origin.y) * g.invCell);
+        if (rawZ1 < 0 || rawZ0 >= g.nz || rawY1 < 0 || rawY0 >= g.ny) continue;
+        const std::int64_t z0 = std::max<std::int64_t>(rawZ0, 0), z1 = std::min(rawZ1, g.nz - 1);
+        const std::int64_t y0 = std::max<std::int64_t>(rawY0, 0), y1 = std::min(rawY1, g.ny - 1);
+        for (std::int64_t iz = z0; iz <= z1; ++iz) {
+            const double zLo = g.origin.z + static_cast<double>(iz) * g.cell;
+            const double dz = std::max({0.0, zLo - p.z, p.z - (zLo + g.cell)});
+            for (std::int64_t iy = y0; iy <= y1; ++iy) {
+                const double yLo = g.origin.y + static_cast<double>(iy) * g.cell;
+                const double dy = std::max({0.0, yLo - p.y, p.y - (yLo + g.cell)});
+                const double rest = reach2 - dy * dy - dz * dz;
+                if (rest < 0.0) continue;
+                // The row's cells that the support sphere reaches.
+                const double half = std::sqrt(rest);
+                const std::int64_t rawX0 = floorToInt((p.x - half - g.origin.x) * g.invCell);
+                const std::int64_t rawX1 = floorToInt((p.x + half - g.origin.x) * g.invCell);
+                if (rawX1 < 0 || rawX0 >= g.nx) continue;
+                const std::int64_t x0 = std::max<std::int64_t>(rawX0, 0);
+                const std::int64_t x1 = std::min(rawX1, g.nx - 1);
+                const auto first = static_cast<std::size_t>(g.cellIndex(x0, iy, iz));
+                const auto last = static_cast<std::size_t>(g.cellIndex(x1, iy, iz));
+                visit(g, g.cellStart[first], g.cellStart[last + 1]);
+            }
+        }
+    }
+}
+
+}  // namespace twinrender::core

@@ -1,0 +1,25 @@
+// The impostor sphere's radius per particle (realtime.particles.radius). "fixed" draws every
+// particle as a sphere of radius_scale * h: right for particles inside a body, whose level set
+// lies about 0.9 h beyond the outermost layer, but an isolated particle's level-set droplet is
+// only about 0.13 h across (v W(r, h) = 0.13 with OpenSPH's volume cap), so sparse particles
+// show as balls seven times too large. "field" takes the distance from the particle's centre
+// along its outward normal to the level set c(x) = surface_level of the colour field
+// (core/colour_field.h), capped at radius_scale * h, and 0 where the field at the centre is
+// already below the level (no surface there: the particle is not drawn).
+#pragma once
+
+#include <vector>
+
+#include "core/particles.h"
+#include "realtime/settings.h"
+
+namespace twinrender::realtime {
+
+// radiusScale * h for each particle of the set.
+std::vector<float> fixedRadii(const core::ParticleSet& particles, double radiusScale);
+
+// One radius per particle of the set, scene units.
+std::vector<float> impostorRadii(const core::ParticleSet& particles,
+                                 const ParticleSettings& settings);
+
+}  // namespace twinrender::realtime
