@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 
 #include <memory>
+#include <numbers>
 #include <stdexcept>
+
+#include "core/sph_kernel.h"
 
 namespace twinrender::realtime {
 
@@ -29,8 +32,7 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
                             ps.body[i], ps.material[i]));
         const glm::dvec3 relative = glm::dvec3(ps.position[i]) - camera;
         GpuParticle& g = out[k];
-        g.positionRadius =
-            glm::vec4(glm::vec3(relative), radii[i]);
+        g.positionRadius = glm::vec4(glm::vec3(relative), radii[i]);
         g.normalU = glm::vec4(ps.normal[i], ps.uv[i].x);
         g.dudxV = glm::vec4(ps.dudx[i], ps.uv[i].y);
         g.dvdxBody = glm::vec4(ps.dvdx[i], static_cast<float>(ps.body[i]));
@@ -41,6 +43,19 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
             g.hessianDiagonal = glm::vec4(f.diagonal, 0.0f);
             g.hessianOffDiagonal = glm::vec4(f.offDiagonal, 0.0f);
         }
+    }
+    return out;
+}
+
+std::vector<GpuKernel> packKernels(const core::ParticleSet& ps, const glm::dvec3& camera) {
+    std::vector<GpuKernel> out(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        const double h = ps.h[i];
+        out[i].positionSupport = glm::vec4(glm::vec3(glm::dvec3(ps.position[i]) - camera),
+                                           static_cast<float>(core::M4_SUPPORT * h));
+        out[i].coefficients =
+            glm::vec4(static_cast<float>(ps.volume[i] / (std::numbers::pi * h * h * h * h)),
+                      static_cast<float>(1.0 / h), 0.0f, 0.0f);
     }
     return out;
 }

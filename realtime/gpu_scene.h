@@ -38,6 +38,17 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& particles,
                                        std::span<const std::uint32_t> indices = {},
                                        std::span<const FieldNormal> fieldNormals = {});
 
+// shaders/kernels.glsl, struct Kernel (std430): a particle's share of the colour field.
+struct GpuKernel {
+    glm::vec4 positionSupport;  // position - camera position (computed in double); 2 h
+    glm::vec4 coefficients;     // v / (pi h^4), 1 / h, 0, 0
+};
+static_assert(sizeof(GpuKernel) == 32);
+
+// Every particle of the set, in order.
+std::vector<GpuKernel> packKernels(const core::ParticleSet& particles,
+                                   const glm::dvec3& cameraPosition);
+
 // shaders/textures.glsl, struct MaterialRecord (std430).
 struct GpuMaterial {
     glm::ivec4 diffuse;  // x: first texel (RGB triple) in the texel array, y: width, z: height

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <glm/geometric.hpp>
 
 #include "core/colour_field.h"
@@ -59,7 +60,8 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
                                   const double t = 0.5 * (inside + outside);
                                   (field.value(centre + t * normal) > level ? inside : outside) = t;
                               }
-                              radii[i] = static_cast<float>(0.5 * (inside + outside));
+                              radii[i] = static_cast<float>(std::min(
+                                  maxRadius, settings.crossingScale * 0.5 * (inside + outside)));
                           }
                       });
     return radii;

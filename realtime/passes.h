@@ -49,6 +49,13 @@ struct GBuffer {
 GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int width, int height,
                        DepthMode mode);
 
+// gradient (realtime.particles.normal = "gradient"): the G-buffer's normal + uv with the normal
+// replaced by the colour field's exact gradient direction at each covered pixel's surface point,
+// summed over `kernels` (GpuKernel[], every particle of the set).
+gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& scene,
+                                  const gl::Buffer& kernels, std::size_t kernelCount,
+                                  const GBuffer& gbuffer, DepthMode mode);
+
 // Full-screen passes that only need covered pixels (ssss, shade) draw with this state and put
 // fullscreen.vert's triangle at coveredOnlyDepth(): the G-buffer's depth attachment then
 // rejects background pixels before their fragment shader runs.
@@ -66,8 +73,10 @@ struct SmoothedSurface {
         return emission[current].id() ? emission[current] : g.emission;
     }
 };
+// `normalUv`: the normal + uv to smooth (the G-buffer's, or the gradient pass's).
 SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
-                            const SsssSettings& settings, bool emission, DepthMode mode);
+                            const gl::Texture& normalUv, const SsssSettings& settings,
+                            bool emission, DepthMode mode);
 
 // shade: beauty (rgb) and light visibility (a). `shadowMap` may be null (no map).
 struct ShadeInputs {

@@ -173,8 +173,8 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     frame.device = m.context.renderer();
     frame.settings = toJson(settings);
     frame.particleCount = particles.particles.size();
-    for (const char* stage :
-         {"radius", "cull", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
+    for (const char* stage : {"radius", "cull", "upload", "shadow", "gbuffer", "normals", "ssss",
+                              "shade", "post", "readback"})
         frame.timingsMs[stage] = 0.0;
 
     // Whether anything emits: otherwise the emission buffer is zero and SSSS leaves it alone.
@@ -258,6 +258,13 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
                                                gl::BufferFormat::RGB32F),
                          gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
                          gpuParticles.size()};
+    const bool gradientNormals = settings.particles.normal == NormalModel::Gradient;
+    std::optional<gl::Buffer> kernels;
+    if (gradientNormals) {
+        const std::vector<GpuKernel> packed =
+            packKernels(particles.particles, scene.camera.position);
+        kernels.emplace(gl::Buffer::of(std::span<const GpuKernel>(packed)));
+    }
     gl::checkErrors("upload");
     gl::finish();
     frame.timingsMs["upload"] =
@@ -295,15 +302,24 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     pass("gbuffer",
          [&] { gbuffer.emplace(runGBufferPass(m.programs, buffers, w, h, settings.depth)); });
 
+    std::optional<gl::Texture> gradientNormalUv;
+    if (gradientNormals && !particles.particles.position.empty())
+        pass("normals", [&] {
+            gradientNormalUv.emplace(runGradientNormalPass(m.programs, buffers, *kernels,
+                                                           particles.particles.size(), *gbuffer,
+                                                           settings.depth));
+        });
+    const gl::Texture& surfaceNormalUv = gradientNormalUv ? *gradientNormalUv : gbuffer->normalUv;
+
     std::optional<SmoothedSurface> smoothed;
     if (usesSsss(settings.ssss))
         pass("ssss", [&] {
-            smoothed.emplace(
-                runSsssPass(m.programs, *gbuffer, settings.ssss, emits, settings.depth));
+            smoothed.emplace(runSsssPass(m.programs, *gbuffer, surfaceNormalUv, settings.ssss,
+                                         emits, settings.depth));
         });
 
     ShadeInputs shadeInputs;
-    shadeInputs.normalUv = smoothed ? &smoothed->resultNormalUv() : &gbuffer->normalUv;
+    shadeInputs.normalUv = smoothed ? &smoothed->resultNormalUv() : &surfaceNormalUv;
     shadeInputs.emissionBuffer =
         smoothed ? &smoothed->resultEmission(*gbuffer) : &gbuffer->emission;
     shadeInputs.emission = emits;

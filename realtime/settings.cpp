@@ -46,7 +46,15 @@ std::string_view toString(ShadowMode mode) {
 }
 
 std::string_view toString(NormalModel model) {
-    return model == NormalModel::Blend ? "blend" : "field";
+    switch (model) {
+        case NormalModel::Blend:
+            return "blend";
+        case NormalModel::Gradient:
+            return "gradient";
+        case NormalModel::Field:
+            break;
+    }
+    return "field";
 }
 
 std::string_view toString(RadiusModel model) {
@@ -66,13 +74,16 @@ Settings parseSettings(const core::ParameterTable& t) {
                                    {"field", "fixed"}) == "fixed"
                              ? RadiusModel::Fixed
                              : RadiusModel::Field;
+    s.particles.crossingScale =
+        t.getDouble("particles.crossing_scale", d.particles.crossingScale, 1.0, 4.0);
     s.particles.surfaceLevel =
         t.getDouble("particles.surface_level", d.particles.surfaceLevel, 1e-6, 1e6);
-    s.particles.normal =
+    const std::string normal =
         t.getEnum("particles.normal", std::string(toString(d.particles.normal)),
-                  {"field", "blend"}) == "blend"
-            ? NormalModel::Blend
-            : NormalModel::Field;
+                  {"field", "blend", "gradient"});
+    s.particles.normal = normal == "blend"      ? NormalModel::Blend
+                         : normal == "gradient" ? NormalModel::Gradient
+                                                : NormalModel::Field;
     s.particles.sphereNormalWeight =
         t.getDouble("particles.sphere_normal_weight", d.particles.sphereNormalWeight, 0.0, 1.0);
     s.particles.cullHidden = t.getBool("particles.cull_hidden", d.particles.cullHidden);
@@ -105,6 +116,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.radius_scale", s.particles.radiusScale},
         {"realtime.particles.radius", toString(s.particles.radius)},
         {"realtime.particles.surface_level", s.particles.surfaceLevel},
+        {"realtime.particles.crossing_scale", s.particles.crossingScale},
         {"realtime.particles.normal", toString(s.particles.normal)},
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},

@@ -9,7 +9,8 @@
 namespace twinrender::realtime {
 
 SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
-                            const SsssSettings& settings, bool emission, DepthMode mode) {
+                            const gl::Texture& normalUv, const SsssSettings& settings,
+                            bool emission, DepthMode mode) {
     const int w = gbuffer.surface.width(), h = gbuffer.surface.height();
     SmoothedSurface s;
     std::optional<gl::Framebuffer> targets[2];
@@ -38,7 +39,7 @@ SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
     gl::setPipelineState(coveredOnlyState(mode));
     gbuffer.surface.bind(2);
 
-    const gl::Texture* sourceNormalUv = &gbuffer.normalUv;
+    const gl::Texture* sourceNormalUv = &normalUv;
     const gl::Texture* sourceEmission = &gbuffer.emission;
     int target = 0;
     auto step = [&](glm::vec2 direction) {

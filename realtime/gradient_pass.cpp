@@ -1,0 +1,39 @@
+// realtime.particles.normal = "gradient": every particle's kernel gradient added at the surface
+// points of the G-buffer (shaders/support.vert, shaders/gradient_splat.frag), then turned into
+// the normal (shaders/gradient_resolve.frag).
+#include "realtime/gl/pipeline.h"
+#include "realtime/passes.h"
+
+namespace twinrender::realtime {
+
+gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& scene,
+                                  const gl::Buffer& kernels, std::size_t kernelCount,
+                                  const GBuffer& gbuffer, DepthMode mode) {
+    const int w = gbuffer.surface.width(), h = gbuffer.surface.height();
+    gl::Texture gradient(w, h, gl::Format::RGBA32F);
+    {
+        gl::Framebuffer target("gradient splat", {{&gradient}});
+        target.bind();
+        target.clearColor(0, glm::vec4(0.0f));
+        gl::setPipelineState({.depthClamp = true, .additiveBlend = true});
+        programs.get("support.vert", "gradient_splat.frag", {}).use();
+        scene.bind();
+        kernels.bindStorage(3);
+        gbuffer.surface.bind(0);
+        gl::drawTriangles(static_cast<int>(6 * kernelCount));
+    }
+    gl::Texture normalUv(w, h, gl::Format::RGBA32F);
+    gl::Framebuffer target("gradient resolve", {{&normalUv}}, gl::Attachment{&gbuffer.depth});
+    target.bind();
+    gl::setPipelineState(coveredOnlyState(mode));
+    const gl::Program& resolve = programs.get("fullscreen.vert", "gradient_resolve.frag", {});
+    resolve.use();
+    resolve.set("uDepth", coveredOnlyDepth(mode));
+    gbuffer.normalUv.bind(0);
+    gradient.bind(1);
+    gl::drawFullscreenTriangle();
+    gl::setPipelineState({});
+    return normalUv;
+}
+
+}  // namespace twinrender::realtime
