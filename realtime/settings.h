@@ -63,7 +63,7 @@ struct ParticleSettings {
     // the centre) is one direction per particle, while the rendered surface turns across a
     // particle; "field" follows the field's gradient over the impostor to first order: mean
     // normal error on the planet 2.9 degrees without SSSS, against 5.4 for "blend" (README).
-    NormalModel normal = NormalModel::Field;
+    NormalModel normal = NormalModel::Gradient;
     // particles.sphere_normal_weight ("blend" only): the G-buffer normal is
     // normalize(mix(particle normal, impostor sphere normal, weight)), 0..1. At a surface point
     // the particle's own kernel adds a term along the sphere normal. 0.25 minimises the normal
