@@ -98,8 +98,10 @@ struct TestScene {
     }
 };
 
+// Spheres of radius_scale * h (the analytic cases below), no shadows, smoothing or bloom.
 Settings quiet() {
     Settings s;
+    s.particles.radius = RadiusModel::Fixed;
     s.shadows = ShadowMode::None;
     s.ssss.enabled = false;
     s.bloom.enabled = false;

@@ -70,7 +70,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.depth"), "reversed");
     EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
     EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
-    EXPECT_EQ(j.size(), 19u);
+    EXPECT_EQ(j.size(), 22u);
 }
 
 void expectError(const core::ParameterTable& t, const std::string& fragment) {

@@ -2,6 +2,7 @@
 // with the reference: each test runs `twinrender run` as a user would and reads the metrics
 // the run wrote. Bounds come from scenes/thresholds.toml unless a test names its own.
 #include <gtest/gtest.h>
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -60,13 +61,13 @@ TEST(Suite, TheDefaultScenesPassTheirThresholds) {
                                      out.string() + " --junit " + (out / "junit.xml").string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
     for (const char* f : {"index.html", "summary.json", "junit.xml", "ringworld/index.html",
-                          "ringworld/metrics.json", "ringworld/realtime.exr", "ringworld/raymarch.exr",
-                          "ringworld/error.beauty.png"})
+                          "ringworld/metrics.json", "ringworld/realtime.exr",
+                          "ringworld/raymarch.exr", "ringworld/error.beauty.png"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     std::ifstream in(out / "summary.json");
     const auto summary = nlohmann::json::parse(in);
     EXPECT_EQ(summary["status"], "pass");
-    EXPECT_EQ(summary["scenes"].size(), 6u);
+    EXPECT_EQ(summary["scenes"].size(), 8u);
 }
 
 TEST(Suite, LogDepthKeepsTheTelescopeInOrderWhereStandardDoesNot) {
@@ -75,7 +76,8 @@ TEST(Suite, LogDepthKeepsTheTelescopeInOrderWhereStandardDoesNot) {
     // rock's rims) and depths agree; with standard depth over far/near = 1e10 the far planet
     // and moon are lost (coverage IoU measured 0.23).
     const auto log = run("telescope_log", SCENES + "telescope.toml --set realtime.depth=log");
-    const auto standard = run("telescope_std", SCENES + "telescope.toml --set realtime.depth=standard");
+    const auto standard =
+        run("telescope_std", SCENES + "telescope.toml --set realtime.depth=standard");
     EXPECT_LT(metric(log, "telescope", "id.mismatch"), 0.01);
     EXPECT_GT(metric(log, "telescope", "coverage.iou"), 0.95);
     EXPECT_LT(metric(log, "telescope", "depth.rel_mean"), 0.01);
@@ -95,8 +97,9 @@ TEST(Suite, SmoothingBringsNormalsCloserToTheExactSurface) {
     // G-buffer leaves the blur less to remove, and blurring the exact field's normal would
     // make it worse, realtime/README.md). The former one-normal-per-particle "blend" gave 3.55
     // with SSSS and 5.37 without (34 %).
-    const std::string sphere = " --set realtime.particles.normal=blend"
-                               " --set realtime.particles.sphere_normal_weight=1";
+    const std::string sphere =
+        " --set realtime.particles.normal=blend"
+        " --set realtime.particles.sphere_normal_weight=1";
     const auto sphereOn = run("sphere_on", SCENES + "planet.toml" + sphere);
     const auto sphereOff =
         run("sphere_off", SCENES + "planet.toml --set realtime.ssss.enabled=false" + sphere);
@@ -105,10 +108,13 @@ TEST(Suite, SmoothingBringsNormalsCloserToTheExactSurface) {
     EXPECT_LE(sphereNormalOn, 0.6 * sphereNormalOff) << sphereNormalOn << " vs " << sphereNormalOff;
     EXPECT_GE(metric(sphereOn, "planet", "coverage.iou"), 0.95);
 
-    const auto on = run("ssss_on", SCENES + "planet.toml");
-    const auto off = run("ssss_off", SCENES + "planet.toml --set realtime.ssss.enabled=false");
-    const auto blendOff = run("blend_off", SCENES + "planet.toml --set realtime.ssss.enabled=false"
-                                           " --set realtime.particles.normal=blend");
+    const std::string field = " --set realtime.particles.normal=field";
+    const auto on = run("ssss_on", SCENES + "planet.toml" + field);
+    const auto off =
+        run("ssss_off", SCENES + "planet.toml --set realtime.ssss.enabled=false" + field);
+    const auto blendOff = run("blend_off", SCENES +
+                                               "planet.toml --set realtime.ssss.enabled=false"
+                                               " --set realtime.particles.normal=blend");
     const double normalOn = metric(on, "planet", "normal.mean_deg");
     const double normalOff = metric(off, "planet", "normal.mean_deg");
     EXPECT_LT(normalOn, 0.85 * normalOff) << normalOn << " vs " << normalOff;
@@ -123,12 +129,34 @@ TEST(Suite, SmoothingBringsNormalsCloserToTheExactSurface) {
     EXPECT_TRUE(failedMetrics(off, "planet").count("smoothness.ratio"));
 }
 
+TEST(Suite, FieldRadiiAndGradientNormalsFollowRealDisorderedParticles) {
+    // The LAMMPS splash (frame 20): the former fixed spheres of 0.9 h and the first-order
+    // field normal measured coverage IoU 0.59, normal error 25.5 degrees, FLIP 0.30; field
+    // radii alone 0.93 / 13.8 / 0.088; with the exact gradient normal 0.93 / 7.0 / 0.066.
+    const std::string scene = SCENES + "splash_sheet.toml";
+    const auto fixed = run("splash_fixed", scene +
+                                               " --set realtime.particles.radius=fixed"
+                                               " --set realtime.particles.normal=field");
+    const auto radii = run("splash_radii", scene + " --set realtime.particles.normal=field");
+    const auto exact = run("splash_exact", scene);
+    EXPECT_LT(metric(fixed, "splash_sheet", "coverage.iou"), 0.7);
+    EXPECT_GT(metric(radii, "splash_sheet", "coverage.iou"), 0.92);
+    EXPECT_GT(metric(fixed, "splash_sheet", "normal.mean_deg"), 20.0);
+    EXPECT_LT(metric(radii, "splash_sheet", "normal.mean_deg"), 16.0);
+    EXPECT_LT(metric(exact, "splash_sheet", "normal.mean_deg"), 8.5);
+    EXPECT_GT(metric(fixed, "splash_sheet", "beauty.flip"), 0.2);
+    EXPECT_LT(metric(exact, "splash_sheet", "beauty.flip"), 0.1);
+    EXPECT_EQ(exact.exitCode, 0) << exact.output;
+    EXPECT_EQ(fixed.exitCode, 2) << fixed.output;
+}
+
 TEST(Suite, TheRingShadowLandsWhereTheShadowRaysPutIt) {
     // Shadow map against the raymarcher's shadow rays: measured IoU 0.90, false shadow 0.6 %;
     // the occlusion-sphere baseline misses the ring's shadow (IoU 0.12, missed 14 %), and so
     // does rendering without shadows.
     const auto map = run("ring_map", SCENES + "ringworld.toml");
-    const auto spheres = run("ring_spheres", SCENES + "ringworld.toml --set realtime.shadows=spheres");
+    const auto spheres =
+        run("ring_spheres", SCENES + "ringworld.toml --set realtime.shadows=spheres");
     const auto none = run("ring_none", SCENES + "ringworld.toml --set realtime.shadows=none");
     EXPECT_GE(metric(map, "ringworld", "shadow.iou"), 0.85);
     EXPECT_LT(metric(map, "ringworld", "shadow.false_shadow"), 0.02);
@@ -145,22 +173,27 @@ TEST(Suite, TheRingShadowLandsWhereTheShadowRaysPutIt) {
 
 TEST(Suite, ABaselineCatchesARegressionInsideTheBounds) {
     const fs::path out = tt::freshDir("suite_bless");
-    const auto first = tt::runTwinrender("run " + SCENES + "planet.toml --out " + (out / "a").string());
+    const auto first =
+        tt::runTwinrender("run " + SCENES + "planet.toml --out " + (out / "a").string());
     ASSERT_EQ(first.exitCode, 0) << first.output;
-    const auto bless = tt::runTwinrender("bless " + (out / "a").string() + " --out " + (out / "baseline.json").string());
+    const auto bless = tt::runTwinrender("bless " + (out / "a").string() + " --out " +
+                                         (out / "baseline.json").string());
     ASSERT_EQ(bless.exitCode, 0) << bless.output;
     // The same run again: deterministic renders reproduce the blessed metrics.
-    const auto same = run("bless_same", SCENES + "planet.toml --baseline " + (out / "baseline.json").string());
+    const auto same =
+        run("bless_same", SCENES + "planet.toml --baseline " + (out / "baseline.json").string());
     EXPECT_EQ(same.exitCode, 0) << same.output;
     // A larger blur: still inside every absolute bound (normal error 2.82 degrees against a
     // bound of 3.5), but worse than the baseline (2.31).
-    const auto worse = run("bless_worse", SCENES + "planet.toml --set realtime.ssss.radius_scale=0.8 --baseline " +
-                                              (out / "baseline.json").string());
+    const auto worse =
+        run("bless_worse", SCENES + "planet.toml --set realtime.ssss.radius_scale=0.8 --baseline " +
+                               (out / "baseline.json").string());
     EXPECT_EQ(worse.exitCode, 2) << worse.output;
     bool namedTheChange = false;
     for (const auto& s : worse.summary["scenes"])
         for (const auto& c : s["checks"])
-            if (c["bound"] == "baseline" && c["status"] == "fail" && c["metric"] == "normal.mean_deg")
+            if (c["bound"] == "baseline" && c["status"] == "fail" &&
+                c["metric"] == "normal.mean_deg")
                 namedTheChange = true;
     EXPECT_TRUE(namedTheChange) << worse.output;
     EXPECT_NE(worse.output.find("realtime.ssss.radius_scale"), std::string::npos) << worse.output;
@@ -169,9 +202,9 @@ TEST(Suite, ABaselineCatchesARegressionInsideTheBounds) {
 TEST(Suite, NoOpenGlIsExitFourWithWhatWasTried) {
     // The EGL vendor files hidden: no display can be opened.
     const fs::path empty = tt::freshDir("no_egl_vendors");
-    const auto r = tt::runTwinrender("render " + SCENES + "planet.toml --renderer realtime --out " +
-                                     (empty / "out").string(),
-                                     "__EGL_VENDOR_LIBRARY_DIRS=" + empty.string());
+    const auto r = tt::runTwinrender(
+        "render " + SCENES + "planet.toml --renderer realtime --out " + (empty / "out").string(),
+        "__EGL_VENDOR_LIBRARY_DIRS=" + empty.string());
     EXPECT_EQ(r.exitCode, 4) << r.output;
     EXPECT_NE(r.output.find("libegl-mesa0"), std::string::npos) << r.output;
     EXPECT_EQ(tt::countFiles(empty / "out"), 0u);
@@ -180,27 +213,31 @@ TEST(Suite, NoOpenGlIsExitFourWithWhatWasTried) {
 TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
     const fs::path dir = tt::freshDir("compare_command");
     // Two renders of the planet: the reference and the real-time one.
-    ASSERT_EQ(tt::runTwinrender("render " + SCENES + "planet.toml --renderer both --out " + dir.string() +
-                                " --set camera.width=96 --set camera.height=72")
+    ASSERT_EQ(tt::runTwinrender("render " + SCENES + "planet.toml --renderer both --out " +
+                                dir.string() + " --set camera.width=96 --set camera.height=72")
                   .exitCode,
               0);
     const std::string ref = (dir / "planet" / "raymarch.exr").string();
     const std::string test = (dir / "planet" / "realtime.exr").string();
-    const auto all = tt::runTwinrender("compare " + ref + " " + test + " --out " + (dir / "c1").string());
+    const auto all =
+        tt::runTwinrender("compare " + ref + " " + test + " --out " + (dir / "c1").string());
     EXPECT_EQ(all.exitCode, 0) << all.output;
     EXPECT_NE(all.output.find("normal.mean_deg"), std::string::npos) << all.output;
     EXPECT_TRUE(fs::exists(dir / "c1" / "metrics.json"));
     EXPECT_TRUE(fs::exists(dir / "c1" / "error.beauty.png"));
     // Plain images: the beauty metrics only, and a bound that fails.
-    tt::writeFile(dir / "strict.toml", "\"beauty.flip\" = { max = 0.001 }\n\"normal.mean_deg\" = { max = 1.0 }\n");
-    const auto png = tt::runTwinrender("compare " + (dir / "planet" / "raymarch.png").string() + " " +
-                                       (dir / "planet" / "realtime.png").string() + " --thresholds " +
-                                       (dir / "strict.toml").string() + " --out " + (dir / "c2").string());
+    tt::writeFile(dir / "strict.toml",
+                  "\"beauty.flip\" = { max = 0.001 }\n\"normal.mean_deg\" = { max = 1.0 }\n");
+    const auto png =
+        tt::runTwinrender("compare " + (dir / "planet" / "raymarch.png").string() + " " +
+                          (dir / "planet" / "realtime.png").string() + " --thresholds " +
+                          (dir / "strict.toml").string() + " --out " + (dir / "c2").string());
     EXPECT_EQ(png.exitCode, 2) << png.output;
     EXPECT_EQ(png.output.find("normal.mean_deg"), std::string::npos) << png.output;
     // Not comparable (an EXR against a PNG of another size), unreadable.
-    const auto sizes = tt::runTwinrender("compare " + ref + " " + (dir / "c1" / "error.beauty.png").string() +
-                                         " --out " + (dir / "c3").string());
+    const auto sizes =
+        tt::runTwinrender("compare " + ref + " " + (dir / "c1" / "error.beauty.png").string() +
+                          " --out " + (dir / "c3").string());
     EXPECT_EQ(sizes.exitCode, 3) << sizes.output;
     const auto missing = tt::runTwinrender("compare " + ref + " /nonexistent.exr");
     EXPECT_EQ(missing.exitCode, 4) << missing.output;
