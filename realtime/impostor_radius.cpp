@@ -13,10 +13,32 @@ namespace twinrender::realtime {
 namespace {
 
 // Samples along the normal before the bisection: a crossing between two samples is found
-// unless the field dips below the level and back within one step (radius_scale * h / 8).
+// unless the field dips below the level and back within one step (maxRadius / 8), or, for a
+// particle whose field is above the level at the cap and halfway there, within half the cap.
 constexpr int SCAN_STEPS = 8;
-// Bisection steps: the radius to (radius_scale * h / 8) / 2^10, about 1e-4 h.
+// Bisection steps: the crossing to (maxRadius / 8) / 2^10, about 1e-4 h.
 constexpr int BISECTION_STEPS = 10;
+
+// The distance from `centre` along `normal` (unit) to where the field first falls to `level`,
+// at most maxRadius; 0 where the field at the centre is not above the level.
+double crossingDistance(const core::ColourField& field, const glm::dvec3& centre,
+                        const glm::dvec3& normal, double maxRadius, double level) {
+    auto above = [&](double t) { return field.value(centre + t * normal) > level; };
+    if (!above(0.0)) return 0.0;
+    // Particles inside a body (most of them) are settled by two samples.
+    if (above(maxRadius) && above(0.5 * maxRadius)) return maxRadius;
+    double inside = 0.0, outside = -1.0;
+    for (int k = 1; k <= SCAN_STEPS && outside < 0.0; ++k) {
+        const double t = maxRadius * k / SCAN_STEPS;
+        (above(t) ? inside : outside) = t;
+    }
+    if (outside < 0.0) return maxRadius;
+    for (int k = 0; k < BISECTION_STEPS; ++k) {
+        const double t = 0.5 * (inside + outside);
+        (above(t) ? inside : outside) = t;
+    }
+    return 0.5 * (inside + outside);
+}
 
 }  // namespace
 
@@ -31,39 +53,18 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
     if (settings.radius == RadiusModel::Fixed) return fixedRadii(ps, settings.radiusScale);
     std::vector<float> radii(ps.size());
     const core::ColourField field(ps);
-    const double level = settings.surfaceLevel;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ps.size(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                              const glm::dvec3 centre(ps.position[i]);
-                              const glm::dvec3 normal = glm::normalize(glm::dvec3(ps.normal[i]));
-                              const double maxRadius = settings.radiusScale * ps.h[i];
-                              if (!(field.value(centre) > level)) {
-                                  radii[i] = 0.0f;
-                                  continue;
-                              }
-                              double inside = 0.0, outside = -1.0;
-                              for (int k = 1; k <= SCAN_STEPS; ++k) {
-                                  const double t = maxRadius * k / SCAN_STEPS;
-                                  if (field.value(centre + t * normal) > level) {
-                                      inside = t;
-                                  } else {
-                                      outside = t;
-                                      break;
-                                  }
-                              }
-                              if (outside < 0.0) {
-                                  radii[i] = static_cast<float>(maxRadius);
-                                  continue;
-                              }
-                              for (int k = 0; k < BISECTION_STEPS; ++k) {
-                                  const double t = 0.5 * (inside + outside);
-                                  (field.value(centre + t * normal) > level ? inside : outside) = t;
-                              }
-                              radii[i] = static_cast<float>(std::min(
-                                  maxRadius, settings.crossingScale * 0.5 * (inside + outside)));
-                          }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, ps.size(), 256),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const double maxRadius = settings.radiusScale * ps.h[i];
+                const double crossing = crossingDistance(field, glm::dvec3(ps.position[i]),
+                                                         glm::normalize(glm::dvec3(ps.normal[i])),
+                                                         maxRadius, settings.surfaceLevel);
+                radii[i] =
+                    static_cast<float>(std::min(maxRadius, settings.crossingScale * crossing));
+            }
+        });
     return radii;
 }
 
