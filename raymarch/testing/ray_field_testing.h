@@ -1,19 +1,56 @@
-// Test helpers for the ray field (ray_field.h): fields built in double from particles given
-// one at a time (no bundle gather, no particle batch), and the analytic radius of one
-// particle's level set.
+// Test helpers for the ray field (ray_field.h): fields built from a particle set as the
+// renderer builds them, fields built in double from particles given one at a time (no
+// bundle gather, no particle batch), the field summed in double, and the analytic radius of
+// one particle's level set.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
-#include <glm/vec3.hpp>
+#include <glm/geometric.hpp>
 #include <numbers>
+#include <numeric>
 #include <vector>
 
+#include "core/particles.h"
 #include "core/sph_kernel.h"
 #include "raymarch/field_sample.h"
+#include "raymarch/hit_attributes.h"
+#include "raymarch/particle_batch.h"
 #include "raymarch/ray_field.h"
 
 namespace twinrender::raymarch::testing {
+
+// Twenty particles of several sizes scattered around the x axis over x in [0, 6].
+inline core::ParticleSet particlesAroundXAxis() {
+    core::ParticleSet ps;
+    ps.resize(20);
+    for (int i = 0; i < 20; ++i) {
+        ps.position[i] = {0.3f * i, 0.5f * std::sin(1.7f * i), 0.4f * std::cos(0.9f * i)};
+        ps.h[i] = 0.4f + 0.05f * (i % 4);
+        ps.volume[i] = 0.02f + 0.001f * i;
+    }
+    return ps;
+}
+
+// The field of the ray origin + t direction on [tMin, tMax] as the renderer builds it: every
+// particle of `ps` in one batch, in order (with their attributes when given).
+inline void buildField(RayField& field, ParticleBatch& batch, const core::ParticleSet& ps,
+                       const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
+                       double tMax, const std::vector<HitAttributes>* attributes = nullptr) {
+    std::vector<std::uint32_t> prims(ps.size());
+    std::iota(prims.begin(), prims.end(), 0u);
+    batch.assign(prims, makeFieldParticles(ps), attributes ? attributes->data() : nullptr);
+    field.build(origin, direction, tMin, tMax, batch);
+}
+
+// phi(p) summed in double over every particle of `ps`.
+inline double fieldInDouble(const core::ParticleSet& ps, const glm::dvec3& p) {
+    double phi = 0.0;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+        phi += ps.volume[i] *
+               core::m4Kernel(glm::length(p - glm::dvec3(ps.position[i])), double(ps.h[i]));
+    return phi;
+}
 
 // One particle along a ray, in double.
 struct Candidate {
