@@ -1,6 +1,5 @@
 // twinrender: renders a particle scene with a real-time renderer and a reference raymarcher
-// and measures how far the first is from the second. Exit codes (DESIGN.md): 0 pass,
-// 1 warn, 2 fail, 3 images not comparable, 4 bad input or environment.
+// and measures how far the first is from the second. Exit codes: app/exit_code.h.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -11,6 +10,7 @@
 #include <tbb/task_arena.h>
 #include <unistd.h>
 
+#include "app/exit_code.h"
 #include "app/render_job.h"
 #include "app/shard.h"
 #include "app/study_command.h"
@@ -20,11 +20,10 @@
 #include "realtime/gl/context.h"
 
 namespace tr = twinrender;
+using tr::app::ExitCode;
+using tr::app::exitStatus;
 
 namespace {
-
-constexpr int EXIT_NOT_COMPARABLE = 3;
-constexpr int EXIT_BAD_INPUT = 4;
 
 struct CommonOptions {
     std::vector<std::string> sets;
@@ -61,7 +60,8 @@ void printRender(const tr::app::LoadedScene& s, const tr::app::Render& r, const 
                     unresolved->second, f.renderer.c_str());
 }
 
-int runRender(const std::string& scenePath, const std::string& renderer, const CommonOptions& o) {
+ExitCode runRender(const std::string& scenePath, const std::string& renderer,
+                   const CommonOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
     auto loaded = tr::app::loadScene(scenePath, o.sets);
     const std::filesystem::path dir = std::filesystem::path(o.out) / loaded.scene.name;
@@ -82,7 +82,7 @@ int runRender(const std::string& scenePath, const std::string& renderer, const C
         tr::app::writeRender(loaded, r, dir);
         printRender(loaded, r, dir);
     }
-    return 0;
+    return ExitCode::Pass;
 }
 
 }  // namespace
@@ -175,8 +175,8 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int rc = app.exit(e);
-        return rc == 0 ? 0 : EXIT_BAD_INPUT;
+        const int rc = app.exit(e);  // 0 after --help
+        return exitStatus(rc == 0 ? ExitCode::Pass : ExitCode::BadInput);
     }
 
     try {
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
         for (int i = 0; i < argc; ++i) commandLine += (i ? " " : "") + std::string(argv[i]);
         const int threads = requested > 0 ? requested : tbb::this_task_arena::max_concurrency();
         tbb::task_arena arena(threads);
-        int rc = 0;
+        ExitCode rc = ExitCode::Pass;
         arena.execute([&] {
             if (*render) rc = runRender(scenePath, rendererName, renderOpts);
             if (*compareCmd) rc = tr::app::runCompare(compareOpts);
@@ -234,15 +234,15 @@ int main(int argc, char** argv) {
                 rc = tr::app::runMerge(mergeOpts);
             }
         });
-        return rc;
+        return exitStatus(rc);
     } catch (const tr::core::InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
-        return EXIT_BAD_INPUT;
+        return exitStatus(ExitCode::BadInput);
     } catch (const tr::core::NotComparableError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
-        return EXIT_NOT_COMPARABLE;
+        return exitStatus(ExitCode::NotComparable);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
-        return EXIT_BAD_INPUT;
+        return exitStatus(ExitCode::BadInput);
     }
 }

@@ -86,7 +86,7 @@ void copyTree(const fs::path& from, const fs::path& to) {
 
 namespace {
 
-int mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
              const fs::path& out, const std::string& commandLine) {
     const json& first = manifests.front();
     const auto order = first.at("scenes").get<std::vector<std::string>>();
@@ -125,10 +125,10 @@ int mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifes
     if (first.value("junit", false)) compare::writeJunit(run, out / "junit.xml");
     std::printf("merged %zu shards, %zu scenes: %s -> %s\n", dirs.size(), run.scenes.size(),
                 std::string(compare::toString(run.status())).c_str(), (out / "index.html").c_str());
-    return static_cast<int>(run.status());
+    return exitCodeOf(run.status());
 }
 
-int mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
                const fs::path& out, const std::string& commandLine) {
     const std::size_t total = manifests.front().at("combinations").get<std::size_t>();
     std::optional<compare::SweepReport> merged;
@@ -175,12 +175,12 @@ int mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& manif
     compare::writeSweepReport(*merged, out);
     std::printf("merged %zu shards, %zu combinations -> %s, %s\n", dirs.size(), merged->rows.size(),
                 (out / "sweep.csv").c_str(), (out / "index.html").c_str());
-    return anyError ? 2 : 0;
+    return anyError ? ExitCode::Fail : ExitCode::Pass;
 }
 
 }  // namespace
 
-int runMerge(const MergeOptions& o) {
+ExitCode runMerge(const MergeOptions& o) {
     if (o.inputs.empty()) throw core::InputError("merge: give the shard folders to merge");
     std::vector<fs::path> dirs;
     std::vector<json> manifests;

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "app/exit_code.h"
+
 namespace twinrender::app {
 
 struct Shard {
@@ -52,7 +54,7 @@ struct MergeOptions {
 };
 // Checks that the shards belong together (same command, the same N, every K once, equal
 // settings) and writes what one unsharded run writes. Returns the run's exit code (the
-// worst verdict) or, for sweeps, 0 (2 when a combination failed).
-int runMerge(const MergeOptions& options);
+// worst verdict) or, for sweeps, Pass (Fail when a combination failed).
+ExitCode runMerge(const MergeOptions& options);
 
 }  // namespace twinrender::app

@@ -53,7 +53,7 @@ struct Planned {
 
 }  // namespace
 
-int runStudies(const StudyOptions& o) {
+ExitCode runStudies(const StudyOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
     // ---- Everything is read and checked before the first render. ----
     std::vector<const StudyDef*> chosen;
@@ -212,7 +212,7 @@ int runStudies(const StudyOptions& o) {
     compare::writeStudiesIndex(results, out, nowUtc(), o.commandLine);
     std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies",
                 (out / "index.html").c_str());
-    return anyError ? 2 : 0;
+    return anyError ? ExitCode::Fail : ExitCode::Pass;
 }
 
 }  // namespace twinrender::app

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/exit_code.h"
+
 namespace twinrender::app {
 
 struct StudyOptions {
@@ -19,6 +21,6 @@ struct StudyOptions {
     std::string scenesDir;  // empty: scenes/studies of the working folder or the source tree
     std::string commandLine;
 };
-int runStudies(const StudyOptions& options);
+ExitCode runStudies(const StudyOptions& options);
 
 }  // namespace twinrender::app

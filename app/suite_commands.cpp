@@ -22,8 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-int exitCode(compare::Status s) { return static_cast<int>(s); }  // pass 0, warn 1, fail 2
-
 // The status of a metric's checks, for the terminal table.
 std::string statusOf(const std::vector<compare::Check>& checks, const std::string& metric) {
     compare::Status s = compare::Status::Pass;
@@ -76,7 +74,7 @@ fs::path defaultScenesDir() {
 
 }  // namespace
 
-int runCompare(const CompareOptions& o) {
+ExitCode runCompare(const CompareOptions& o) {
     const core::Image ref = core::readImage(o.reference);
     const core::Image test = core::readImage(o.test);
     compare::MetricSettings settings;
@@ -105,10 +103,10 @@ int runCompare(const CompareOptions& o) {
     const compare::Status status = report.status();
     std::printf("%s -> %s (%s)\n", o.test.c_str(), (out / "metrics.json").c_str(),
                 std::string(compare::toString(status)).c_str());
-    return exitCode(status);
+    return exitCodeOf(status);
 }
 
-int runSuite(const RunOptions& o) {
+ExitCode runSuite(const RunOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
     // Everything is read and checked before the first render.
     std::vector<std::string> inputs = o.inputs;
@@ -228,15 +226,15 @@ int runSuite(const RunOptions& o) {
     }
     const compare::Status status = run.status();
     std::printf("%s: %s\n", std::string(compare::toString(status)).c_str(), (out / "index.html").c_str());
-    return exitCode(status);
+    return exitCodeOf(status);
 }
 
-int runBless(const std::string& runDir, const std::string& out) {
+ExitCode runBless(const std::string& runDir, const std::string& out) {
     const compare::Baseline b = compare::blessRunDir(runDir);
     const fs::path file = out.empty() ? fs::path(runDir) / "baseline.json" : fs::path(out);
     compare::writeBaseline(b, file);
     std::printf("baseline of %zu scenes -> %s\n", b.scenes.size(), file.c_str());
-    return 0;
+    return ExitCode::Pass;
 }
 
 }  // namespace twinrender::app

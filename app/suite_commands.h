@@ -1,10 +1,12 @@
 // The commands that compare: `compare` (two images), `run` (the main job: every scene with
 // both renderers, compared, reported) and `bless` (a run's metrics as the baseline).
-// Each returns the exit code of DESIGN.md: 0 pass, 1 warn, 2 fail.
+// Each returns its verdict as an exit code (exit_code.h): pass, warn or fail.
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "app/exit_code.h"
 
 namespace twinrender::app {
 
@@ -15,7 +17,7 @@ struct CompareOptions {
     std::string thresholds;  // empty: no bounds, the verdict is pass
     double ppd = 67.0;       // ꟻLIP's pixels per degree
 };
-int runCompare(const CompareOptions& options);
+ExitCode runCompare(const CompareOptions& options);
 
 struct RunOptions {
     std::vector<std::string> inputs;  // scene files or folders of them; empty: scenes/
@@ -32,9 +34,9 @@ struct RunOptions {
     // the scenes: `run --studies`).
     bool linkStudies = false;
 };
-int runSuite(const RunOptions& options);
+ExitCode runSuite(const RunOptions& options);
 
 // Writes the baseline of RUN_DIR (its summary.json) to `out` (default RUN_DIR/baseline.json).
-int runBless(const std::string& runDir, const std::string& out);
+ExitCode runBless(const std::string& runDir, const std::string& out);
 
 }  // namespace twinrender::app

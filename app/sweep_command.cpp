@@ -119,7 +119,7 @@ std::vector<std::string> combination(
     return out;
 }
 
-int runSweep(const SweepOptions& o) {
+ExitCode runSweep(const SweepOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
     // ---- Everything is read and checked before the first render. ----
     std::vector<std::pair<std::string, std::vector<std::string>>> vary;
@@ -345,7 +345,7 @@ int runSweep(const SweepOptions& o) {
     }
     std::printf("%zu combinations -> %s, %s\n", report.rows.size(), (out / "sweep.csv").c_str(),
                 (out / "index.html").c_str());
-    return anyError ? 2 : 0;
+    return anyError ? ExitCode::Fail : ExitCode::Pass;
 }
 
 }  // namespace twinrender::app

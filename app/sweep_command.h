@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "app/exit_code.h"
+
 namespace twinrender::app {
 
 struct SweepOptions {
@@ -26,7 +28,7 @@ struct SweepOptions {
     std::string shard;  // "K/N"; empty: all
     std::string commandLine;
 };
-int runSweep(const SweepOptions& options);
+ExitCode runSweep(const SweepOptions& options);
 
 // "KEY=V1,V2,..." -> key and values. Commas inside [...] or quotes do not split (TOML arrays:
 // camera.position=[0,-4,1],[0,-8,1]). Throws core::InputError naming the argument.

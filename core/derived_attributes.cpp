@@ -51,11 +51,6 @@ inline float reciprocalSqrt(float x) {
     return y;
 }
 
-// max(x, 0), exactly, without a comparison (which keeps GCC from vectorising the loop).
-inline float positivePart(float x) {
-    return 0.5f * (x + std::abs(x));
-}
-
 // Partial sums of the gradient, one per lane, reduced once per particle in a fixed order.
 struct Lanes {
     float gx[LANES] = {}, gy[LANES] = {}, gz[LANES] = {}, sum[LANES] = {};
@@ -77,10 +72,7 @@ void accumulateRange(const ParticleGrid::Level& g, std::uint32_t begin, std::uin
             const float r2 = dx * dx + dy * dy + dz * dz + FLT_MIN;
             const float invR = reciprocalSqrt(r2);
             const float s = r2 * invR * g.invH[k];
-            // M4 w'(s) = 3 max(1-s,0)^2 - 0.75 max(2-s,0)^2 (= m4ShapeDerivative, sph_kernel.h).
-            const float a = positivePart(2.0f - s);
-            const float b = positivePart(1.0f - s);
-            const float dWdr = live * g.coef[k] * (3.0f * b * b - 0.75f * a * a);
+            const float dWdr = live * g.coef[k] * m4ShapeDerivativeBranchFree(s);
             const float f = dWdr * invR;
             acc.gx[l] += f * dx;
             acc.gy[l] += f * dy;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "raymarch/vector_loops.h"
+
 namespace twinrender::raymarch {
 
 namespace {
@@ -165,7 +167,7 @@ void BundleGather::bounds(const RTCBoundsFunctionArguments* args) {
 
 // Eight rays at a time where the CPU has x86-64-v3 (AVX2, FMA; chosen at run time), four
 // otherwise.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+TWINRENDER_VECTOR_CLONES
 void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const BundleContext*>(args->context);
     if (!ctx->bundle) {
@@ -209,7 +211,7 @@ void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
 
 // A first-entry query (one ray): reports the sphere as a hit where the ray enters it, so that
 // Embree keeps the nearest and prunes what lies beyond.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+TWINRENDER_VECTOR_CLONES
 void BundleGather::firstEntryTest(const RTCIntersectFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const BundleContext*>(args->context);
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);

@@ -8,23 +8,14 @@
 #include <tbb/task_arena.h>
 
 #include "core/sph_kernel.h"
-#include "raymarch/implicit_field.h"
+#include "raymarch/testing/ray_field_testing.h"
 
 namespace tr = twinrender;
 using tr::core::Image;
 
 namespace {
 
-// Radius r at which one particle's field v W(r, h) equals the level: bisection on the
-// monotone kernel, independent of the raymarcher's root finder.
-double singleParticleRadius(double v, double h, double level) {
-    double lo = 0.0, hi = 2.0 * h;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (v * tr::core::m4Kernel(mid, h) > level ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
+using tr::raymarch::testing::singleParticleRadius;
 
 struct TestScene {
     tr::core::Scene scene;
@@ -78,117 +69,6 @@ tr::core::Frame render(const TestScene& s, const tr::raymarch::Settings& setting
 }
 
 }  // namespace
-
-TEST(ImplicitField, SingleCandidateCrossingIsTheAnalyticRadius) {
-    const double h = 0.7, v = tr::core::maxParticleVolume(h);
-    const double level = 0.5 * v * tr::core::m4Kernel(0.0, h);  // a sphere of about 0.58 h
-    const double radius = singleParticleRadius(v, h, level);
-    const double origin[3] = {0.0, 0.0, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
-    tr::raymarch::Candidate c;
-    ASSERT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
-    tr::raymarch::CrossingSettings cs;
-    cs.level = level;
-    cs.tolerance = 1e-4 * h;
-    cs.maxStep = 0.5 * h;
-    tr::raymarch::RayField field;
-    field.assign({c}, 0.0);
-    const auto crossing = tr::raymarch::findFirstCrossing(field, 0.0, 10.0, cs);
-    ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit);
-    EXPECT_NEAR(crossing.t, 5.0 - radius, 1e-4 * h);
-    EXPECT_LT(crossing.tBelow, 5.0 - radius);
-}
-
-namespace {
-
-// A particle grazed by a ray along z at t = 5: its field peaks just above the level over a
-// short stretch (a few 1e-3 h), a crossing that a careless step would pass over.
-struct ThinBump {
-    tr::raymarch::CrossingSettings settings;
-    tr::raymarch::RayField field;
-    ThinBump() {
-        const double h = 1.0, v = tr::core::maxParticleVolume(h);
-        const double d = 0.3;  // distance of the ray from the particle
-        settings.level = v * tr::core::m4Kernel(d, h) * 0.9999;
-        settings.tolerance = 1e-6;
-        settings.maxStep = 0.5;
-        const double origin[3] = {0.0, d, -5.0}, dir[3] = {0.0, 0.0, 1.0}, center[3] = {0.0, 0.0, 0.0};
-        tr::raymarch::Candidate c;
-        EXPECT_TRUE(tr::raymarch::makeCandidate(origin, dir, center, h, v, 0, c));
-        field.assign({c}, 0.0);
-    }
-};
-
-}  // namespace
-
-TEST(ImplicitField, NeverStepsOverAThinBump) {
-    const ThinBump bump;
-    const auto crossing = tr::raymarch::findFirstCrossing(bump.field, 0.0, 10.0, bump.settings);
-    ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit);
-    EXPECT_LT(crossing.t, 5.0);
-    EXPECT_GT(crossing.t, 4.9);
-}
-
-TEST(ImplicitField, AHintBeyondAThinBumpDoesNotSkipIt) {
-    // A hint (a neighbour's crossing) well past the bump, as where a ray passes the edge of a
-    // near body and its neighbour meets a far one: the bound up to the hint must see the
-    // bump, and the crossing found must be the bump's.
-    const ThinBump bump;
-    for (const double hint : {5.001, 5.05, 6.0, 7.5}) {
-        const auto crossing = tr::raymarch::findFirstCrossing(bump.field, 0.0, 10.0, bump.settings, hint);
-        ASSERT_EQ(crossing.status, tr::raymarch::Crossing::Status::Hit) << hint;
-        EXPECT_LT(crossing.t, 5.0) << hint;
-        EXPECT_GT(crossing.t, 4.9) << hint;
-    }
-}
-
-TEST(ImplicitField, RemainingBoundIsAnUpperBound) {
-    const double h = 1.0, v = 1.0;
-    std::vector<tr::raymarch::Candidate> cands;
-    const double origin[3] = {0.0, 0.0, 0.0}, dir[3] = {1.0, 0.0, 0.0};
-    for (int i = 0; i < 6; ++i) {
-        const double center[3] = {0.7 * i, 0.4 * std::sin(i), 0.3 * std::cos(2.0 * i)};
-        tr::raymarch::Candidate c;
-        if (tr::raymarch::makeCandidate(origin, dir, center, h, v, i, c)) cands.push_back(c);
-    }
-    std::sort(cands.begin(), cands.end(), [](auto& a, auto& b) { return a.t0 < b.t0; });
-    tr::raymarch::RayField field;
-    field.assign(cands, 1.0);
-    for (double t = -2.0; t < 6.0; t += 0.25) {
-        const double bound = field.remainingBound(t, 100.0);
-        for (double s = t; s < 7.0; s += 0.01)
-            ASSERT_LE(field.sample(s, 0.0).value, bound) << t << " " << s;
-    }
-}
-
-TEST(ImplicitField, PiecewiseBoundsBoundEachPieceAndAreTighterThanOne) {
-    const double h = 1.0, v = 1.0;
-    std::vector<tr::raymarch::Candidate> cands;
-    const double origin[3] = {0.0, 0.0, 0.0}, dir[3] = {1.0, 0.0, 0.0};
-    for (int i = 0; i < 8; ++i) {
-        const double center[3] = {0.6 * i, 0.5 * std::sin(1.3 * i), 0.4 * std::cos(2.0 * i)};
-        tr::raymarch::Candidate c;
-        if (tr::raymarch::makeCandidate(origin, dir, center, h, v, i, c)) cands.push_back(c);
-    }
-    tr::raymarch::RayField field;
-    field.assign(cands, 0.5);
-    int tighter = 0;
-    for (double t = -2.0; t < 5.0; t += 0.37) {
-        const double points[] = {t, t + 0.9, t + 1.3, t + 1.4};
-        double bounds[tr::raymarch::RayField::PIECES];
-        field.piecewiseBound(points, bounds);
-        const double whole = field.intervalBound(points[0], points[3]);
-        for (int k = 0; k < tr::raymarch::RayField::PIECES; ++k) {
-            // Each piece's bound holds over the piece (sampled finely) and never exceeds the
-            // bound over the whole interval.
-            for (double s = points[k]; s <= points[k + 1]; s += 0.002)
-                ASSERT_LE(field.sample(s, 0.0).value, bounds[k]) << t << " piece " << k << " at " << s;
-            EXPECT_LE(bounds[k], whole * (1.0 + 1e-6));
-        }
-        tighter += *std::max_element(bounds, bounds + tr::raymarch::RayField::PIECES) < 0.9 * whole;
-    }
-    // Where particles peak in different pieces, the pieces' bounds are well below the whole's.
-    EXPECT_GT(tighter, 5);
-}
 
 TEST(Raymarch, OneParticleIsASphereOfTheAnalyticRadius) {
     TestScene s;

@@ -6,8 +6,12 @@
 
 #include "core/sph_kernel.h"
 #include "raymarch/bundle_gather.h"
-#include "raymarch/implicit_field.h"
+#include "raymarch/first_crossing.h"
+#include "raymarch/hit_attributes.h"
+#include "raymarch/particle_batch.h"
+#include "raymarch/ray_field.h"
 #include "raymarch/sphere_scene.h"
+#include "raymarch/vector_loops.h"
 
 namespace twinrender::raymarch {
 
@@ -62,7 +66,7 @@ bool rayMeetsBody(const core::Ray& ray, double t0, double t1, const BodyRange& b
 // Sorts distinct values (particle indices below 2^31) in increasing order. A gather returns a
 // few dozen; each one's rank (how many are smaller) is counted in vectors, without the
 // branches of a comparison sort, whose outcomes are unpredictable here.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+TWINRENDER_VECTOR_CLONES
 void sortDistinct(std::vector<std::uint32_t>& values, std::vector<std::uint32_t>& scratch) {
     constexpr std::size_t RANK_SORT_LIMIT = 128;
     const std::size_t n = values.size();
@@ -490,7 +494,7 @@ struct SurfaceTracer::Impl {
     void surfaceAttributes(double t, Workspace& w, SurfaceHit& hit) const {
         const auto& ps = particles.particles;
         const RayField& field = w.field;
-        const SurfacePoint point = field.surfacePoint(t, w.weights);
+        const SurfacePoint point = surfacePoint(field, t, w.weights);
         const double length = glm::length(point.gradient);
         hit.normal = length > 0.0 ? glm::vec3(-point.gradient / length) : glm::vec3(0.0f);
         hit.hRef = point.hMin;
@@ -525,7 +529,7 @@ struct SurfaceTracer::Impl {
         }
         // uv and glow: normalised kernel weights over the visible body's particles.
         HitAttributes average;
-        if (!w.batch.average(weights, lanes, average)) return;
+        if (!averageAttributes(w.batch, weights, lanes, average)) return;
         hit.uv = glm::vec2(average.u, average.v);
         hit.glow = glm::vec3(average.r, average.g, average.b);
         hit.body = best;

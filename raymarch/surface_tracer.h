@@ -5,7 +5,7 @@
 // A block's rays advance together in rounds: each round, every unfinished ray takes its next
 // segment (a few h long), one bundle gather (bundle_gather.h) finds the support spheres that
 // overlap some ray's segment, and each ray's first crossing in its segment is searched
-// (implicit_field.h) among them. They are taken in particle order, which is also the
+// (first_crossing.h) among them. They are taken in particle order, which is also the
 // summation order, so the result does not depend on Embree's traversal order or on threads.
 // Empty space is skipped with one query for the block, and a ray's search starts just before
 // where the tangent plane of a neighbouring pixel's crossing meets it, when the field is
