@@ -10,8 +10,9 @@ namespace twinrender::core {
 ParameterTable::ParameterTable(std::string prefix, std::string file)
     : mPrefix(std::move(prefix)), mFile(std::move(file)) {}
 
-void ParameterTable::set(const std::string& key, Value value, std::string where) {
-    mEntries[key] = Entry{std::move(value), std::move(where), false};
+void ParameterTable::set(const std::string& key, Value value, std::string where,
+                         std::string shownKey) {
+    mEntries[key] = Entry{std::move(value), std::move(where), false, std::move(shownKey)};
 }
 
 bool ParameterTable::has(std::string_view key) const { return mEntries.find(key) != mEntries.end(); }
@@ -27,11 +28,16 @@ std::vector<std::string> ParameterTable::keysUnder(std::string_view prefix) cons
     return out;
 }
 
+std::string ParameterTable::shownKey(std::string_view key) const {
+    auto it = mEntries.find(key);
+    if (it != mEntries.end() && !it->second.shownKey.empty()) return it->second.shownKey;
+    return mPrefix.empty() ? std::string(key) : mPrefix + "." + std::string(key);
+}
+
 std::string ParameterTable::describe(std::string_view key) const {
-    const std::string full = mPrefix.empty() ? std::string(key) : mPrefix + "." + std::string(key);
     auto it = mEntries.find(key);
     const std::string& where = it != mEntries.end() ? it->second.where : mFile;
-    return fmt::format("{}: key '{}'", where.empty() ? mFile : where, full);
+    return fmt::format("{}: key '{}'", where.empty() ? mFile : where, shownKey(key));
 }
 
 const ParameterTable::Entry* ParameterTable::find(std::string_view key) const {
@@ -144,7 +150,7 @@ void ParameterTable::checkAllRead() const {
         if (!e.read)
             throw InputError(fmt::format("{}: unknown key '{}'; check its spelling against "
                                          "SCENES.md and the renderer's settings",
-                                         e.where, mPrefix.empty() ? k : mPrefix + "." + k));
+                                         e.where, shownKey(k)));
 }
 
 std::string toString(const ParameterTable::Value& value) {

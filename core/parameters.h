@@ -25,19 +25,23 @@ public:
         Value value;
         std::string where;  // "file:line:column", or "--set KEY=VALUE"
         mutable bool read = false;
+        // The key as the --set override that gave the value wrote it
+        // ("bodies.planet.particles"); empty: the prefixed key ("bodies[0].particles").
+        std::string shownKey;
     };
 
     ParameterTable() = default;
     // `prefix` is prepended to keys in messages ("realtime", "bodies[planet]").
     ParameterTable(std::string prefix, std::string file);
 
-    void set(const std::string& key, Value value, std::string where);
+    void set(const std::string& key, Value value, std::string where, std::string shownKey = {});
     bool has(std::string_view key) const;
     // Marks every key under `prefix` ("compare.thresholds") as read and returns their names.
     std::vector<std::string> keysUnder(std::string_view prefix) const;
     const std::string& prefix() const { return mPrefix; }
     const std::string& file() const { return mFile; }
-    // "file:line:column: key 'prefix.key'" for messages.
+    // "file:line:column: key 'prefix.key'" for messages ("--set KEY=VALUE: key 'KEY'" for a
+    // value from an override).
     std::string describe(std::string_view key) const;
 
     bool getBool(std::string_view key, bool fallback) const;
@@ -65,6 +69,8 @@ public:
     const std::map<std::string, Entry, std::less<>>& entries() const { return mEntries; }
 
 private:
+    // The key as messages name it: as its override wrote it, else prefixed.
+    std::string shownKey(std::string_view key) const;
     [[noreturn]] void typeError(std::string_view key, std::string_view expected) const;
 
     std::string mPrefix;

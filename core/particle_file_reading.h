@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <type_traits>
 
 #include "core/particle_file.h"
 
@@ -17,30 +18,18 @@ namespace twinrender::core::particle_io {
 // The file's bytes; throws InputError naming the file when it cannot be opened or read.
 std::string readWholeFile(const std::filesystem::path& path);
 
-// Unsigned integer of the same size as T, to assemble T from bytes in a given order.
+// Unsigned integer of N bytes, to assemble a T of that size from bytes in a given order.
 template <std::size_t N>
-struct UnsignedOfSize;
-template <>
-struct UnsignedOfSize<1> {
-    using Type = std::uint8_t;
-};
-template <>
-struct UnsignedOfSize<2> {
-    using Type = std::uint16_t;
-};
-template <>
-struct UnsignedOfSize<4> {
-    using Type = std::uint32_t;
-};
-template <>
-struct UnsignedOfSize<8> {
-    using Type = std::uint64_t;
-};
+using UnsignedOfSize = std::conditional_t<
+    N == 1, std::uint8_t,
+    std::conditional_t<N == 2, std::uint16_t,
+                       std::conditional_t<N == 4, std::uint32_t, std::uint64_t>>>;
 
 // Decodes a T stored with the given byte order, independent of the host's order.
 template <typename T>
 T loadBytes(const unsigned char* p, bool bigEndian) {
-    using U = typename UnsignedOfSize<sizeof(T)>::Type;
+    static_assert(sizeof(T) == 1 || sizeof(T) == 2 || sizeof(T) == 4 || sizeof(T) == 8);
+    using U = UnsignedOfSize<sizeof(T)>;
     U u = 0;
     for (std::size_t i = 0; i < sizeof(T); ++i) {
         const std::size_t shift = 8 * (bigEndian ? sizeof(T) - 1 - i : i);

@@ -14,24 +14,54 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string whereOf(const std::string& file, const toml::node& node, const std::string& fullKey,
-                    const std::map<std::string, std::string>& overrides) {
-    auto it = overrides.find(fullKey);
-    if (it != overrides.end()) return "--set " + it->second;
+// A --set KEY=VALUE applied to the document.
+struct Override {
+    std::string assignment;  // "bodies.planet.particles=5000"
+    std::string key;         // "bodies.planet.particles", as the user wrote it
+};
+// By the path of the key from the document root, array entries by index
+// ("bodies.0.particles").
+using Overrides = std::map<std::string, Override>;
+
+// Where a value came from, and its key as messages name it (empty: the parameter table's
+// prefixed key).
+struct Origin {
+    std::string where;  // "file:line:column", the file, or "--set KEY=VALUE"
+    std::string shownKey;
+};
+
+// The origin of the node at `fullKey`: the override that set it or a table around it (the
+// innermost), else its place in the file. An override's nodes were parsed from its own text,
+// so their lines and columns say nothing about the file.
+Origin originOf(const std::string& file, const toml::node& node, const std::string& fullKey,
+                const Overrides& overrides) {
+    const Overrides::value_type* best = nullptr;
+    for (const auto& entry : overrides) {
+        const std::string& path = entry.first;
+        const bool covers = fullKey == path || (fullKey.starts_with(path + "."));
+        if (covers && (!best || path.size() > best->first.size())) best = &entry;
+    }
+    if (best)
+        return {"--set " + best->second.assignment,
+                best->second.key + fullKey.substr(best->first.size())};
     const auto& src = node.source();
-    if (src.begin.line == 0) return file;
-    return fmt::format("{}:{}:{}", file, src.begin.line, src.begin.column);
+    if (src.begin.line == 0) return {file, ""};
+    return {fmt::format("{}:{}:{}", file, src.begin.line, src.begin.column), ""};
+}
+
+std::string whereOf(const std::string& file, const toml::node& node, const std::string& fullKey,
+                    const Overrides& overrides) {
+    return originOf(file, node, fullKey, overrides).where;
 }
 
 // Flattens a TOML table into dotted keys. `fullPrefix` is the key path from the document
 // root, for locating --set overrides and for messages.
 void flatten(const toml::table& table, const std::string& prefix, const std::string& fullPrefix,
-             const std::string& file, const std::map<std::string, std::string>& overrides,
-             ParameterTable& out) {
+             const std::string& file, const Overrides& overrides, ParameterTable& out) {
     for (const auto& [k, node] : table) {
         const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
         const std::string full = fullPrefix.empty() ? key : fullPrefix + "." + key;
-        const std::string where = whereOf(file, node, full, overrides);
+        const auto [where, shown] = originOf(file, node, full, overrides);
         if (const auto* t = node.as_table()) {
             flatten(*t, key, fullPrefix, file, overrides, out);
         } else if (const auto* a = node.as_array()) {
@@ -39,21 +69,22 @@ void flatten(const toml::table& table, const std::string& prefix, const std::str
             for (const auto& e : *a) {
                 if (auto d = e.value<double>()) values.push_back(*d);
                 else
-                    throw InputError(fmt::format("{}: key '{}' must be an array of numbers", where, full));
+                    throw InputError(fmt::format("{}: key '{}' must be an array of numbers", where,
+                                                 shown.empty() ? full : shown));
             }
-            out.set(key, std::move(values), where);
+            out.set(key, std::move(values), where, shown);
         } else if (auto b = node.value_exact<bool>()) {
-            out.set(key, *b, where);
+            out.set(key, *b, where, shown);
         } else if (auto i = node.value_exact<std::int64_t>()) {
-            out.set(key, *i, where);
+            out.set(key, *i, where, shown);
         } else if (auto d = node.value_exact<double>()) {
-            out.set(key, *d, where);
+            out.set(key, *d, where, shown);
         } else if (auto s = node.value_exact<std::string>()) {
-            out.set(key, *s, where);
+            out.set(key, *s, where, shown);
         } else {
             throw InputError(fmt::format("{}: key '{}' has a type scenes do not use (dates and "
                                          "times); use a number, string, boolean or array",
-                                         where, full));
+                                         where, shown.empty() ? full : shown));
         }
     }
 }
@@ -84,10 +115,10 @@ void assignOverrideValue(toml::table& table, const std::string& key, const std::
     table.insert_or_assign(key, value);
 }
 
-// Applies one --set KEY=VALUE to the document. bodies.NAME.key and materials.NAME.key address
-// the array entry by name (or by index).
+// Applies one --set KEY=VALUE to the document and records it under the path of its key.
+// bodies.NAME.key and materials.NAME.key address the array entry by name (or by index).
 void applyOverride(toml::table& root, const std::string& assignment, const std::string& file,
-                   std::map<std::string, std::string>& located) {
+                   Overrides& overrides) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0)
         throw InputError(fmt::format("--set {}: expected KEY=VALUE (e.g. camera.width=160)", assignment));
@@ -96,7 +127,7 @@ void applyOverride(toml::table& root, const std::string& assignment, const std::
     std::vector<std::string> parts = splitDots(key);
     toml::table* table = &root;
     std::size_t i = 0;
-    std::string locatedKey;
+    std::string path = key;
     if ((parts[0] == "bodies" || parts[0] == "materials") && parts.size() >= 3) {
         auto* arr = root[parts[0]].as_array();
         toml::table* found = nullptr;
@@ -105,8 +136,11 @@ void applyOverride(toml::table& root, const std::string& assignment, const std::
             for (auto& e : *arr) {
                 auto* t = e.as_table();
                 const auto* name = t ? t->get_as<std::string>("name") : nullptr;
-                if (t && ((name && name->get() == parts[1]) || std::to_string(index) == parts[1]))
+                if (t && ((name && name->get() == parts[1]) || std::to_string(index) == parts[1])) {
                     found = t;
+                    path = parts[0] + "." + std::to_string(index) +
+                           key.substr(parts[0].size() + 1 + parts[1].size());
+                }
                 ++index;
             }
         if (!found)
@@ -114,7 +148,6 @@ void applyOverride(toml::table& root, const std::string& assignment, const std::
                                          parts[0], parts[1], file));
         table = found;
         i = 2;
-        locatedKey = parts[0] + "." + parts[1];
     }
     for (; i + 1 < parts.size(); ++i) {
         auto* next = table->get(parts[i]);
@@ -127,7 +160,7 @@ void applyOverride(toml::table& root, const std::string& assignment, const std::
         table = next->as_table();
     }
     assignOverrideValue(*table, parts.back(), value);
-    located[key] = assignment;
+    overrides[path] = {assignment, key};
 }
 
 TextureSource parseTexture(const ParameterTable& t, std::string_view key, TextureSource fallback,
@@ -282,7 +315,7 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
         throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", fileName, e.source().begin.line,
                                      e.source().begin.column, e.description()));
     }
-    std::map<std::string, std::string> located;
+    Overrides located;
     for (const auto& o : overrides) applyOverride(root, o, fileName, located);
 
     Scene scene;

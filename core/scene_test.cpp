@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -104,6 +107,51 @@ TEST(Scene, OverridesUseTheDottedKeysAndBodyNames) {
     EXPECT_NE(m.find("--set camera.fov_y_deg=500"), std::string::npos) << m;
     EXPECT_NE(messageOf(p, {"bodies.moon.radius=1"}).find("no entry named 'moon'"), std::string::npos);
     EXPECT_NE(messageOf(p, {"novalue"}).find("KEY=VALUE"), std::string::npos);
+}
+
+TEST(Scene, OverrideErrorsNameTheOverrideAndTheKeyAsWritten) {
+    const auto p = writeScene("override_errors", BASIC);
+    // Out of range, of the wrong type or unknown, in every section the scene parser reads;
+    // bodies and materials by name and by index.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"camera.width=0", "key 'camera.width' is out of range: 0 (allowed: 1..16384)"},
+        {"camera.fov_y_deg=wide", "key 'camera.fov_y_deg' has the wrong type: expected a number"},
+        {"light.intensity=-1",
+         "key 'light.intensity' is out of range: -1 (allowed: 0..1000000000)"},
+        {"light.color=3",
+         "key 'light.color' has the wrong type: expected an array of three numbers"},
+        {"materials.rock.shininess=0",
+         "key 'materials.rock.shininess' is out of range: 0 (allowed: 1..10000)"},
+        {"materials.1.shininess=shiny", "key 'materials.1.shininess' has the wrong type"},
+        {"bodies.planet.particles=2000000000",
+         "key 'bodies.planet.particles' is out of range: 2000000000 (allowed: 1..50000000)"},
+        {"bodies.1.inner_radius=-1",
+         "key 'bodies.1.inner_radius' is out of range: -1 (allowed: 0.."},
+        {"bodies.ring.thickness=thin", "key 'bodies.ring.thickness' has the wrong type"},
+        {"bodies.planet.lattice=fcc",
+         "key 'bodies.planet.lattice' is out of range: \"fcc\" (allowed: hcp | cubic | random)"},
+        {"bodies.planet.center=[0, 0, \"x\"]",
+         "key 'bodies.planet.center' must be an array of numbers"},
+        {"bodies.planet.colour=1", "unknown key 'bodies.planet.colour'"},
+        {"description=[1]", "key 'description' has the wrong type: expected a string"},
+    };
+    for (const auto& [assignment, error] : cases) {
+        const std::string m = messageOf(p, {assignment});
+        EXPECT_EQ(m.rfind("--set " + assignment + ": " + error, 0), 0u) << m;
+    }
+    // The sections the renderers and the comparison read keep where each value came from, a
+    // table given whole by an override included.
+    const tc::Scene s = tc::loadScene(
+        p, std::vector<std::string>{"raymarch.spp=0", "realtime.shadow_map={resolution = 0}",
+                                    "compare.thresholds.beauty.flip.max=high"});
+    EXPECT_EQ(s.raymarch.describe("spp"), "--set raymarch.spp=0: key 'raymarch.spp'");
+    EXPECT_EQ(s.realtime.describe("shadow_map.resolution"),
+              "--set realtime.shadow_map={resolution = 0}: key 'realtime.shadow_map.resolution'");
+    EXPECT_EQ(s.compare.describe("thresholds.beauty.flip.max"),
+              "--set compare.thresholds.beauty.flip.max=high: key "
+              "'compare.thresholds.beauty.flip.max'");
+    // Keys the file gives keep their lines.
+    EXPECT_NE(s.realtime.describe("ssss.enabled").find("override_errors.toml:"), std::string::npos);
 }
 
 TEST(Scene, RejectsWhatItDoesNotKnow) {

@@ -2,6 +2,10 @@
 // line or key, and no output file.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
@@ -134,6 +138,44 @@ TEST(BadInput, UnknownOverrideKeyIsNamed) {
     EXPECT_NE(r.output.find("raymarch.surface_levle"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("--set"), std::string::npos) << r.output;
     EXPECT_EQ(r.filesWritten, 0u);
+}
+
+TEST(BadInput, OverridesOutOfRangeOrOfTheWrongTypeNameTheOverride) {
+    // Every section: the message names the --set, the key as written and what is allowed.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"bodies.ball.particles=2000000000",
+         "key 'bodies.ball.particles' is out of range: 2000000000 (allowed: 1..50000000)"},
+        {"bodies.0.radius=big", "key 'bodies.0.radius' has the wrong type: expected a number"},
+        {"materials.rock.shininess=0",
+         "key 'materials.rock.shininess' is out of range: 0 (allowed: 1..10000)"},
+        {"light.ambient=-1", "key 'light.ambient' is out of range: -1 (allowed: 0..1000000000)"},
+        {"camera.height=tall", "key 'camera.height' has the wrong type: expected an integer"},
+        {"raymarch.spp=0", "key 'raymarch.spp' is out of range: 0 (allowed: 1..1024)"},
+        {"raymarch.shadows=7", "key 'raymarch.shadows' has the wrong type: expected true or false"},
+        {"realtime.depth=linear",
+         "key 'realtime.depth' is out of range: \"linear\" (allowed: log | standard | reversed)"},
+        {"realtime.ssss.enabled=3",
+         "key 'realtime.ssss.enabled' has the wrong type: expected true or false"},
+    };
+    for (const auto& [assignment, error] : cases) {
+        const auto r = renderBroken("override_" + assignment.substr(0, assignment.find('=')),
+                                    sceneText(), "--set " + assignment);
+        EXPECT_NE(r.output.find("error: --set " + assignment + ": " + error), std::string::npos)
+            << r.output;
+        EXPECT_EQ(r.filesWritten, 0u);
+    }
+    // The comparison's thresholds, read by the commands that compare.
+    const auto dir = tt::freshDir("override_compare");
+    tt::writeFile(dir / "scene.toml", sceneText());
+    const auto r = tt::runTwinrender("run " + (dir / "scene.toml").string() + " --out " +
+                                     (dir / "out").string() +
+                                     " --set compare.thresholds.beauty.flip.max=high");
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_NE(r.output.find("error: --set compare.thresholds.beauty.flip.max=high: key "
+                            "'compare.thresholds.beauty.flip.max': the bound must be a number"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(tt::countFiles(dir / "out"), 0u);
 }
 
 TEST(BadInput, MissingSceneFile) {
