@@ -1,21 +1,22 @@
 // twinrender: renders a particle scene with a real-time renderer and a reference raymarcher
 // and measures how far the first is from the second. Exit codes: app/exit_code.h.
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fmt/format.h>
 #include <memory>
-#include <tbb/global_control.h>
-#include <tbb/task_arena.h>
-#include <unistd.h>
 
 #include "app/exit_code.h"
 #include "app/render_job.h"
 #include "app/shard.h"
 #include "app/study_command.h"
-#include "app/sweep_command.h"
 #include "app/suite_commands.h"
+#include "app/sweep_command.h"
 #include "core/error.h"
 #include "realtime/gl/context.h"
 
@@ -49,15 +50,16 @@ void addPpd(CLI::App* cmd, double& ppd) {
         ->capture_default_str();
 }
 
-void printRender(const tr::app::LoadedScene& s, const tr::app::Render& r, const std::filesystem::path& dir) {
+void printRender(const tr::app::LoadedScene& s, const tr::app::Render& r,
+                 const std::filesystem::path& dir) {
     const auto& f = r.frame;
     std::printf("%s: %s %dx%d, %zu particles, %.1f ms on %s -> %s\n", s.scene.name.c_str(),
                 f.renderer.c_str(), f.image.width(), f.image.height(), f.particleCount,
                 f.timingsMs.at("total"), f.device.c_str(), (dir / (f.renderer + ".exr")).c_str());
     const auto unresolved = f.counters.find("unbracketed_rays");
     if (unresolved != f.counters.end() && unresolved->second > 0)
-        std::printf("%s: %.0f rays could not be resolved (counted in %s.json)\n", s.scene.name.c_str(),
-                    unresolved->second, f.renderer.c_str());
+        std::printf("%s: %.0f rays could not be resolved (counted in %s.json)\n",
+                    s.scene.name.c_str(), unresolved->second, f.renderer.c_str());
 }
 
 ExitCode runRender(const std::string& scenePath, const std::string& renderer,
@@ -69,7 +71,8 @@ ExitCode runRender(const std::string& scenePath, const std::string& renderer,
     // error should come before minutes of raymarching.
     std::unique_ptr<tr::realtime::gl::Context> context;
     if (renderer == "realtime" || renderer == "both")
-        context = std::make_unique<tr::realtime::gl::Context>(tr::realtime::gl::ContextOptions{o.requireGpu});
+        context = std::make_unique<tr::realtime::gl::Context>(
+            tr::realtime::gl::ContextOptions{o.requireGpu});
     if (renderer == "raymarch" || renderer == "both") {
         tr::raymarch::EmbreeDevice device;
         const auto r = tr::app::renderRaymarch(device, loaded, tty);
@@ -101,7 +104,8 @@ int main(int argc, char** argv) {
     addCommon(render, renderOpts);
 
     tr::app::CompareOptions compareOpts;
-    auto* compareCmd = app.add_subcommand("compare", "compare two images (AOV EXRs, or plain images)");
+    auto* compareCmd =
+        app.add_subcommand("compare", "compare two images (AOV EXRs, or plain images)");
     compareCmd->add_option("REF", compareOpts.reference, "reference image")->required();
     compareCmd->add_option("TEST", compareOpts.test, "image to measure")->required();
     compareCmd->add_option("--out", compareOpts.out, "output folder")->capture_default_str();
@@ -118,12 +122,16 @@ int main(int argc, char** argv) {
     runCmd->add_option("--baseline", runOpts.baseline, "baseline from `twinrender bless`");
     runCmd->add_option("--junit", runOpts.junit, "also write JUnit XML here");
     addPpd(runCmd, runOpts.ppd);
-    runCmd->add_option("--shard", runOpts.shard,
-                       "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
+    runCmd
+        ->add_option(
+            "--shard", runOpts.shard,
+            "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
         ->type_name("K/N");
     std::string runStudies;
-    runCmd->add_option("--studies", runStudies,
-                       "also run every stability study into OUT/studies, linked from the report: quick | full")
+    runCmd
+        ->add_option(
+            "--studies", runStudies,
+            "also run every stability study into OUT/studies, linked from the report: quick | full")
         ->check(CLI::IsMember({"quick", "full"}))
         ->type_name("quick|full");
     addCommon(runCmd, runCommon);
@@ -134,36 +142,48 @@ int main(int argc, char** argv) {
     auto* sweepCmd = app.add_subcommand(
         "sweep", "time against error over the cartesian product of varied settings");
     sweepCmd->add_option("SCENE", sweepOpts.scene, "scene file (.toml)")->required();
-    sweepCmd->add_option("--vary", sweepOpts.vary,
-                         "KEY=V1,V2,... with the scene's dotted keys (repeatable; realtime.* or raymarch.*)")
+    sweepCmd
+        ->add_option(
+            "--vary", sweepOpts.vary,
+            "KEY=V1,V2,... with the scene's dotted keys (repeatable; realtime.* or raymarch.*)")
         ->type_name("KEY=V1,V2,...")
         ->required();
-    sweepCmd->add_option("--metric", sweepOpts.metric, "the chart's error metric")->capture_default_str();
-    sweepCmd->add_option("--frames", sweepOpts.frames,
-                         "frames per combination, timed as their median (default 5; 1 when varying raymarch.*)")
+    sweepCmd->add_option("--metric", sweepOpts.metric, "the chart's error metric")
+        ->capture_default_str();
+    sweepCmd
+        ->add_option(
+            "--frames", sweepOpts.frames,
+            "frames per combination, timed as their median (default 5; 1 when varying raymarch.*)")
         ->check(CLI::Range(1, 1000));
-    sweepCmd->add_option("--cache", sweepOpts.cache, "reference cache folder (default: OUT/reference_cache)");
+    sweepCmd->add_option("--cache", sweepOpts.cache,
+                         "reference cache folder (default: OUT/reference_cache)");
     addPpd(sweepCmd, sweepOpts.ppd);
-    sweepCmd->add_option("--shard", sweepOpts.shard,
-                         "K/N: every N-th combination starting at the K-th; join with `merge`")
+    sweepCmd
+        ->add_option("--shard", sweepOpts.shard,
+                     "K/N: every N-th combination starting at the K-th; join with `merge`")
         ->type_name("K/N");
     addCommon(sweepCmd, sweepCommon);
 
     tr::app::StudyOptions studyOpts;
     CommonOptions studyCommon;
     studyCommon.out = "out/studies";
-    auto* studyCmd = app.add_subcommand(
-        "study", "stability studies: depth range, particle size, view angle, temporal, collision, thin casters");
-    studyCmd->add_option("NAMES", studyOpts.names,
-                         "studies to run (default: all): depth_range, thin_casters, particle_size, view_angle, "
-                         "temporal, collision");
-    studyCmd->add_flag("--quick", studyOpts.quick, "fewer points and particles (seconds per study)");
-    studyCmd->add_option("--cache", studyOpts.cache, "reference cache folder (default: OUT/reference_cache)");
+    auto* studyCmd = app.add_subcommand("study",
+                                        "stability studies: depth range, particle size, view "
+                                        "angle, temporal, collision, thin casters");
+    studyCmd->add_option(
+        "NAMES", studyOpts.names,
+        "studies to run (default: all): depth_range, thin_casters, particle_size, view_angle, "
+        "temporal, collision");
+    studyCmd->add_flag("--quick", studyOpts.quick,
+                       "fewer points and particles (seconds per study)");
+    studyCmd->add_option("--cache", studyOpts.cache,
+                         "reference cache folder (default: OUT/reference_cache)");
     addPpd(studyCmd, studyOpts.ppd);
     addCommon(studyCmd, studyCommon);
 
     tr::app::MergeOptions mergeOpts;
-    auto* mergeCmd = app.add_subcommand("merge", "join the output folders of `run|sweep --shard K/N`");
+    auto* mergeCmd =
+        app.add_subcommand("merge", "join the output folders of `run|sweep --shard K/N`");
     mergeCmd->add_option("DIRS", mergeOpts.inputs, "the shards' output folders")->required();
     mergeCmd->add_option("--out", mergeOpts.out, "output folder of the joined report")->required();
 
@@ -201,7 +221,8 @@ int main(int argc, char** argv) {
                 runOpts.linkStudies = !runStudies.empty();
                 if (runOpts.linkStudies && !runOpts.shard.empty())
                     throw tr::core::InputError(
-                        "run --studies with --shard: the studies are not sharded; run them once with "
+                        "run --studies with --shard: the studies are not sharded; run them once "
+                        "with "
                         "`twinrender study`");
                 rc = tr::app::runSuite(runOpts);
                 if (!runStudies.empty()) {

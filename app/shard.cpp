@@ -87,7 +87,7 @@ void copyTree(const fs::path& from, const fs::path& to) {
 namespace {
 
 ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
-             const fs::path& out, const std::string& commandLine) {
+                  const fs::path& out, const std::string& commandLine) {
     const json& first = manifests.front();
     const auto order = first.at("scenes").get<std::vector<std::string>>();
     std::map<std::string, compare::SceneReport> reports;
@@ -129,7 +129,7 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
 }
 
 ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
-               const fs::path& out, const std::string& commandLine) {
+                    const fs::path& out, const std::string& commandLine) {
     const std::size_t total = manifests.front().at("combinations").get<std::size_t>();
     std::optional<compare::SweepReport> merged;
     std::map<std::size_t, fs::path> seen;

@@ -147,16 +147,16 @@ ExitCode runStudies(const StudyOptions& o) {
                     compare::computeMetrics(ref.frame.image, test.frame.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
                 if (d.contactBand || d.occlusionError) {
-                    const compare::Masks masks = compare::computeMasks(ref.frame.image, test.frame.image,
-                                                                       compare::maskSettings(ms));
+                    const compare::Masks masks = compare::computeMasks(
+                        ref.frame.image, test.frame.image, compare::maskSettings(ms));
                     if (d.occlusionError) {
                         const double covered = double(masks.referenceCovered.count());
                         row.metrics["occlusion.error"] =
                             covered > 0 ? 1.0 - double(masks.sameBody.count()) / covered : NAN;
                     }
                     if (d.contactBand) {
-                        const auto band = compare::contactBandError(ref.frame.image, test.frame.image,
-                                                                    masks, CONTACT_BAND_PX);
+                        const auto band = compare::contactBandError(
+                            ref.frame.image, test.frame.image, masks, CONTACT_BAND_PX);
                         row.metrics["contact.uv_mean"] = band.uvMean;
                         row.metrics["contact.emission_rmse"] = band.emissionRmse;
                         row.metrics["contact.pixels"] = double(band.pixels);

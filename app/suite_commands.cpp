@@ -1,13 +1,14 @@
 #include "app/suite_commands.h"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <fmt/format.h>
-#include <unistd.h>
 
 #include "app/comparison.h"
 #include "app/progress.h"
@@ -34,13 +35,16 @@ std::string statusOf(const std::vector<compare::Check>& checks, const std::strin
     return any ? std::string(compare::toString(s)) : "";
 }
 
-void printMetricTable(const compare::MetricValues& metrics, const std::vector<compare::Check>& checks) {
+void printMetricTable(const compare::MetricValues& metrics,
+                      const std::vector<compare::Check>& checks) {
     std::printf("%-24s %14s  %-4s %s\n", "metric", "value", "unit", "check");
     for (const auto& [name, value] : metrics)
         std::printf("%-24s %14s  %-4s %s\n", name.c_str(), compare::formatValue(value).c_str(),
                     compare::metricUnit(name).c_str(), statusOf(checks, name).c_str());
     for (const auto& c : checks)
-        if (c.status != compare::Status::Pass) std::printf("  %s: %s\n", std::string(compare::toString(c.status)).c_str(), c.message.c_str());
+        if (c.status != compare::Status::Pass)
+            std::printf("  %s: %s\n", std::string(compare::toString(c.status)).c_str(),
+                        c.message.c_str());
 }
 
 // The scene files of the inputs: files as given, folders by their *.toml (sorted), except
@@ -56,7 +60,8 @@ std::vector<fs::path> sceneFiles(const std::vector<std::string>& inputs) {
                     found.push_back(e.path());
             std::sort(found.begin(), found.end());
             if (found.empty())
-                throw core::InputError(fmt::format("{}: the folder holds no scene (.toml) files", in));
+                throw core::InputError(
+                    fmt::format("{}: the folder holds no scene (.toml) files", in));
             files.insert(files.end(), found.begin(), found.end());
         } else if (fs::is_regular_file(p)) {
             files.push_back(p);
@@ -87,7 +92,8 @@ ExitCode runCompare(const CompareOptions& o) {
         compare::Bounds bounds = compare::Thresholds::parseFile(o.thresholds).forScene(report.name);
         // Plain images have beauty metrics only: bounds on other buffers do not apply.
         if (!compare::isAovImage(ref) || !compare::isAovImage(test))
-            bounds = compare::filterBounds(bounds, [](const std::string& m) { return m.rfind("beauty.", 0) == 0; });
+            bounds = compare::filterBounds(
+                bounds, [](const std::string& m) { return m.rfind("beauty.", 0) == 0; });
         report.checks = compare::evaluate(report.metrics, bounds);
     }
     const fs::path out(o.out);
@@ -117,7 +123,8 @@ ExitCode runSuite(const RunOptions& o) {
     if (thresholdsFile.empty()) {
         const fs::path first(inputs.front());
         const fs::path dir = fs::is_directory(first) ? first : first.parent_path();
-        if (fs::is_regular_file(dir / "thresholds.toml")) thresholdsFile = (dir / "thresholds.toml").string();
+        if (fs::is_regular_file(dir / "thresholds.toml"))
+            thresholdsFile = (dir / "thresholds.toml").string();
     }
     const std::vector<fs::path> files = sceneFiles(inputs);
     std::vector<LoadedScene> scenes;
@@ -125,14 +132,16 @@ ExitCode runSuite(const RunOptions& o) {
     for (std::size_t i = 0; i < scenes.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
             if (scenes[i].scene.name == scenes[j].scene.name)
-                throw core::InputError(fmt::format("{} and {} are both named '{}'; scene names name "
-                                                   "the report's folders and must differ",
-                                                   files[j].string(), files[i].string(), scenes[i].scene.name));
-    const compare::Thresholds thresholds =
-        thresholdsFile.empty() ? compare::Thresholds::parseString("", "(none)")
-                               : compare::Thresholds::parseFile(thresholdsFile);
+                throw core::InputError(
+                    fmt::format("{} and {} are both named '{}'; scene names name "
+                                "the report's folders and must differ",
+                                files[j].string(), files[i].string(), scenes[i].scene.name));
+    const compare::Thresholds thresholds = thresholdsFile.empty()
+                                               ? compare::Thresholds::parseString("", "(none)")
+                                               : compare::Thresholds::parseFile(thresholdsFile);
     std::vector<compare::Bounds> bounds;
-    for (const auto& s : scenes) bounds.push_back(thresholds.forScene(s.scene.name, &s.scene.compare));
+    for (const auto& s : scenes)
+        bounds.push_back(thresholds.forScene(s.scene.name, &s.scene.compare));
     std::optional<compare::Baseline> baseline;
     if (!o.baseline.empty()) baseline = compare::readBaseline(o.baseline);
     // A shard runs every N-th scene of the suite sorted by name, starting at the (K-1)-th.
@@ -142,8 +151,9 @@ ExitCode runSuite(const RunOptions& o) {
     if (shard) {
         std::vector<std::size_t> byName(scenes.size());
         for (std::size_t i = 0; i < byName.size(); ++i) byName[i] = i;
-        std::sort(byName.begin(), byName.end(),
-                  [&](std::size_t a, std::size_t b) { return scenes[a].scene.name < scenes[b].scene.name; });
+        std::sort(byName.begin(), byName.end(), [&](std::size_t a, std::size_t b) {
+            return scenes[a].scene.name < scenes[b].scene.name;
+        });
         for (std::size_t p = 0; p < byName.size(); ++p) selected[byName[p]] = shard->takes(p);
     }
 
@@ -157,7 +167,8 @@ ExitCode runSuite(const RunOptions& o) {
     run.thresholdsFile = thresholdsFile;
     run.baselineFile = o.baseline;
     const fs::path out(o.out);
-    const std::size_t count = static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
+    const std::size_t count =
+        static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
     for (std::size_t i = 0, done = 0; i < scenes.size(); ++i) {
         if (!selected[i]) continue;
         const LoadedScene& s = scenes[i];
@@ -169,7 +180,8 @@ ExitCode runSuite(const RunOptions& o) {
             writeRender(s, ref, dir);
             const Render test = renderRealtime(realtimeRenderer, s);
             writeRender(s, test, dir);
-            report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd, dir);
+            report =
+                compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd, dir);
         } catch (const std::exception& e) {
             // One scene that cannot be rendered or compared fails; the others still run.
             report = compare::SceneReport{};
@@ -192,40 +204,48 @@ ExitCode runSuite(const RunOptions& o) {
             files.push_back(fs::absolute(s.scene.file).lexically_normal().string());
         }
         for (const auto& r : run.scenes) reports.push_back(compare::sceneReportJson(r));
-        const nlohmann::json settings = {{"scenes", files},        {"sets", o.sets},
-                                         {"thresholds", thresholdsFile}, {"baseline", o.baseline},
-                                         {"ppd", o.ppd},            {"junit", !o.junit.empty()}};
+        const nlohmann::json settings = {
+            {"scenes", files},        {"sets", o.sets}, {"thresholds", thresholdsFile},
+            {"baseline", o.baseline}, {"ppd", o.ppd},   {"junit", !o.junit.empty()}};
         writeShardManifest(*shard,
-                           {{"command", "run"}, {"settings", settings}, {"scenes", names}, {"reports", reports},
-                            {"junit", !o.junit.empty()}, {"created", run.createdAt},
+                           {{"command", "run"},
+                            {"settings", settings},
+                            {"scenes", names},
+                            {"reports", reports},
+                            {"junit", !o.junit.empty()},
+                            {"created", run.createdAt},
                             {"command_line", o.commandLine}},
                            out);
     }
 
     // One screen: a row per scene. printf pads bytes, not columns: the widths of the two
     // headers with multi-byte characters are widened by their extra bytes (ꟻ 3, ° 2).
-    std::printf("%-14s %-5s %10s %8s %9s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM", "normal°",
-                "cov. IoU", "realtime", "reference", "speed");
+    std::printf("%-14s %-5s %10s %8s %9s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM",
+                "normal°", "cov. IoU", "realtime", "reference", "speed");
     for (const auto& r : run.scenes) {
         auto m = [&](const char* k) {
             const auto it = r.metrics.find(k);
             return it == r.metrics.end() ? std::string("-") : compare::formatValue(it->second);
         };
-        const auto rt = r.metrics.find("time.realtime_ms"), ref = r.metrics.find("time.raymarch_ms");
+        const auto rt = r.metrics.find("time.realtime_ms"),
+                   ref = r.metrics.find("time.raymarch_ms");
         const std::string speed = rt != r.metrics.end() && ref != r.metrics.end() && rt->second > 0
                                       ? fmt::format("{:.1f}x", ref->second / rt->second)
                                       : "-";
         std::printf("%-14s %-5s %8s %8s %8s %9s %8s ms %8s ms %7s\n", r.name.c_str(),
                     std::string(compare::toString(r.status())).c_str(), m("beauty.flip").c_str(),
-                    m("beauty.ssim").c_str(), m("normal.mean_deg").c_str(), m("coverage.iou").c_str(),
-                    m("time.realtime_ms").c_str(), m("time.raymarch_ms").c_str(), speed.c_str());
+                    m("beauty.ssim").c_str(), m("normal.mean_deg").c_str(),
+                    m("coverage.iou").c_str(), m("time.realtime_ms").c_str(),
+                    m("time.raymarch_ms").c_str(), speed.c_str());
         if (!r.error.empty()) std::printf("  error: %s\n", r.error.c_str());
         for (const auto& c : r.checks)
             if (c.status != compare::Status::Pass)
-                std::printf("  %s: %s\n", std::string(compare::toString(c.status)).c_str(), c.message.c_str());
+                std::printf("  %s: %s\n", std::string(compare::toString(c.status)).c_str(),
+                            c.message.c_str());
     }
     const compare::Status status = run.status();
-    std::printf("%s: %s\n", std::string(compare::toString(status)).c_str(), (out / "index.html").c_str());
+    std::printf("%s: %s\n", std::string(compare::toString(status)).c_str(),
+                (out / "index.html").c_str());
     return exitCodeOf(status);
 }
 

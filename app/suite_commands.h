@@ -22,14 +22,14 @@ ExitCode runCompare(const CompareOptions& options);
 struct RunOptions {
     std::vector<std::string> inputs;  // scene files or folders of them; empty: scenes/
     std::string out = "out";
-    std::string thresholds;           // empty: thresholds.toml beside the first input, if any
+    std::string thresholds;  // empty: thresholds.toml beside the first input, if any
     std::string baseline;
     std::string junit;
     std::vector<std::string> sets;
     bool requireGpu = false;
     double ppd = 67.0;
-    std::string commandLine;          // recorded in the report
-    std::string shard;                // "K/N" (app/shard.h); empty: every scene
+    std::string commandLine;  // recorded in the report
+    std::string shard;        // "K/N" (app/shard.h); empty: every scene
     // Whether the report links to the stability studies in OUT/studies (main runs them after
     // the scenes: `run --studies`).
     bool linkStudies = false;

@@ -20,8 +20,8 @@
 #include "core/particles.h"
 #include "core/scene.h"
 #include "core/texture.h"
-#include "realtime/impostor_radius.h"
 #include "realtime/gl/context.h"
+#include "realtime/impostor_radius.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/renderer.h"
 #include "realtime/settings.h"
@@ -69,8 +69,7 @@ void frame(benchmark::State& state, int particles, int width, int height,
     renderer.recycle(renderer.render(s.scene, s.particles, s.materials, settings));
     std::map<std::string, double> sums;
     for (auto _ : state) {
-        tr::realtime::RenderResult r =
-            renderer.render(s.scene, s.particles, s.materials, settings);
+        tr::realtime::RenderResult r = renderer.render(s.scene, s.particles, s.materials, settings);
         for (const auto& [stage, ms] : r.frame.timingsMs) sums[stage] += ms;
         benchmark::DoNotOptimize(r.frame.image.pixels().data());
         renderer.recycle(std::move(r));  // a frame loop hands its frames back
@@ -123,7 +122,8 @@ void BM_Cull100k(benchmark::State& state) {
     std::size_t kept = 0;
     for (auto _ : state)
         kept = tr::realtime::unoccludedParticles(
-                       s.particles.particles, tr::realtime::fixedRadii(s.particles.particles, 0.9)).size();
+                   s.particles.particles, tr::realtime::fixedRadii(s.particles.particles, 0.9))
+                   .size();
     state.counters["kept"] = double(kept);
 }
 

@@ -23,7 +23,7 @@ namespace twinrender::core {
 namespace {
 
 constexpr double PI = std::numbers::pi;
-constexpr std::size_t GRAIN = 1024;  // particles per task
+constexpr std::size_t GRAIN = 1024;                   // particles per task
 constexpr std::uint32_t LANES = ParticleGrid::LANES;  // partial sums of the gradient loop
 
 // u in [0, 1) after the cast to float (1 - 1e-9 rounds to 1.0f: that is the seam, u = 0).
@@ -61,8 +61,8 @@ struct Lanes {
 // candidates lie outside the support, and a branch per candidate costs more than computing
 // its (zero) term. Beyond the support (s >= 2) the M4 expression is exactly 0, and so is the
 // particle's own term (d = 0); lanes past `end` are multiplied by 0.
-void accumulateRange(const ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end, const glm::vec3& q,
-                     Lanes& acc) {
+void accumulateRange(const ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end,
+                     const glm::vec3& q, Lanes& acc) {
     for (std::uint32_t j = begin; j < end; j += LANES) {
         for (std::uint32_t l = 0; l < LANES; ++l) {
             const std::uint32_t k = j + l;
@@ -86,9 +86,9 @@ void accumulateRange(const ParticleGrid::Level& g, std::uint32_t begin, std::uin
 FieldSample colourFieldGradient(const ParticleGrid& grids, const glm::vec3& q) {
     Lanes acc;
     grids.visitSupport(glm::dvec3(q),
-                 [&](const ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
-                     accumulateRange(g, begin, end, q, acc);
-                 });
+                       [&](const ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
+                           accumulateRange(g, begin, end, q, acc);
+                       });
     FieldSample out;
     for (std::uint32_t l = 0; l < LANES; ++l) {
         out.gradient += glm::dvec3(acc.gx[l], acc.gy[l], acc.gz[l]);

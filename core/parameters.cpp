@@ -1,7 +1,8 @@
 #include "core/parameters.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/error.h"
 
@@ -15,7 +16,9 @@ void ParameterTable::set(const std::string& key, Value value, std::string where,
     mEntries[key] = Entry{std::move(value), std::move(where), false, std::move(shownKey)};
 }
 
-bool ParameterTable::has(std::string_view key) const { return mEntries.find(key) != mEntries.end(); }
+bool ParameterTable::has(std::string_view key) const {
+    return mEntries.find(key) != mEntries.end();
+}
 
 std::vector<std::string> ParameterTable::keysUnder(std::string_view prefix) const {
     std::vector<std::string> out;
@@ -50,9 +53,9 @@ const ParameterTable::Entry* ParameterTable::find(std::string_view key) const {
 const ParameterTable::Entry& ParameterTable::require(std::string_view key) const {
     const Entry* e = find(key);
     if (!e)
-        throw InputError(fmt::format("{}: required key '{}' is missing; add it",
-                                     mFile, mPrefix.empty() ? std::string(key)
-                                                            : mPrefix + "." + std::string(key)));
+        throw InputError(
+            fmt::format("{}: required key '{}' is missing; add it", mFile,
+                        mPrefix.empty() ? std::string(key) : mPrefix + "." + std::string(key)));
     return *e;
 }
 
@@ -66,7 +69,8 @@ namespace {
 template <typename... Args>
 [[noreturn]] void rangeError(const ParameterTable& t, std::string_view key, std::string_view range,
                              const std::string& got) {
-    throw InputError(fmt::format("{} is out of range: {} (allowed: {})", t.describe(key), got, range));
+    throw InputError(
+        fmt::format("{} is out of range: {} (allowed: {})", t.describe(key), got, range));
 }
 }  // namespace
 
@@ -82,12 +86,15 @@ std::int64_t ParameterTable::getInt(std::string_view key, std::int64_t fallback,
     const Entry* e = find(key);
     if (!e) return fallback;
     std::int64_t v;
-    if (auto* i = std::get_if<std::int64_t>(&e->value)) v = *i;
-    else if (auto* d = std::get_if<double>(&e->value); d && std::floor(*d) == *d && std::abs(*d) < 9e15)
+    if (auto* i = std::get_if<std::int64_t>(&e->value))
+        v = *i;
+    else if (auto* d = std::get_if<double>(&e->value);
+             d && std::floor(*d) == *d && std::abs(*d) < 9e15)
         v = static_cast<std::int64_t>(*d);
     else
         typeError(key, "an integer");
-    if (v < min || v > max) rangeError(*this, key, fmt::format("{}..{}", min, max), std::to_string(v));
+    if (v < min || v > max)
+        rangeError(*this, key, fmt::format("{}..{}", min, max), std::to_string(v));
     return v;
 }
 
@@ -148,20 +155,24 @@ std::optional<glm::dvec3> ParameterTable::findVec3(std::string_view key) const {
 void ParameterTable::checkAllRead() const {
     for (const auto& [k, e] : mEntries)
         if (!e.read)
-            throw InputError(fmt::format("{}: unknown key '{}'; check its spelling against "
-                                         "SCENES.md and the renderer's settings",
-                                         e.where, shownKey(k)));
+            throw InputError(
+                fmt::format("{}: unknown key '{}'; check its spelling against "
+                            "SCENES.md and the renderer's settings",
+                            e.where, shownKey(k)));
 }
 
 std::string toString(const ParameterTable::Value& value) {
     return std::visit(
         [](const auto& v) -> std::string {
             using T = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
-            else if constexpr (std::is_same_v<T, std::string>) return "\"" + v + "\"";
+            if constexpr (std::is_same_v<T, bool>)
+                return v ? "true" : "false";
+            else if constexpr (std::is_same_v<T, std::string>)
+                return "\"" + v + "\"";
             else if constexpr (std::is_same_v<T, std::vector<double>>) {
                 std::string s = "[";
-                for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt::format("{}", v[i]);
+                for (std::size_t i = 0; i < v.size(); ++i)
+                    s += (i ? ", " : "") + fmt::format("{}", v[i]);
                 return s + "]";
             } else
                 return fmt::format("{}", v);

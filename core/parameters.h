@@ -19,7 +19,7 @@
 namespace twinrender::core {
 
 class ParameterTable {
-public:
+  public:
     using Value = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
     struct Entry {
         Value value;
@@ -68,7 +68,7 @@ public:
     void checkAllRead() const;
     const std::map<std::string, Entry, std::less<>>& entries() const { return mEntries; }
 
-private:
+  private:
     // The key as messages name it: as its override wrote it, else prefixed.
     std::string shownKey(std::string_view key) const;
     [[noreturn]] void typeError(std::string_view key, std::string_view expected) const;

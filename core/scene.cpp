@@ -1,11 +1,12 @@
 #include "core/scene.h"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <map>
 #include <set>
-#include <toml++/toml.h>
 
 #include "core/error.h"
 
@@ -59,7 +60,8 @@ std::string whereOf(const std::string& file, const toml::node& node, const std::
 void flatten(const toml::table& table, const std::string& prefix, const std::string& fullPrefix,
              const std::string& file, const Overrides& overrides, ParameterTable& out) {
     for (const auto& [k, node] : table) {
-        const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+        const std::string key =
+            prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
         const std::string full = fullPrefix.empty() ? key : fullPrefix + "." + key;
         const auto [where, shown] = originOf(file, node, full, overrides);
         if (const auto* t = node.as_table()) {
@@ -67,7 +69,8 @@ void flatten(const toml::table& table, const std::string& prefix, const std::str
         } else if (const auto* a = node.as_array()) {
             std::vector<double> values;
             for (const auto& e : *a) {
-                if (auto d = e.value<double>()) values.push_back(*d);
+                if (auto d = e.value<double>())
+                    values.push_back(*d);
                 else
                     throw InputError(fmt::format("{}: key '{}' must be an array of numbers", where,
                                                  shown.empty() ? full : shown));
@@ -82,9 +85,10 @@ void flatten(const toml::table& table, const std::string& prefix, const std::str
         } else if (auto s = node.value_exact<std::string>()) {
             out.set(key, *s, where, shown);
         } else {
-            throw InputError(fmt::format("{}: key '{}' has a type scenes do not use (dates and "
-                                         "times); use a number, string, boolean or array",
-                                         where, shown.empty() ? full : shown));
+            throw InputError(
+                fmt::format("{}: key '{}' has a type scenes do not use (dates and "
+                            "times); use a number, string, boolean or array",
+                            where, shown.empty() ? full : shown));
         }
     }
 }
@@ -121,7 +125,8 @@ void applyOverride(toml::table& root, const std::string& assignment, const std::
                    Overrides& overrides) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0)
-        throw InputError(fmt::format("--set {}: expected KEY=VALUE (e.g. camera.width=160)", assignment));
+        throw InputError(
+            fmt::format("--set {}: expected KEY=VALUE (e.g. camera.width=160)", assignment));
     const std::string key = assignment.substr(0, eq);
     const std::string value = assignment.substr(eq + 1);
     std::vector<std::string> parts = splitDots(key);
@@ -156,7 +161,8 @@ void applyOverride(toml::table& root, const std::string& assignment, const std::
             next = table->get(parts[i]);
         }
         if (!next->is_table())
-            throw InputError(fmt::format("--set {}: '{}' is not a table in {}", assignment, parts[i], file));
+            throw InputError(
+                fmt::format("--set {}: '{}' is not a table in {}", assignment, parts[i], file));
         table = next->as_table();
     }
     assignOverrideValue(*table, parts.back(), value);
@@ -169,12 +175,16 @@ TextureSource parseTexture(const ParameterTable& t, std::string_view key, Textur
     if (!e) return fallback;
     TextureSource src;
     src.where = t.describe(key);
-    if (auto* d = std::get_if<double>(&e->value)) src.value = glm::dvec3(*d);
-    else if (auto* i = std::get_if<std::int64_t>(&e->value)) src.value = glm::dvec3(double(*i));
+    if (auto* d = std::get_if<double>(&e->value))
+        src.value = glm::dvec3(*d);
+    else if (auto* i = std::get_if<std::int64_t>(&e->value))
+        src.value = glm::dvec3(double(*i));
     else if (auto* a = std::get_if<std::vector<double>>(&e->value)) {
         if (a->size() != 3)
-            throw InputError(fmt::format("{} must be [r, g, b], a number, \"procedural:NAME\" or an "
-                                         "image path", src.where));
+            throw InputError(
+                fmt::format("{} must be [r, g, b], a number, \"procedural:NAME\" or an "
+                            "image path",
+                            src.where));
         src.value = glm::dvec3((*a)[0], (*a)[1], (*a)[2]);
     } else if (auto* s = std::get_if<std::string>(&e->value)) {
         const std::string prefix = "procedural:";
@@ -185,26 +195,31 @@ TextureSource parseTexture(const ParameterTable& t, std::string_view key, Textur
             src.kind = TextureSource::Kind::File;
             src.path = fs::absolute(dir / *s).lexically_normal();
             if (!fs::is_regular_file(src.path))
-                throw InputError(fmt::format("{}: texture file {} does not exist; give a path "
-                                             "relative to the scene file",
-                                             src.where, src.path.string()));
+                throw InputError(
+                    fmt::format("{}: texture file {} does not exist; give a path "
+                                "relative to the scene file",
+                                src.where, src.path.string()));
         }
         return src;
     } else {
-        throw InputError(fmt::format("{} must be [r, g, b], a number, \"procedural:NAME\" or an "
-                                     "image path", src.where));
+        throw InputError(
+            fmt::format("{} must be [r, g, b], a number, \"procedural:NAME\" or an "
+                        "image path",
+                        src.where));
     }
     if (src.kind == TextureSource::Kind::Constant)
         for (int c = 0; c < 3; ++c)
             if (!(src.value[c] >= 0.0 && std::isfinite(src.value[c])))
-                throw InputError(fmt::format("{}: colour components must be finite and >= 0", src.where));
+                throw InputError(
+                    fmt::format("{}: colour components must be finite and >= 0", src.where));
     return src;
 }
 
 glm::dvec3 unitVec3(const ParameterTable& t, std::string_view key, glm::dvec3 fallback) {
     glm::dvec3 v = t.getVec3(key, fallback);
     const double len = glm::length(v);
-    if (!(len > 1e-12)) throw InputError(fmt::format("{} must be a non-zero vector", t.describe(key)));
+    if (!(len > 1e-12))
+        throw InputError(fmt::format("{} must be a non-zero vector", t.describe(key)));
     return v / len;
 }
 
@@ -225,8 +240,8 @@ MaterialDesc parseMaterial(const ParameterTable& t, const fs::path& dir) {
     return m;
 }
 
-BodyDesc parseBody(const ParameterTable& t, const fs::path& dir, const std::vector<MaterialDesc>& mats,
-                   std::size_t index) {
+BodyDesc parseBody(const ParameterTable& t, const fs::path& dir,
+                   const std::vector<MaterialDesc>& mats, std::size_t index) {
     BodyDesc b;
     b.where = t.file();
     b.name = t.getString("name", fmt::format("body{}", index));
@@ -243,10 +258,10 @@ BodyDesc parseBody(const ParameterTable& t, const fs::path& dir, const std::vect
         if (!found) {
             std::string names;
             for (const auto& m : mats) names += (names.empty() ? "" : ", ") + m.name;
-            throw InputError(fmt::format("{} names material '{}', which no [[materials]] entry "
-                                         "defines (defined: {})",
-                                         t.describe("material"), b.material,
-                                         names.empty() ? "none" : names));
+            throw InputError(
+                fmt::format("{} names material '{}', which no [[materials]] entry "
+                            "defines (defined: {})",
+                            t.describe("material"), b.material, names.empty() ? "none" : names));
         }
     }
     b.temperature = t.getDouble("temperature", 0.0, 0.0, 1e6);
@@ -264,9 +279,10 @@ BodyDesc parseBody(const ParameterTable& t, const fs::path& dir, const std::vect
         if (!s) throw InputError(fmt::format("{} must be a string", t.describe("path")));
         b.path = fs::absolute(dir / *s).lexically_normal();
         if (!fs::is_regular_file(b.path))
-            throw InputError(fmt::format("{}: particle file {} does not exist; paths are relative "
-                                         "to the scene file",
-                                         t.describe("path"), b.path.string()));
+            throw InputError(
+                fmt::format("{}: particle file {} does not exist; paths are relative "
+                            "to the scene file",
+                            t.describe("path"), b.path.string()));
         b.scale = t.getDouble("scale", 1.0, 1e-30, 1e30);
         if (!(b.scale > 0.0)) throw InputError(fmt::format("{} must be > 0", t.describe("scale")));
     } else {
@@ -275,7 +291,8 @@ BodyDesc parseBody(const ParameterTable& t, const fs::path& dir, const std::vect
             std::string l = t.getEnum("lattice", "hcp", {"hcp", "cubic", "random"});
             return l == "hcp" ? Lattice::Hcp : l == "cubic" ? Lattice::Cubic : Lattice::Random;
         }();
-        b.seed = static_cast<std::uint64_t>(t.getInt("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+        b.seed = static_cast<std::uint64_t>(
+            t.getInt("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
         if (shape == "ring") {
             b.shape = Shape::Ring;
             b.innerRadius = t.getDouble("inner_radius", 0.0, 0.0, big);
@@ -283,18 +300,21 @@ BodyDesc parseBody(const ParameterTable& t, const fs::path& dir, const std::vect
             b.outerRadius = t.getDouble("outer_radius", 0.0, 0.0, big);
             b.thickness = t.getDouble("thickness", 0.0, 0.0, big);
             if (!(b.outerRadius > b.innerRadius))
-                throw InputError(fmt::format("{} must be larger than inner_radius",
-                                             t.describe("outer_radius")));
+                throw InputError(
+                    fmt::format("{} must be larger than inner_radius", t.describe("outer_radius")));
             if (!(b.thickness > 0.0))
-                throw InputError(fmt::format("{}: a ring needs thickness > 0", t.describe("thickness")));
+                throw InputError(
+                    fmt::format("{}: a ring needs thickness > 0", t.describe("thickness")));
         } else {
             b.shape = shape == "ball" ? Shape::Ball : Shape::Shell;
             b.radius = t.getDouble("radius", 1.0, 0.0, big);
-            if (!(b.radius > 0.0)) throw InputError(fmt::format("{} must be > 0", t.describe("radius")));
+            if (!(b.radius > 0.0))
+                throw InputError(fmt::format("{} must be > 0", t.describe("radius")));
             if (b.shape == Shape::Shell) {
                 b.thickness = t.getDouble("thickness", 0.1 * b.radius, 0.0, b.radius);
                 if (!(b.thickness > 0.0))
-                    throw InputError(fmt::format("{}: a shell needs thickness > 0", t.describe("thickness")));
+                    throw InputError(
+                        fmt::format("{}: a shell needs thickness > 0", t.describe("thickness")));
             }
         }
     }
@@ -307,13 +327,15 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
     const fs::path file = fs::absolute(path).lexically_normal();
     const std::string fileName = path.string();
     if (!fs::is_regular_file(file))
-        throw InputError(fmt::format("{}: scene file not found; give the path of a .toml scene", fileName));
+        throw InputError(
+            fmt::format("{}: scene file not found; give the path of a .toml scene", fileName));
     toml::table root;
     try {
         root = toml::parse_file(file.string());
     } catch (const toml::parse_error& e) {
-        throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", fileName, e.source().begin.line,
-                                     e.source().begin.column, e.description()));
+        throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", fileName,
+                                     e.source().begin.line, e.source().begin.column,
+                                     e.description()));
     }
     Overrides located;
     for (const auto& o : overrides) applyOverride(root, o, fileName, located);
@@ -356,14 +378,15 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
         }
         return t;
     };
-    std::set<std::string> known = {"name", "description", "camera", "light", "materials", "bodies",
-                                   "realtime", "raymarch", "compare"};
+    std::set<std::string> known = {"name",   "description", "camera",   "light",  "materials",
+                                   "bodies", "realtime",    "raymarch", "compare"};
     for (const auto& [k, node] : root)
         if (node.is_table() && !known.count(std::string(k.str())))
-            throw InputError(fmt::format("{}: unknown table '[{}]'; scene files have [camera], "
-                                         "[light], [[materials]], [[bodies]], [realtime], "
-                                         "[raymarch] and [compare]",
-                                         whereOf(fileName, node, std::string(k.str()), located), k.str()));
+            throw InputError(
+                fmt::format("{}: unknown table '[{}]'; scene files have [camera], "
+                            "[light], [[materials]], [[bodies]], [realtime], "
+                            "[raymarch] and [compare]",
+                            whereOf(fileName, node, std::string(k.str()), located), k.str()));
 
     {
         ParameterTable t = section("camera");
@@ -381,14 +404,17 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
             throw InputError(fmt::format("{}: camera needs 0 < near < far (near = {}, far = {})",
                                          t.describe("far"), c.near, c.far));
         if (static_cast<double>(c.width) * c.height > 64.0 * 1024 * 1024)
-            throw InputError(fmt::format("{}: {}x{} pixels is more than the 64 Mpixel limit; use a "
-                                         "smaller resolution",
-                                         t.describe("width"), c.width, c.height));
+            throw InputError(
+                fmt::format("{}: {}x{} pixels is more than the 64 Mpixel limit; use a "
+                            "smaller resolution",
+                            t.describe("width"), c.width, c.height));
         const glm::dvec3 view = c.target - c.position;
         if (!(glm::length(view) > 0.0))
-            throw InputError(fmt::format("{}: camera position and target coincide", t.describe("target")));
+            throw InputError(
+                fmt::format("{}: camera position and target coincide", t.describe("target")));
         if (glm::length(glm::cross(view / glm::length(view), c.up)) < 1e-6)
-            throw InputError(fmt::format("{}: 'up' is parallel to the view direction", t.describe("up")));
+            throw InputError(
+                fmt::format("{}: 'up' is parallel to the view direction", t.describe("up")));
         t.checkAllRead();
     }
     {
@@ -407,7 +433,8 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
         if (key != "materials") continue;
         std::size_t i = 0;
         for (const auto& node : *arr) {
-            ParameterTable t(fmt::format("materials[{}]", i), whereOf(fileName, node, key, located));
+            ParameterTable t(fmt::format("materials[{}]", i),
+                             whereOf(fileName, node, key, located));
             flatten(*node.as_table(), "", fmt::format("materials.{}", i), fileName, located, t);
             scene.materials.push_back(parseMaterial(t, dir));
             t.checkAllRead();
@@ -437,7 +464,8 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
         }
     }
     if (scene.bodies.empty())
-        throw InputError(fmt::format("{}: the scene has no [[bodies]]; add at least one", fileName));
+        throw InputError(
+            fmt::format("{}: the scene has no [[bodies]]; add at least one", fileName));
     scene.realtime = section("realtime");
     scene.raymarch = section("raymarch");
     scene.compare = section("compare");

@@ -1,13 +1,13 @@
 #include "core/scene.h"
 
 #include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "core/error.h"
 
@@ -76,7 +76,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     EXPECT_EQ(s.description, "two bodies");
     EXPECT_EQ(s.camera.position, glm::dvec3(1.0, 2.0, 3.0));
     EXPECT_EQ(s.camera.width, 64);
-    EXPECT_DOUBLE_EQ(s.camera.fovYDeg, 40.0);  // default
+    EXPECT_DOUBLE_EQ(s.camera.fovYDeg, 40.0);                  // default
     EXPECT_EQ(s.light.direction, glm::dvec3(0.0, 0.0, -1.0));  // normalised
     ASSERT_EQ(s.materials.size(), 2u);
     EXPECT_EQ(s.materials[0].specular.value, glm::dvec3(0.2));
@@ -93,9 +93,10 @@ TEST(Scene, ReadsEveryDocumentedKey) {
 TEST(Scene, OverridesUseTheDottedKeysAndBodyNames) {
     const auto p = writeScene("overrides", BASIC);
     const tc::Scene s = tc::loadScene(
-        p, std::vector<std::string>{"camera.width=160", "bodies.planet.particles=5000",
-                                    "bodies.1.thickness=0.2", "realtime.depth=standard",
-                                    "materials.rock.specular=[1, 0, 0]", "description=plain words"});
+        p,
+        std::vector<std::string>{"camera.width=160", "bodies.planet.particles=5000",
+                                 "bodies.1.thickness=0.2", "realtime.depth=standard",
+                                 "materials.rock.specular=[1, 0, 0]", "description=plain words"});
     EXPECT_EQ(s.camera.width, 160);
     EXPECT_EQ(s.bodies[0].particles, 5000);
     EXPECT_DOUBLE_EQ(s.bodies[1].thickness, 0.2);
@@ -105,7 +106,8 @@ TEST(Scene, OverridesUseTheDottedKeysAndBodyNames) {
     // An override's messages name the override.
     const std::string m = messageOf(p, {"camera.fov_y_deg=500"});
     EXPECT_NE(m.find("--set camera.fov_y_deg=500"), std::string::npos) << m;
-    EXPECT_NE(messageOf(p, {"bodies.moon.radius=1"}).find("no entry named 'moon'"), std::string::npos);
+    EXPECT_NE(messageOf(p, {"bodies.moon.radius=1"}).find("no entry named 'moon'"),
+              std::string::npos);
     EXPECT_NE(messageOf(p, {"novalue"}).find("KEY=VALUE"), std::string::npos);
 }
 
@@ -156,17 +158,25 @@ TEST(Scene, OverrideErrorsNameTheOverrideAndTheKeyAsWritten) {
 
 TEST(Scene, RejectsWhatItDoesNotKnow) {
     std::string text = BASIC;
-    EXPECT_NE(messageOf(writeScene("k1", text + "\n[lights]\nx = 1\n")).find("unknown table '[lights]'"),
+    EXPECT_NE(
+        messageOf(writeScene("k1", text + "\n[lights]\nx = 1\n")).find("unknown table '[lights]'"),
+        std::string::npos);
+    EXPECT_NE(messageOf(writeScene("k2", "[[bodies]]\nshape = \"cube\"\n")).find("cube"),
               std::string::npos);
-    EXPECT_NE(messageOf(writeScene("k2", "[[bodies]]\nshape = \"cube\"\n")).find("cube"), std::string::npos);
-    EXPECT_NE(messageOf(writeScene("k3", "[[bodies]]\nshape = \"ring\"\ninner_radius = 1.0\n")).find("outer_radius"),
+    EXPECT_NE(messageOf(writeScene("k3", "[[bodies]]\nshape = \"ring\"\ninner_radius = 1.0\n"))
+                  .find("outer_radius"),
               std::string::npos);
-    EXPECT_NE(messageOf(writeScene("k4", "[camera]\nnear = 2.0\nfar = 1.0\n[[bodies]]\n")).find("near < far"),
+    EXPECT_NE(messageOf(writeScene("k4", "[camera]\nnear = 2.0\nfar = 1.0\n[[bodies]]\n"))
+                  .find("near < far"),
               std::string::npos);
-    EXPECT_NE(messageOf(writeScene("k5", "name = \"x\"\n")).find("no [[bodies]]"), std::string::npos);
-    EXPECT_NE(messageOf(writeScene("k6", "[camera]\nup = [0.0, 1.0, 0.0]\nposition = [0.0, -4.0, 0.0]\n[[bodies]]\n"))
-                  .find("parallel"),
+    EXPECT_NE(messageOf(writeScene("k5", "name = \"x\"\n")).find("no [[bodies]]"),
               std::string::npos);
+    EXPECT_NE(
+        messageOf(
+            writeScene("k6",
+                       "[camera]\nup = [0.0, 1.0, 0.0]\nposition = [0.0, -4.0, 0.0]\n[[bodies]]\n"))
+            .find("parallel"),
+        std::string::npos);
     // The line of the offending key.
     const std::string m = messageOf(writeScene("k7", "[[bodies]]\nname = \"a\"\nradius = -1.0\n"));
     EXPECT_NE(m.find("k7.toml:3:"), std::string::npos) << m;
@@ -192,7 +202,8 @@ TEST(Parameters, TypesRangesAndUnreadKeys) {
         t.checkAllRead();
         FAIL() << "the unread key was accepted";
     } catch (const tc::InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("scene.toml:7:1: unknown key 'realtime.typo'"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("scene.toml:7:1: unknown key 'realtime.typo'"),
+                  std::string::npos)
             << e.what();
     }
 }

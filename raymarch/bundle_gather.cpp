@@ -40,8 +40,8 @@ constexpr float SLACK = 1e-4f;
 // Marks in `meets` the members of a group whose grown sphere meets the query's (single) ray
 // within its [tnear, tfar]. It uses the ray as Embree holds it, so that its float rounding is
 // Embree's.
-inline void centralRayMeets(const RTCIntersectFunctionNArguments* args, const BundleGather::Group& g,
-                            int meets[BundleGather::GROUP]) {
+inline void centralRayMeets(const RTCIntersectFunctionNArguments* args,
+                            const BundleGather::Group& g, int meets[BundleGather::GROUP]) {
     const RTCRay& ray = reinterpret_cast<const RTCRayHit*>(args->rayhit)->ray;
     const float ox = ray.org_x, oy = ray.org_y, oz = ray.org_z;
     const float dx = ray.dir_x, dy = ray.dir_y, dz = ray.dir_z;
@@ -71,10 +71,13 @@ void orderForGroups(std::uint32_t* ids, std::size_t n, std::span<const glm::vec3
         hi = glm::max(hi, centers[ids[k]]);
     }
     const glm::vec3 extent = hi - lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
     const std::size_t half = std::min((n / 2 + G - 1) / G * G, n - 1);
     std::nth_element(ids, ids + half, ids + n, [&](std::uint32_t a, std::uint32_t b) {
-        return centers[a][axis] < centers[b][axis] || (centers[a][axis] == centers[b][axis] && a < b);
+        return centers[a][axis] < centers[b][axis] ||
+               (centers[a][axis] == centers[b][axis] && a < b);
     });
     orderForGroups(ids, half, centers);
     orderForGroups(ids + half, n - half, centers);
@@ -200,7 +203,8 @@ void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
                 const float chord2 = r2 - (px * px + py * py + pz * pz);
                 // The chord meets [tMin, tMax]: its centre lies within sqrt(chord2) of the
                 // interval.
-                const float gap = (b.tMin[i] - tc > tc - b.tMax[i] ? b.tMin[i] - tc : tc - b.tMax[i]) - slack;
+                const float gap =
+                    (b.tMin[i] - tc > tc - b.tMax[i] ? b.tMin[i] - tc : tc - b.tMax[i]) - slack;
                 meets |= (chord2 > 0.0f) & ((gap <= 0.0f) | (gap * gap <= chord2));
             }
         }

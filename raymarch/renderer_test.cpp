@@ -2,10 +2,11 @@
 #include "raymarch/renderer.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
 #include <cmath>
 #include <cstring>
 #include <numbers>
-#include <tbb/task_arena.h>
 
 #include "core/sph_kernel.h"
 #include "raymarch/testing/ray_field_testing.h"
@@ -57,7 +58,8 @@ struct TestScene {
     }
 };
 
-tr::core::Frame render(const TestScene& s, const tr::raymarch::Settings& settings, int threads = 2) {
+tr::core::Frame render(const TestScene& s, const tr::raymarch::Settings& settings,
+                       int threads = 2) {
     tr::raymarch::EmbreeDevice device;
     tr::core::Frame frame;
     tbb::task_arena arena(threads);
@@ -122,11 +124,13 @@ TEST(Raymarch, LatticeHalfSpaceIsFlatAtTheComputedHeight) {
     std::vector<glm::vec3> positions;
     for (int i = -20; i <= 20; ++i)
         for (int j = -20; j <= 20; ++j)
-            for (int k = 0; k < 6; ++k) positions.emplace_back(i * spacing, j * spacing, -k * spacing);
+            for (int k = 0; k < 6; ++k)
+                positions.emplace_back(i * spacing, j * spacing, -k * spacing);
     s.addBody(positions, h, v);
     auto field = [&](glm::dvec3 p) {
         double sum = 0.0;
-        for (const auto& x : positions) sum += v * tr::core::m4Kernel(glm::length(p - glm::dvec3(x)), double(h));
+        for (const auto& x : positions)
+            sum += v * tr::core::m4Kernel(glm::length(p - glm::dvec3(x)), double(h));
         return sum;
     };
     tr::raymarch::Settings settings;
@@ -194,7 +198,8 @@ TEST(Raymarch, SphereShadowOnAPlaneMatchesTheAnalyticOutline) {
         for (int x = 0; x < 64; ++x) {
             if (img.at(x, y, img.channelIndex("id")) != 0.0f) continue;  // the floor only
             const auto ray = camera.ray(x + 0.5, y + 0.5);
-            const double t = img.at(x, y, img.channelIndex("Z")) / glm::dot(ray.direction, camera.forward());
+            const double t =
+                img.at(x, y, img.channelIndex("Z")) / glm::dot(ray.direction, camera.forward());
             const glm::dvec3 p = ray.origin + t * ray.direction;
             // Distance from the sphere's centre to the ray p + s toLight, s >= 0.
             const double sc = std::max(0.0, glm::dot(centre - p, toLight));
@@ -216,7 +221,10 @@ TEST(Raymarch, SameImageForAnyThreadCount) {
     TestScene s;
     std::vector<glm::vec3> positions;
     std::uint32_t state = 12345;
-    auto next = [&] { state = state * 1664525u + 1013904223u; return (state >> 8) / 16777216.0f; };
+    auto next = [&] {
+        state = state * 1664525u + 1013904223u;
+        return (state >> 8) / 16777216.0f;
+    };
     for (int i = 0; i < 3000; ++i) {
         glm::vec3 p(next() * 2 - 1, next() * 2 - 1, next() * 2 - 1);
         if (glm::length(p) < 1.0f) positions.push_back(p);
@@ -241,10 +249,11 @@ TEST(Raymarch, SameImageForAnyThreadCount) {
     auto firstDifference = [](const Image& a, const Image& b) -> std::string {
         for (std::size_t p = 0; p < a.pixelCount(); ++p)
             for (int c = 0; c < a.channelCount(); ++c)
-                if (const float x = a.at(p, c), y = b.at(p, c); std::memcmp(&x, &y, sizeof(float)) != 0)
-                    return a.channelNames()[c] + " at pixel " + std::to_string(p % a.width()) + "," +
-                           std::to_string(p / a.width()) + ": " + std::to_string(a.at(p, c)) + " vs " +
-                           std::to_string(b.at(p, c));
+                if (const float x = a.at(p, c), y = b.at(p, c);
+                    std::memcmp(&x, &y, sizeof(float)) != 0)
+                    return a.channelNames()[c] + " at pixel " + std::to_string(p % a.width()) +
+                           "," + std::to_string(p / a.width()) + ": " + std::to_string(a.at(p, c)) +
+                           " vs " + std::to_string(b.at(p, c));
         return "";
     };
     EXPECT_EQ(firstDifference(one.image, two.image), "");

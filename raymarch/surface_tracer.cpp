@@ -20,19 +20,20 @@ namespace {
 // One ray's state while its bundle marches.
 struct MarchRay {
     core::Ray ray;
-    double t = 0.0;             // where the next segment starts
-    double tEnd = 0.0;          // where the ray stops
-    double hRef = 0.0;          // scale of the particles near t (segment length, tolerances)
-    double segmentScale = 1.0;  // the next segment's length, in units of the setting
-    bool needEntry = true;      // skip empty space to the next support sphere first
-    bool sharedEntry = true;    // that skip may come from one query for the bundle (once)
+    double t = 0.0;                // where the next segment starts
+    double tEnd = 0.0;             // where the ray stops
+    double hRef = 0.0;             // scale of the particles near t (segment length, tolerances)
+    double segmentScale = 1.0;     // the next segment's length, in units of the setting
+    bool needEntry = true;         // skip empty space to the next support sphere first
+    bool sharedEntry = true;       // that skip may come from one query for the bundle (once)
     bool fromSharedEntry = false;  // the next segment starts at a shared entry
     bool active = true;
     bool hit = false;
 };
 
 // Whether the ray meets the box within [t0, t1] (slab test).
-bool rayMeetsBox(const core::Ray& ray, double t0, double t1, const glm::dvec3& lo, const glm::dvec3& hi) {
+bool rayMeetsBox(const core::Ray& ray, double t0, double t1, const glm::dvec3& lo,
+                 const glm::dvec3& hi) {
     for (int k = 0; k < 3; ++k) {
         const double inv = 1.0 / ray.direction[k];
         double a = (lo[k] - ray.origin[k]) * inv, b = (hi[k] - ray.origin[k]) * inv;
@@ -51,7 +52,8 @@ struct BodyRange {
 };
 
 // Whether the ray meets the sphere within [t0, t1].
-bool rayMeetsSphere(const core::Ray& ray, double t0, double t1, const glm::dvec3& center, double radius) {
+bool rayMeetsSphere(const core::Ray& ray, double t0, double t1, const glm::dvec3& center,
+                    double radius) {
     const glm::dvec3 w = center - ray.origin;
     const double t = std::clamp(glm::dot(w, ray.direction), t0, t1);
     const glm::dvec3 off = w - t * ray.direction;
@@ -110,15 +112,15 @@ constexpr double MIN_PLANE_HINT_COSINE = 0.2;
 }  // namespace
 
 class SurfaceTracer::Workspace {
-public:
-    RayField field;                    // the segment being searched
-    std::vector<std::uint32_t> prims;  // this round's gather, in particle order
-    std::vector<std::uint32_t> sorted; // sortDistinct's scratch
-    ParticleBatch batch;               // their data
-    std::vector<float> weights;        // kernel weights at a hit
-    std::vector<int> groupEnds;  // shadow bundles
-    double lastCrossing = NAN;   // the block's last primary crossing
-    int rowLength = 0;           // primary rays come in rows of this many
+  public:
+    RayField field;                     // the segment being searched
+    std::vector<std::uint32_t> prims;   // this round's gather, in particle order
+    std::vector<std::uint32_t> sorted;  // sortDistinct's scratch
+    ParticleBatch batch;                // their data
+    std::vector<float> weights;         // kernel weights at a hit
+    std::vector<int> groupEnds;         // shadow bundles
+    double lastCrossing = NAN;          // the block's last primary crossing
+    int rowLength = 0;                  // primary rays come in rows of this many
     MarchRay rays[MAX_RAYS];
     TraceCounters counters;
 };
@@ -129,7 +131,7 @@ struct SurfaceTracer::Impl {
     Settings settings;
     std::vector<FieldParticle> fieldParticles;
     std::vector<HitAttributes> hitAttributes;  // per particle
-    std::unique_ptr<SphereScene> spheres;   // plain spheres (spheres mode)
+    std::unique_ptr<SphereScene> spheres;      // plain spheres (spheres mode)
     // Support spheres grown by the spread of a pixel block's rays (camera rays), and by the
     // shadow margin (shadow rays; only with shadows on).
     std::unique_ptr<BundleGather> bundles, shadowBundles;
@@ -147,7 +149,8 @@ struct SurfaceTracer::Impl {
         sinBlock = std::min(1.0, 1.02 * (BLOCK / std::sqrt(2.0)) * pixelAngle);
         if (st.spheres) {
             std::vector<float> radii(n);
-            for (std::size_t i = 0; i < n; ++i) radii[i] = static_cast<float>(st.sphereRadius) * ps.h[i];
+            for (std::size_t i = 0; i < n; ++i)
+                radii[i] = static_cast<float>(st.sphereRadius) * ps.h[i];
             spheres = std::make_unique<SphereScene>(device, ps.position, radii);
             return;
         }
@@ -160,7 +163,8 @@ struct SurfaceTracer::Impl {
             // than most pixel blocks, and growing every sphere by the larger margin would
             // cost the camera rays' gathers more callbacks.
             const double primary =
-                (glm::length(glm::dvec3(ps.position[i]) - cam.position()) + supportRadius[i]) * sinBlock;
+                (glm::length(glm::dvec3(ps.position[i]) - cam.position()) + supportRadius[i]) *
+                sinBlock;
             margin[i] = static_cast<float>(primary);
             shadowMargin[i] = static_cast<float>(SHADOW_MARGIN * ps.h[i]);
         }
@@ -171,10 +175,11 @@ struct SurfaceTracer::Impl {
         const std::vector<std::uint32_t> order = BundleGather::groupOrder(ps.position);
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin, order);
         if (st.shadows)
-            shadowBundles =
-                std::make_unique<BundleGather>(device, ps.position, supportRadius, shadowMargin, order);
+            shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius,
+                                                           shadowMargin, order);
         auto addRange = [&](std::size_t begin, std::size_t end) {
-            BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0, INFINITY};
+            BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0,
+                        INFINITY};
             for (std::size_t i = begin; i < end; ++i) {
                 const double s = supportRadius[i];
                 r.lo = glm::min(r.lo, glm::dvec3(ps.position[i]) - s);
@@ -183,8 +188,8 @@ struct SurfaceTracer::Impl {
             }
             r.center = 0.5 * (r.lo + r.hi);
             for (std::size_t i = begin; i < end; ++i)
-                r.radius = std::max(r.radius,
-                                    glm::length(glm::dvec3(ps.position[i]) - r.center) + supportRadius[i]);
+                r.radius = std::max(r.radius, glm::length(glm::dvec3(ps.position[i]) - r.center) +
+                                                  supportRadius[i]);
             // Rounding of the float positions and of the tests.
             r.radius *= 1.0 + 1e-6;
             bodyRanges.push_back(r);
@@ -259,8 +264,8 @@ struct SurfaceTracer::Impl {
     // most shadow bundles) costs that one query. A primary ray then starts abreast of the
     // shared entry; a shared entry can lie well before a ray's own, so later entries (and
     // shadow rays, whose bundles spread more) take their own queries, packets of rays.
-    void enter(const int* ids, int n, const glm::dvec3& origin, const glm::dvec3& centralDirection, bool parallel,
-               Workspace& w) const {
+    void enter(const int* ids, int n, const glm::dvec3& origin, const glm::dvec3& centralDirection,
+               bool parallel, Workspace& w) const {
         const auto& ps = particles.particles;
         int shared[MAX_RAYS], own[MAX_RAYS], sharedCount = 0, ownCount = 0;
         for (int k = 0; k < n; ++k) {
@@ -295,8 +300,9 @@ struct SurfaceTracer::Impl {
             BundleGather::Entry e{};
             const double shift = std::min(a0, 0.0);
             const BundleGather& tree = gatherFor(parallel);
-            const bool found = !positive || tree.firstEntry(origin + shift * centralDirection, centralDirection,
-                                                             a0 - shift, a1 - shift, e);
+            const bool found =
+                !positive || tree.firstEntry(origin + shift * centralDirection, centralDirection,
+                                             a0 - shift, a1 - shift, e);
             e.t += shift;
             for (int k = 0; k < sharedCount; ++k) {
                 MarchRay& r = w.rays[shared[k]];
@@ -307,7 +313,8 @@ struct SurfaceTracer::Impl {
                 if (positive) {
                     // No support sphere is entered before the point abreast of the grown
                     // one's entry.
-                    r.t = std::max(r.t, (e.t - along[k]) / cosine[k] - ENTRY_BACKOFF * ps.h[e.prim]);
+                    r.t =
+                        std::max(r.t, (e.t - along[k]) / cosine[k] - ENTRY_BACKOFF * ps.h[e.prim]);
                     if (!parallel) {
                         r.hRef = ps.h[e.prim];
                         r.needEntry = false;
@@ -342,7 +349,9 @@ struct SurfaceTracer::Impl {
     }
 
     // The gather of camera-ray bundles, or of shadow bundles (parallel rays).
-    const BundleGather& gatherFor(bool parallel) const { return parallel ? *shadowBundles : *bundles; }
+    const BundleGather& gatherFor(bool parallel) const {
+        return parallel ? *shadowBundles : *bundles;
+    }
 
     // A camera ray's first segment is the segment length deep measured along the normal of
     // the entered body's bounding sphere, not along the ray: one entering at a slant (toward
@@ -362,9 +371,10 @@ struct SurfaceTracer::Impl {
     // hits[id] for the rays that find one when `hits` is given. Primary bundles pass the
     // block's central direction, shadow bundles (parallel rays within the shadow margin of
     // the central line through their mean origin, groupParallel) the direction of the light.
-    void march(const int* ids, int n, const glm::dvec3& centralDirection, bool parallel, Workspace& w,
-               SurfaceHit* hits) const {
-        const double segmentLength = settings.segmentLength * (parallel ? SHADOW_SEGMENT_SCALE : 1.0);
+    void march(const int* ids, int n, const glm::dvec3& centralDirection, bool parallel,
+               Workspace& w, SurfaceHit* hits) const {
+        const double segmentLength =
+            settings.segmentLength * (parallel ? SHADOW_SEGMENT_SCALE : 1.0);
         // The central line: through the mean origin (the camera, for primary rays).
         glm::dvec3 origin(0.0);
         for (int k = 0; k < n; ++k) origin += w.rays[ids[k]].ray.origin;
@@ -380,7 +390,8 @@ struct SurfaceTracer::Impl {
                 if (!r.active) continue;
                 const double extra = r.fromSharedEntry ? SHARED_ENTRY_EXTRA : 0.0;
                 r.fromSharedEntry = false;
-                segEnd[bundle.count] = std::min(r.t + (segmentLength * r.segmentScale + extra) * r.hRef, r.tEnd);
+                segEnd[bundle.count] =
+                    std::min(r.t + (segmentLength * r.segmentScale + extra) * r.hRef, r.tEnd);
                 lane[bundle.count] = ids[k];
                 bundle.add(r.ray.origin, r.ray.direction, r.t, segEnd[bundle.count]);
             }
@@ -391,7 +402,8 @@ struct SurfaceTracer::Impl {
             for (int j = 0; j < active; ++j) {
                 const MarchRay& r = w.rays[lane[j]];
                 for (double t : {r.t, segEnd[j]}) {
-                    const double along = glm::dot(r.ray.origin + t * r.ray.direction - origin, centralDirection);
+                    const double along =
+                        glm::dot(r.ray.origin + t * r.ray.direction - origin, centralDirection);
                     tnear = std::min(tnear, along);
                     tfar = std::max(tfar, along);
                 }
@@ -422,11 +434,13 @@ struct SurfaceTracer::Impl {
                     // the way; shadow rays start inside the supports).
                     const double hint = hits ? primaryHint(lane[j], w, hits) : NAN;
                     double start = r.t;
-                    if (w.field.peakSum() < settings.surfaceLevel) start = INFINITY;
+                    if (w.field.peakSum() < settings.surfaceLevel)
+                        start = INFINITY;
                     else if (hits && !(hint > r.t && hint < segEnd[j]))
                         start = std::max(r.t, w.field.supportStart());
                     const Crossing crossing =
-                        start < segEnd[j] ? findFirstCrossing(w.field, start, segEnd[j], crossingSettings(r.hRef), hint)
+                        start < segEnd[j] ? findFirstCrossing(w.field, start, segEnd[j],
+                                                              crossingSettings(r.hRef), hint)
                                           : Crossing{};
                     w.counters.evaluations += crossing.evaluations;
                     switch (crossing.status) {
@@ -457,8 +471,10 @@ struct SurfaceTracer::Impl {
                     continue;
                 }
                 // None: empty space follows, skip it.
-                if (hNear > 0.0) r.hRef = hNear;
-                else r.needEntry = true;
+                if (hNear > 0.0)
+                    r.hRef = hNear;
+                else
+                    r.needEntry = true;
             }
         }
     }
@@ -481,7 +497,8 @@ struct SurfaceTracer::Impl {
     }
 
     // Everything the AOV image records about a ray's crossing, from the segment's candidates.
-    void surfaceHit(const MarchRay& r, const Crossing& crossing, Workspace& w, SurfaceHit& hit) const {
+    void surfaceHit(const MarchRay& r, const Crossing& crossing, Workspace& w,
+                    SurfaceHit& hit) const {
         hit.t = crossing.t;
         hit.position = r.ray.origin + crossing.t * r.ray.direction;
         hit.outside = r.ray.origin + crossing.tBelow * r.ray.direction;
@@ -552,7 +569,7 @@ struct SurfaceTracer::Impl {
         hit.outside = hit.position + 1e-3 * hit.hRef * glm::dvec3(hit.normal);
         // uv extrapolated from the particle with its gradient, as an impostor does.
         glm::dvec2 uv = glm::dvec2(ps.uv[i]) + glm::dvec2(glm::dot(glm::dvec3(ps.dudx[i]), off),
-                                                           glm::dot(glm::dvec3(ps.dvdx[i]), off));
+                                                          glm::dot(glm::dvec3(ps.dvdx[i]), off));
         uv.x -= std::floor(uv.x);
         uv.y = std::clamp(uv.y, 0.0, 1.0);
         hit.uv = glm::vec2(uv);
@@ -567,7 +584,8 @@ struct SurfaceTracer::Impl {
         const glm::dvec3 lo = particles.boundsMin, hi = particles.boundsMax;
         double tExit = 0.0;
         for (int k = 0; k < 3; ++k)
-            if (dir[k] != 0.0) tExit = std::max(tExit, ((dir[k] > 0.0 ? hi[k] : lo[k]) - p[k]) / dir[k]);
+            if (dir[k] != 0.0)
+                tExit = std::max(tExit, ((dir[k] > 0.0 ? hi[k] : lo[k]) - p[k]) / dir[k]);
         return tExit + 1e-6 * glm::length(hi - lo);
     }
 };
@@ -576,17 +594,26 @@ SurfaceTracer::SurfaceTracer(const EmbreeDevice& device, const core::Camera& cam
                              const core::SceneParticles& particles, const Settings& settings) {
     const auto start = std::chrono::steady_clock::now();
     mImpl = std::make_unique<Impl>(device, camera, particles, settings);
-    mBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    mBuildMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 SurfaceTracer::~SurfaceTracer() = default;
 
-SurfaceTracer::WorkspacePtr SurfaceTracer::makeWorkspace() const { return WorkspacePtr(new Workspace()); }
+SurfaceTracer::WorkspacePtr SurfaceTracer::makeWorkspace() const {
+    return WorkspacePtr(new Workspace());
+}
 
-void SurfaceTracer::WorkspaceDeleter::operator()(Workspace* w) const { delete w; }
+void SurfaceTracer::WorkspaceDeleter::operator()(Workspace* w) const {
+    delete w;
+}
 
-const TraceCounters& SurfaceTracer::counters(const Workspace& w) const { return w.counters; }
-void SurfaceTracer::resetCounters(Workspace& w) const { w.counters = {}; }
+const TraceCounters& SurfaceTracer::counters(const Workspace& w) const {
+    return w.counters;
+}
+void SurfaceTracer::resetCounters(Workspace& w) const {
+    w.counters = {};
+}
 
 bool SurfaceTracer::blockMayHit(const core::Ray& central) const {
     const Impl& im = *mImpl;
@@ -595,7 +622,8 @@ bool SurfaceTracer::blockMayHit(const core::Ray& central) const {
         // A point of a block ray at distance D from the camera lies within D sinBlock of the
         // central ray, at a parameter of it below D: the central ray meets the body's box
         // (and sphere) grown by that spread before the box's farthest distance.
-        const double far = glm::length(0.5 * (b.lo + b.hi) - central.origin) + 0.5 * glm::length(b.hi - b.lo);
+        const double far =
+            glm::length(0.5 * (b.lo + b.hi) - central.origin) + 0.5 * glm::length(b.hi - b.lo);
         const double grow = 1.01 * far * im.sinBlock;
         if (rayMeetsSphere(central, 0.0, far, b.center, b.radius + grow) &&
             rayMeetsBox(central, 0.0, far, b.lo - grow, b.hi + grow))
@@ -605,8 +633,8 @@ bool SurfaceTracer::blockMayHit(const core::Ray& central) const {
 }
 
 void SurfaceTracer::tracePrimary(int n, int rowLength, const core::Ray* rays, const double* tnear,
-                                 const double* tfar, const core::Ray& central, SurfaceHit* hits, bool* found,
-                                 Workspace& w) const {
+                                 const double* tfar, const core::Ray& central, SurfaceHit* hits,
+                                 bool* found, Workspace& w) const {
     const Impl& im = *mImpl;
     if (im.settings.spheres) {
         for (int i = 0; i < n; ++i) found[i] = im.traceSphere(rays[i], tnear[i], tfar[i], hits[i]);
@@ -642,10 +670,11 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
         // surface at once (dphi/dt >= 0), so the point is occluded; no ray is needed.
         if (glm::dot(glm::dvec3(hit.normal), toLight) <= 0.0) continue;
         if (im.settings.spheres) {
-            visibility[i] = im.spheres->occluded(glm::vec3(hit.outside), glm::vec3(toLight), 0.0f,
-                                                 static_cast<float>(im.exitDistance(hit.outside, toLight)))
-                                ? 0.0f
-                                : 1.0f;
+            visibility[i] =
+                im.spheres->occluded(glm::vec3(hit.outside), glm::vec3(toLight), 0.0f,
+                                     static_cast<float>(im.exitDistance(hit.outside, toLight)))
+                    ? 0.0f
+                    : 1.0f;
             continue;
         }
         // From just outside the surface; the first gather also reports the support spheres

@@ -34,8 +34,8 @@ struct SurfaceHit {
     glm::vec2 uv{0.0f};
     std::uint32_t body = 0;
     std::uint32_t material = 0;
-    glm::vec3 glow{0.0f};      // kernel-weighted blackbody glow
-    double hRef = 0.0;         // smallest h of the particles around the hit, for tolerances
+    glm::vec3 glow{0.0f};  // kernel-weighted blackbody glow
+    double hRef = 0.0;     // smallest h of the particles around the hit, for tolerances
 };
 
 struct TraceCounters {
@@ -47,10 +47,10 @@ struct TraceCounters {
 };
 
 class SurfaceTracer {
-public:
-    static constexpr int BLOCK = 8;              // pixel block side (of 4, 6, 8, 16: the fastest)
-    static constexpr int MAX_RAYS = 64;          // rays per bundle
-    static constexpr double SHADOW_MARGIN = 0.3; // shadow-bundle spread allowed, in units of h
+  public:
+    static constexpr int BLOCK = 8;               // pixel block side (of 4, 6, 8, 16: the fastest)
+    static constexpr int MAX_RAYS = 64;           // rays per bundle
+    static constexpr double SHADOW_MARGIN = 0.3;  // shadow-bundle spread allowed, in units of h
 
     SurfaceTracer(const EmbreeDevice& device, const core::Camera& camera,
                   const core::SceneParticles& particles, const Settings& settings);
@@ -69,8 +69,9 @@ public:
     bool blockMayHit(const core::Ray& central) const;
     // Camera rays of one pixel block (n <= MAX_RAYS, samples anywhere inside the block's
     // pixels, in rows of `rowLength` rays); `central` is the ray through the block's centre.
-    void tracePrimary(int n, int rowLength, const core::Ray* rays, const double* tnear, const double* tfar,
-                      const core::Ray& central, SurfaceHit* hits, bool* found, Workspace& w) const;
+    void tracePrimary(int n, int rowLength, const core::Ray* rays, const double* tnear,
+                      const double* tfar, const core::Ray& central, SurfaceHit* hits, bool* found,
+                      Workspace& w) const;
     // 1 where the light reaches the hit, 0 where the surface occludes it, for the hits of the
     // last tracePrimary call on this workspace.
     void traceShadows(int n, const SurfaceHit* hits, const bool* found, const glm::dvec3& toLight,
@@ -80,7 +81,7 @@ public:
     void resetCounters(Workspace& w) const;
     double buildMs() const { return mBuildMs; }
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
     double mBuildMs = 0.0;

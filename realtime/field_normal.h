@@ -24,8 +24,8 @@ namespace twinrender::realtime {
 // Both are scaled by 1 / |grad c(x_top)|, which leaves the direction unchanged and keeps the
 // numbers near 1 in float.
 struct FieldNormal {
-    glm::vec3 outward{0.0f};    // -grad c at the centre of the linear model (not unit)
-    glm::vec3 diagonal{0.0f};   // -H: xx, yy, zz
+    glm::vec3 outward{0.0f};      // -grad c at the centre of the linear model (not unit)
+    glm::vec3 diagonal{0.0f};     // -H: xx, yy, zz
     glm::vec3 offDiagonal{0.0f};  // -H: xy, xz, yz
 };
 

@@ -24,9 +24,9 @@ std::string sceneText(const std::string& cameraExtra = "", const std::string& bo
            "\n[[materials]]\n"
            "name = \"rock\"\n"
            "diffuse = [0.5, 0.5, 0.5]\n" +
-           materialExtra +
-           "\n[[bodies]]\n" +
-           (body.empty() ? "name = \"ball\"\nshape = \"ball\"\nradius = 1.0\nparticles = 500\nmaterial = \"rock\"\n"
+           materialExtra + "\n[[bodies]]\n" +
+           (body.empty() ? "name = \"ball\"\nshape = \"ball\"\nradius = 1.0\nparticles = "
+                           "500\nmaterial = \"rock\"\n"
                          : body) +
            bodyExtra;
 }
@@ -41,8 +41,9 @@ Rejected renderBroken(const std::string& name, const std::string& scene,
     const auto dir = tt::freshDir(name);
     tt::writeFile(dir / "scene.toml", scene);
     const auto out = dir / "out";
-    const auto r = tt::runTwinrender("render " + (dir / "scene.toml").string() +
-                                     " --renderer raymarch --out " + out.string() + " " + extraArgs);
+    const auto r =
+        tt::runTwinrender("render " + (dir / "scene.toml").string() +
+                          " --renderer raymarch --out " + out.string() + " " + extraArgs);
     EXPECT_EQ(r.exitCode, 4) << r.output;
     return {r.output, tt::countFiles(out)};
 }
@@ -66,7 +67,8 @@ TEST(BadInput, WrongTypeNamesTheKey) {
 TEST(BadInput, UnknownMaterialIsNamed) {
     const auto r = renderBroken(
         "unknown_material",
-        sceneText("", "", "", "name = \"ball\"\nshape = \"ball\"\nparticles = 500\nmaterial = \"mud\"\n"));
+        sceneText("", "", "",
+                  "name = \"ball\"\nshape = \"ball\"\nparticles = 500\nmaterial = \"mud\"\n"));
     EXPECT_NE(r.output.find("'mud'"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("rock"), std::string::npos) << r.output;  // lists what exists
     EXPECT_EQ(r.filesWritten, 0u);
@@ -76,9 +78,9 @@ TEST(BadInput, NanAndNegativeSmoothingLengthInAFileNameTheLine) {
     for (const std::string bad : {"nan", "-0.1"}) {
         const auto dir = tt::freshDir("bad_h");
         tt::writeFile(dir / "particles.csv", "x,y,z,h\n0,0,0,0.1\n0.1,0,0," + bad + "\n");
-        tt::writeFile(dir / "scene.toml",
-                      sceneText("", "", "",
-                                "name = \"cloud\"\nshape = \"file\"\npath = \"particles.csv\"\nmaterial = \"rock\"\n"));
+        tt::writeFile(dir / "scene.toml", sceneText("", "", "",
+                                                    "name = \"cloud\"\nshape = \"file\"\npath = "
+                                                    "\"particles.csv\"\nmaterial = \"rock\"\n"));
         const auto r = tt::runTwinrender("render " + (dir / "scene.toml").string() +
                                          " --renderer raymarch --out " + (dir / "out").string());
         EXPECT_EQ(r.exitCode, 4) << r.output;
@@ -90,14 +92,17 @@ TEST(BadInput, NanAndNegativeSmoothingLengthInAFileNameTheLine) {
 TEST(BadInput, TruncatedSsfNamesTheFile) {
     const auto dir = tt::freshDir("truncated_ssf");
     {
-        std::ifstream in(TWINRENDER_SOURCE_DIR "/../shared/data/opensph/ball.ssf", std::ios::binary);
+        std::ifstream in(TWINRENDER_SOURCE_DIR "/../shared/data/opensph/ball.ssf",
+                         std::ios::binary);
         ASSERT_TRUE(in) << "the shared OpenSPH file is missing";
         std::string bytes(200000, '\0');
         in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         std::ofstream(dir / "cut.ssf", std::ios::binary).write(bytes.data(), in.gcount());
     }
-    tt::writeFile(dir / "scene.toml",
-                  sceneText("", "", "", "name = \"ball\"\nshape = \"file\"\npath = \"cut.ssf\"\nmaterial = \"rock\"\n"));
+    tt::writeFile(
+        dir / "scene.toml",
+        sceneText("", "", "",
+                  "name = \"ball\"\nshape = \"file\"\npath = \"cut.ssf\"\nmaterial = \"rock\"\n"));
     const auto r = tt::runTwinrender("render " + (dir / "scene.toml").string() +
                                      " --renderer raymarch --out " + (dir / "out").string());
     EXPECT_EQ(r.exitCode, 4) << r.output;
@@ -114,7 +119,8 @@ TEST(BadInput, MissingTextureNamesTheFileAndKey) {
 }
 
 TEST(BadInput, UnknownProceduralIsNamed) {
-    const auto r = renderBroken("unknown_procedural", sceneText("", "", "emission = \"procedural:plasma\"\n"));
+    const auto r =
+        renderBroken("unknown_procedural", sceneText("", "", "emission = \"procedural:plasma\"\n"));
     EXPECT_NE(r.output.find("plasma"), std::string::npos) << r.output;
     EXPECT_EQ(r.filesWritten, 0u);
 }
@@ -127,7 +133,8 @@ TEST(BadInput, TomlSyntaxErrorNamesTheLine) {
 }
 
 TEST(BadInput, AbsurdResolutionIsRejected) {
-    const auto r = renderBroken("resolution", sceneText("", "", "", ""), "--set camera.width=1000000");
+    const auto r =
+        renderBroken("resolution", sceneText("", "", "", ""), "--set camera.width=1000000");
     EXPECT_NE(r.output.find("camera.width"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("out of range"), std::string::npos) << r.output;
     EXPECT_EQ(r.filesWritten, 0u);
