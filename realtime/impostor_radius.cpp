@@ -68,4 +68,25 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
     return radii;
 }
 
+const std::vector<float>& ImpostorRadiusCache::radii(const core::ParticleSet& ps,
+                                                     const ParticleSettings& settings) {
+    const ParticleSettings& o = mSettings;
+    const bool sameSettings =
+        settings.radius == o.radius && settings.radiusScale == o.radiusScale &&
+        settings.surfaceLevel == o.surfaceLevel && settings.crossingScale == o.crossingScale;
+    mReused = mValid && sameSettings && ps.position == mPosition && ps.h == mH &&
+              ps.volume == mVolume && ps.normal == mNormal;
+    if (!mReused) {
+        mValid = false;
+        mRadii = impostorRadii(ps, settings);
+        mSettings = settings;
+        mPosition = ps.position;
+        mNormal = ps.normal;
+        mH = ps.h;
+        mVolume = ps.volume;
+        mValid = true;
+    }
+    return mRadii;
+}
+
 }  // namespace twinrender::realtime

@@ -1,13 +1,14 @@
 // The impostor sphere's radius per particle (realtime.particles.radius). "fixed" draws every
 // particle as a sphere of radius_scale * h: right for particles inside a body, whose level set
 // lies about 0.9 h beyond the outermost layer, but an isolated particle's level-set droplet is
-// only about 0.13 h across (v W(r, h) = 0.13 with OpenSPH's volume cap), so sparse particles
+// only about 0.13 h in radius (v W(r, h) = 0.13 with OpenSPH's volume cap), so sparse particles
 // show as balls seven times too large. "field" takes the distance from the particle's centre
 // along its outward normal to the level set c(x) = surface_level of the colour field
 // (core/colour_field.h), capped at radius_scale * h, and 0 where the field at the centre is
 // already below the level (no surface there: the particle is not drawn).
 #pragma once
 
+#include <glm/vec3.hpp>
 #include <vector>
 
 #include "core/particles.h"
@@ -21,5 +22,23 @@ std::vector<float> fixedRadii(const core::ParticleSet& particles, double radiusS
 // One radius per particle of the set, scene units.
 std::vector<float> impostorRadii(const core::ParticleSet& particles,
                                  const ParticleSettings& settings);
+
+// impostorRadii with the last answer kept: the radii depend on the particles (position, h,
+// volume, normal) and the particle settings, not on the view, so the frames of an unchanged
+// set reuse them (inputs compared exactly, as OcclusionCuller and FieldNormalCache do).
+class ImpostorRadiusCache {
+  public:
+    const std::vector<float>& radii(const core::ParticleSet& particles,
+                                    const ParticleSettings& settings);
+    bool reused() const { return mReused; }
+
+  private:
+    bool mValid = false;
+    bool mReused = false;
+    ParticleSettings mSettings;
+    std::vector<glm::vec3> mPosition, mNormal;
+    std::vector<float> mH, mVolume;
+    std::vector<float> mRadii;
+};
 
 }  // namespace twinrender::realtime

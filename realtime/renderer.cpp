@@ -111,6 +111,7 @@ struct Renderer::Impl {
     gl::Limits limits;
     OcclusionCuller culler;         // keeps the last particle set's answer (view-independent)
     FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
+    ImpostorRadiusCache radii;      // and for the impostor radii
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
     // Images handed back by recycle(), reused when the size and channels match.
@@ -205,7 +206,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
                         scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(scene, camera, particles, settings, light);
     const auto radiusStart = Clock::now();
-    const std::vector<float> radii = impostorRadii(particles.particles, settings.particles);
+    const std::vector<float>& radii = m.radii.radii(particles.particles, settings.particles);
     frame.timingsMs["radius"] = msSince(radiusStart);
     std::span<const std::uint32_t> drawn;
     if (settings.particles.cullHidden && cullingIsExact(particles.particles, camera, radii)) {
