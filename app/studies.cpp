@@ -8,7 +8,7 @@
 #include <map>
 #include <numbers>
 
-#include "compare/report.h"
+#include "compare/metric_table.h"
 #include "compare/thresholds.h"
 
 namespace twinrender::app {

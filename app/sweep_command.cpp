@@ -19,7 +19,8 @@
 #include "app/reference_cache.h"
 #include "app/render_job.h"
 #include "app/shard.h"
-#include "compare/report.h"
+#include "compare/error_maps.h"
+#include "compare/report_json.h"
 #include "compare/sweep_report.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -295,11 +296,8 @@ int runSweep(const SweepOptions& o) {
             rr.counters = test.frame.counters;
             rr.images["beauty"] = testRenderer + ".png";
             scene.renderers[testRenderer] = rr;
-            if (const auto it = result.errorMaps.find("beauty.flip");
-                it != result.errorMaps.end()) {
-                compare::writeErrorMapPng(it->second, 0, 0.0, 1.0, dir / "error.beauty.png");
-                scene.errorMaps["beauty"] = {"error.beauty.png", "ꟻLIP error", 0.0, 1.0, ""};
-            }
+            if (const auto it = result.errorMaps.find("beauty.flip"); it != result.errorMaps.end())
+                scene.errorMaps = compare::writeErrorMapImages({*it}, dir);
             json settings = json::object();
             for (const auto& [k, v] : row.settings) settings[k] = v;
             scene.settings = {{"varied", settings},

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <set>
 
-#include "compare/report.h"
+#include "compare/json_number.h"
 #include "core/error.h"
 #include "core/image_io.h"
 

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include "compare/report.h"
 #include "core/error.h"
 #include "tests/scratch_dir.h"
 

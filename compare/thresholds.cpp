@@ -25,6 +25,12 @@ std::string_view toString(Status status) {
     return "fail";
 }
 
+std::optional<Status> statusFromString(std::string_view text) {
+    for (Status s : {Status::Pass, Status::Warn, Status::Fail})
+        if (toString(s) == text) return s;
+    return std::nullopt;
+}
+
 Status worst(Status a, Status b) {
     return static_cast<int>(a) >= static_cast<int>(b) ? a : b;
 }
@@ -46,6 +52,12 @@ std::string formatValue(double value) {
     const double a = std::abs(value);
     if (a >= 1e4 && a < 1e9) return fmt::format("{:.0f}", value);
     return fmt::format("{:.4g}", value);
+}
+
+std::string exactValue(double value) {
+    if (std::isnan(value)) return "nan";
+    if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+    return fmt::format("{}", value);
 }
 
 namespace {
