@@ -56,23 +56,6 @@ std::string speedRatio(const SceneReport& s) {
                      : fmt::format("{:.2f}×", r);
 }
 
-const std::vector<std::string>& metricOrder() {
-    static const std::vector<std::string> order = {
-        "beauty.psnr",  "beauty.ssim",         "beauty.flip",
-        "coverage.iou", "silhouette.mean_px",  "depth.rel_mean",
-        "id.mismatch",  "normal.mean_deg",     "normal.p95_deg",
-        "uv.mean",      "emission.rmse",       "smoothness.ratio",
-        "shadow.iou",   "shadow.false_shadow", "shadow.missed_shadow"};
-    return order;
-}
-
-bool metricLess(const std::string& a, const std::string& b) {
-    const auto& o = metricOrder();
-    const auto ia = std::find(o.begin(), o.end(), a) - o.begin();
-    const auto ib = std::find(o.begin(), o.end(), b) - o.begin();
-    return ia != ib ? ia < ib : a < b;
-}
-
 // Metrics of a scene with their values, and the checked ones that are missing, in order.
 std::vector<std::string> sceneMetricNames(const SceneReport& s) {
     std::vector<std::string> names;
@@ -81,8 +64,7 @@ std::vector<std::string> sceneMetricNames(const SceneReport& s) {
         if (!s.metrics.count(c.metric) &&
             std::find(names.begin(), names.end(), c.metric) == names.end())
             names.push_back(c.metric);
-    std::sort(names.begin(), names.end(), metricLess);
-    return names;
+    return inMetricOrder(std::move(names));
 }
 
 std::optional<Status> metricStatus(const SceneReport& s, const std::string& metric) {
@@ -128,14 +110,12 @@ std::vector<std::pair<Status, std::string>> problemsOf(const SceneReport& s) {
 
 // ---- index.html --------------------------------------------------------------------------
 
-// Key metrics: those of DESIGN.md's list that any scene has, in its order.
+// Key metrics: the overview metrics of the table that any scene has, in its order.
 std::vector<std::string> indexColumns(const RunReport& run) {
     std::vector<std::string> columns;
-    for (const std::string& m :
-         {std::string("beauty.psnr"), std::string("beauty.ssim"), std::string("beauty.flip"),
-          std::string("coverage.iou"), std::string("silhouette.mean_px"),
-          std::string("depth.rel_mean"), std::string("id.mismatch"), std::string("normal.mean_deg"),
-          std::string("shadow.iou")}) {
+    for (const MetricInfo& info : metricTable()) {
+        if (!info.overview) continue;
+        const std::string m(info.key);
         bool any = false;
         for (const auto& s : run.scenes) {
             any = any || s.metrics.count(m);

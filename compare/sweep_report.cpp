@@ -6,13 +6,13 @@
 #include <cmath>
 #include <set>
 
-#include "compare/baseline.h"
 #include "compare/csv.h"
 #include "compare/html_page.h"
 #include "compare/json_number.h"
 #include "compare/markup.h"
 #include "compare/metric_table.h"
 #include "compare/svg_chart.h"
+#include "compare/thresholds.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -33,43 +33,35 @@ std::string SweepRow::label() const {
 }
 
 double chartValue(const std::string& metric, double value, std::string* label) {
-    const BaselinePolicy p = defaultPolicy(metric);
+    const MetricInfo* info = findMetric(metric);
+    const Better better = info ? info->better : Better::Lower;
+    const double origin = info ? info->origin : 0.0;
     const std::string unit = metricUnit(metric);
     const std::string withUnit = unit.empty() ? metric : fmt::format("{} ({})", metric, unit);
-    if (p.better == Better::Closer) {
+    if (better == Better::Closer) {
         if (label)
-            *label = fmt::format("|{} − {}| (lower is better)", withUnit, formatValue(p.origin));
-        return std::abs(value - p.origin);
+            *label = fmt::format("|{} − {}| (lower is better)", withUnit, formatValue(origin));
+        return std::abs(value - origin);
     }
     if (label)
         *label = fmt::format("{} ({} is better)", withUnit,
-                             p.better == Better::Higher ? "higher" : "lower");
+                             better == Better::Higher ? "higher" : "lower");
     return value;
 }
 
 bool lowerIsBetter(const std::string& metric) {
-    return defaultPolicy(metric).better != Better::Higher;
+    const MetricInfo* info = findMetric(metric);
+    return !info || info->better != Better::Higher;
 }
 
 namespace {
 
-// Every metric and stage of the rows, metrics in the report's order (report.cpp keeps it
-// private; the names of DESIGN.md first, then the others by name).
+// Every metric of the rows, in the table's order.
 std::vector<std::string> metricColumns(const SweepReport& s) {
-    static const std::vector<std::string> order = {
-        "beauty.psnr",  "beauty.ssim",         "beauty.flip",
-        "coverage.iou", "silhouette.mean_px",  "depth.rel_mean",
-        "id.mismatch",  "normal.mean_deg",     "normal.p95_deg",
-        "uv.mean",      "emission.rmse",       "smoothness.ratio",
-        "shadow.iou",   "shadow.false_shadow", "shadow.missed_shadow"};
     std::set<std::string> all;
     for (const SweepRow& r : s.rows)
         for (const auto& [k, v] : r.metrics) all.insert(k);
-    std::vector<std::string> cols;
-    for (const auto& m : order)
-        if (all.erase(m)) cols.push_back(m);
-    cols.insert(cols.end(), all.begin(), all.end());
-    return cols;
+    return inMetricOrder({all.begin(), all.end()});
 }
 
 std::vector<std::string> stageColumns(const SweepReport& s) {

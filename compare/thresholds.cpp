@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "compare/metric_table.h"
 #include "core/error.h"
 
 namespace twinrender::compare {
@@ -94,6 +95,10 @@ void addBound(Bounds& out, const std::string& key, std::optional<double> value,
     if (!isBoundName(bound))
         throw core::InputError(fmt::format("{}: key '{}': unknown bound '{}' for metric '{}'; {}",
                                            where, shownKey, bound, metric, BOUND_HINT));
+    if (!findMetric(metric))
+        throw core::InputError(
+            fmt::format("{}: key '{}': unknown metric '{}'; the metrics are {}", where, shownKey,
+                        metric, metricNames()));
     if (!value)
         throw core::InputError(
             fmt::format("{}: key '{}': the bound must be a number", where, shownKey));
