@@ -10,8 +10,8 @@
 // 0.99 may drop to 0.9898, not to 0.97. PSNR has no finite perfect value; its origin is 0 dB,
 // so 2 % of 35 dB is 0.7 dB. The absolute part keeps near-perfect values (an id mismatch of 0)
 // from failing on rounding. Defaults (defaultPolicy, from the metric table): relative 2 %,
-// absolute the metric's noise in its unit. Both renderers are deterministic, so on one machine an unchanged build
-// reproduces its metrics exactly; the tolerance is for other machines and drivers.
+// absolute the metric's noise in its unit. Both renderers are deterministic, so on one machine an
+// unchanged build reproduces its metrics exactly; the tolerance is for other machines and drivers.
 // Times (time.*) are recorded and their deltas reported but not checked by default: they
 // depend on the machine and its load. A baseline file lists the policy of each of its metrics
 // under "tolerances"; edit them there ("checked": true turns a time check on).

@@ -45,9 +45,9 @@ struct MetricInfo {
     // "N", "uv", "id", "emission", "shadow"; "" for none (times, counters).
     std::string_view buffer;
     MetricSource source;
-    bool overview;         // a column of the run's index page
-    bool machineDependent; // measured anew on each machine and load (times): never checked
-                           // against a baseline by default
+    bool overview;             // a column of the run's index page
+    bool machineDependent;     // measured anew on each machine and load (times): never checked
+                               // against a baseline by default
     std::string_view meaning;  // one line
 };
 

@@ -109,8 +109,9 @@ TEST(Thresholds, UnknownBoundNamesFileLineAndKey) {
 
 TEST(Thresholds, UnknownMetricNamesFileLineKeyAndTheKnownMetrics) {
     const std::string m = messageOf([] {
-        Thresholds::parseString("\"beauty.flip\" = { max = 0.15 }\n\"beauty.flop\" = { max = 0.2 }\n",
-                                "suite/thresholds.toml");
+        Thresholds::parseString(
+            "\"beauty.flip\" = { max = 0.15 }\n\"beauty.flop\" = { max = 0.2 }\n",
+            "suite/thresholds.toml");
     });
     EXPECT_NE(m.find("suite/thresholds.toml:2:"), std::string::npos) << m;
     EXPECT_NE(m.find("key 'beauty.flop.max'"), std::string::npos) << m;
@@ -133,7 +134,8 @@ TEST(Thresholds, UnknownMetricNamesFileLineKeyAndTheKnownMetrics) {
     EXPECT_NE(f.find("unknown metric 'normal.mean'"), std::string::npos) << f;
 
     // Families take any member.
-    const Thresholds t = Thresholds::parseString("\"time.realtime_ms\" = { max = 500 }\n", "t.toml");
+    const Thresholds t =
+        Thresholds::parseString("\"time.realtime_ms\" = { max = 500 }\n", "t.toml");
     EXPECT_TRUE(t.global().count("time.realtime_ms"));
 }
 
