@@ -7,6 +7,7 @@
 #include <set>
 
 #include "compare/json_number.h"
+#include "compare/settings_keys.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -221,14 +222,13 @@ void writeBaseline(const Baseline& baseline, const fs::path& file) {
 
 namespace {
 
-void flattenSettings(const json& j, const std::string& prefix,
-                     std::map<std::string, std::string>& out) {
-    if (j.is_object() && !j.empty()) {
-        for (const auto& [k, v] : j.items())
-            flattenSettings(v, prefix.empty() ? k : prefix + "." + k, out);
-        return;
-    }
-    out[prefix.empty() ? std::string("(settings)") : prefix] = j.dump();
+// Setting (its dotted key) -> value as JSON text.
+std::map<std::string, std::string> settingValues(const json& settings) {
+    std::map<std::string, std::string> out;
+    if (settings.is_null()) return out;
+    for (const auto& [key, value] : flattenSettings(settings))
+        out[key.empty() ? std::string("(settings)") : key] = value.dump();
+    return out;
 }
 
 std::string signedValue(double v) {
@@ -238,9 +238,7 @@ std::string signedValue(double v) {
 }  // namespace
 
 std::vector<std::string> settingsChanges(const json& before, const json& after) {
-    std::map<std::string, std::string> a, b;
-    if (!before.is_null()) flattenSettings(before, "", a);
-    if (!after.is_null()) flattenSettings(after, "", b);
+    const std::map<std::string, std::string> a = settingValues(before), b = settingValues(after);
     std::vector<std::string> out;
     for (const auto& [k, v] : a) {
         auto it = b.find(k);

@@ -12,6 +12,7 @@
 #include "compare/html_page.h"
 #include "compare/markup.h"
 #include "compare/metric_table.h"
+#include "compare/settings_keys.h"
 #include "core/image_io.h"
 
 namespace twinrender::compare {
@@ -353,20 +354,12 @@ std::string timingTable(const SceneReport& s) {
     return h;
 }
 
-void flattenJson(const json& j, const std::string& prefix,
-                 std::vector<std::pair<std::string, std::string>>& out) {
-    if (j.is_object() && !j.empty()) {
-        for (const auto& [k, v] : j.items())
-            flattenJson(v, prefix.empty() ? k : prefix + "." + k, out);
-        return;
-    }
-    out.emplace_back(prefix.empty() ? std::string("(value)") : prefix,
-                     j.is_string() ? j.get<std::string>() : j.dump());
-}
-
 std::string settingsTable(const SceneReport& s) {
     std::vector<std::pair<std::string, std::string>> rows;
-    if (!s.settings.is_null()) flattenJson(s.settings, "", rows);
+    if (!s.settings.is_null())
+        for (const auto& [key, value] : flattenSettings(s.settings))
+            rows.emplace_back(key.empty() ? std::string("(value)") : key,
+                              value.is_string() ? value.get<std::string>() : value.dump());
     if (rows.empty()) return "<p class=\"muted\">No settings recorded.</p>\n";
     std::string h = fmt::format(
         "<details open><summary>{} settings, by the dotted keys of the "

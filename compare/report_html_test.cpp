@@ -113,5 +113,21 @@ TEST(ReportHtml, NamesAreEscapedAndPathsEncoded) {
     EXPECT_TRUE(fs::is_regular_file(dir / s.name / "index.html"));
 }
 
+TEST(ReportHtml, SettingsAreNamedByTheirDottedKeys) {
+    const fs::path dir = freshDir("settings");
+    RunReport run;
+    SceneReport s;
+    s.name = "planet";
+    s.settings = {{"scene_file", "scenes/planet.toml"},
+                  {"realtime", {{"realtime.ssss.radius_scale", 0.6}}}};
+    run.scenes.push_back(s);
+    writeHtmlReport(run, dir);
+    const std::string page = readText(dir / "planet" / "index.html");
+    EXPECT_NE(page.find("<tr><td>realtime.ssss.radius_scale</td><td>0.6</td></tr>"),
+              std::string::npos)
+        << page;
+    EXPECT_EQ(page.find("realtime.realtime."), std::string::npos);
+}
+
 }  // namespace
 }  // namespace twinrender::compare
