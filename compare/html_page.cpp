@@ -83,9 +83,15 @@ std::string badge(Status status) {
     return fmt::format("<span class=\"badge {0}\">{0}</span>", toString(status));
 }
 
+std::string metricTitle(const std::string& metric) {
+    const std::string description = metricDescription(metric);
+    return description.empty() ? "" : " title=\"" + htmlEscape(description) + "\"";
+}
+
 std::string metricHeaderCell(const std::string& metric) {
     const std::string unit = metricUnit(metric);
-    return "<th class=\"num\"><span class=\"mono\">" + htmlEscape(metric) + "</span>" +
+    return "<th class=\"num\"" + metricTitle(metric) + "><span class=\"mono\">" +
+           htmlEscape(metric) + "</span>" +
            (unit.empty() ? "" : " <span class=\"unit\">" + htmlEscape(unit) + "</span>") + "</th>";
 }
 

@@ -40,7 +40,11 @@ std::string reportPage(const std::string& title, const std::string& body,
 // <span class="badge pass">pass</span>
 std::string badge(Status status);
 
-// A table's column header of a metric: its key and its unit.
+// ` title="..."`: the metric's meaning and better direction as a tooltip; "" for an unknown
+// metric.
+std::string metricTitle(const std::string& metric);
+
+// A table's column header of a metric: its key and its unit, its meaning as the tooltip.
 std::string metricHeaderCell(const std::string& metric);
 
 // A table cell of a metric's value, "—" when the map lacks it; `highlighted` marks the

@@ -1,5 +1,7 @@
 #include "compare/metric_table.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <tuple>
 
@@ -117,6 +119,15 @@ std::string metricNames(bool comparisonOnly) {
         if (!comparisonOnly || computedByComparison(m.key))
             names += (names.empty() ? "" : ", ") + std::string(m.key);
     return names;
+}
+
+std::string metricDescription(std::string_view key) {
+    const MetricInfo* m = findMetric(key);
+    if (!m) return "";
+    const std::string direction = m->better == Better::Closer
+                                      ? fmt::format("closest to {:g} is best", m->origin)
+                                      : fmt::format("{} is better", toString(m->better));
+    return fmt::format("{} ({})", m->meaning, direction);
 }
 
 std::string metricUnit(std::string_view key) {

@@ -61,6 +61,10 @@ const MetricInfo* findMetric(std::string_view key);
 // computeMetrics writes when `comparisonOnly`.
 std::string metricNames(bool comparisonOnly = false);
 
+// The meaning and the better direction, for a tooltip: "... (lower is better)"; "" for an
+// unknown key.
+std::string metricDescription(std::string_view key);
+
 // The metric's unit for tables ("dB", "°", "px", "ms"); "" for ratios, fractions and unknown
 // keys.
 std::string metricUnit(std::string_view key);

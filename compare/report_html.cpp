@@ -268,7 +268,7 @@ std::string metricTable(const SceneReport& s) {
         for (const Check& c : s.checks)
             if (c.metric == m) checks.push_back(&c);
         auto st = metricStatus(s, m);
-        h += fmt::format("<tr><td class=\"mono\">{}</td>", htmlEscape(m));
+        h += fmt::format("<tr><td class=\"mono\"{}>{}</td>", metricTitle(m), htmlEscape(m));
         h += valueCell(s, m);
         h += "<td class=\"unit\">" + htmlEscape(metricUnit(m)) + "</td>";
         h += "<td class=\"num\">" + htmlEscape(boundsText(checks, false)) + "</td>";

@@ -9,6 +9,7 @@
 #include "compare/html_page.h"
 #include "compare/json_number.h"
 #include "compare/markup.h"
+#include "compare/metric_table.h"
 #include "core/image_io.h"
 
 namespace twinrender::compare {
@@ -18,17 +19,20 @@ using nlohmann::json;
 
 namespace {
 
-// Every key of the rows' maps, sorted, with `first` (those present) in front.
+// Every key of the rows' maps with `first` (those present) in front, the others sorted by
+// name, or in the metric table's order when `metrics`.
 template <typename Get>
 std::vector<std::string> columnsOf(const StudyResult& s, Get get,
-                                   const std::vector<std::string>& first) {
+                                   const std::vector<std::string>& first, bool metrics) {
     std::set<std::string> all;
     for (const StudyRow& r : s.rows)
         for (const auto& [k, v] : get(r)) all.insert(k);
     std::vector<std::string> cols;
     for (const auto& k : first)
         if (all.erase(k)) cols.push_back(k);
-    cols.insert(cols.end(), all.begin(), all.end());
+    std::vector<std::string> rest(all.begin(), all.end());
+    if (metrics) rest = inMetricOrder(std::move(rest));
+    cols.insert(cols.end(), rest.begin(), rest.end());
     return cols;
 }
 
@@ -78,10 +82,11 @@ json studyJson(const StudyResult& s) {
 }
 
 std::string studyCsv(const StudyResult& s) {
-    const auto stages = columnsOf(s, [](const StudyRow& r) -> const auto& { return r.timingsMs; },
-                                  {"total", "shadow", "gbuffer", "ssss", "shade", "post"});
+    const auto stages = columnsOf(
+        s, [](const StudyRow& r) -> const auto& { return r.timingsMs; },
+        {"total", "shadow", "gbuffer", "ssss", "shade", "post"}, false);
     const auto metrics = columnsOf(
-        s, [](const StudyRow& r) -> const auto& { return r.metrics; }, s.columns);
+        s, [](const StudyRow& r) -> const auto& { return r.metrics; }, s.columns, true);
     std::string out = "series,x,sets";
     auto field = [&](const std::string& text) {
         out += ',';

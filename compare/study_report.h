@@ -55,7 +55,8 @@ struct StudyResult {
 
 nlohmann::json studyJson(const StudyResult& study);
 // series, x, the overrides (one column, ";"-joined), time.<stage>_ms, reference_ms, every
-// metric, error. Numbers at full precision.
+// metric (the study's columns first, then the metric table's order), error. Numbers at full
+// precision.
 std::string studyCsv(const StudyResult& study);
 
 // DIR/<name>/study.json, study.csv, study.svg (atomically).
