@@ -73,7 +73,7 @@ struct Baseline {
     const MetricValues* metrics(const std::string& scene) const;
 };
 
-// A baseline from the contents of a run's summary.json (report.h's summaryJson): every
+// A baseline from the contents of a run's summary.json (report_json.h's summaryJson): every
 // scene's metrics (NaN ones left out) and settings, with the default policy of every metric.
 // `source` is recorded as "blessed_from". Throws core::InputError naming `source` and the JSON
 // path when the summary is malformed.

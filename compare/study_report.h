@@ -9,7 +9,7 @@
 //    "references", "wall_s", "rows": [{"series", "x", "sets": [...], "metrics": {...},
 //    "timings_ms": {...}, "reference_ms", "reference_key", "images": {...}, ["error"]}]}
 // DIR/<study>/study.csv, study.svg; DIR/studies.json (every study without its rows) and
-// DIR/index.html. Non-finite numbers as report.h's jsonNumber writes them.
+// DIR/index.html. Non-finite numbers as json_number.h writes them.
 #pragma once
 
 #include <filesystem>

@@ -9,7 +9,7 @@
 //    "combinations", "created", "command", "rows": [{"index", "label", "dir",
 //    "settings": {key: value}, "timings_ms": {stage: ms, "total": ms}, "metrics": {...},
 //    "reference_key", ["error"]}]}
-// Non-finite numbers are the strings "Infinity", "-Infinity", "NaN" (report.h's jsonNumber).
+// Non-finite numbers are the strings "Infinity", "-Infinity", "NaN" (json_number.h).
 #pragma once
 
 #include <cstddef>
