@@ -40,7 +40,7 @@ const std::vector<MetricInfo>& metricTable() {
         {"silhouette.mean_px", "px", B::Lower, 0.0, 0.05, "A", S::AovPair, true, false,
          "mean distance between the two outlines; inf when only one render has one"},
         {"depth.rel_mean", "", B::Lower, 0.0, 1e-4, "Z", S::AovPair, true, false,
-         "mean relative depth error where both renders cover the pixel"},
+         "mean relative depth error on the pixels both renders cover with the same body"},
         {"id.mismatch", "", B::Lower, 0.0, 1e-3, "id", S::AovPair, true, false,
          "fraction of the pixels covered in both where another body is visible: occlusion order "
          "errors"},
@@ -49,9 +49,10 @@ const std::vector<MetricInfo>& metricTable() {
         {"normal.p95_deg", "°", B::Lower, 0.0, 0.1, "N", S::AovPair, false, false,
          "95th percentile of that angle"},
         {"uv.mean", "", B::Lower, 0.0, 1e-4, "uv", S::AovPair, false, false,
-         "mean seam-aware distance between the texture coordinates on interior pixels"},
+         "mean seam-aware distance between the texture coordinates on interior pixels of the "
+         "same body"},
         {"emission.rmse", "", B::Lower, 0.0, 1e-4, "emission", S::AovPair, false, false,
-         "root mean square error of the emitted radiance on interior pixels"},
+         "root mean square error of the emitted radiance on the pixels covered in both"},
         {"smoothness.ratio", "", B::Closer, 1.0, 0.01, "N", S::AovPair, false, false,
          "roughness of the test's normal field over the reference's: 1 as smooth, above 1 "
          "rougher"},
