@@ -2,23 +2,10 @@
 
 #include <ctime>
 
-namespace twinrender::app {
+#include "compare/buffer_display.h"
+#include "compare/error_maps.h"
 
-const std::vector<ErrorMapStyle>& errorMapStyles() {
-    // Ranges: where the colour map saturates, chosen so that a typical real-time error sits
-    // mid-range: ꟻLIP is in [0, 1]; normals beyond 30 degrees are plainly wrong; 5 % depth
-    // and 0.05 of uv are far beyond smoothing noise; shadow codes are 1 (false) and 2 (missed).
-    static const std::vector<ErrorMapStyle> styles = {
-        {"beauty.flip", "beauty", "ꟻLIP error", 0.0, 1.0, ""},
-        {"normal", "normal", "normal error", 0.0, 30.0, "°"},
-        {"uv", "uv", "uv error", 0.0, 0.05, ""},
-        {"depth", "depth", "relative depth error", 0.0, 0.05, ""},
-        {"id", "id", "visible body differs", 0.0, 1.0, ""},
-        {"shadow", "shadow", "shadow: 1 false, 2 missed", 0.0, 2.0, ""},
-        {"emission", "emission", "emission error", 0.0, 1.0, ""},
-    };
-    return styles;
-}
+namespace twinrender::app {
 
 compare::MetricSettings metricSettings(const LoadedScene& s, double ppd) {
     compare::MetricSettings m;
@@ -66,13 +53,7 @@ compare::SceneReport compareScene(const LoadedScene& s, const Render& ref, const
         rr.images = compare::writeBufferImages(r->frame.image, &r->display, dir, r->frame.renderer, visual);
         report.renderers[r->frame.renderer] = std::move(rr);
     }
-    for (const ErrorMapStyle& style : errorMapStyles()) {
-        const auto it = result.errorMaps.find(style.key);
-        if (it == result.errorMaps.end()) continue;
-        const std::string file = std::string("error.") + style.buffer + ".png";
-        compare::writeErrorMapPng(it->second, 0, style.lo, style.hi, dir / file);
-        report.errorMaps[style.buffer] = {file, style.label, style.lo, style.hi, style.unit};
-    }
+    report.errorMaps = compare::writeErrorMapImages(result.errorMaps, dir);
     return report;
 }
 

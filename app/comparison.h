@@ -13,16 +13,6 @@
 
 namespace twinrender::app {
 
-// The error maps a page shows beside the renders, with the range their colours span.
-struct ErrorMapStyle {
-    const char* key;    // MetricResult::errorMaps key
-    const char* buffer; // the page's buffer
-    const char* label;
-    double lo, hi;
-    const char* unit;
-};
-const std::vector<ErrorMapStyle>& errorMapStyles();
-
 // Metric settings for a scene: its light and exposure, FLIP's pixels per degree.
 compare::MetricSettings metricSettings(const LoadedScene& scene, double ppd);
 

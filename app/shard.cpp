@@ -10,7 +10,9 @@
 #include <set>
 
 #include "app/comparison.h"
+#include "compare/junit.h"
 #include "compare/report.h"
+#include "compare/report_json.h"
 #include "compare/sweep_report.h"
 #include "core/error.h"
 #include "core/image_io.h"

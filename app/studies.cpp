@@ -7,8 +7,9 @@
 #include <iterator>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 
-#include "compare/report.h"
+#include "compare/metric_table.h"
 #include "compare/thresholds.h"
 
 namespace twinrender::app {
@@ -519,12 +520,30 @@ compare::LineChart seriesChart(const StudyResult& s, const std::string& metric) 
     return c;
 }
 
+namespace {
+
+// Every metric a study charts or tabulates must be one of compare's metric table: a typo would
+// show as an empty column.
+std::vector<StudyDef> checked(std::vector<StudyDef> defs) {
+    for (const StudyDef& d : defs) {
+        std::vector<std::string> keys = d.columns;
+        keys.push_back(d.metric);
+        for (const std::string& k : keys)
+            if (!compare::findMetric(k))
+                throw std::logic_error(
+                    fmt::format("study {}: '{}' is not in compare's metric table", d.name, k));
+    }
+    return defs;
+}
+
+}  // namespace
+
 const std::vector<StudyDef>& studies() {
     // What the studies of the screen-space smoothing tabulate.
     const std::vector<std::string> smoothingColumns = {"normal.mean_deg", "normal.p95_deg", "uv.mean",
                                                        "smoothness.ratio", "beauty.flip",
                                                        "count.unbracketed_rays"};
-    static const std::vector<StudyDef> all = {
+    static const std::vector<StudyDef> all = checked({
         {"depth_range",
          "Depth range",
          "Far/near from 1e2 to 1e12 with the scene scaled along: where does each depth mode "
@@ -626,7 +645,7 @@ const std::vector<StudyDef>& studies() {
          collisionPoints,
          nullptr,
          collisionConclude},
-    };
+    });
     return all;
 }
 

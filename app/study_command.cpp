@@ -19,7 +19,6 @@
 #include "compare/flip.h"
 #include "compare/masks.h"
 #include "compare/metrics.h"
-#include "compare/report.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "realtime/gl/context.h"

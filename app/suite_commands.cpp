@@ -13,6 +13,10 @@
 #include "app/comparison.h"
 #include "app/progress.h"
 #include "app/shard.h"
+#include "compare/error_maps.h"
+#include "compare/junit.h"
+#include "compare/metric_table.h"
+#include "compare/report_json.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "realtime/gl/context.h"
@@ -92,18 +96,11 @@ ExitCode runCompare(const CompareOptions& o) {
         compare::Bounds bounds = compare::Thresholds::parseFile(o.thresholds).forScene(report.name);
         // Plain images have beauty metrics only: bounds on other buffers do not apply.
         if (!compare::isAovImage(ref) || !compare::isAovImage(test))
-            bounds = compare::filterBounds(
-                bounds, [](const std::string& m) { return m.rfind("beauty.", 0) == 0; });
+            bounds = compare::filterBounds(bounds, [](const std::string& m) { return compare::computedOnPlainImages(m); });
         report.checks = compare::evaluate(report.metrics, bounds);
     }
     const fs::path out(o.out);
-    for (const ErrorMapStyle& style : errorMapStyles()) {
-        const auto it = result.errorMaps.find(style.key);
-        if (it == result.errorMaps.end()) continue;
-        const std::string file = std::string("error.") + style.buffer + ".png";
-        compare::writeErrorMapPng(it->second, 0, style.lo, style.hi, out / file);
-        report.errorMaps[style.buffer] = {file, style.label, style.lo, style.hi, style.unit};
-    }
+    report.errorMaps = compare::writeErrorMapImages(result.errorMaps, out);
     compare::writeMetricsJson(report, out / "metrics.json");
     printMetricTable(report.metrics, report.checks);
     const compare::Status status = report.status();

@@ -19,7 +19,9 @@
 #include "app/reference_cache.h"
 #include "app/render_job.h"
 #include "app/shard.h"
-#include "compare/report.h"
+#include "compare/error_maps.h"
+#include "compare/metric_table.h"
+#include "compare/report_json.h"
 #include "compare/sweep_report.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -145,21 +147,10 @@ ExitCode runSweep(const SweepOptions& o) {
     if (o.frames < 0 || o.frames > 1000)
         throw core::InputError(fmt::format("--frames {}: give 1..1000", o.frames));
     const int frames = o.frames > 0 ? o.frames : (convergence ? 1 : 5);
-    {
-        // The metric must be one the comparison computes (DESIGN.md, "Metric names").
-        static const std::set<std::string> known = {
-            "beauty.psnr",  "beauty.ssim",         "beauty.flip",
-            "coverage.iou", "silhouette.mean_px",  "depth.rel_mean",
-            "id.mismatch",  "normal.mean_deg",     "normal.p95_deg",
-            "uv.mean",      "emission.rmse",       "smoothness.ratio",
-            "shadow.iou",   "shadow.false_shadow", "shadow.missed_shadow"};
-        if (!known.count(o.metric)) {
-            std::string list;
-            for (const auto& m : known) list += (list.empty() ? "" : ", ") + m;
-            throw core::InputError(
-                fmt::format("--metric {}: not a metric; metrics are {}", o.metric, list));
-        }
-    }
+    // The metric must be one the comparison computes (compare/metric_table.h).
+    if (!compare::computedByComparison(o.metric))
+        throw core::InputError(fmt::format("--metric {}: not a metric; metrics are {}", o.metric,
+                                           compare::metricNames(true)));
     std::optional<Shard> shard;
     if (!o.shard.empty()) shard = parseShard(o.shard);
     if (!fs::is_regular_file(o.scene))
@@ -295,11 +286,8 @@ ExitCode runSweep(const SweepOptions& o) {
             rr.counters = test.frame.counters;
             rr.images["beauty"] = testRenderer + ".png";
             scene.renderers[testRenderer] = rr;
-            if (const auto it = result.errorMaps.find("beauty.flip");
-                it != result.errorMaps.end()) {
-                compare::writeErrorMapPng(it->second, 0, 0.0, 1.0, dir / "error.beauty.png");
-                scene.errorMaps["beauty"] = {"error.beauty.png", "ꟻLIP error", 0.0, 1.0, ""};
-            }
+            if (const auto it = result.errorMaps.find("beauty.flip"); it != result.errorMaps.end())
+                scene.errorMaps = compare::writeErrorMapImages({*it}, dir);
             json settings = json::object();
             for (const auto& [k, v] : row.settings) settings[k] = v;
             scene.settings = {{"varied", settings},

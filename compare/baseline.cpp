@@ -6,7 +6,8 @@
 #include <fstream>
 #include <set>
 
-#include "compare/report.h"
+#include "compare/json_number.h"
+#include "compare/settings_keys.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -15,49 +16,13 @@ namespace twinrender::compare {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-bool endsWith(std::string_view s, std::string_view suffix) {
-    return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
-}
-
-std::string_view lastComponent(std::string_view metric) {
-    const auto dot = metric.rfind('.');
-    return dot == std::string_view::npos ? metric : metric.substr(dot + 1);
-}
-
-std::string_view toString(Better b) {
-    switch (b) {
-        case Better::Higher:
-            return "higher";
-        case Better::Lower:
-            return "lower";
-        case Better::Closer:
-            return "closer";
-    }
-    return "lower";
-}
-
-}  // namespace
-
 BaselinePolicy defaultPolicy(std::string_view metric) {
-    // Absolute parts: about the rounding noise of each metric in its unit; a change smaller
-    // than this is not a regression anyone could see.
-    const std::string_view last = lastComponent(metric);
-    if (metric.rfind("time.", 0) == 0 || endsWith(metric, "_ms"))
-        return {Better::Lower, 0.0, 0.25, 1.0, false};  // ms; noisy, not checked by default
-    if (endsWith(last, "psnr")) return {Better::Higher, 0.0, 0.02, 0.1, true};  // dB
-    if (endsWith(last, "ssim") || endsWith(last, "iou"))
-        return {Better::Higher, 1.0, 0.02, 1e-3, true};
-    if (endsWith(last, "ratio")) return {Better::Closer, 1.0, 0.02, 0.01, true};
-    if (endsWith(last, "_deg")) return {Better::Lower, 0.0, 0.02, 0.1, true};  // degrees
-    if (endsWith(last, "_px")) return {Better::Lower, 0.0, 0.02, 0.05, true};  // pixels
-    if (metric == "beauty.flip" || metric == "id.mismatch" || metric == "shadow.false_shadow" ||
-        metric == "shadow.missed_shadow")
-        return {Better::Lower, 0.0, 0.02, 1e-3, true};  // fractions in [0, 1]
-    if (metric == "depth.rel_mean" || metric == "uv.mean" || metric == "emission.rmse")
-        return {Better::Lower, 0.0, 0.02, 1e-4, true};
-    return {Better::Lower, 0.0, 0.02, 1e-6, true};
+    const MetricInfo* m = findMetric(metric);
+    if (!m) return {};
+    // Times vary with the machine and its load by tens of percent: recorded and shown with
+    // their deltas, checked only where a baseline file turns them on.
+    if (m->machineDependent) return {m->better, m->origin, 0.25, m->noise, false};
+    return {m->better, m->origin, 0.02, m->noise, true};
 }
 
 double allowedWorsening(const BaselinePolicy& policy, double baseline) {
@@ -257,14 +222,13 @@ void writeBaseline(const Baseline& baseline, const fs::path& file) {
 
 namespace {
 
-void flattenSettings(const json& j, const std::string& prefix,
-                     std::map<std::string, std::string>& out) {
-    if (j.is_object() && !j.empty()) {
-        for (const auto& [k, v] : j.items())
-            flattenSettings(v, prefix.empty() ? k : prefix + "." + k, out);
-        return;
-    }
-    out[prefix.empty() ? std::string("(settings)") : prefix] = j.dump();
+// Setting (its dotted key) -> value as JSON text.
+std::map<std::string, std::string> settingValues(const json& settings) {
+    std::map<std::string, std::string> out;
+    if (settings.is_null()) return out;
+    for (const auto& [key, value] : flattenSettings(settings))
+        out[key.empty() ? std::string("(settings)") : key] = value.dump();
+    return out;
 }
 
 std::string signedValue(double v) {
@@ -274,9 +238,7 @@ std::string signedValue(double v) {
 }  // namespace
 
 std::vector<std::string> settingsChanges(const json& before, const json& after) {
-    std::map<std::string, std::string> a, b;
-    if (!before.is_null()) flattenSettings(before, "", a);
-    if (!after.is_null()) flattenSettings(after, "", b);
+    const std::map<std::string, std::string> a = settingValues(before), b = settingValues(after);
     std::vector<std::string> out;
     for (const auto& [k, v] : a) {
         auto it = b.find(k);

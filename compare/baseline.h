@@ -9,9 +9,9 @@
 // 1 for SSIM and IoU), so the relative part is a fraction of the remaining error: an IoU of
 // 0.99 may drop to 0.9898, not to 0.97. PSNR has no finite perfect value; its origin is 0 dB,
 // so 2 % of 35 dB is 0.7 dB. The absolute part keeps near-perfect values (an id mismatch of 0)
-// from failing on rounding. Defaults (defaultPolicy): relative 2 %, absolute a small amount in
-// the metric's unit. Both renderers are deterministic, so on one machine an unchanged build
-// reproduces its metrics exactly; the tolerance is for other machines and drivers.
+// from failing on rounding. Defaults (defaultPolicy, from the metric table): relative 2 %,
+// absolute the metric's noise in its unit. Both renderers are deterministic, so on one machine an
+// unchanged build reproduces its metrics exactly; the tolerance is for other machines and drivers.
 // Times (time.*) are recorded and their deltas reported but not checked by default: they
 // depend on the machine and its load. A baseline file lists the policy of each of its metrics
 // under "tolerances"; edit them there ("checked": true turns a time check on).
@@ -32,15 +32,10 @@
 #include <string_view>
 #include <vector>
 
+#include "compare/metric_table.h"
 #include "compare/thresholds.h"
 
 namespace twinrender::compare {
-
-enum class Better {
-    Higher,  // PSNR, SSIM, IoU
-    Lower,   // errors, mismatches, times
-    Closer,  // closer to `origin` is better (smoothness.ratio: 1)
-};
 
 // How one metric is held to its baseline.
 struct BaselinePolicy {
@@ -52,8 +47,9 @@ struct BaselinePolicy {
     bool checked = true;     // false: recorded and shown with its delta, never fails
 };
 
-// The default policy of a metric by its name (DESIGN.md's metric names; others by suffix:
-// psnr, ssim, iou -> higher is better; ratio -> closer to 1; _ms -> a time; else lower).
+// The default policy of a metric: its direction, origin and noise in the metric table
+// (metric_table.h), relative 2 %; times 25 % and not checked. BaselinePolicy{} for a metric
+// the table does not know.
 BaselinePolicy defaultPolicy(std::string_view metric);
 
 // The worsening the policy allows from `baseline`, in the metric's unit. For a non-finite
@@ -77,7 +73,7 @@ struct Baseline {
     const MetricValues* metrics(const std::string& scene) const;
 };
 
-// A baseline from the contents of a run's summary.json (report.h's summaryJson): every
+// A baseline from the contents of a run's summary.json (report_json.h's summaryJson): every
 // scene's metrics (NaN ones left out) and settings, with the default policy of every metric.
 // `source` is recorded as "blessed_from". Throws core::InputError naming `source` and the JSON
 // path when the summary is malformed.

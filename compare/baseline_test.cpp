@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include "compare/report.h"
 #include "core/error.h"
 #include "tests/scratch_dir.h"
 
@@ -151,6 +150,24 @@ TEST(CompareToBaseline, FailureNamesTheSettingsThatChanged) {
         << c.message;
     const Check same = only(compareToBaseline("planet", {{"normal.mean_deg", 9.0}}, b, &before));
     EXPECT_NE(same.message.find("settings are the same"), std::string::npos) << same.message;
+}
+
+// A run records each renderer's settings by their full dotted keys under the renderer's name
+// (compare/settings_keys.h); a message names a setting once, as the user writes it.
+TEST(CompareToBaseline, ChangedSettingsHaveTheDottedNameAUserWrites) {
+    const json before = {{"scene_file", "scenes/planet.toml"},
+                         {"realtime", {{"realtime.ssss.radius_scale", 0.6}}},
+                         {"raymarch", {{"raymarch.spp", 1}}}};
+    json after = before;
+    after["realtime"]["realtime.ssss.radius_scale"] = 1.2;
+    const Baseline b = oneScene({{"normal.mean_deg", 2.0}}, before);
+    const Check c = only(compareToBaseline("planet", {{"normal.mean_deg", 9.0}}, b, &after));
+    const std::string expected =
+        "; settings changed since the baseline: realtime.ssss.radius_scale: 0.6 -> 1.2";
+    ASSERT_GE(c.message.size(), expected.size()) << c.message;
+    EXPECT_EQ(c.message.substr(c.message.size() - expected.size()), expected) << c.message;
+    EXPECT_EQ(settingsChanges(before, after),
+              std::vector<std::string>{"realtime.ssss.radius_scale: 0.6 -> 1.2"});
 }
 
 json summary() {

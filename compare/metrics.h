@@ -34,12 +34,10 @@ struct MetricSettings {
 MaskSettings maskSettings(const MetricSettings& settings);
 
 struct MetricResult {
-    // By metric key: beauty.psnr (dB; +inf for identical images), beauty.ssim, beauty.flip,
-    // and for AOV images coverage.iou, silhouette.mean_px, depth.rel_mean, id.mismatch,
-    // normal.mean_deg, normal.p95_deg, uv.mean, emission.rmse, smoothness.ratio, shadow.iou,
-    // shadow.false_shadow, shadow.missed_shadow. A metric whose mask is empty is NaN (and
-    // silhouette.mean_px is +inf when only one image has an outline): a JSON writer must map
-    // both.
+    // By metric key (metric_table.h): the table's AnyPair metrics (beauty.psnr, beauty.ssim,
+    // beauty.flip) for every pair, its AovPair ones too for AOV images. A metric whose mask is
+    // empty is NaN (and silhouette.mean_px is +inf when only one image has an outline): a JSON
+    // writer must map both.
     std::map<std::string, double> values;
     // One-channel float images of the pair's size: "beauty.flip" always; for AOV images also
     // "normal" (angle, degrees), "depth" (relative error), "uv" (seam-aware uv distance), "id"

@@ -5,7 +5,11 @@
 #include <cmath>
 #include <set>
 
-#include "compare/report.h"
+#include "compare/csv.h"
+#include "compare/html_page.h"
+#include "compare/json_number.h"
+#include "compare/markup.h"
+#include "compare/metric_table.h"
 #include "core/image_io.h"
 
 namespace twinrender::compare {
@@ -15,41 +19,20 @@ using nlohmann::json;
 
 namespace {
 
-json numbersJson(const std::map<std::string, double>& m) {
-    json j = json::object();
-    for (const auto& [k, v] : m) j[k] = jsonNumber(v);
-    return j;
-}
-
-std::string csvField(const std::string& s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-    std::string out = "\"";
-    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return out + "\"";
-}
-
-std::string csvNumber(double v) {
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    return fmt::format("{}", v);
-}
-
-std::string csvNumber(const std::map<std::string, double>& m, const std::string& key) {
-    const auto it = m.find(key);
-    return it == m.end() ? "" : csvNumber(it->second);
-}
-
-// Every key of the rows' maps, sorted, with `first` (those present) in front.
+// Every key of the rows' maps with `first` (those present) in front, the others sorted by
+// name, or in the metric table's order when `metrics`.
 template <typename Get>
 std::vector<std::string> columnsOf(const StudyResult& s, Get get,
-                                   const std::vector<std::string>& first) {
+                                   const std::vector<std::string>& first, bool metrics) {
     std::set<std::string> all;
     for (const StudyRow& r : s.rows)
         for (const auto& [k, v] : get(r)) all.insert(k);
     std::vector<std::string> cols;
     for (const auto& k : first)
         if (all.erase(k)) cols.push_back(k);
-    cols.insert(cols.end(), all.begin(), all.end());
+    std::vector<std::string> rest(all.begin(), all.end());
+    if (metrics) rest = inMetricOrder(std::move(rest));
+    cols.insert(cols.end(), rest.begin(), rest.end());
     return cols;
 }
 
@@ -99,10 +82,11 @@ json studyJson(const StudyResult& s) {
 }
 
 std::string studyCsv(const StudyResult& s) {
-    const auto stages = columnsOf(s, [](const StudyRow& r) -> const auto& { return r.timingsMs; },
-                                  {"total", "shadow", "gbuffer", "ssss", "shade", "post"});
+    const auto stages = columnsOf(
+        s, [](const StudyRow& r) -> const auto& { return r.timingsMs; },
+        {"total", "shadow", "gbuffer", "ssss", "shade", "post"}, false);
     const auto metrics = columnsOf(
-        s, [](const StudyRow& r) -> const auto& { return r.metrics; }, s.columns);
+        s, [](const StudyRow& r) -> const auto& { return r.metrics; }, s.columns, true);
     std::string out = "series,x,sets";
     auto field = [&](const std::string& text) {
         out += ',';
@@ -117,10 +101,10 @@ std::string studyCsv(const StudyResult& s) {
         std::string sets;
         for (const auto& set : r.sets) sets += (sets.empty() ? "" : ";") + set;
         out += csvField(r.series);
-        field(csvNumber(r.x));
+        field(exactValue(r.x));
         field(csvField(sets));
         for (const auto& st : stages) field(csvNumber(r.timingsMs, st));
-        field(csvNumber(r.referenceMs));
+        field(exactValue(r.referenceMs));
         for (const auto& m : metrics) field(csvNumber(r.metrics, m));
         field(csvField(r.error));
         out += '\n';
@@ -136,92 +120,89 @@ void writeStudy(const StudyResult& s, const fs::path& dir) {
     core::writeTextFile(d / "study.svg", lineSvg(s.chart));
 }
 
-void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& dir,
-                       const std::string& createdAt, const std::string& commandLine) {
-    const std::string title = "twinrender stability studies";
-    std::string h =
-        "<header class=\"top\">\n<h1>" + htmlEscape(title) + "</h1>\n<div class=\"facts\">";
-    h += fmt::format("<span>{} stud{}</span>", studies.size(), studies.size() == 1 ? "y" : "ies");
-    double unbracketed = 0.0;
-    for (const auto& s : studies) unbracketed += s.unbracketedRays;
-    h += fmt::format("<span>reference: {} unbracketed ray{}</span>", formatValue(unbracketed),
-                     unbracketed == 1.0 ? "" : "s");
-    if (!createdAt.empty()) h += "<span>" + htmlEscape(createdAt) + "</span>";
-    h += "<span><a href=\"studies.json\">studies.json</a></span>";
-    h += "</div>\n</header>\n<main>\n";
+namespace {
 
-    // The findings first: the page's summary, each linked to its study.
-    h += "<section>\n<h2>Findings</h2>\n<table class=\"scenes\">\n<thead><tr><th>Study</th>"
-         "<th>Finding</th><th class=\"num\">Unbracketed rays</th></tr></thead>\n<tbody>\n";
+std::string findingsSection(const std::vector<StudyResult>& studies) {
+    std::string h =
+        "<section>\n<h2>Findings</h2>\n<table class=\"scenes\">\n<thead><tr><th>Study</th>"
+        "<th>Finding</th><th class=\"num\">Unbracketed rays</th></tr></thead>\n<tbody>\n";
     for (const auto& s : studies)
         h += fmt::format(
             "<tr><td><a href=\"#{0}\">{1}</a></td><td>{2}</td><td class=\"num\">{3}</td></tr>\n",
             htmlEscape(s.name), htmlEscape(s.title), htmlEscape(s.finding),
             htmlEscape(formatValue(s.unbracketedRays)));
-    h += "</tbody></table>\n</section>\n";
+    return h + "</tbody></table>\n</section>\n";
+}
 
-    for (const auto& s : studies) {
-        const std::string base = urlPath(s.name) + "/";
-        h += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", htmlEscape(s.name),
-                         htmlEscape(s.title));
-        h += "<p class=\"lead\">" + htmlEscape(s.question) + "</p>\n";
-        h += "<p><strong>Finding:</strong> " + htmlEscape(s.finding) + "</p>\n";
-        h += fmt::format(
-            "<p class=\"muted\">Scene <code>{}</code>; {} point{}, {} reference render{} with {} "
-            "unbracketed ray{}; {:.1f} s. Data: <a href=\"{}study.csv\">study.csv</a>, <a "
-            "href=\"{}study.json\">study.json</a>.</p>\n",
-            htmlEscape(s.sceneFile), s.rows.size(), s.rows.size() == 1 ? "" : "s", s.references,
-            s.references == 1 ? "" : "s", htmlEscape(formatValue(s.unbracketedRays)),
-            s.unbracketedRays == 1.0 ? "" : "s", s.wallSeconds, base, base);
-        h += "<img src=\"" + base + "study.svg\" alt=\"" + htmlEscape(s.title) +
-             ": chart\" style=\"max-width:100%;height:auto\">\n";
-        // The rows fold away: the chart and the finding are the page's reading.
-        h += fmt::format("<details>\n<summary>{} point{}: renders and every metric</summary>\n",
-                         s.rows.size(), s.rows.size() == 1 ? "" : "s");
-        h += "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr><th>Real-time</th>"
-             "<th>Reference</th><th>Series</th><th class=\"num\">" +
-             htmlEscape(s.xLabel) + "</th>";
-        for (const auto& m : s.columns) {
-            const std::string unit = metricUnit(m);
-            h += "<th class=\"num\"><span class=\"mono\">" + htmlEscape(m) + "</span>" +
-                 (unit.empty() ? "" : " <span class=\"unit\">" + htmlEscape(unit) + "</span>") +
-                 "</th>";
-        }
-        h += "<th class=\"num\">Real-time <span class=\"unit\">ms</span></th><th "
-             "class=\"num\">Unbracketed</th></tr></thead>\n<tbody>\n";
-        for (const StudyRow& r : s.rows) {
-            h += "<tr>";
-            for (const char* which : {"realtime", "reference"}) {
-                const auto it = r.images.find(which);
-                h += it == r.images.end()
-                         ? std::string("<td></td>")
-                         : fmt::format("<td><img class=\"thumb\" src=\"{}\" alt=\"{} {}\"></td>",
-                                       base + urlPath(it->second), which, htmlEscape(r.series));
-            }
-            h += "<td>" + htmlEscape(r.series) + "</td><td class=\"num\">" +
-                 htmlEscape(xText(r.x)) + "</td>";
-            for (const auto& m : s.columns) {
-                const auto it = r.metrics.find(m);
-                h += std::string("<td class=\"num") + (m == s.metric ? " pass" : "") + "\">" +
-                     (it == r.metrics.end() ? std::string("—")
-                                            : htmlEscape(formatValue(it->second))) +
-                     "</td>";
-            }
-            const auto t = r.timingsMs.find("total");
-            const auto u = r.metrics.find("count.unbracketed_rays");
-            h += "<td class=\"num\">" +
-                 (t == r.timingsMs.end() ? std::string("—") : fmt::format("{:.1f}", t->second)) +
-                 "</td><td class=\"num\">" +
-                 (u == r.metrics.end() ? std::string("—") : htmlEscape(formatValue(u->second))) +
-                 "</td></tr>\n";
-            if (!r.error.empty())
-                h += fmt::format(
-                    "<tr class=\"problems\"><td></td><td colspan=\"{}\"><ul><li "
-                    "class=\"fail\">{}</li></ul></td></tr>\n",
-                    4 + s.columns.size(), htmlEscape(r.error));
-        }
-        h += "</tbody></table></div>\n</details>\n</section>\n";
+// A point's row: its two renders, series, x, the study's metrics, time and unbracketed rays;
+// its error in a row under it.
+std::string pointRow(const StudyResult& s, const StudyRow& r, const std::string& base) {
+    std::string h = "<tr>";
+    for (const char* which : {"realtime", "reference"}) {
+        const auto it = r.images.find(which);
+        h += it == r.images.end()
+                 ? std::string("<td></td>")
+                 : fmt::format("<td><img class=\"thumb\" src=\"{}\" alt=\"{} {}\"></td>",
+                               base + urlPath(it->second), which, htmlEscape(r.series));
     }
+    h += "<td>" + htmlEscape(r.series) + "</td><td class=\"num\">" + htmlEscape(xText(r.x)) +
+         "</td>";
+    for (const auto& m : s.columns) h += metricValueCell(r.metrics, m, m == s.metric);
+    const auto t = r.timingsMs.find("total");
+    const auto u = r.metrics.find("count.unbracketed_rays");
+    h += "<td class=\"num\">" +
+         (t == r.timingsMs.end() ? std::string("—") : fmt::format("{:.1f}", t->second)) +
+         "</td><td class=\"num\">" +
+         (u == r.metrics.end() ? std::string("—") : htmlEscape(formatValue(u->second))) +
+         "</td></tr>\n";
+    if (!r.error.empty()) h += errorRow(4 + s.columns.size(), r.error);
+    return h;
+}
+
+std::string studySection(const StudyResult& s) {
+    const std::string base = urlPath(s.name) + "/";
+    std::string h =
+        fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", htmlEscape(s.name), htmlEscape(s.title));
+    h += "<p class=\"lead\">" + htmlEscape(s.question) + "</p>\n";
+    h += "<p><strong>Finding:</strong> " + htmlEscape(s.finding) + "</p>\n";
+    h += fmt::format(
+        "<p class=\"muted\">Scene <code>{}</code>; {} point{}, {} reference render{} with {} "
+        "unbracketed ray{}; {:.1f} s. Data: <a href=\"{}study.csv\">study.csv</a>, <a "
+        "href=\"{}study.json\">study.json</a>.</p>\n",
+        htmlEscape(s.sceneFile), s.rows.size(), s.rows.size() == 1 ? "" : "s", s.references,
+        s.references == 1 ? "" : "s", htmlEscape(formatValue(s.unbracketedRays)),
+        s.unbracketedRays == 1.0 ? "" : "s", s.wallSeconds, base, base);
+    h += "<img src=\"" + base + "study.svg\" alt=\"" + htmlEscape(s.title) +
+         ": chart\" style=\"max-width:100%;height:auto\">\n";
+    // The rows fold away: the chart and the finding are the page's reading.
+    h += fmt::format("<details>\n<summary>{} point{}: renders and every metric</summary>\n",
+                     s.rows.size(), s.rows.size() == 1 ? "" : "s");
+    h += "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr><th>Real-time</th>"
+         "<th>Reference</th><th>Series</th><th class=\"num\">" +
+         htmlEscape(s.xLabel) + "</th>";
+    for (const auto& m : s.columns) h += metricHeaderCell(m);
+    h += "<th class=\"num\">Real-time <span class=\"unit\">ms</span></th><th "
+         "class=\"num\">Unbracketed</th></tr></thead>\n<tbody>\n";
+    for (const StudyRow& r : s.rows) h += pointRow(s, r, base);
+    return h + "</tbody></table></div>\n</details>\n</section>\n";
+}
+
+}  // namespace
+
+void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& dir,
+                       const std::string& createdAt, const std::string& commandLine) {
+    const std::string title = "twinrender stability studies";
+    double unbracketed = 0.0;
+    for (const auto& s : studies) unbracketed += s.unbracketedRays;
+    std::vector<std::string> facts = {
+        fmt::format("{} stud{}", studies.size(), studies.size() == 1 ? "y" : "ies"),
+        fmt::format("reference: {} unbracketed ray{}", formatValue(unbracketed),
+                    unbracketed == 1.0 ? "" : "s")};
+    if (!createdAt.empty()) facts.push_back(htmlEscape(createdAt));
+    facts.push_back("<a href=\"studies.json\">studies.json</a>");
+    // The findings first: the page's summary, each linked to its study.
+    std::string h = pageHeader(title, std::nullopt, facts) + findingsSection(studies);
+    for (const auto& s : studies) h += studySection(s);
     h += "</main>\n";
     fs::create_directories(dir);
     json all = json::array();

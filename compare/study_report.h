@@ -9,7 +9,7 @@
 //    "references", "wall_s", "rows": [{"series", "x", "sets": [...], "metrics": {...},
 //    "timings_ms": {...}, "reference_ms", "reference_key", "images": {...}, ["error"]}]}
 // DIR/<study>/study.csv, study.svg; DIR/studies.json (every study without its rows) and
-// DIR/index.html. Non-finite numbers as report.h's jsonNumber writes them.
+// DIR/index.html. Non-finite numbers as json_number.h writes them.
 #pragma once
 
 #include <filesystem>
@@ -55,7 +55,8 @@ struct StudyResult {
 
 nlohmann::json studyJson(const StudyResult& study);
 // series, x, the overrides (one column, ";"-joined), time.<stage>_ms, reference_ms, every
-// metric, error. Numbers at full precision.
+// metric (the study's columns first, then the metric table's order), error. Numbers at full
+// precision.
 std::string studyCsv(const StudyResult& study);
 
 // DIR/<name>/study.json, study.csv, study.svg (atomically).

@@ -1,6 +1,6 @@
 #include "compare/svg_chart.h"
 
-#include "compare/report.h"
+#include "compare/markup.h"
 
 #include <fmt/format.h>
 

@@ -6,9 +6,13 @@
 #include <cmath>
 #include <set>
 
-#include "compare/baseline.h"
-#include "compare/report.h"
+#include "compare/csv.h"
+#include "compare/html_page.h"
+#include "compare/json_number.h"
+#include "compare/markup.h"
+#include "compare/metric_table.h"
 #include "compare/svg_chart.h"
+#include "compare/thresholds.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -29,49 +33,35 @@ std::string SweepRow::label() const {
 }
 
 double chartValue(const std::string& metric, double value, std::string* label) {
-    const BaselinePolicy p = defaultPolicy(metric);
+    const MetricInfo* info = findMetric(metric);
+    const Better better = info ? info->better : Better::Lower;
+    const double origin = info ? info->origin : 0.0;
     const std::string unit = metricUnit(metric);
     const std::string withUnit = unit.empty() ? metric : fmt::format("{} ({})", metric, unit);
-    if (p.better == Better::Closer) {
+    if (better == Better::Closer) {
         if (label)
-            *label = fmt::format("|{} − {}| (lower is better)", withUnit, formatValue(p.origin));
-        return std::abs(value - p.origin);
+            *label = fmt::format("|{} − {}| (lower is better)", withUnit, formatValue(origin));
+        return std::abs(value - origin);
     }
     if (label)
         *label = fmt::format("{} ({} is better)", withUnit,
-                             p.better == Better::Higher ? "higher" : "lower");
+                             better == Better::Higher ? "higher" : "lower");
     return value;
 }
 
 bool lowerIsBetter(const std::string& metric) {
-    return defaultPolicy(metric).better != Better::Higher;
+    const MetricInfo* info = findMetric(metric);
+    return !info || info->better != Better::Higher;
 }
 
 namespace {
 
-json numbersJson(const std::map<std::string, double>& m) {
-    json j = json::object();
-    for (const auto& [k, v] : m) j[k] = jsonNumber(v);
-    return j;
-}
-
-// Every metric and stage of the rows, metrics in the report's order (report.cpp keeps it
-// private; the names of DESIGN.md first, then the others by name).
+// Every metric of the rows, in the table's order.
 std::vector<std::string> metricColumns(const SweepReport& s) {
-    static const std::vector<std::string> order = {
-        "beauty.psnr",  "beauty.ssim",         "beauty.flip",
-        "coverage.iou", "silhouette.mean_px",  "depth.rel_mean",
-        "id.mismatch",  "normal.mean_deg",     "normal.p95_deg",
-        "uv.mean",      "emission.rmse",       "smoothness.ratio",
-        "shadow.iou",   "shadow.false_shadow", "shadow.missed_shadow"};
     std::set<std::string> all;
     for (const SweepRow& r : s.rows)
         for (const auto& [k, v] : r.metrics) all.insert(k);
-    std::vector<std::string> cols;
-    for (const auto& m : order)
-        if (all.erase(m)) cols.push_back(m);
-    cols.insert(cols.end(), all.begin(), all.end());
-    return cols;
+    return inMetricOrder({all.begin(), all.end()});
 }
 
 std::vector<std::string> stageColumns(const SweepReport& s) {
@@ -87,22 +77,6 @@ std::vector<std::string> stageColumns(const SweepReport& s) {
         if (all.erase(st)) cols.push_back(st);
     cols.insert(cols.end(), all.begin(), all.end());
     return cols;
-}
-
-std::string csvField(const std::string& s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-    std::string out = "\"";
-    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return out + "\"";
-}
-
-std::string csvNumber(const std::map<std::string, double>& m, const std::string& key) {
-    const auto it = m.find(key);
-    if (it == m.end()) return "";
-    const double v = it->second;
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    return fmt::format("{}", v);
 }
 
 }  // namespace
@@ -233,6 +207,38 @@ std::string sweepSvg(const SweepReport& s) {
     return scatterSvg(chart);
 }
 
+namespace {
+
+// A combination's row: its render, index (marked when on the front), settings, times and
+// metrics; its error in a row under it.
+std::string combinationRow(const SweepReport& s, const SweepRow& r, bool onFront,
+                           const std::vector<std::string>& stages,
+                           const std::vector<std::string>& metrics) {
+    std::string h = "<tr>";
+    h += r.error.empty()
+             ? fmt::format("<td><img class=\"thumb\" src=\"{}\" alt=\"{}\"></td>",
+                           urlPath(r.dir + "/" + s.testRenderer + ".png"), htmlEscape(r.label()))
+             : "<td></td>";
+    h += fmt::format("<td class=\"num\">{}{}</td>", r.index,
+                     onFront ? " <span class=\"badge pass\" title=\"on the Pareto front: no other "
+                               "combination is both faster and better\">Pareto</span>"
+                             : "");
+    for (const auto& [k, v] : r.settings) h += "<td class=\"mono\">" + htmlEscape(v) + "</td>";
+    for (const auto& st : stages) {
+        const auto it = r.timingsMs.find(st);
+        h += "<td class=\"num\">" +
+             (it == r.timingsMs.end() ? std::string("—") : fmt::format("{:.2f}", it->second)) +
+             "</td>";
+    }
+    for (const auto& m : metrics) h += metricValueCell(r.metrics, m, m == s.metric);
+    h += "</tr>\n";
+    if (!r.error.empty())
+        h += errorRow(1 + s.keys.size() + stages.size() + metrics.size(), r.error);
+    return h;
+}
+
+}  // namespace
+
 std::string sweepHtml(const SweepReport& s) {
     const auto stages = stageColumns(s);
     const auto metrics = metricColumns(s);
@@ -248,15 +254,12 @@ std::string sweepHtml(const SweepReport& s) {
     const std::set<std::size_t> onFront(front.begin(), front.end());
 
     const std::string title = "twinrender sweep: " + s.scene;
-    std::string h =
-        "<header class=\"top\">\n<h1>" + htmlEscape(title) + "</h1>\n<div class=\"facts\">";
-    h += fmt::format("<span>{} of {} combinations</span>", s.rows.size(), s.combinations);
-    h += "<span>test: " + htmlEscape(s.testRenderer) + "</span>";
-    h += "<span>reference: " + htmlEscape(s.referenceDescription) + "</span>";
-    h += fmt::format("<span>{} frame{} per combination (median)</span>", s.frames,
-                     s.frames == 1 ? "" : "s");
-    if (!s.createdAt.empty()) h += "<span>" + htmlEscape(s.createdAt) + "</span>";
-    h += "</div>\n</header>\n<main>\n";
+    std::vector<std::string> facts = {
+        fmt::format("{} of {} combinations", s.rows.size(), s.combinations),
+        "test: " + htmlEscape(s.testRenderer), "reference: " + htmlEscape(s.referenceDescription),
+        fmt::format("{} frame{} per combination (median)", s.frames, s.frames == 1 ? "" : "s")};
+    if (!s.createdAt.empty()) facts.push_back(htmlEscape(s.createdAt));
+    std::string h = pageHeader(title, std::nullopt, facts);
     h += "<section>\n<h2>Time against " + htmlEscape(s.metric) + "</h2>\n";
     h +=
         "<p class=\"lead\">Each point is one combination of the varied settings; the red line "
@@ -271,45 +274,10 @@ std::string sweepHtml(const SweepReport& s) {
     for (const auto& k : s.keys) h += "<th><span class=\"mono\">" + htmlEscape(k) + "</span></th>";
     for (const auto& st : stages)
         h += "<th class=\"num\">" + htmlEscape(st) + " <span class=\"unit\">ms</span></th>";
-    for (const auto& m : metrics) {
-        const std::string unit = metricUnit(m);
-        h += "<th class=\"num\"><span class=\"mono\">" + htmlEscape(m) + "</span>" +
-             (unit.empty() ? "" : " <span class=\"unit\">" + htmlEscape(unit) + "</span>") +
-             "</th>";
-    }
+    for (const auto& m : metrics) h += metricHeaderCell(m);
     h += "</tr></thead>\n<tbody>\n";
-    for (std::size_t i = 0; i < s.rows.size(); ++i) {
-        const SweepRow& r = s.rows[i];
-        h += "<tr>";
-        h += r.error.empty() ? fmt::format("<td><img class=\"thumb\" src=\"{}\" alt=\"{}\"></td>",
-                                           urlPath(r.dir + "/" + s.testRenderer + ".png"),
-                                           htmlEscape(r.label()))
-                             : "<td></td>";
-        h += fmt::format("<td class=\"num\">{}{}</td>", r.index,
-                         onFront.count(i)
-                             ? " <span class=\"badge pass\" title=\"on the Pareto front: no other "
-                               "combination is both faster and better\">Pareto</span>"
-                             : "");
-        for (const auto& [k, v] : r.settings) h += "<td class=\"mono\">" + htmlEscape(v) + "</td>";
-        for (const auto& st : stages) {
-            const auto it = r.timingsMs.find(st);
-            h += "<td class=\"num\">" +
-                 (it == r.timingsMs.end() ? std::string("—") : fmt::format("{:.2f}", it->second)) +
-                 "</td>";
-        }
-        for (const auto& m : metrics) {
-            const auto it = r.metrics.find(m);
-            h += std::string("<td class=\"num") + (m == s.metric ? " pass" : "") + "\">" +
-                 (it == r.metrics.end() ? std::string("—") : htmlEscape(formatValue(it->second))) +
-                 "</td>";
-        }
-        h += "</tr>\n";
-        if (!r.error.empty())
-            h += fmt::format(
-                "<tr class=\"problems\"><td></td><td colspan=\"{}\"><ul><li "
-                "class=\"fail\">{}</li></ul></td></tr>\n",
-                1 + s.keys.size() + stages.size() + metrics.size(), htmlEscape(r.error));
-    }
+    for (std::size_t i = 0; i < s.rows.size(); ++i)
+        h += combinationRow(s, s.rows[i], onFront.count(i) > 0, stages, metrics);
     h += "</tbody></table></div>\n</section>\n</main>\n";
     return reportPage(title, h, s.createdAt, s.commandLine);
 }

@@ -9,7 +9,7 @@
 //    "combinations", "created", "command", "rows": [{"index", "label", "dir",
 //    "settings": {key: value}, "timings_ms": {stage: ms, "total": ms}, "metrics": {...},
 //    "reference_key", ["error"]}]}
-// Non-finite numbers are the strings "Infinity", "-Infinity", "NaN" (report.h's jsonNumber).
+// Non-finite numbers are the strings "Infinity", "-Infinity", "NaN" (json_number.h).
 #pragma once
 
 #include <cstddef>
@@ -56,7 +56,7 @@ struct SweepReport {
     std::vector<SweepRow> rows;  // by index
 };
 
-// The chart's y for a metric and whether lower is better (baseline.h's defaultPolicy): the
+// The chart's y for a metric and whether lower is better (the metric table's direction): the
 // value itself, or for a metric whose best value is a target (smoothness.ratio: 1) the
 // distance |value - target|, lower being better. `label` gets the axis title.
 double chartValue(const std::string& metric, double value, std::string* label = nullptr);
@@ -67,7 +67,7 @@ nlohmann::json sweepJson(const SweepReport& sweep);
 SweepReport sweepFromJson(const nlohmann::json& json, const std::string& source);
 
 // One header line, one line per row: index, the varied keys, time.<stage>_ms (total first),
-// every metric (in the report's order), dir, error. Numbers at full precision; empty for
+// every metric (in the metric table's order), dir, error. Numbers at full precision; empty for
 // a missing value, "nan"/"inf" for non-finite ones.
 std::string sweepCsv(const SweepReport& sweep);
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "compare/report.h"
 #include "compare/testdata/xml_check.h"
 #include "core/error.h"
 
@@ -98,34 +97,4 @@ TEST(SweepReport, ChartValueOfATargetMetricIsTheDistance) {
     EXPECT_NE(label.find("lower is better"), std::string::npos);
     EXPECT_FALSE(tc::lowerIsBetter("beauty.ssim"));
     EXPECT_TRUE(tc::lowerIsBetter("beauty.flip"));
-}
-
-TEST(SceneReportJson, RoundTripsEveryField) {
-    tc::SceneReport s;
-    s.name = "planet";
-    s.description = "d";
-    s.metrics = {{"beauty.flip", 0.1}, {"beauty.psnr", INFINITY}};
-    s.baseline = {{"beauty.flip", 0.09}};
-    tc::Check c;
-    c.metric = "beauty.flip";
-    c.value = 0.1;
-    c.bound = "baseline";
-    c.limit = 0.095;
-    c.status = tc::Status::Fail;
-    c.message = "worse";
-    c.where = "b.json";
-    c.baseline = 0.09;
-    s.checks = {c};
-    s.renderers["realtime"] = {{{"total", 3.0}},
-                               "llvmpipe",
-                               {{"particles_drawn", 5}},
-                               {{"beauty", "realtime.beauty.png"}}};
-    s.errorMaps["beauty"] = {"error.beauty.png", "ꟻLIP error", 0, 1, ""};
-    s.settings = {{"scene_file", "x.toml"}};
-    const auto j = tc::sceneReportJson(s);
-    const tc::SceneReport back = tc::sceneReportFromJson(nlohmann::json::parse(j.dump()), "x");
-    EXPECT_EQ(tc::sceneReportJson(back), j);
-    EXPECT_EQ(tc::metricsJson(back), tc::metricsJson(s));
-    EXPECT_EQ(back.renderers.at("realtime").images.at("beauty"), "realtime.beauty.png");
-    EXPECT_EQ(back.status(), tc::Status::Fail);
 }

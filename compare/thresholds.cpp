@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "compare/metric_table.h"
 #include "core/error.h"
 
 namespace twinrender::compare {
@@ -23,6 +24,12 @@ std::string_view toString(Status status) {
             return "fail";
     }
     return "fail";
+}
+
+std::optional<Status> statusFromString(std::string_view text) {
+    for (Status s : {Status::Pass, Status::Warn, Status::Fail})
+        if (toString(s) == text) return s;
+    return std::nullopt;
 }
 
 Status worst(Status a, Status b) {
@@ -46,6 +53,12 @@ std::string formatValue(double value) {
     const double a = std::abs(value);
     if (a >= 1e4 && a < 1e9) return fmt::format("{:.0f}", value);
     return fmt::format("{:.4g}", value);
+}
+
+std::string exactValue(double value) {
+    if (std::isnan(value)) return "nan";
+    if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+    return fmt::format("{}", value);
 }
 
 namespace {
@@ -82,6 +95,10 @@ void addBound(Bounds& out, const std::string& key, std::optional<double> value,
     if (!isBoundName(bound))
         throw core::InputError(fmt::format("{}: key '{}': unknown bound '{}' for metric '{}'; {}",
                                            where, shownKey, bound, metric, BOUND_HINT));
+    if (!findMetric(metric))
+        throw core::InputError(
+            fmt::format("{}: key '{}': unknown metric '{}'; the metrics are {}", where, shownKey,
+                        metric, metricNames()));
     if (!value)
         throw core::InputError(
             fmt::format("{}: key '{}': the bound must be a number", where, shownKey));

@@ -42,6 +42,8 @@ enum class Status { Pass = 0, Warn = 1, Fail = 2 };
 
 // "pass", "warn", "fail".
 std::string_view toString(Status status);
+// "pass" | "warn" | "fail" -> Status; nullopt for anything else.
+std::optional<Status> statusFromString(std::string_view text);
 Status worst(Status a, Status b);
 
 // One bound of one metric and where it was set ("thresholds.toml:3:25").
@@ -126,5 +128,8 @@ std::vector<Check> evaluate(const MetricValues& metrics, const Bounds& bounds);
 
 // A number for messages and tables: 4 significant digits, no exponent for ordinary sizes.
 std::string formatValue(double value);
+// A number for machines (CSV, JUnit properties): the shortest form that reads back to the
+// same double; "nan", "inf", "-inf" for non-finite ones.
+std::string exactValue(double value);
 
 }  // namespace twinrender::compare

@@ -107,6 +107,38 @@ TEST(Thresholds, UnknownBoundNamesFileLineAndKey) {
     EXPECT_NE(m.find("warn_max"), std::string::npos) << m;  // says what is allowed
 }
 
+TEST(Thresholds, UnknownMetricNamesFileLineKeyAndTheKnownMetrics) {
+    const std::string m = messageOf([] {
+        Thresholds::parseString(
+            "\"beauty.flip\" = { max = 0.15 }\n\"beauty.flop\" = { max = 0.2 }\n",
+            "suite/thresholds.toml");
+    });
+    EXPECT_NE(m.find("suite/thresholds.toml:2:"), std::string::npos) << m;
+    EXPECT_NE(m.find("key 'beauty.flop.max'"), std::string::npos) << m;
+    EXPECT_NE(m.find("unknown metric 'beauty.flop'"), std::string::npos) << m;
+    EXPECT_NE(m.find("beauty.psnr, beauty.ssim, beauty.flip, "), std::string::npos) << m;
+    EXPECT_NE(m.find("time.<renderer>_ms"), std::string::npos) << m;
+
+    // In a scene's table of the file, and in a scene file's own [compare.thresholds].
+    const std::string s = messageOf([] {
+        Thresholds::parseString("[scenes.planet]\n\"shadow.iuo\" = { min = 0.9 }\n", "t.toml");
+    });
+    EXPECT_NE(s.find("t.toml:2:"), std::string::npos) << s;
+    EXPECT_NE(s.find("scenes.planet.shadow.iuo.min"), std::string::npos) << s;
+    EXPECT_NE(s.find("unknown metric 'shadow.iuo'"), std::string::npos) << s;
+    core::ParameterTable scene("compare", "planet.toml");
+    scene.set("thresholds.normal.mean.max", 3.0, "planet.toml:31:1");
+    const std::string f = messageOf([&] { sceneFileBounds(scene); });
+    EXPECT_NE(f.find("planet.toml:31:1"), std::string::npos) << f;
+    EXPECT_NE(f.find("compare.thresholds.normal.mean.max"), std::string::npos) << f;
+    EXPECT_NE(f.find("unknown metric 'normal.mean'"), std::string::npos) << f;
+
+    // Families take any member.
+    const Thresholds t =
+        Thresholds::parseString("\"time.realtime_ms\" = { max = 500 }\n", "t.toml");
+    EXPECT_TRUE(t.global().count("time.realtime_ms"));
+}
+
 TEST(Thresholds, NonNumericValuesNameFileLineAndKey) {
     std::string m = messageOf([] {
         Thresholds::parseString("# comment\n\"beauty.flip\" = { max = \"0.15\" }\n", "t.toml");

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "compare/report.h"
+#include "compare/report_html.h"
 #include "compare/testdata/synthetic_report.h"
 #include "tests/cli_harness.h"
 

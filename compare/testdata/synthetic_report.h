@@ -12,6 +12,8 @@
 #include <string>
 
 #include "compare/baseline.h"
+#include "compare/buffer_display.h"
+#include "compare/colour_map.h"
 #include "compare/flip.h"
 #include "compare/report.h"
 #include "compare/thresholds.h"
@@ -101,6 +103,28 @@ inline SceneReport syntheticScene(const std::filesystem::path& dir, const std::s
         {"realtime", {{"ssss", {{"enabled", shift < 1.0}, {"separable", true}}}, {"depth", "log"}}},
         {"raymarch", {{"level", 0.13}}},
         {"camera", {{"width", w}, {"height", h}}}};
+    return s;
+}
+
+// A scene without images: beauty.flip beyond its max and its baseline, coverage.iou bounded
+// but not computed, shadow.iou between its min and warn_min; timings of both renderers.
+inline SceneReport sceneWithChecks() {
+    SceneReport s;
+    s.name = "planet";
+    s.metrics = {{"beauty.psnr", std::numeric_limits<double>::infinity()},
+                 {"beauty.flip", 0.2},
+                 {"shadow.iou", 0.97}};
+    const Thresholds t = Thresholds::parseString(
+        "\"beauty.flip\" = { max = 0.15 }\n\"shadow.iou\" = { min = 0.9, warn_min = 0.98 }\n"
+        "\"coverage.iou\" = { min = 0.9 }\n",
+        "t.toml");
+    s.checks = evaluate(s.metrics, t.global());
+    Baseline b;
+    b.scenes["planet"].metrics = {{"beauty.flip", 0.1}};
+    const auto bc = compareToBaseline("planet", s.metrics, b);
+    s.checks.insert(s.checks.end(), bc.begin(), bc.end());
+    s.renderers["realtime"].timingsMs = {{"total", 4.0}, {"ssss", 1.5}};
+    s.renderers["raymarch"].timingsMs = {{"total", 400.0}};
     return s;
 }
 
