@@ -13,7 +13,9 @@
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
+#include "core/camera.h"
 #include "core/shading.h"
+#include "raymarch/surface_tracer.h"
 
 namespace twinrender::raymarch {
 
@@ -49,21 +51,15 @@ float hashToUnit(std::uint32_t x, std::uint32_t y, std::uint32_t k, std::uint32_
 
 }  // namespace
 
-Renderer::Renderer(const EmbreeDevice& device, const core::Scene& scene,
-                   const core::SceneParticles& particles, const std::vector<core::Material>& materials,
-                   const Settings& settings)
-    : mScene(scene),
-      mParticles(particles),
-      mMaterials(materials),
-      mSettings(settings),
-      mCamera(scene.camera),
-      mTracer(device, mCamera, particles, settings) {}
+Renderer::Renderer(const EmbreeDevice& device, const Settings& settings)
+    : mDevice(device), mSettings(settings) {}
 
-Renderer::~Renderer() = default;
-
-core::Frame Renderer::render(const std::function<void(double)>& progress) const {
+core::Frame Renderer::render(const core::RenderInput& input) {
     const Settings& st = mSettings;
-    const int width = mCamera.width(), height = mCamera.height();
+    const core::Camera camera(input.scene.camera);
+    const SurfaceTracer tracer(mDevice, camera, input.particles, st);  // "build"
+    const auto& progress = input.progress;
+    const int width = camera.width(), height = camera.height();
     const int tile = st.tileSize;
     const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
     const int tileCount = tilesX * tilesY;
@@ -73,18 +69,20 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
     // written by the tiles, in parallel, with the pixels they cover: filling the channels
     // first is a serial pass over the whole image.
     frame.image = core::Image(width, height, core::aov::channelNames());
-    frame.particleCount = mParticles.particles.size();
+    frame.display = core::Image(width, height, {"R", "G", "B"});
+    frame.particleCount = input.particles.particles.size();
     core::Image& img = frame.image;
+    const float exposure = static_cast<float>(input.scene.camera.exposure);
     const int cR = img.channelIndex("R"), cA = img.channelIndex("A"), cZ = img.channelIndex("Z"),
               cN = img.channelIndex("N.X"), cU = img.channelIndex("uv.U"), cId = img.channelIndex("id"),
               cE = img.channelIndex("emission.R"), cS = img.channelIndex("shadow");
-    const double nearT = mScene.camera.near, farT = mScene.camera.far;
-    const glm::dvec3 toLight = -mScene.light.direction;
+    const double nearT = input.scene.camera.near, farT = input.scene.camera.far;
+    const glm::dvec3 toLight = -input.scene.light.direction;
     const int grid = static_cast<int>(std::ceil(std::sqrt(double(st.spp))));
     std::atomic<int> done{0};
     std::atomic<std::int64_t> primaryNs{0}, shadeNs{0};
     tbb::enumerable_thread_specific<SurfaceTracer::WorkspacePtr> workspaces(
-        [&] { return mTracer.makeWorkspace(); });
+        [&] { return tracer.makeWorkspace(); });
     const auto start = Clock::now();
 
     tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
@@ -116,9 +114,9 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                     std::fill_n(emission, N, glm::dvec3(0.0));
                     double coverage[N] = {}, shadow[N] = {}, bestDist[N];
                     std::fill_n(bestDist, N, INFINITY);
-                    const core::Ray central = mCamera.ray(bx + 0.5 * B, by + 0.5 * B);
+                    const core::Ray central = camera.ray(bx + 0.5 * B, by + 0.5 * B);
                     // Background (written above) where no ray of the block can meet a surface.
-                    if (!mTracer.blockMayHit(central)) continue;
+                    if (!tracer.blockMayHit(central)) continue;
                     for (int k = 0; k < st.spp; ++k) {
                         core::Ray rays[N];
                         double tnear[N], tfar[N], cosAxis[N], jx[N], jy[N];
@@ -128,8 +126,8 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                                 jx[i] = ((k % grid) + hashToUnit(px[i], py[i], k, 0)) / grid;
                                 jy[i] = ((k / grid) + hashToUnit(px[i], py[i], k, 1)) / grid;
                             }
-                            rays[i] = mCamera.ray(px[i] + jx[i], py[i] + jy[i]);
-                            cosAxis[i] = glm::dot(rays[i].direction, mCamera.forward());
+                            rays[i] = camera.ray(px[i] + jx[i], py[i] + jy[i]);
+                            cosAxis[i] = glm::dot(rays[i].direction, camera.forward());
                             tnear[i] = nearT / cosAxis[i];
                             tfar[i] = farT / cosAxis[i];
                         }
@@ -138,8 +136,8 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                         float vis[N];
                         const auto t0 = Clock::now();
                         const int rowLength = std::min(bx + B, tx1) - bx;
-                        mTracer.tracePrimary(n, rowLength, rays, tnear, tfar, central, hits, found, w);
-                        if (st.shadows) mTracer.traceShadows(n, hits, found, toLight, vis, w);
+                        tracer.tracePrimary(n, rowLength, rays, tnear, tfar, central, hits, found, w);
+                        if (st.shadows) tracer.traceShadows(n, hits, found, toLight, vis, w);
                         else std::fill_n(vis, n, 1.0f);
                         const auto t1 = Clock::now();
                         tPrimary += (t1 - t0).count();
@@ -151,9 +149,9 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                             sp.toEye = glm::vec3(-rays[i].direction);
                             sp.uv = hit.uv;
                             sp.material = hit.material;
-                            sp.emission = core::surfaceEmission(mMaterials[hit.material], hit.uv, hit.glow);
+                            sp.emission = core::surfaceEmission(input.materials[hit.material], hit.uv, hit.glow);
                             sp.visibility = vis[i];
-                            beauty[i] += glm::dvec3(core::shade(mMaterials, mScene.light, sp));
+                            beauty[i] += glm::dvec3(core::shade(input.materials, input.scene.light, sp));
                             emission[i] += glm::dvec3(sp.emission);
                             coverage[i] += 1.0;
                             shadow[i] += vis[i];
@@ -176,10 +174,15 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
                         if (coverage[i] == 0.0) continue;
                         const int x = px[i], y = py[i];
                         const double inv = 1.0 / st.spp;
+                        glm::vec3 mean;
                         for (int c = 0; c < 3; ++c) {
-                            img.at(x, y, cR + c) = static_cast<float>(beauty[i][c] * inv);
+                            mean[c] = static_cast<float>(beauty[i][c] * inv);
+                            img.at(x, y, cR + c) = mean[c];
                             img.at(x, y, cE + c) = static_cast<float>(emission[i][c] / coverage[i]);
                         }
+                        // The background's display value, tonemap(0), is 0: the new image's.
+                        const glm::vec3 shown = core::tonemap(mean, exposure);
+                        for (int c = 0; c < 3; ++c) frame.display.at(x, y, c) = shown[c];
                         img.at(x, y, cA) = static_cast<float>(coverage[i] * inv);
                         img.at(x, y, cS) = static_cast<float>(shadow[i] / coverage[i]);
                     }
@@ -194,14 +197,14 @@ core::Frame Renderer::render(const std::function<void(double)>& progress) const 
     // Split the parallel wall time by the thread time of each part.
     const double primary = double(primaryNs.load()), shading = double(shadeNs.load());
     const double sum = std::max(primary + shading, 1.0);
-    frame.timingsMs["build"] = mTracer.buildMs();
+    frame.timingsMs["build"] = tracer.buildMs();
     frame.timingsMs["trace"] = traceMs * primary / sum;  // surfaces and shadow rays
     frame.timingsMs["shade"] = traceMs * shading / sum;
-    frame.timingsMs["total"] = mTracer.buildMs() + traceMs;
+    frame.timingsMs["total"] = tracer.buildMs() + traceMs;
 
     TraceCounters total;
     for (auto& w : workspaces) {
-        const TraceCounters& c = mTracer.counters(*w);
+        const TraceCounters& c = tracer.counters(*w);
         total.unresolved += c.unresolved;
         total.candidates += c.candidates;
         total.evaluations += c.evaluations;

@@ -93,7 +93,7 @@ bool sceneEmits(const core::ParticleSet& ps, const std::vector<core::Material>& 
     return false;
 }
 
-// Reads an RGBA32F texture, bottom row first, into `out` (resized; kept by the renderer between
+// Reads an RGBA32F texture, bottom row first, into `out` (resized; kept by the device between
 // frames, so that its pages are not faulted in again every frame).
 void readTexture(const gl::Texture& texture, const char* name, std::vector<float>& out) {
     gl::Framebuffer fb(name, {{&texture}});
@@ -103,8 +103,8 @@ void readTexture(const gl::Texture& texture, const char* name, std::vector<float
 
 }  // namespace
 
-struct Renderer::Impl {
-    explicit Impl(const gl::Context& c) : context(c) {}
+struct DeviceState {
+    explicit DeviceState(const gl::Context& c) : context(c) {}
     const gl::Context& context;
     ProgramCache programs;
     gl::Limits limits;
@@ -112,20 +112,23 @@ struct Renderer::Impl {
     FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
-    // Images handed back by recycle(), reused when the size and channels match.
+    // Images handed back by Renderer::recycle, reused when the size and channels match.
     core::Image spareImage, spareDisplay;
 };
 
-Renderer::Renderer(const gl::Context& context) : mImpl(new Impl(context)) {
+Device::Device(const gl::Context& context) : mState(std::make_unique<DeviceState>(context)) {
     context.makeCurrent();
-    mImpl->limits = gl::queryLimits();
+    mState->limits = gl::queryLimits();
 }
 
-Renderer::~Renderer() = default;
+Device::~Device() = default;
 
-void Renderer::recycle(RenderResult&& old) {
-    mImpl->spareImage = std::move(old.frame.image);
-    mImpl->spareDisplay = std::move(old.display);
+Renderer::Renderer(Device& device, const Settings& settings)
+    : mDevice(*device.mState), mSettings(settings) {}
+
+void Renderer::recycle(core::Frame&& old) {
+    mDevice.spareImage = std::move(old.image);
+    mDevice.spareDisplay = std::move(old.display);
 }
 
 namespace {
@@ -140,10 +143,12 @@ core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::str
 
 }  // namespace
 
-RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticles& particles,
-                              const std::vector<core::Material>& materials,
-                              const Settings& settings) {
-    Impl& m = *mImpl;
+core::Frame Renderer::render(const core::RenderInput& input) {
+    DeviceState& m = mDevice;
+    const Settings& settings = mSettings;
+    const core::Scene& scene = input.scene;
+    const core::SceneParticles& particles = input.particles;
+    const std::vector<core::Material>& materials = input.materials;
     m.context.makeCurrent();
     const core::Camera camera(scene.camera);
     const int w = camera.width(), h = camera.height();
@@ -166,8 +171,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
                 "{}: particle {} has material {} but the scene has {}", scene.file.string(), i,
                 particles.particles.material[i], materials.size()));
 
-    RenderResult result;
-    core::Frame& frame = result.frame;
+    core::Frame frame;
     frame.renderer = "realtime";
     frame.device = m.context.renderer();
     frame.settings = toJson(settings);
@@ -332,9 +336,9 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
               cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
               cShadow = channel("shadow");
     const std::size_t stride = static_cast<std::size_t>(image.channelCount());
-    result.display = reuseOrCreate(m.spareDisplay, w, h, {"R", "G", "B"});
+    frame.display = reuseOrCreate(m.spareDisplay, w, h, {"R", "G", "B"});
     float* aov = image.pixels().data();
-    float* shown = result.display.pixels().data();
+    float* shown = frame.display.pixels().data();
     tbb::parallel_for(0, h, [&](int y) {
         // OpenGL rows run bottom-up; images top-down.
         const std::size_t glRow = static_cast<std::size_t>(h - 1 - y) * w;
@@ -374,7 +378,7 @@ RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticl
     frame.timingsMs["readback"] = msSince(stageStart);
     for (const auto& [name, query] : timers) frame.timingsMs[name] = query.milliseconds();
     frame.timingsMs["total"] = msSince(totalStart);
-    return result;
+    return frame;
 }
 
 }  // namespace twinrender::realtime
