@@ -16,25 +16,27 @@ compare::MetricSettings metricSettings(const LoadedScene& s, double ppd) {
     return m;
 }
 
-void addTimeMetrics(const Render& ref, const Render& test, compare::MetricValues& metrics) {
-    metrics["time." + test.frame.renderer + "_ms"] = test.frame.timingsMs.at("total");
-    metrics["time." + ref.frame.renderer + "_ms"] = ref.frame.timingsMs.at("total");
+void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
+                    compare::MetricValues& metrics) {
+    metrics["time." + test.renderer + "_ms"] = test.timingsMs.at("total");
+    metrics["time." + ref.renderer + "_ms"] = ref.timingsMs.at("total");
 }
 
-compare::SceneReport compareScene(const LoadedScene& s, const Render& ref, const Render& test,
-                                  const compare::Bounds& bounds, const compare::Baseline* baseline,
-                                  double ppd, const std::filesystem::path& dir) {
+compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
+                                  const core::Frame& test, const compare::Bounds& bounds,
+                                  const compare::Baseline* baseline, double ppd,
+                                  const std::filesystem::path& dir) {
     compare::SceneReport report;
     report.name = s.scene.name;
     report.description = s.scene.description;
     const compare::MetricResult result =
-        compare::computeMetrics(ref.frame.image, test.frame.image, metricSettings(s, ppd));
+        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd));
     report.metrics = result.values;
     addTimeMetrics(ref, test, report.metrics);
 
     report.settings = {{"scene_file", s.scene.file.string()},
-                       {ref.frame.renderer, ref.frame.settings},
-                       {test.frame.renderer, test.frame.settings}};
+                       {ref.renderer, ref.settings},
+                       {test.renderer, test.settings}};
     report.checks = compare::evaluate(report.metrics, bounds);
     if (baseline) {
         if (const auto* blessed = baseline->metrics(s.scene.name)) report.baseline = *blessed;
@@ -44,14 +46,14 @@ compare::SceneReport compareScene(const LoadedScene& s, const Render& ref, const
 
     compare::BufferVisualSettings visual;
     visual.exposure = static_cast<float>(s.scene.camera.exposure);
-    visual.depthRange = compare::depthRange(ref.frame.image, test.frame.image);
-    for (const Render* r : {&ref, &test}) {
+    visual.depthRange = compare::depthRange(ref.image, test.image);
+    for (const core::Frame* r : {&ref, &test}) {
         compare::RendererReport rr;
-        rr.timingsMs = r->frame.timingsMs;
-        rr.device = r->frame.device;
-        rr.counters = r->frame.counters;
-        rr.images = compare::writeBufferImages(r->frame.image, &r->display, dir, r->frame.renderer, visual);
-        report.renderers[r->frame.renderer] = std::move(rr);
+        rr.timingsMs = r->timingsMs;
+        rr.device = r->device;
+        rr.counters = r->counters;
+        rr.images = compare::writeBufferImages(r->image, &r->display, dir, r->renderer, visual);
+        report.renderers[r->renderer] = std::move(rr);
     }
     report.errorMaps = compare::writeErrorMapImages(result.errorMaps, dir);
     return report;

@@ -19,14 +19,16 @@ compare::MetricSettings metricSettings(const LoadedScene& scene, double ppd);
 // Compares the real-time render (test) with the reference (ref), writes the scene folder's
 // images (per-buffer PNGs of both renders, colour-mapped error maps) and returns the scene's
 // report with its checks. `bounds` from the thresholds; `baseline` may be null.
-compare::SceneReport compareScene(const LoadedScene& scene, const Render& ref, const Render& test,
-                                  const compare::Bounds& bounds, const compare::Baseline* baseline,
-                                  double ppd, const std::filesystem::path& sceneDir);
+compare::SceneReport compareScene(const LoadedScene& scene, const core::Frame& ref,
+                                  const core::Frame& test, const compare::Bounds& bounds,
+                                  const compare::Baseline* baseline, double ppd,
+                                  const std::filesystem::path& sceneDir);
 
 // The time a report is written, "2026-11-21 16:40 UTC".
 std::string nowUtc();
 
 // The time metrics of a pair of renders: time.realtime_ms and time.raymarch_ms (total).
-void addTimeMetrics(const Render& ref, const Render& test, compare::MetricValues& metrics);
+void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
+                    compare::MetricValues& metrics);
 
 }  // namespace twinrender::app

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -18,7 +17,6 @@
 #include "app/suite_commands.h"
 #include "app/sweep_command.h"
 #include "core/error.h"
-#include "realtime/gl/context.h"
 
 namespace tr = twinrender;
 using tr::app::ExitCode;
@@ -50,9 +48,8 @@ void addPpd(CLI::App* cmd, double& ppd) {
         ->capture_default_str();
 }
 
-void printRender(const tr::app::LoadedScene& s, const tr::app::Render& r,
+void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
                  const std::filesystem::path& dir) {
-    const auto& f = r.frame;
     std::printf("%s: %s %dx%d, %zu particles, %.1f ms on %s -> %s\n", s.scene.name.c_str(),
                 f.renderer.c_str(), f.image.width(), f.image.height(), f.particleCount,
                 f.timingsMs.at("total"), f.device.c_str(), (dir / (f.renderer + ".exr")).c_str());
@@ -64,26 +61,20 @@ void printRender(const tr::app::LoadedScene& s, const tr::app::Render& r,
 
 ExitCode runRender(const std::string& scenePath, const std::string& renderer,
                    const CommonOptions& o) {
-    const bool tty = isatty(STDERR_FILENO);
     auto loaded = tr::app::loadScene(scenePath, o.sets);
     const std::filesystem::path dir = std::filesystem::path(o.out) / loaded.scene.name;
-    // The GL context first: without one there is nothing to render in real time, and the
-    // error should come before minutes of raymarching.
-    std::unique_ptr<tr::realtime::gl::Context> context;
-    if (renderer == "realtime" || renderer == "both")
-        context = std::make_unique<tr::realtime::gl::Context>(
-            tr::realtime::gl::ContextOptions{o.requireGpu});
-    if (renderer == "raymarch" || renderer == "both") {
-        tr::raymarch::EmbreeDevice device;
-        const auto r = tr::app::renderRaymarch(device, loaded, tty);
-        tr::app::writeRender(loaded, r, dir);
-        printRender(loaded, r, dir);
-    }
-    if (context) {
-        tr::realtime::Renderer gl(*context);
-        const auto r = tr::app::renderRealtime(gl, loaded);
-        tr::app::writeRender(loaded, r, dir);
-        printRender(loaded, r, dir);
+    const std::vector<std::string> names =
+        renderer == "both" ? tr::app::rendererNames() : std::vector<std::string>{renderer};
+    // Every renderer first: without a GL context there is nothing to render in real time, and
+    // the error should come before minutes of raymarching.
+    tr::app::Devices devices(o.requireGpu);
+    std::vector<std::unique_ptr<tr::core::Renderer>> renderers;
+    for (const auto& name : names)
+        renderers.push_back(tr::app::makeRenderer(name, devices, loaded));
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const tr::core::Frame frame = tr::app::render(*renderers[i], names[i], loaded);
+        tr::app::writeRender(loaded, frame, dir);
+        printRender(loaded, frame, dir);
     }
     return ExitCode::Pass;
 }

@@ -91,36 +91,36 @@ std::pair<std::string, json> referenceKey(const LoadedScene& s,
     return {h.hex(), what};
 }
 
-const Render& ReferenceCache::get(const LoadedScene& s, const std::string& key, const json& what) {
+const core::Frame& ReferenceCache::get(const LoadedScene& s, const std::string& key,
+                                       const json& what) {
     if (auto it = mLoaded.find(key); it != mLoaded.end()) return it->second;
     const fs::path dir = mDir / key;
-    Render r;
+    core::Frame r;
     if (fs::is_regular_file(dir / "raymarch.exr") && fs::is_regular_file(dir / "raymarch.json")) {
-        r.frame.image = core::readImage(dir / "raymarch.exr");
+        r.image = core::readImage(dir / "raymarch.exr");
         std::ifstream in(dir / "raymarch.json");
         const json j = json::parse(in, nullptr, false);
         if (j.is_discarded())
             throw core::InputError(
                 fmt::format("{}: not JSON; delete the folder", (dir / "raymarch.json").string()));
-        r.frame.renderer = "raymarch";
-        r.frame.device = j.value("device", "");
-        r.frame.settings = j.value("settings", json());
+        r.renderer = "raymarch";
+        r.device = j.value("device", "");
+        r.settings = j.value("settings", json());
         const json timings = j.value("timings_ms", json::object());
         const json counters = j.value("counters", json::object());
         for (const auto& [k, v] : timings.items())
-            if (v.is_number()) r.frame.timingsMs[k] = v.get<double>();
+            if (v.is_number()) r.timingsMs[k] = v.get<double>();
         for (const auto& [k, v] : counters.items())
-            if (v.is_number()) r.frame.counters[k] = v.get<double>();
-        r.frame.particleCount = j.value("particle_count", std::size_t{0});
-        r.display =
-            core::tonemappedBeauty(r.frame.image, static_cast<float>(s.scene.camera.exposure));
+            if (v.is_number()) r.counters[k] = v.get<double>();
+        r.particleCount = j.value("particle_count", std::size_t{0});
+        r.display = core::tonemappedBeauty(r.image, static_cast<float>(s.scene.camera.exposure));
         std::printf("reference %s: cache hit %s\n", key.c_str(), dir.c_str());
     } else {
-        r = renderRaymarch(mDevice, s, mTty);
+        r = render("raymarch", mDevices, s);
         writeRender(s, r, dir);
         core::writeTextFile(dir / "key.json", what.dump(2) + "\n");
         std::printf("reference %s: rendered in %.1f ms, cached in %s\n", key.c_str(),
-                    r.frame.timingsMs.at("total"), dir.c_str());
+                    r.timingsMs.at("total"), dir.c_str());
     }
     std::fflush(stdout);
     return mLoaded.emplace(key, std::move(r)).first->second;

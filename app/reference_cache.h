@@ -24,16 +24,16 @@ std::pair<std::string, nlohmann::json> referenceKey(const LoadedScene& scene,
 // render or hit ("reference KEY: cache hit DIR" / "... rendered in N ms, cached in DIR").
 class ReferenceCache {
   public:
-    ReferenceCache(std::filesystem::path dir, const raymarch::EmbreeDevice& device, bool tty)
-        : mDir(std::move(dir)), mDevice(device), mTty(tty) {}
+    ReferenceCache(std::filesystem::path dir, Devices& devices)
+        : mDir(std::move(dir)), mDevices(devices) {}
 
-    const Render& get(const LoadedScene& scene, const std::string& key, const nlohmann::json& what);
+    const core::Frame& get(const LoadedScene& scene, const std::string& key,
+                           const nlohmann::json& what);
 
   private:
     std::filesystem::path mDir;
-    const raymarch::EmbreeDevice& mDevice;
-    bool mTty;
-    std::map<std::string, Render> mLoaded;
+    Devices& mDevices;
+    std::map<std::string, core::Frame> mLoaded;
 };
 
 }  // namespace twinrender::app

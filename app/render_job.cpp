@@ -1,11 +1,19 @@
 #include "app/render_job.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "app/progress.h"
+#include "core/error.h"
+#include "raymarch/embree_device.h"
 #include "raymarch/renderer.h"
+#include "realtime/gl/context.h"
+#include "realtime/renderer.h"
 
 namespace twinrender::app {
 
-LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+LoadedScene loadScene(const std::filesystem::path& file,
+                      const std::vector<std::string>& overrides) {
     LoadedScene s;
     s.scene = core::loadScene(file, overrides);
     s.raymarch = raymarch::parseSettings(s.scene.raymarch);
@@ -18,36 +26,64 @@ LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::
     return s;
 }
 
-Render renderRaymarch(const raymarch::EmbreeDevice& device, const LoadedScene& s, bool showProgress) {
-    Progress progress(s.scene.name + ": raymarch");
-    raymarch::Renderer renderer(device, s.scene, s.particles, s.materials, s.raymarch);
-    Render r;
-    r.frame = renderer.render([&](double f) {
-        if (showProgress) progress.update(f);
-    });
+Devices::Devices(bool requireGpu) : mRequireGpu(requireGpu) {}
+
+Devices::~Devices() = default;
+
+const raymarch::EmbreeDevice& Devices::embree() {
+    if (!mEmbree) mEmbree = std::make_unique<raymarch::EmbreeDevice>();
+    return *mEmbree;
+}
+
+realtime::Device& Devices::realtime() {
+    if (!mRealtime) {
+        mContext =
+            std::make_unique<realtime::gl::Context>(realtime::gl::ContextOptions{mRequireGpu});
+        mRealtime = std::make_unique<realtime::Device>(*mContext);
+    }
+    return *mRealtime;
+}
+
+const std::vector<std::string>& rendererNames() {
+    static const std::vector<std::string> names = {"raymarch", "realtime"};
+    return names;
+}
+
+std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& devices,
+                                             const LoadedScene& s) {
+    if (name == "raymarch")
+        return std::make_unique<raymarch::Renderer>(devices.embree(), s.raymarch);
+    if (name == "realtime")
+        return std::make_unique<realtime::Renderer>(devices.realtime(), s.realtime);
+    throw core::InputError(fmt::format("no renderer named '{}'; the renderers are {}", name,
+                                       fmt::join(rendererNames(), ", ")));
+}
+
+core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& s) {
+    Progress progress(fmt::format("{}: {}", s.scene.name, name));
+    core::Frame frame =
+        renderer.render({s.scene, s.particles, s.materials, [&](double f) { progress.update(f); }});
     progress.finish();
-    r.display = core::tonemappedBeauty(r.frame.image, static_cast<float>(s.scene.camera.exposure));
-    return r;
+    return frame;
 }
 
-Render renderRealtime(realtime::Renderer& renderer, const LoadedScene& s) {
-    realtime::RenderResult result = renderer.render(s.scene, s.particles, s.materials, s.realtime);
-    return {std::move(result.frame), std::move(result.display)};
+core::Frame render(std::string_view name, Devices& devices, const LoadedScene& s) {
+    return render(*makeRenderer(name, devices, s), name, s);
 }
 
-void writeRender(const LoadedScene& s, const Render& render, const std::filesystem::path& dir) {
+void writeRender(const LoadedScene& s, const core::Frame& frame, const std::filesystem::path& dir) {
     nlohmann::json extra;
     extra["scene"] = s.scene.name;
     extra["scene_file"] = s.scene.file.string();
-    extra["camera"] = {{"position", {s.scene.camera.position.x, s.scene.camera.position.y,
-                                     s.scene.camera.position.z}},
-                       {"target", {s.scene.camera.target.x, s.scene.camera.target.y,
-                                   s.scene.camera.target.z}},
-                       {"fov_y_deg", s.scene.camera.fovYDeg},
-                       {"near", s.scene.camera.near},
-                       {"far", s.scene.camera.far},
-                       {"exposure", s.scene.camera.exposure}};
-    core::writeFrame(render.frame, render.display, dir, render.frame.renderer, extra);
+    extra["camera"] = {
+        {"position",
+         {s.scene.camera.position.x, s.scene.camera.position.y, s.scene.camera.position.z}},
+        {"target", {s.scene.camera.target.x, s.scene.camera.target.y, s.scene.camera.target.z}},
+        {"fov_y_deg", s.scene.camera.fovYDeg},
+        {"near", s.scene.camera.near},
+        {"far", s.scene.camera.far},
+        {"exposure", s.scene.camera.exposure}};
+    core::writeFrame(frame, dir, extra);
 }
 
 }  // namespace twinrender::app

@@ -1,24 +1,36 @@
-// Loading a scene and rendering it with either renderer: what every command that renders
+// Loading a scene and rendering it with any renderer: what every command that renders
 // shares. All input is read and checked before any rendering starts.
 #pragma once
 
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/frame.h"
 #include "core/particles.h"
+#include "core/renderer.h"
 #include "core/scene.h"
 #include "core/texture.h"
-#include "raymarch/embree_device.h"
 #include "raymarch/settings.h"
-#include "realtime/renderer.h"
 #include "realtime/settings.h"
+
+namespace twinrender {
+namespace raymarch {
+class EmbreeDevice;
+}
+namespace realtime {
+class Device;
+namespace gl {
+class Context;
+}
+}  // namespace realtime
+}  // namespace twinrender
 
 namespace twinrender::app {
 
-// A scene with everything both renderers need, validated.
+// A scene with everything every renderer needs, validated.
 struct LoadedScene {
     core::Scene scene;
     raymarch::Settings raymarch;
@@ -31,20 +43,42 @@ struct LoadedScene {
 // errors), loads the textures and builds the particles.
 LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
-// A rendered frame and the image a person looks at (tonemapped; bloom when enabled).
-struct Render {
-    core::Frame frame;
-    core::Image display;
+// The devices the renderers run on, each created on first use (a command that renders no
+// real-time frame opens no GL context) and kept for the command's life.
+class Devices {
+  public:
+    explicit Devices(bool requireGpu = false);
+    ~Devices();
+    Devices(const Devices&) = delete;
+    Devices& operator=(const Devices&) = delete;
+
+    const raymarch::EmbreeDevice& embree();
+    // The GL context (throws core::InputError when none can be had) and the compiled programs
+    // and caches that the real-time renderers made on it share.
+    realtime::Device& realtime();
+
+  private:
+    bool mRequireGpu;
+    std::unique_ptr<raymarch::EmbreeDevice> mEmbree;
+    std::unique_ptr<realtime::gl::Context> mContext;
+    std::unique_ptr<realtime::Device> mRealtime;
 };
 
-// Renders with the reference raymarcher.
-Render renderRaymarch(const raymarch::EmbreeDevice& device, const LoadedScene& scene,
-                      bool showProgress);
+// The renderers by name, in the order `render --renderer both` runs them.
+const std::vector<std::string>& rendererNames();
 
-// Renders with the real-time renderer (its GL context is current on this thread).
-Render renderRealtime(realtime::Renderer& renderer, const LoadedScene& scene);
+// The renderer `name` ("raymarch" or "realtime") with the scene's settings for it.
+std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& devices,
+                                             const LoadedScene& scene);
+
+// Renders the scene, with a progress bar ("<scene>: <name>") on a terminal while the renderer
+// reports progress.
+core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& scene);
+// One frame of a renderer made for it (makeRenderer).
+core::Frame render(std::string_view name, Devices& devices, const LoadedScene& scene);
 
 // Writes DIR/<renderer>.exr|.png|.json for a frame of the scene.
-void writeRender(const LoadedScene& scene, const Render& render, const std::filesystem::path& dir);
+void writeRender(const LoadedScene& scene, const core::Frame& frame,
+                 const std::filesystem::path& dir);
 
 }  // namespace twinrender::app

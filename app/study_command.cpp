@@ -1,7 +1,6 @@
 #include "app/study_command.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -21,7 +20,6 @@
 #include "compare/metrics.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "realtime/gl/context.h"
 
 namespace twinrender::app {
 
@@ -53,7 +51,6 @@ struct Planned {
 }  // namespace
 
 ExitCode runStudies(const StudyOptions& o) {
-    const bool tty = isatty(STDERR_FILENO);
     // ---- Everything is read and checked before the first render. ----
     std::vector<const StudyDef*> chosen;
     std::string known;
@@ -97,10 +94,9 @@ ExitCode runStudies(const StudyOptions& o) {
 
     const fs::path out(o.out);
     const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
-    realtime::gl::Context context(realtime::gl::ContextOptions{o.requireGpu});
-    realtime::Renderer gl(context);
-    raymarch::EmbreeDevice device;
-    ReferenceCache cache(cacheDir, device, tty);
+    Devices devices(o.requireGpu);
+    devices.realtime();  // no GL context: fail before the first render
+    ReferenceCache cache(cacheDir, devices);
 
     std::vector<compare::StudyResult> results;
     bool anyError = false;
@@ -131,31 +127,28 @@ ExitCode runStudies(const StudyOptions& o) {
             try {
                 const auto [key, what] = referenceKey(pt.scene, pt.overrides);
                 row.referenceKey = key;
-                const Render& ref = cache.get(pt.scene, key, what);
-                row.referenceMs =
-                    ref.frame.timingsMs.count("total") ? ref.frame.timingsMs.at("total") : NAN;
-                const auto u = ref.frame.counters.find("unbracketed_rays");
-                row.metrics["count.unbracketed_rays"] =
-                    u == ref.frame.counters.end() ? 0.0 : u->second;
+                const core::Frame& ref = cache.get(pt.scene, key, what);
+                row.referenceMs = ref.timingsMs.count("total") ? ref.timingsMs.at("total") : NAN;
+                const auto u = ref.counters.find("unbracketed_rays");
+                row.metrics["count.unbracketed_rays"] = u == ref.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
-                const Render test = renderRealtime(gl, pt.scene);
-                for (const auto& [stage, ms] : test.frame.timingsMs)
+                const core::Frame test = render("realtime", devices, pt.scene);
+                for (const auto& [stage, ms] : test.timingsMs)
                     if (stage != "compile") row.timingsMs[stage] = ms;
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
-                const compare::MetricResult m =
-                    compare::computeMetrics(ref.frame.image, test.frame.image, ms);
+                const compare::MetricResult m = compare::computeMetrics(ref.image, test.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
                 if (d.contactBand || d.occlusionError) {
-                    const compare::Masks masks = compare::computeMasks(
-                        ref.frame.image, test.frame.image, compare::maskSettings(ms));
+                    const compare::Masks masks =
+                        compare::computeMasks(ref.image, test.image, compare::maskSettings(ms));
                     if (d.occlusionError) {
                         const double covered = double(masks.referenceCovered.count());
                         row.metrics["occlusion.error"] =
                             covered > 0 ? 1.0 - double(masks.sameBody.count()) / covered : NAN;
                     }
                     if (d.contactBand) {
-                        const auto band = compare::contactBandError(
-                            ref.frame.image, test.frame.image, masks, CONTACT_BAND_PX);
+                        const auto band = compare::contactBandError(ref.image, test.image, masks,
+                                                                    CONTACT_BAND_PX);
                         row.metrics["contact.uv_mean"] = band.uvMean;
                         row.metrics["contact.emission_rmse"] = band.emissionRmse;
                         row.metrics["contact.pixels"] = double(band.pixels);

@@ -19,7 +19,6 @@
 #include "compare/report_json.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "realtime/gl/context.h"
 
 namespace twinrender::app {
 
@@ -154,9 +153,9 @@ ExitCode runSuite(const RunOptions& o) {
         for (std::size_t p = 0; p < byName.size(); ++p) selected[byName[p]] = shard->takes(p);
     }
 
-    realtime::gl::Context context(realtime::gl::ContextOptions{o.requireGpu});
-    realtime::Renderer realtimeRenderer(context);
-    raymarch::EmbreeDevice device;
+    // The GL context before the first render: without one, nothing can be compared.
+    Devices devices(o.requireGpu);
+    devices.realtime();
 
     compare::RunReport run;
     run.createdAt = nowUtc();
@@ -173,9 +172,9 @@ ExitCode runSuite(const RunOptions& o) {
         if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", ++done, count, s.scene.name.c_str());
         compare::SceneReport report;
         try {
-            const Render ref = renderRaymarch(device, s, tty);
+            const core::Frame ref = render("raymarch", devices, s);
             writeRender(s, ref, dir);
-            const Render test = renderRealtime(realtimeRenderer, s);
+            const core::Frame test = render("realtime", devices, s);
             writeRender(s, test, dir);
             report =
                 compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd, dir);

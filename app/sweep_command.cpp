@@ -25,7 +25,6 @@
 #include "compare/sweep_report.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "realtime/gl/context.h"
 
 namespace twinrender::app {
 
@@ -211,15 +210,9 @@ ExitCode runSweep(const SweepOptions& o) {
 
     const fs::path out(o.out);
     const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
-    std::unique_ptr<realtime::gl::Context> context;
-    std::unique_ptr<realtime::Renderer> gl;
-    if (!convergence) {
-        context =
-            std::make_unique<realtime::gl::Context>(realtime::gl::ContextOptions{o.requireGpu});
-        gl = std::make_unique<realtime::Renderer>(*context);
-    }
-    raymarch::EmbreeDevice device;
-    ReferenceCache cache(cacheDir, device, tty);
+    Devices devices(o.requireGpu);
+    if (!convergence) devices.realtime();  // no GL context: fail before the first render
+    ReferenceCache cache(cacheDir, devices);
 
     compare::SweepReport report;
     report.scene =
@@ -253,24 +246,24 @@ ExitCode runSweep(const SweepOptions& o) {
             const auto [key, what] =
                 referenceKey(refScene, convergence ? job.tightOverrides : job.testOverrides);
             row.referenceKey = key;
-            const Render& ref = cache.get(refScene, key, what);
+            const core::Frame& ref = cache.get(refScene, key, what);
             // N frames; the median of each stage and of the total. The real-time renderer
             // first renders one frame untimed: the driver compiles shader variants on first use.
             std::map<std::string, std::vector<double>> times;
-            Render test;
-            if (!convergence) renderRealtime(*gl, job.test);
+            const auto renderer = makeRenderer(testRenderer, devices, job.test);
+            core::Frame test;
+            if (!convergence) render(*renderer, testRenderer, job.test);
             for (int f = 0; f < frames; ++f) {
-                test = convergence ? renderRaymarch(device, job.test, tty)
-                                   : renderRealtime(*gl, job.test);
-                for (const auto& [stage, ms] : test.frame.timingsMs)
+                test = render(*renderer, testRenderer, job.test);
+                for (const auto& [stage, ms] : test.timingsMs)
                     if (stage != "compile")
                         times[stage].push_back(ms);  // not part of a frame's time
             }
             for (const auto& [stage, v] : times) row.timingsMs[stage] = median(v);
-            const compare::MetricResult result = compare::computeMetrics(
-                ref.frame.image, test.frame.image, metricSettings(job.test, o.ppd));
+            const compare::MetricResult result =
+                compare::computeMetrics(ref.image, test.image, metricSettings(job.test, o.ppd));
             row.metrics = result.values;
-            for (const auto& [name, n] : test.frame.counters) row.metrics["count." + name] = n;
+            for (const auto& [name, n] : test.counters) row.metrics["count." + name] = n;
 
             // The combination's folder: its render, the ꟻLIP map, its metrics.
             const fs::path dir = out / row.dir;
@@ -282,8 +275,8 @@ ExitCode runSweep(const SweepOptions& o) {
             scene.metrics = row.metrics;
             compare::RendererReport rr;
             rr.timingsMs = row.timingsMs;
-            rr.device = test.frame.device;
-            rr.counters = test.frame.counters;
+            rr.device = test.device;
+            rr.counters = test.counters;
             rr.images["beauty"] = testRenderer + ".png";
             scene.renderers[testRenderer] = rr;
             if (const auto it = result.errorMaps.find("beauty.flip"); it != result.errorMaps.end())
@@ -292,7 +285,7 @@ ExitCode runSweep(const SweepOptions& o) {
             for (const auto& [k, v] : row.settings) settings[k] = v;
             scene.settings = {{"varied", settings},
                               {"scene_file", job.test.scene.file.string()},
-                              {testRenderer, test.frame.settings},
+                              {testRenderer, test.settings},
                               {"reference_key", key}};
             compare::writeMetricsJson(scene, dir / "metrics.json");
             const auto m = row.metrics.find(o.metric);

@@ -49,9 +49,9 @@ void renderBall(benchmark::State& state, bool spheres, bool shadows) {
     tr::raymarch::EmbreeDevice device;
     double unresolved = 0;
     const double cpuStart = processCpuMs();
+    tr::raymarch::Renderer renderer(device, settings);
     for (auto _ : state) {
-        tr::raymarch::Renderer renderer(device, s.scene, s.particles, s.materials, settings);
-        tr::core::Frame frame = renderer.render();
+        tr::core::Frame frame = renderer.render({s.scene, s.particles, s.materials});
         unresolved = frame.counters["unbracketed_rays"];
         benchmark::DoNotOptimize(frame.image.pixels().data());
     }

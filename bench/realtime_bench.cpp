@@ -6,8 +6,8 @@
 // 2-core llvmpipe machines; 1M particles at 1920 x 1080 under 5 ms on a GPU.
 // Each iteration is one frame of a frame loop over an unchanged particle set: the culling
 // answer and the field normals are computed once (in the warm-up render) and the previous
-// frame is handed back (Renderer::recycle). BM_Planet100k720pFirstFrame is a new renderer per
-// frame: culling and field normals included, compile excluded.
+// frame is handed back (Renderer::recycle). BM_Planet100k720pFirstFrame is a new device and
+// renderer per frame: culling and field normals included, compile excluded.
 // Run: build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
@@ -64,14 +64,16 @@ void frame(benchmark::State& state, int particles, int width, int height,
     const LoadedScene& s = planet(particles, width, height);
     tr::realtime::Settings settings = s.settings;
     if (adjust) adjust(settings);
-    tr::realtime::Renderer renderer(context());
+    tr::realtime::Device device(context());
+    tr::realtime::Renderer renderer(device, settings);
+    const tr::core::RenderInput input{s.scene, s.particles, s.materials};
     // Compiles the programs; culling and field normals are computed once per particle set.
-    renderer.recycle(renderer.render(s.scene, s.particles, s.materials, settings));
+    renderer.recycle(renderer.render(input));
     std::map<std::string, double> sums;
     for (auto _ : state) {
-        tr::realtime::RenderResult r = renderer.render(s.scene, s.particles, s.materials, settings);
-        for (const auto& [stage, ms] : r.frame.timingsMs) sums[stage] += ms;
-        benchmark::DoNotOptimize(r.frame.image.pixels().data());
+        tr::core::Frame r = renderer.render(input);
+        for (const auto& [stage, ms] : r.timingsMs) sums[stage] += ms;
+        benchmark::DoNotOptimize(r.image.pixels().data());
         renderer.recycle(std::move(r));  // a frame loop hands its frames back
     }
     for (const auto& [stage, ms] : sums)
@@ -85,11 +87,11 @@ void BM_Planet100k720pFirstFrame(benchmark::State& state) {
     const LoadedScene& s = planet(100000, 1280, 720);
     std::map<std::string, double> sums;
     for (auto _ : state) {
-        tr::realtime::Renderer renderer(context());
-        const tr::realtime::RenderResult r =
-            renderer.render(s.scene, s.particles, s.materials, s.settings);
-        for (const auto& [stage, ms] : r.frame.timingsMs) sums[stage] += ms;
-        benchmark::DoNotOptimize(r.frame.image.pixels().data());
+        tr::realtime::Device device(context());  // nothing compiled or culled yet
+        tr::realtime::Renderer renderer(device, s.settings);
+        const tr::core::Frame r = renderer.render({s.scene, s.particles, s.materials});
+        for (const auto& [stage, ms] : r.timingsMs) sums[stage] += ms;
+        benchmark::DoNotOptimize(r.image.pixels().data());
     }
     for (const auto& [stage, ms] : sums)
         if (stage != "compile")

@@ -25,10 +25,10 @@ Image tonemappedBeauty(const Image& aovImage, float exposure) {
     return out;
 }
 
-void writeFrame(const Frame& frame, const Image& display, const std::filesystem::path& dir,
-                const std::string& name, const nlohmann::json& extra) {
+void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nlohmann::json& extra) {
+    const std::string& name = frame.renderer;
     writeImage(frame.image, dir / (name + ".exr"));
-    writeImage(display, dir / (name + ".png"));
+    writeImage(frame.display, dir / (name + ".png"));
     nlohmann::json j = extra;
     j["renderer"] = frame.renderer;
     j["device"] = frame.device;

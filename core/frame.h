@@ -1,5 +1,6 @@
-// What a renderer returns: the AOV image of DESIGN.md plus the facts the JSON beside it
-// records (settings, device, counters, stage timings).
+// What a renderer returns (core/renderer.h): the AOV image of DESIGN.md, the image a person
+// looks at, and the facts the JSON beside them records (settings, device, counters, stage
+// timings).
 #pragma once
 
 #include <filesystem>
@@ -26,6 +27,9 @@ Image makeImage(int width, int height);
 
 struct Frame {
     Image image;                              // the AOV image
+    // What the PNG shows: sRGB R, G, B in [0, 1], top row first; core's tonemapper, after bloom
+    // when the renderer does bloom.
+    Image display;
     std::string renderer;                     // "raymarch" or "realtime"
     std::string device;                       // GL_RENDERER, or the CPU model and thread count
     nlohmann::json settings;                  // every setting used, by dotted key
@@ -38,10 +42,9 @@ struct Frame {
 // The tonemapped sRGB beauty (R, G, B in [0, 1]) a person looks at.
 Image tonemappedBeauty(const Image& aovImage, float exposure);
 
-// Writes DIR/NAME.exr (all AOV channels, linear), DIR/NAME.png (display: the frame's
-// `display` image when given, else the tonemapped beauty) and DIR/NAME.json; each file
-// atomically. `extra` is merged into the JSON (scene name, resolution, ...).
-void writeFrame(const Frame& frame, const Image& display, const std::filesystem::path& dir,
-                const std::string& name, const nlohmann::json& extra);
+// Writes DIR/R.exr (all AOV channels, linear), DIR/R.png (the display image) and DIR/R.json,
+// R the frame's renderer; each file atomically. `extra` is merged into the JSON (scene name,
+// resolution, ...).
+void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nlohmann::json& extra);
 
 }  // namespace twinrender::core

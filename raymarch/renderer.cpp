@@ -1,25 +1,33 @@
 #include "raymarch/renderer.h"
 
-#include <atomic>
-#include <chrono>
-#include <cmath>
 #include <fmt/format.h>
-#include <fstream>
-#include <limits>
-#include <mutex>
 #include <pmmintrin.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
-#include "core/shading.h"
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include "core/camera.h"
+#include "raymarch/pixel_samples.h"
+#include "raymarch/surface_tracer.h"
 
 namespace twinrender::raymarch {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using Workspace = SurfaceTracer::Workspace;
+using Workspaces = tbb::enumerable_thread_specific<SurfaceTracer::WorkspacePtr>;
+
+constexpr int B = SurfaceTracer::BLOCK;  // pixel block side
+constexpr int N = B * B;                 // pixels per block
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -47,174 +55,220 @@ float hashToUnit(std::uint32_t x, std::uint32_t y, std::uint32_t k, std::uint32_
     return (h >> 8) * (1.0f / 16777216.0f);
 }
 
-}  // namespace
+// Thread time of the two parts of tracing, in steady-clock ticks.
+struct StageTicks {
+    std::int64_t trace = 0;  // camera rays and shadow rays
+    std::int64_t shade = 0;  // shading the hits
+};
 
-Renderer::Renderer(const EmbreeDevice& device, const core::Scene& scene,
-                   const core::SceneParticles& particles, const std::vector<core::Material>& materials,
-                   const Settings& settings)
-    : mScene(scene),
-      mParticles(particles),
-      mMaterials(materials),
-      mSettings(settings),
-      mCamera(scene.camera),
-      mTracer(device, mCamera, particles, settings) {}
+// The pixels of one block, in rows, and the ray through the centre of the full block.
+struct Block {
+    int n = 0;          // pixels (fewer than N where a tile's edge cuts the block)
+    int rowLength = 0;  // pixels per row
+    int px[N], py[N];
+    core::Ray central;
+};
 
-Renderer::~Renderer() = default;
+// One sample's camera rays through the pixels of a block.
+struct SampleRays {
+    core::Ray rays[N];
+    double tnear[N], tfar[N];  // the near and far planes along each ray
+    double cosAxis[N];         // of the angle to the view axis: eye depth = t cosAxis
+    double jx[N], jy[N];       // the sample's position in its pixel, [0, 1)^2
+};
 
-core::Frame Renderer::render(const std::function<void(double)>& progress) const {
-    const Settings& st = mSettings;
-    const int width = mCamera.width(), height = mCamera.height();
-    const int tile = st.tileSize;
-    const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
-    const int tileCount = tilesX * tilesY;
-    core::Frame frame;
-    frame.renderer = "raymarch";
-    // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
-    // written by the tiles, in parallel, with the pixels they cover: filling the channels
-    // first is a serial pass over the whole image.
-    frame.image = core::Image(width, height, core::aov::channelNames());
-    frame.particleCount = mParticles.particles.size();
-    core::Image& img = frame.image;
-    const int cR = img.channelIndex("R"), cA = img.channelIndex("A"), cZ = img.channelIndex("Z"),
-              cN = img.channelIndex("N.X"), cU = img.channelIndex("uv.U"), cId = img.channelIndex("id"),
-              cE = img.channelIndex("emission.R"), cS = img.channelIndex("shadow");
-    const double nearT = mScene.camera.near, farT = mScene.camera.far;
-    const glm::dvec3 toLight = -mScene.light.direction;
-    const int grid = static_cast<int>(std::ceil(std::sqrt(double(st.spp))));
+// A frame's loop: tiles (in parallel) -> pixel blocks -> samples -> pixels, written into the
+// frame's AOV and display images. Every pixel is computed on its own, so the images do not
+// depend on which thread traces which tile.
+class FrameTrace {
+  public:
+    FrameTrace(const SurfaceTracer& tracer, const core::Camera& camera,
+               const core::RenderInput& input, const Settings& settings, core::Frame& frame)
+        : mTracer(tracer),
+          mCamera(camera),
+          mInput(input),
+          mSettings(settings),
+          mAov(frame.image),
+          mDisplay(frame.display),
+          mChannels(frame.image),
+          mTilesX((camera.width() + settings.tileSize - 1) / settings.tileSize),
+          mTilesY((camera.height() + settings.tileSize - 1) / settings.tileSize),
+          mGrid(static_cast<int>(std::ceil(std::sqrt(double(settings.spp))))),
+          mExposure(static_cast<float>(input.scene.camera.exposure)),
+          mToLight(-input.scene.light.direction) {}
+
+    int tileCount() const { return mTilesX * mTilesY; }
+
+    // Tile `index` of the tiles in rows, tileSize pixels a side; its blocks are cut at the
+    // tile's edge (a tile may be smaller than a block).
+    void traceTile(int index, Workspace& w, StageTicks& ticks) const {
+        const int tile = mSettings.tileSize;
+        const int x0 = (index % mTilesX) * tile, y0 = (index / mTilesX) * tile;
+        const int x1 = std::min(x0 + tile, mCamera.width());
+        const int y1 = std::min(y0 + tile, mCamera.height());
+        for (int by = y0; by < y1; by += B)
+            for (int bx = x0; bx < x1; bx += B)
+                traceBlock(block(bx, by, std::min(bx + B, x1), std::min(by + B, y1)), w, ticks);
+    }
+
+    // Every sample of a block's pixels, then the pixels.
+    void traceBlock(const Block& b, Workspace& w, StageTicks& ticks) const {
+        PixelSamples pixels[N];
+        // Where no ray of the block can meet a surface, its pixels keep the background.
+        if (mTracer.blockMayHit(b.central))
+            for (int k = 0; k < mSettings.spp; ++k) traceSample(b, k, pixels, w, ticks);
+        for (int i = 0; i < b.n; ++i)
+            writePixel(pixels[i], mSettings.spp, mExposure, b.px[i], b.py[i], mChannels, mAov,
+                       mDisplay);
+    }
+
+    // Sample k of every pixel of a block: the camera rays, their shadow rays, the shading.
+    void traceSample(const Block& b, int k, PixelSamples* pixels, Workspace& w,
+                     StageTicks& ticks) const {
+        const SampleRays r = sampleRays(b, k);
+        SurfaceHit hits[N];
+        bool found[N];
+        float vis[N];
+        const auto t0 = Clock::now();
+        mTracer.tracePrimary(b.n, b.rowLength, r.rays, r.tnear, r.tfar, b.central, hits, found, w);
+        if (mSettings.shadows)
+            mTracer.traceShadows(b.n, hits, found, mToLight, vis, w);
+        else
+            std::fill_n(vis, b.n, 1.0f);
+        const auto t1 = Clock::now();
+        ticks.trace += (t1 - t0).count();
+        for (int i = 0; i < b.n; ++i) {
+            if (!found[i]) continue;
+            const ShadedSample s = shadeHit(hits[i], r.rays[i].direction, vis[i], mInput.materials,
+                                            mInput.scene.light);
+            pixels[i].add(s, vis[i], hits[i], hits[i].t * r.cosAxis[i], r.jx[i], r.jy[i]);
+        }
+        ticks.shade += (Clock::now() - t1).count();
+    }
+
+  private:
+    // The pixels [x0, x1) x [y0, y1) of the block whose corner is (x0, y0).
+    Block block(int x0, int y0, int x1, int y1) const {
+        Block b;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                b.px[b.n] = x;
+                b.py[b.n] = y;
+                ++b.n;
+            }
+        b.rowLength = x1 - x0;
+        b.central = mCamera.ray(x0 + 0.5 * B, y0 + 0.5 * B);
+        return b;
+    }
+
+    // With one sample per pixel, the pixel centre; else stratified on a grid x grid pattern
+    // and jittered.
+    SampleRays sampleRays(const Block& b, int k) const {
+        SampleRays r;
+        const double nearT = mInput.scene.camera.near, farT = mInput.scene.camera.far;
+        for (int i = 0; i < b.n; ++i) {
+            r.jx[i] = r.jy[i] = 0.5;
+            if (mSettings.spp > 1) {
+                r.jx[i] = ((k % mGrid) + hashToUnit(b.px[i], b.py[i], k, 0)) / mGrid;
+                r.jy[i] = ((k / mGrid) + hashToUnit(b.px[i], b.py[i], k, 1)) / mGrid;
+            }
+            r.rays[i] = mCamera.ray(b.px[i] + r.jx[i], b.py[i] + r.jy[i]);
+            r.cosAxis[i] = glm::dot(r.rays[i].direction, mCamera.forward());
+            r.tnear[i] = nearT / r.cosAxis[i];
+            r.tfar[i] = farT / r.cosAxis[i];
+        }
+        return r;
+    }
+
+    const SurfaceTracer& mTracer;
+    const core::Camera& mCamera;
+    const core::RenderInput& mInput;
+    const Settings& mSettings;
+    core::Image& mAov;
+    core::Image& mDisplay;
+    AovChannels mChannels;
+    int mTilesX, mTilesY;
+    int mGrid;  // strata per side of a pixel's samples
+    float mExposure;
+    glm::dvec3 mToLight;
+};
+
+// The tiles in parallel on the caller's arena, on one workspace per thread; the thread time
+// of each part summed over the tiles.
+StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
+                      const std::function<void(double)>& progress) {
+    const int tiles = trace.tileCount();
     std::atomic<int> done{0};
-    std::atomic<std::int64_t> primaryNs{0}, shadeNs{0};
-    tbb::enumerable_thread_specific<SurfaceTracer::WorkspacePtr> workspaces(
-        [&] { return mTracer.makeWorkspace(); });
-    const auto start = Clock::now();
-
-    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
+    std::atomic<std::int64_t> traceTicks{0}, shadeTicks{0};
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
         // Embree wants flush-to-zero and denormals-are-zero on every thread that traces.
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-        SurfaceTracer::Workspace& w = *workspaces.local();
-        constexpr int B = SurfaceTracer::BLOCK;
-        constexpr int N = B * B;
-        for (int ti = range.begin(); ti != range.end(); ++ti) {
-            const int tx0 = (ti % tilesX) * tile, ty0 = (ti / tilesX) * tile;
-            // Blocks are cut at the tile's edge (a tile may be smaller than a block).
-            const int tx1 = std::min(tx0 + tile, width), ty1 = std::min(ty0 + tile, height);
-            std::int64_t tPrimary = 0, tShade = 0;
-            for (int by = ty0; by < ty1; by += B)
-                for (int bx = tx0; bx < tx1; bx += B) {
-                    int px[N], py[N], n = 0;
-                    for (int y = by; y < std::min(by + B, ty1); ++y)
-                        for (int x = bx; x < std::min(bx + B, tx1); ++x) {
-                            px[n] = x;
-                            py[n] = y;
-                            ++n;
-                            img.at(x, y, cZ) = std::numeric_limits<float>::infinity();
-                            img.at(x, y, cId) = -1.0f;
-                        }
-                    // Per pixel of the block, summed over its samples (glm does not zero).
-                    glm::dvec3 beauty[N], emission[N];
-                    std::fill_n(beauty, N, glm::dvec3(0.0));
-                    std::fill_n(emission, N, glm::dvec3(0.0));
-                    double coverage[N] = {}, shadow[N] = {}, bestDist[N];
-                    std::fill_n(bestDist, N, INFINITY);
-                    const core::Ray central = mCamera.ray(bx + 0.5 * B, by + 0.5 * B);
-                    // Background (written above) where no ray of the block can meet a surface.
-                    if (!mTracer.blockMayHit(central)) continue;
-                    for (int k = 0; k < st.spp; ++k) {
-                        core::Ray rays[N];
-                        double tnear[N], tfar[N], cosAxis[N], jx[N], jy[N];
-                        for (int i = 0; i < n; ++i) {
-                            jx[i] = jy[i] = 0.5;
-                            if (st.spp > 1) {
-                                jx[i] = ((k % grid) + hashToUnit(px[i], py[i], k, 0)) / grid;
-                                jy[i] = ((k / grid) + hashToUnit(px[i], py[i], k, 1)) / grid;
-                            }
-                            rays[i] = mCamera.ray(px[i] + jx[i], py[i] + jy[i]);
-                            cosAxis[i] = glm::dot(rays[i].direction, mCamera.forward());
-                            tnear[i] = nearT / cosAxis[i];
-                            tfar[i] = farT / cosAxis[i];
-                        }
-                        SurfaceHit hits[N];
-                        bool found[N];
-                        float vis[N];
-                        const auto t0 = Clock::now();
-                        const int rowLength = std::min(bx + B, tx1) - bx;
-                        mTracer.tracePrimary(n, rowLength, rays, tnear, tfar, central, hits, found, w);
-                        if (st.shadows) mTracer.traceShadows(n, hits, found, toLight, vis, w);
-                        else std::fill_n(vis, n, 1.0f);
-                        const auto t1 = Clock::now();
-                        tPrimary += (t1 - t0).count();
-                        for (int i = 0; i < n; ++i) {
-                            if (!found[i]) continue;
-                            const SurfaceHit& hit = hits[i];
-                            core::SurfacePoint sp;
-                            sp.normal = hit.normal;
-                            sp.toEye = glm::vec3(-rays[i].direction);
-                            sp.uv = hit.uv;
-                            sp.material = hit.material;
-                            sp.emission = core::surfaceEmission(mMaterials[hit.material], hit.uv, hit.glow);
-                            sp.visibility = vis[i];
-                            beauty[i] += glm::dvec3(core::shade(mMaterials, mScene.light, sp));
-                            emission[i] += glm::dvec3(sp.emission);
-                            coverage[i] += 1.0;
-                            shadow[i] += vis[i];
-                            // Geometric channels are not filtered: they come from the hit
-                            // sample nearest the pixel centre.
-                            const double dist = (jx[i] - 0.5) * (jx[i] - 0.5) + (jy[i] - 0.5) * (jy[i] - 0.5);
-                            if (dist < bestDist[i]) {
-                                bestDist[i] = dist;
-                                const int x = px[i], y = py[i];
-                                img.at(x, y, cZ) = static_cast<float>(hit.t * cosAxis[i]);
-                                for (int c = 0; c < 3; ++c) img.at(x, y, cN + c) = hit.normal[c];
-                                img.at(x, y, cU) = hit.uv.x;
-                                img.at(x, y, cU + 1) = hit.uv.y;
-                                img.at(x, y, cId) = static_cast<float>(hit.body);
-                            }
-                        }
-                        tShade += (Clock::now() - t1).count();
-                    }
-                    for (int i = 0; i < n; ++i) {
-                        if (coverage[i] == 0.0) continue;
-                        const int x = px[i], y = py[i];
-                        const double inv = 1.0 / st.spp;
-                        for (int c = 0; c < 3; ++c) {
-                            img.at(x, y, cR + c) = static_cast<float>(beauty[i][c] * inv);
-                            img.at(x, y, cE + c) = static_cast<float>(emission[i][c] / coverage[i]);
-                        }
-                        img.at(x, y, cA) = static_cast<float>(coverage[i] * inv);
-                        img.at(x, y, cS) = static_cast<float>(shadow[i] / coverage[i]);
-                    }
-                }
-            primaryNs += tPrimary;
-            shadeNs += tShade;
+        Workspace& w = *workspaces.local();
+        for (int t = r.begin(); t != r.end(); ++t) {
+            StageTicks ticks;
+            trace.traceTile(t, w, ticks);
+            traceTicks += ticks.trace;
+            shadeTicks += ticks.shade;
             const int finished = ++done;
-            if (progress) progress(double(finished) / tileCount);
+            if (progress) progress(double(finished) / tiles);
         }
     });
-    const double traceMs = msSince(start);
-    // Split the parallel wall time by the thread time of each part.
-    const double primary = double(primaryNs.load()), shading = double(shadeNs.load());
-    const double sum = std::max(primary + shading, 1.0);
-    frame.timingsMs["build"] = mTracer.buildMs();
-    frame.timingsMs["trace"] = traceMs * primary / sum;  // surfaces and shadow rays
-    frame.timingsMs["shade"] = traceMs * shading / sum;
-    frame.timingsMs["total"] = mTracer.buildMs() + traceMs;
+    return {traceTicks.load(), shadeTicks.load()};
+}
 
+// The counters of every thread's workspace, summed.
+void collectCounters(const SurfaceTracer& tracer, const Workspaces& workspaces,
+                     std::map<std::string, double>& counters) {
     TraceCounters total;
-    for (auto& w : workspaces) {
-        const TraceCounters& c = mTracer.counters(*w);
+    for (const auto& w : workspaces) {
+        const TraceCounters& c = tracer.counters(*w);
         total.unresolved += c.unresolved;
         total.candidates += c.candidates;
         total.evaluations += c.evaluations;
         total.segments += c.segments;
         total.bundles += c.bundles;
     }
-    frame.counters["unbracketed_rays"] = double(total.unresolved);
-    frame.counters["segments"] = double(total.segments);
-    frame.counters["candidates"] = double(total.candidates);
-    frame.counters["field_evaluations"] = double(total.evaluations);
-    frame.counters["bundle_gathers"] = double(total.bundles);
-    frame.device = fmt::format("{} ({} threads)", cpuName(), tbb::this_task_arena::max_concurrency());
-    frame.settings = toJson(st);
+    counters["unbracketed_rays"] = double(total.unresolved);
+    counters["segments"] = double(total.segments);
+    counters["candidates"] = double(total.candidates);
+    counters["field_evaluations"] = double(total.evaluations);
+    counters["bundle_gathers"] = double(total.bundles);
+}
+
+}  // namespace
+
+Renderer::Renderer(const EmbreeDevice& device, const Settings& settings)
+    : mDevice(device), mSettings(settings) {}
+
+core::Frame Renderer::render(const core::RenderInput& input) {
+    const core::Camera camera(input.scene.camera);
+    const SurfaceTracer tracer(mDevice, camera, input.particles, mSettings);  // "build"
+    core::Frame frame;
+    frame.renderer = "raymarch";
+    // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
+    // written by the tiles, in parallel, with the pixels they cover: filling the channels
+    // first is a serial pass over the whole image.
+    frame.image = core::Image(camera.width(), camera.height(), core::aov::channelNames());
+    frame.display = core::Image(camera.width(), camera.height(), {"R", "G", "B"});
+    frame.particleCount = input.particles.particles.size();
+
+    const FrameTrace trace(tracer, camera, input, mSettings, frame);
+    Workspaces workspaces([&] { return tracer.makeWorkspace(); });
+    const auto start = Clock::now();
+    const StageTicks ticks = traceTiles(trace, workspaces, input.progress);
+    const double traceMs = msSince(start);
+    // Split the parallel wall time by the thread time of each part.
+    const double sum = std::max(double(ticks.trace) + double(ticks.shade), 1.0);
+    frame.timingsMs["build"] = tracer.buildMs();
+    frame.timingsMs["trace"] = traceMs * double(ticks.trace) / sum;  // surfaces, shadow rays
+    frame.timingsMs["shade"] = traceMs * double(ticks.shade) / sum;
+    frame.timingsMs["total"] = tracer.buildMs() + traceMs;
+
+    collectCounters(tracer, workspaces, frame.counters);
+    frame.device =
+        fmt::format("{} ({} threads)", cpuName(), tbb::this_task_arena::max_concurrency());
+    frame.settings = toJson(mSettings);
     return frame;
 }
 

@@ -4,41 +4,25 @@
 // its own, so the image is bit-identical for any thread count.
 #pragma once
 
-#include <functional>
-#include <memory>
-#include <vector>
-
-#include "core/camera.h"
-#include "core/frame.h"
-#include "core/particles.h"
-#include "core/scene.h"
-#include "core/texture.h"
+#include "core/renderer.h"
 #include "raymarch/embree_device.h"
 #include "raymarch/settings.h"
-#include "raymarch/surface_tracer.h"
 
 namespace twinrender::raymarch {
 
-class Renderer {
-public:
-    // Builds the acceleration structures (the "build" stage). The references must outlive
-    // the renderer.
-    Renderer(const EmbreeDevice& device, const core::Scene& scene,
-             const core::SceneParticles& particles, const std::vector<core::Material>& materials,
-             const Settings& settings);
-    ~Renderer();
+class Renderer final : public core::Renderer {
+  public:
+    // The device must outlive the renderer.
+    Renderer(const EmbreeDevice& device, const Settings& settings);
 
-    // Renders the AOV image. `progress` (may be empty) is called with the finished fraction,
-    // from worker threads, at most once per tile.
-    core::Frame render(const std::function<void(double)>& progress = {}) const;
+    // Builds the acceleration structures of the particles (the "build" stage, part of
+    // "total"), then traces the tiles ("trace": surfaces and shadow rays, "shade"). Calls
+    // `progress` from worker threads, at most once per tile.
+    core::Frame render(const core::RenderInput& input) override;
 
-private:
-    const core::Scene& mScene;
-    const core::SceneParticles& mParticles;
-    const std::vector<core::Material>& mMaterials;
+  private:
+    const EmbreeDevice& mDevice;
     Settings mSettings;
-    core::Camera mCamera;
-    SurfaceTracer mTracer;
 };
 
 }  // namespace twinrender::raymarch

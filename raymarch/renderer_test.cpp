@@ -8,6 +8,7 @@
 #include <cstring>
 #include <numbers>
 
+#include "core/camera.h"
 #include "core/sph_kernel.h"
 #include "raymarch/testing/ray_field_testing.h"
 
@@ -64,8 +65,8 @@ tr::core::Frame render(const TestScene& s, const tr::raymarch::Settings& setting
     tr::core::Frame frame;
     tbb::task_arena arena(threads);
     arena.execute([&] {
-        tr::raymarch::Renderer renderer(device, s.scene, s.particles, s.materials, settings);
-        frame = renderer.render();
+        tr::raymarch::Renderer renderer(device, settings);
+        frame = renderer.render({s.scene, s.particles, s.materials});
     });
     return frame;
 }
@@ -259,6 +260,9 @@ TEST(Raymarch, SameImageForAnyThreadCount) {
     EXPECT_EQ(firstDifference(one.image, two.image), "");
     EXPECT_EQ(firstDifference(two.image, twoAgain.image), "");
     EXPECT_EQ(firstDifference(smallOne.image, smallTwo.image), "");
+    // The display image, written with each pixel, is the frame's tonemapped beauty.
+    EXPECT_EQ(firstDifference(one.display, tr::core::tonemappedBeauty(one.image, 1.0f)), "");
+    EXPECT_EQ(firstDifference(one.display, two.display), "");
     double smallCoverage = 0.0;
     for (std::size_t p = 0; p < smallOne.image.pixelCount(); ++p)
         smallCoverage += smallOne.image.at(p, smallOne.image.channelIndex("A"));

@@ -1,18 +1,21 @@
 #include "realtime/renderer.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
-#include <limits>
 #include <optional>
 #include <span>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/error.h"
+#include "realtime/field_normal.h"
+#include "realtime/frame_assembly.h"
 #include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
@@ -21,10 +24,30 @@
 #include "realtime/impostor_radius.h"
 #include "realtime/light_frustum.h"
 #include "realtime/occlusion_culling.h"
-#include "realtime/octahedral.h"
 #include "realtime/passes.h"
 
 namespace twinrender::realtime {
+
+struct DeviceState {
+    explicit DeviceState(const gl::Context& c) : context(c) {}
+    const gl::Context& context;
+    gl::Limits limits;
+    ProgramCache programs;
+    OcclusionCuller culler;         // keeps the last particle set's answer (view-independent)
+    FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
+    ImpostorRadiusCache radii;      // and for the impostor radii
+    // Read-back buffers, RGBA floats, kept between frames.
+    std::vector<float> normalUv, emission, surface, beautyShadow, display;
+    // Images handed back by Renderer::recycle, reused when the size and channels match.
+    core::Image spareImage, spareDisplay;
+};
+
+Device::Device(const gl::Context& context) : mState(std::make_unique<DeviceState>(context)) {
+    context.makeCurrent();
+    mState->limits = gl::queryLimits();
+}
+
+Device::~Device() = default;
 
 namespace {
 
@@ -94,43 +117,282 @@ bool sceneEmits(const core::ParticleSet& ps, const std::vector<core::Material>& 
     return false;
 }
 
-// Reads an RGBA32F texture, bottom row first, into `out` (resized; kept by the renderer between
+// ---- Check limits ----
+
+// Throws core::InputError when the image or the shadow map is larger than the device allows,
+// or a particle names a material the scene does not have.
+void checkLimits(const core::RenderInput& in, const Settings& settings, const DeviceState& d) {
+    const std::string file = in.scene.file.string();
+    const int w = in.scene.camera.width, h = in.scene.camera.height;
+    const gl::Limits& limits = d.limits;
+    if (w > limits.maxTextureSize || h > limits.maxTextureSize || w > limits.maxViewportWidth ||
+        h > limits.maxViewportHeight)
+        throw core::InputError(fmt::format(
+            "{}: the image of {}x{} pixels exceeds the GL device's limit of {}x{} ({}); lower "
+            "camera.width / camera.height",
+            file, w, h, std::min(limits.maxTextureSize, limits.maxViewportWidth),
+            std::min(limits.maxTextureSize, limits.maxViewportHeight), d.context.renderer()));
+    if (usesShadowMap(settings.shadows) && settings.shadowMap.resolution > limits.maxTextureSize)
+        throw core::InputError(fmt::format(
+            "{}: realtime.shadow_map.resolution = {} exceeds the GL device's texture limit {} ({})",
+            file, settings.shadowMap.resolution, limits.maxTextureSize, d.context.renderer()));
+    const core::ParticleSet& ps = in.particles.particles;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+        if (ps.material[i] >= in.materials.size())
+            throw core::InputError(
+                fmt::format("{}: particle {} has material {} but the scene has {}", file, i,
+                            ps.material[i], in.materials.size()));
+}
+
+// ---- Compile ----
+
+// Compiles (once per device) the programs the settings use that are not built on first use
+// inside the passes.
+void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
+    if (usesShadowMap(settings.shadows))
+        programs.get("impostor.vert", "shadow.frag", {"SHADOW_PASS"});
+    programs.get("impostor.vert", "gbuffer.frag", {depthDefine(settings.depth)});
+    if (usesSsss(settings.ssss)) {
+        std::vector<std::string> defines;
+        if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
+        if (emits) defines.emplace_back("EMISSION");
+        programs.get("fullscreen.vert", "ssss.frag", defines);
+    }
+    gl::finish();
+}
+
+// ---- Upload ----
+
+// Throws core::InputError when the packed particles or material texels exceed the device's
+// buffer limits.
+void checkBufferLimits(const core::RenderInput& in, const DeviceState& d, std::size_t particles,
+                       std::size_t texels) {
+    const gl::Limits& limits = d.limits;
+    const std::size_t bytes = particles * sizeof(GpuParticle);
+    if (static_cast<long long>(bytes) > limits.maxStorageBlockBytes)
+        throw core::InputError(fmt::format(
+            "{}: {} particles take {} MB, over the GL device's storage-buffer limit of {} MB ({})",
+            in.scene.file.string(), particles, bytes >> 20, limits.maxStorageBlockBytes >> 20,
+            d.context.renderer()));
+    if (static_cast<long long>(texels) > limits.maxTextureBufferTexels)
+        throw core::InputError(fmt::format(
+            "{}: the material textures hold {} texels, over the GL device's buffer-texture limit "
+            "of {} ({}); use smaller texture images",
+            in.scene.file.string(), texels, limits.maxTextureBufferTexels, d.context.renderer()));
+}
+
+// What upload() puts on the device: the scene's buffers, and the particles' kernels when the
+// normals come from the colour field's gradient.
+struct Uploaded {
+    SceneBuffers scene;
+    std::optional<gl::Buffer> kernels;
+};
+
+// The drawn particles: those that may be seen (`culled`, hidden ones removed; empty = all)
+// that have a surface of their own (radius > 0). Empty with `nothingDrawn` set when none has.
+std::vector<std::uint32_t> withSurface(std::span<const std::uint32_t> culled,
+                                       std::span<const float> radii, bool& nothingDrawn) {
+    std::vector<std::uint32_t> drawn;
+    nothingDrawn = false;
+    if (std::find(radii.begin(), radii.end(), 0.0f) == radii.end())
+        return {culled.begin(), culled.end()};
+    if (culled.empty()) {
+        for (std::size_t i = 0; i < radii.size(); ++i)
+            if (radii[i] > 0.0f) drawn.push_back(static_cast<std::uint32_t>(i));
+    } else {
+        for (std::uint32_t i : culled)
+            if (radii[i] > 0.0f) drawn.push_back(i);
+    }
+    nothingDrawn = drawn.empty();
+    return drawn;
+}
+
+// The particles that may be seen (hidden ones culled where that is exact, those without a
+// surface left out) with their impostor radii and field normal models, the materials and the
+// frame uniforms, uploaded. Times "radius" and "cull" (both kept per particle set by the
+// device) and "upload" (the rest), counts "particles_drawn".
+Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
+                const Settings& settings, core::Frame& frame) {
+    const auto start = Clock::now();
+    const core::ParticleSet& ps = in.particles.particles;
+    const std::vector<float>& radii = d.radii.radii(ps, settings.particles);
+    frame.timingsMs["radius"] = msSince(start);
+    const LightFrustum light =
+        fitLightFrustum(in.particles.boundsMin, in.particles.boundsMax, in.scene.camera.position,
+                        in.scene.light.direction, settings.shadowMap.resolution);
+    const FrameUniforms uniforms = makeUniforms(in.scene, camera, in.particles, settings, light);
+    std::span<const std::uint32_t> culled;
+    if (settings.particles.cullHidden && cullingIsExact(ps, camera, radii)) {
+        const auto cullStart = Clock::now();
+        culled = d.culler.unoccluded(ps, radii);
+        frame.timingsMs["cull"] = msSince(cullStart);
+    }
+    bool nothingDrawn = false;
+    const std::vector<std::uint32_t> drawn = withSurface(culled, radii, nothingDrawn);
+    frame.counters["particles_drawn"] =
+        nothingDrawn ? 0.0 : static_cast<double>(drawn.empty() ? ps.size() : drawn.size());
+    std::span<const FieldNormal> fieldNormalModels;
+    if (settings.particles.normal == NormalModel::Field)
+        fieldNormalModels = d.fieldNormals.normals(ps, radii, drawn);
+    const std::vector<GpuParticle> gpuParticles =
+        nothingDrawn ? std::vector<GpuParticle>{}
+                     : packParticles(ps, in.scene.camera.position, radii, drawn, fieldNormalModels);
+    const GpuMaterials gpuMaterials = packMaterials(in.materials);
+    checkBufferLimits(in, d, gpuParticles.size(), gpuMaterials.texels.size() / 3);
+    SceneBuffers buffers{gl::Buffer::of(std::span<const FrameUniforms>(&uniforms, 1)),
+                         gl::Buffer::of(std::span<const GpuParticle>(gpuParticles)),
+                         gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
+                                               gl::BufferFormat::RGB32F),
+                         gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
+                         gpuParticles.size()};
+    std::optional<gl::Buffer> kernels;
+    if (settings.particles.normal == NormalModel::Gradient) {
+        const std::vector<GpuKernel> packed = packKernels(ps, in.scene.camera.position);
+        kernels.emplace(gl::Buffer::of(std::span<const GpuKernel>(packed)));
+    }
+    gl::checkErrors("upload");
+    gl::finish();
+    frame.timingsMs["upload"] =
+        msSince(start) - frame.timingsMs["cull"] - frame.timingsMs["radius"];
+    return {std::move(buffers), std::move(kernels)};
+}
+
+// ---- Passes ----
+
+// What the passes read besides each other's targets.
+struct PassInputs {
+    ProgramCache& programs;
+    const SceneBuffers& scene;
+    const Settings& settings;
+    const gl::Buffer* kernels = nullptr;  // normal = "gradient": every particle's kernel
+    std::size_t kernelCount = 0;
+    int width = 0, height = 0;
+    bool emits = false;  // whether anything emits: else the emission buffer is zero
+    float exposure = 1.0f;
+    std::vector<OcclusionSphere> spheres = {};  // shadows = "spheres": camera-relative
+};
+
+// The textures the passes write, each pass reading those of the passes before it, and the
+// timer query of each pass that ran.
+struct PassTargets {
+    std::optional<gl::Texture> shadowMap;
+    std::optional<GBuffer> gbuffer;
+    std::optional<gl::Texture> gradientNormalUv;  // normal = "gradient"
+    std::optional<SmoothedSurface> smoothed;
+    std::optional<gl::Texture> beauty;   // linear beauty, light visibility
+    std::optional<gl::Texture> display;  // bloom and tonemap
+    std::vector<std::pair<const char*, gl::TimerQuery>> timers;
+
+    // The surface before smoothing: the G-buffer's, with the gradient pass's normals when it
+    // ran.
+    const gl::Texture& surfaceNormalUv() const {
+        return gradientNormalUv ? *gradientNormalUv : gbuffer->normalUv;
+    }
+    // The surface the shade pass reads: smoothed when SSSS ran.
+    const gl::Texture& normalUv() const {
+        return smoothed ? smoothed->resultNormalUv() : surfaceNormalUv();
+    }
+    const gl::Texture& emission() const {
+        return smoothed ? smoothed->resultEmission(*gbuffer) : gbuffer->emission;
+    }
+};
+
+ShadeInputs shadeInputs(const PassInputs& in, const PassTargets& t) {
+    ShadeInputs s;
+    s.normalUv = &t.normalUv();
+    s.emissionBuffer = &t.emission();
+    s.emission = in.emits;
+    s.surface = &t.gbuffer->surface;
+    s.depth = &t.gbuffer->depth;
+    s.depthMode = in.settings.depth;
+    s.shadowMap = t.shadowMap ? &*t.shadowMap : nullptr;
+    s.shadows = in.settings.shadows;
+    s.spheres = in.spheres;
+    return s;
+}
+
+// One pass of the frame: its timings_ms key, whether the settings need it, and what it does.
+struct Pass {
+    const char* name;
+    bool (*runs)(const PassInputs&);
+    void (*run)(const PassInputs&, PassTargets&);
+};
+
+bool always(const PassInputs&) {
+    return true;
+}
+
+// The frame's passes, in order (passes.h). A pass that does not run reports 0 ms; a new pass is
+// a new row (and, if later passes read its output, a target).
+const Pass PASSES[] = {
+    {"shadow", [](const PassInputs& in) { return usesShadowMap(in.settings.shadows); },
+     [](const PassInputs& in, PassTargets& t) {
+         t.shadowMap.emplace(
+             runShadowPass(in.programs, in.scene, in.settings.shadowMap.resolution));
+     }},
+    {"gbuffer", always,
+     [](const PassInputs& in, PassTargets& t) {
+         t.gbuffer.emplace(
+             runGBufferPass(in.programs, in.scene, in.width, in.height, in.settings.depth));
+     }},
+    {"normals", [](const PassInputs& in) { return in.kernels != nullptr && in.kernelCount > 0; },
+     [](const PassInputs& in, PassTargets& t) {
+         t.gradientNormalUv.emplace(runGradientNormalPass(
+             in.programs, in.scene, *in.kernels, in.kernelCount, *t.gbuffer, in.settings.depth));
+     }},
+    {"ssss", [](const PassInputs& in) { return usesSsss(in.settings.ssss); },
+     [](const PassInputs& in, PassTargets& t) {
+         t.smoothed.emplace(runSsssPass(in.programs, *t.gbuffer, t.surfaceNormalUv(),
+                                        in.settings.ssss, in.emits, in.settings.depth));
+     }},
+    {"shade", always,
+     [](const PassInputs& in, PassTargets& t) {
+         t.beauty.emplace(runShadePass(in.programs, shadeInputs(in, t)));
+     }},
+    {"post", always,
+     [](const PassInputs& in, PassTargets& t) {
+         t.display.emplace(runPostPass(in.programs, *t.beauty, in.settings.bloom, in.exposure));
+     }},
+};
+
+// llvmpipe answers the first timer query around rendering with a timestamp instead of an
+// elapsed time; a query around a tiny clear absorbs that.
+void warmUpTimerQueries() {
+    gl::Texture texture(1, 1, gl::Format::R32F);
+    gl::Framebuffer framebuffer("timer warm-up", {{&texture}});
+    gl::TimerQuery warmUp;
+    warmUp.begin();
+    framebuffer.bind();
+    framebuffer.clearColor(0, glm::vec4(0.0f));
+    warmUp.end();
+    warmUp.milliseconds();
+}
+
+// The passes the settings need, each inside a GL timer query (read after the read-back, which
+// waits for the passes anyway).
+PassTargets runPasses(const PassInputs& in) {
+    warmUpTimerQueries();
+    PassTargets t;
+    for (const Pass& pass : PASSES) {
+        if (!pass.runs(in)) continue;
+        t.timers.emplace_back(pass.name, gl::TimerQuery());
+        t.timers.back().second.begin();
+        pass.run(in, t);
+        t.timers.back().second.end();
+        gl::checkErrors(pass.name);
+    }
+    return t;
+}
+
+// ---- Read back ----
+
+// Reads an RGBA32F texture, bottom row first, into `out` (resized; kept by the device between
 // frames, so that its pages are not faulted in again every frame).
 void readTexture(const gl::Texture& texture, const char* name, std::vector<float>& out) {
     gl::Framebuffer fb(name, {{&texture}});
     out.resize(static_cast<std::size_t>(texture.width()) * texture.height() * 4);
     fb.readInto(0, 4, out);
 }
-
-}  // namespace
-
-struct Renderer::Impl {
-    explicit Impl(const gl::Context& c) : context(c) {}
-    const gl::Context& context;
-    ProgramCache programs;
-    gl::Limits limits;
-    OcclusionCuller culler;         // keeps the last particle set's answer (view-independent)
-    FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
-    ImpostorRadiusCache radii;      // and for the impostor radii
-    // Read-back buffers, RGBA floats, kept between frames.
-    std::vector<float> normalUv, emission, surface, beautyShadow, display;
-    // Images handed back by recycle(), reused when the size and channels match.
-    core::Image spareImage, spareDisplay;
-};
-
-Renderer::Renderer(const gl::Context& context) : mImpl(new Impl(context)) {
-    context.makeCurrent();
-    mImpl->limits = gl::queryLimits();
-}
-
-Renderer::~Renderer() = default;
-
-void Renderer::recycle(RenderResult&& old) {
-    mImpl->spareImage = std::move(old.frame.image);
-    mImpl->spareDisplay = std::move(old.display);
-}
-
-namespace {
 
 // `spare` when it has the size and channels asked for (its values are stale), else a new
 // image of zeros.
@@ -140,278 +402,81 @@ core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::str
     return core::Image(w, h, std::move(channels));
 }
 
+// Reads back what the shade pass read, the beauty and the display, and assembles the frame's
+// AOV and display images (frame_assembly.h). Times "readback".
+void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, core::Frame& frame) {
+    const auto start = Clock::now();
+    readTexture(t.normalUv(), "read normal", d.normalUv);
+    // Without emitters the emission buffer is zero, as the image's channels already are.
+    if (emits) readTexture(t.emission(), "read emission", d.emission);
+    readTexture(t.gbuffer->surface, "read surface", d.surface);
+    readTexture(*t.beauty, "read beauty", d.beautyShadow);
+    readTexture(*t.display, "read display", d.display);
+    frame.image = reuseOrCreate(d.spareImage, w, h, core::aov::channelNames());
+    frame.display = reuseOrCreate(d.spareDisplay, w, h, {"R", "G", "B"});
+    ReadBackBuffers buffers;
+    buffers.width = w;
+    buffers.height = h;
+    buffers.normalUv = d.normalUv;
+    if (emits) buffers.emission = d.emission;
+    buffers.surface = d.surface;
+    buffers.beautyShadow = d.beautyShadow;
+    buffers.display = d.display;
+    assembleFrame(buffers, frame.image, frame.display);
+    frame.timingsMs["readback"] = msSince(start);
+}
+
 }  // namespace
 
-RenderResult Renderer::render(const core::Scene& scene, const core::SceneParticles& particles,
-                              const std::vector<core::Material>& materials,
-                              const Settings& settings) {
-    Impl& m = *mImpl;
-    m.context.makeCurrent();
-    const core::Camera camera(scene.camera);
-    const int w = camera.width(), h = camera.height();
-    const gl::Limits& limits = m.limits;
-    if (w > limits.maxTextureSize || h > limits.maxTextureSize || w > limits.maxViewportWidth ||
-        h > limits.maxViewportHeight)
-        throw core::InputError(fmt::format(
-            "{}: the image of {}x{} pixels exceeds the GL device's limit of {}x{} ({}); lower "
-            "camera.width / camera.height",
-            scene.file.string(), w, h, std::min(limits.maxTextureSize, limits.maxViewportWidth),
-            std::min(limits.maxTextureSize, limits.maxViewportHeight), m.context.renderer()));
-    if (usesShadowMap(settings.shadows) && settings.shadowMap.resolution > limits.maxTextureSize)
-        throw core::InputError(fmt::format(
-            "{}: realtime.shadow_map.resolution = {} exceeds the GL device's texture limit {} ({})",
-            scene.file.string(), settings.shadowMap.resolution, limits.maxTextureSize,
-            m.context.renderer()));
-    for (std::size_t i = 0; i < particles.particles.size(); ++i)
-        if (particles.particles.material[i] >= materials.size())
-            throw core::InputError(fmt::format(
-                "{}: particle {} has material {} but the scene has {}", scene.file.string(), i,
-                particles.particles.material[i], materials.size()));
+Renderer::Renderer(Device& device, const Settings& settings)
+    : mDevice(*device.mState), mSettings(settings) {}
 
-    RenderResult result;
-    core::Frame& frame = result.frame;
+void Renderer::recycle(core::Frame&& old) {
+    mDevice.spareImage = std::move(old.image);
+    mDevice.spareDisplay = std::move(old.display);
+}
+
+core::Frame Renderer::render(const core::RenderInput& in) {
+    DeviceState& d = mDevice;
+    d.context.makeCurrent();
+    checkLimits(in, mSettings, d);
+    const core::Camera camera(in.scene.camera);
+    core::Frame frame;
     frame.renderer = "realtime";
-    frame.device = m.context.renderer();
-    frame.settings = toJson(settings);
-    frame.particleCount = particles.particles.size();
-    for (const char* stage : {"radius", "cull", "upload", "shadow", "gbuffer", "normals", "ssss",
-                              "shade", "post", "readback"})
-        frame.timingsMs[stage] = 0.0;
+    frame.device = d.context.renderer();
+    frame.settings = toJson(mSettings);
+    frame.particleCount = in.particles.particles.size();
+    for (const char* stage : {"radius", "cull", "upload", "readback"}) frame.timingsMs[stage] = 0.0;
+    for (const Pass& pass : PASSES) frame.timingsMs[pass.name] = 0.0;
 
     // Whether anything emits: otherwise the emission buffer is zero and SSSS leaves it alone.
-    const bool emits = sceneEmits(particles.particles, materials);
-
+    const bool emits = sceneEmits(in.particles.particles, in.materials);
     // Compiling programs is set-up, like creating the context: not part of the render time.
     const auto compileStart = Clock::now();
-    {
-        ProgramCache& p = m.programs;
-        if (usesShadowMap(settings.shadows)) p.get("impostor.vert", "shadow.frag", {"SHADOW_PASS"});
-        p.get("impostor.vert", "gbuffer.frag", {depthDefine(settings.depth)});
-        if (usesSsss(settings.ssss)) {
-            std::vector<std::string> defines;
-            if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
-            if (emits) defines.emplace_back("EMISSION");
-            p.get("fullscreen.vert", "ssss.frag", defines);
-        }
-        gl::finish();
-    }
+    compilePrograms(d.programs, mSettings, emits);
     frame.timingsMs["compile"] = msSince(compileStart);
 
     const auto totalStart = Clock::now();
-
-    // Upload.
-    auto stageStart = Clock::now();
-    const LightFrustum light =
-        fitLightFrustum(particles.boundsMin, particles.boundsMax, scene.camera.position,
-                        scene.light.direction, settings.shadowMap.resolution);
-    const FrameUniforms uniforms = makeUniforms(scene, camera, particles, settings, light);
-    const auto radiusStart = Clock::now();
-    const std::vector<float>& radii = m.radii.radii(particles.particles, settings.particles);
-    frame.timingsMs["radius"] = msSince(radiusStart);
-    std::span<const std::uint32_t> drawn;
-    if (settings.particles.cullHidden && cullingIsExact(particles.particles, camera, radii)) {
-        const auto cullStart = Clock::now();
-        drawn = m.culler.unoccluded(particles.particles, radii);
-        frame.timingsMs["cull"] = msSince(cullStart);
+    const Uploaded uploaded = upload(d, in, camera, mSettings, frame);
+    PassInputs passInputs{d.programs, uploaded.scene, mSettings};
+    if (uploaded.kernels) {
+        passInputs.kernels = &*uploaded.kernels;
+        passInputs.kernelCount = in.particles.particles.size();
     }
-    // Particles without a surface of their own (radius 0) are not drawn.
-    std::vector<std::uint32_t> withSurface;
-    bool nothingDrawn = false;
-    if (std::find(radii.begin(), radii.end(), 0.0f) != radii.end()) {
-        if (drawn.empty()) {
-            for (std::size_t i = 0; i < radii.size(); ++i)
-                if (radii[i] > 0.0f) withSurface.push_back(static_cast<std::uint32_t>(i));
-        } else {
-            for (std::uint32_t i : drawn)
-                if (radii[i] > 0.0f) withSurface.push_back(i);
-        }
-        drawn = withSurface;
-        nothingDrawn = withSurface.empty();
+    passInputs.width = camera.width();
+    passInputs.height = camera.height();
+    passInputs.emits = emits;
+    passInputs.exposure = static_cast<float>(in.scene.camera.exposure);
+    if (mSettings.shadows == ShadowMode::Spheres) {
+        passInputs.spheres = occlusionSpheres(in.particles);
+        for (auto& s : passInputs.spheres) s.centre -= in.scene.camera.position;
+        frame.counters["occlusion_spheres"] = static_cast<double>(passInputs.spheres.size());
     }
-    frame.counters["particles_drawn"] =
-        nothingDrawn
-            ? 0.0
-            : static_cast<double>(drawn.empty() ? particles.particles.size() : drawn.size());
-    std::span<const FieldNormal> fieldNormalModels;
-    if (settings.particles.normal == NormalModel::Field)
-        fieldNormalModels = m.fieldNormals.normals(particles.particles, radii, drawn);
-    const std::vector<GpuParticle> gpuParticles =
-        nothingDrawn ? std::vector<GpuParticle>{}
-                     : packParticles(particles.particles, scene.camera.position, radii, drawn,
-                                     fieldNormalModels);
-    const GpuMaterials gpuMaterials = packMaterials(materials);
-    if (static_cast<long long>(gpuParticles.size() * sizeof(GpuParticle)) >
-        limits.maxStorageBlockBytes)
-        throw core::InputError(fmt::format(
-            "{}: {} particles take {} MB, over the GL device's storage-buffer limit of {} MB ({})",
-            scene.file.string(), gpuParticles.size(),
-            (gpuParticles.size() * sizeof(GpuParticle)) >> 20, limits.maxStorageBlockBytes >> 20,
-            m.context.renderer()));
-    if (static_cast<long long>(gpuMaterials.texels.size() / 3) > limits.maxTextureBufferTexels)
-        throw core::InputError(fmt::format(
-            "{}: the material textures hold {} texels, over the GL device's buffer-texture limit "
-            "of {} ({}); use smaller texture images",
-            scene.file.string(), gpuMaterials.texels.size() / 3, limits.maxTextureBufferTexels,
-            m.context.renderer()));
-    SceneBuffers buffers{gl::Buffer::of(std::span<const FrameUniforms>(&uniforms, 1)),
-                         gl::Buffer::of(std::span<const GpuParticle>(gpuParticles)),
-                         gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
-                                               gl::BufferFormat::RGB32F),
-                         gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
-                         gpuParticles.size()};
-    const bool gradientNormals = settings.particles.normal == NormalModel::Gradient;
-    std::optional<gl::Buffer> kernels;
-    if (gradientNormals) {
-        const std::vector<GpuKernel> packed =
-            packKernels(particles.particles, scene.camera.position);
-        kernels.emplace(gl::Buffer::of(std::span<const GpuKernel>(packed)));
-    }
-    gl::checkErrors("upload");
-    gl::finish();
-    frame.timingsMs["upload"] =
-        msSince(stageStart) - frame.timingsMs["cull"] - frame.timingsMs["radius"];
-
-    // Passes, each timed by a GL timer query.
-    std::vector<std::pair<std::string, gl::TimerQuery>> timers;
-    {
-        // llvmpipe answers the first timer query around rendering with a timestamp instead of
-        // an elapsed time; a query around a tiny clear absorbs that.
-        gl::Texture texture(1, 1, gl::Format::R32F);
-        gl::Framebuffer framebuffer("timer warm-up", {{&texture}});
-        gl::TimerQuery warmUp;
-        warmUp.begin();
-        framebuffer.bind();
-        framebuffer.clearColor(0, glm::vec4(0.0f));
-        warmUp.end();
-        warmUp.milliseconds();
-    }
-    auto pass = [&](const char* name, auto&& body) {
-        timers.emplace_back(name, gl::TimerQuery());
-        timers.back().second.begin();
-        body();
-        timers.back().second.end();
-        gl::checkErrors(name);
-    };
-
-    std::optional<gl::Texture> shadowMap;
-    if (usesShadowMap(settings.shadows))
-        pass("shadow", [&] {
-            shadowMap.emplace(runShadowPass(m.programs, buffers, settings.shadowMap.resolution));
-        });
-
-    std::optional<GBuffer> gbuffer;
-    pass("gbuffer",
-         [&] { gbuffer.emplace(runGBufferPass(m.programs, buffers, w, h, settings.depth)); });
-
-    std::optional<gl::Texture> gradientNormalUv;
-    if (gradientNormals && !particles.particles.position.empty())
-        pass("normals", [&] {
-            gradientNormalUv.emplace(runGradientNormalPass(m.programs, buffers, *kernels,
-                                                           particles.particles.size(), *gbuffer,
-                                                           settings.depth));
-        });
-    const gl::Texture& surfaceNormalUv = gradientNormalUv ? *gradientNormalUv : gbuffer->normalUv;
-
-    std::optional<SmoothedSurface> smoothed;
-    if (usesSsss(settings.ssss))
-        pass("ssss", [&] {
-            smoothed.emplace(runSsssPass(m.programs, *gbuffer, surfaceNormalUv, settings.ssss,
-                                         emits, settings.depth));
-        });
-
-    ShadeInputs shadeInputs;
-    shadeInputs.normalUv = smoothed ? &smoothed->resultNormalUv() : &surfaceNormalUv;
-    shadeInputs.emissionBuffer =
-        smoothed ? &smoothed->resultEmission(*gbuffer) : &gbuffer->emission;
-    shadeInputs.emission = emits;
-    shadeInputs.surface = &gbuffer->surface;
-    shadeInputs.depth = &gbuffer->depth;
-    shadeInputs.depthMode = settings.depth;
-    shadeInputs.shadowMap = shadowMap ? &*shadowMap : nullptr;
-    shadeInputs.shadows = settings.shadows;
-    if (settings.shadows == ShadowMode::Spheres) {
-        shadeInputs.spheres = occlusionSpheres(particles);
-        for (auto& s : shadeInputs.spheres) s.centre -= scene.camera.position;
-        frame.counters["occlusion_spheres"] = static_cast<double>(shadeInputs.spheres.size());
-    }
-    std::optional<gl::Texture> beauty;
-    pass("shade", [&] { beauty.emplace(runShadePass(m.programs, shadeInputs)); });
-
-    std::optional<gl::Texture> display;
-    pass("post", [&] {
-        display.emplace(runPostPass(m.programs, *beauty, settings.bloom,
-                                    static_cast<float>(scene.camera.exposure)));
-    });
-
-    // Read back and assemble the AOV image, top row first.
-    stageStart = Clock::now();
-    readTexture(*shadeInputs.normalUv, "read normal", m.normalUv);
-    // Without emitters the emission buffer is zero, as the image's channels already are.
-    if (emits) readTexture(*shadeInputs.emissionBuffer, "read emission", m.emission);
-    readTexture(gbuffer->surface, "read surface", m.surface);
-    readTexture(*beauty, "read beauty", m.beautyShadow);
-    readTexture(*display, "read display", m.display);
-    const std::vector<float>& normalUv = m.normalUv;
-    const std::vector<float>& emission = m.emission;
-    const std::vector<float>& surface = m.surface;
-    const std::vector<float>& beautyShadow = m.beautyShadow;
-    const std::vector<float>& displayPixels = m.display;
-
-    // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
-    // written in the same pass as the covered pixels: filling the 15 channels first costs
-    // as much as the whole read-back.
-    frame.image = reuseOrCreate(m.spareImage, w, h, core::aov::channelNames());
-    core::Image& image = frame.image;
-    const auto channel = [&](const char* name) { return image.requireChannel(name); };
-    const int cR = channel("R"), cG = channel("G"), cB = channel("B"), cA = channel("A"),
-              cZ = channel("Z"), cNX = channel("N.X"), cNY = channel("N.Y"), cNZ = channel("N.Z"),
-              cU = channel("uv.U"), cV = channel("uv.V"), cId = channel("id"),
-              cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
-              cShadow = channel("shadow");
-    const std::size_t stride = static_cast<std::size_t>(image.channelCount());
-    result.display = reuseOrCreate(m.spareDisplay, w, h, {"R", "G", "B"});
-    float* aov = image.pixels().data();
-    float* shown = result.display.pixels().data();
-    tbb::parallel_for(0, h, [&](int y) {
-        // OpenGL rows run bottom-up; images top-down.
-        const std::size_t glRow = static_cast<std::size_t>(h - 1 - y) * w;
-        for (int x = 0; x < w; ++x) {
-            const std::size_t g = (glRow + x) * 4;
-            const std::size_t p = static_cast<std::size_t>(y) * w + x;
-            float* d = shown + p * 3;
-            d[0] = displayPixels[g + 0];
-            d[1] = displayPixels[g + 1];
-            d[2] = displayPixels[g + 2];
-            const float body = surface[g + 1];
-            float* o = aov + p * stride;
-            if (body < 0.0f) {
-                std::fill(o, o + stride, 0.0f);  // a recycled image holds an older frame
-                o[cZ] = std::numeric_limits<float>::infinity();
-                o[cId] = -1.0f;
-                continue;
-            }
-            o[cR] = beautyShadow[g + 0];
-            o[cG] = beautyShadow[g + 1];
-            o[cB] = beautyShadow[g + 2];
-            o[cShadow] = beautyShadow[g + 3];
-            o[cA] = 1.0f;
-            o[cZ] = surface[g + 0];
-            o[cId] = body;
-            const glm::vec3 n = octDecode({normalUv[g + 0], normalUv[g + 1]});
-            o[cNX] = n.x;
-            o[cNY] = n.y;
-            o[cNZ] = n.z;
-            o[cU] = normalUv[g + 2];
-            o[cV] = normalUv[g + 3];
-            o[cER] = emits ? emission[g + 0] : 0.0f;
-            o[cEG] = emits ? emission[g + 1] : 0.0f;
-            o[cEB] = emits ? emission[g + 2] : 0.0f;
-        }
-    });
-    frame.timingsMs["readback"] = msSince(stageStart);
-    for (const auto& [name, query] : timers) frame.timingsMs[name] = query.milliseconds();
+    const PassTargets targets = runPasses(passInputs);
+    readBack(d, targets, emits, camera.width(), camera.height(), frame);
+    for (const auto& [name, query] : targets.timers) frame.timingsMs[name] = query.milliseconds();
     frame.timingsMs["total"] = msSince(totalStart);
-    return result;
+    return frame;
 }
 
 }  // namespace twinrender::realtime

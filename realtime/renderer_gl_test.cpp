@@ -118,11 +118,11 @@ struct Channels {
 class RendererTest : public ::testing::Test {
   protected:
     gl::Context context;
-    Renderer renderer{context};
+    Device device{context};  // every render of a test shares its programs and caches
 
-    RenderResult render(TestScene& t, const Settings& settings) {
+    core::Frame render(TestScene& t, const Settings& settings) {
         t.finish();
-        return renderer.render(t.scene, t.particles, t.materials, settings);
+        return Renderer(device, settings).render({t.scene, t.particles, t.materials});
     }
 };
 
@@ -136,8 +136,8 @@ TEST_F(RendererTest, OneSphereHasExactDepthAndCoverageInEveryMode) {
         Settings s = quiet();
         s.depth = mode;
         s.ssss.enabled = true;  // ssss and shade draw covered pixels only, by depth test
-        const RenderResult r = render(t, s);
-        const Channels c{r.frame.image};
+        const core::Frame r = render(t, s);
+        const Channels c{r.image};
         const core::Camera camera(t.scene.camera);
         const double radius = s.particles.radiusScale * h;
         int covered = 0, expected = 0;
@@ -170,8 +170,8 @@ TEST_F(RendererTest, OneSphereHasExactDepthAndCoverageInEveryMode) {
             }
         EXPECT_EQ(covered, expected) << toString(mode);
         EXPECT_GT(expected, 100);
-        EXPECT_EQ(r.frame.renderer, "realtime");
-        EXPECT_EQ(r.frame.device, context.renderer());
+        EXPECT_EQ(r.renderer, "realtime");
+        EXPECT_EQ(r.device, context.renderer());
     }
 }
 
@@ -194,8 +194,8 @@ TEST_F(RendererTest, LogDepthKeepsFarBodiesInOrderWhereStandardDoesNot) {
         const auto h = static_cast<float>(radius / s.particles.radiusScale);
         t.add(1, {150.0f, 0.0f, -100200.0f}, h);  // farther, drawn first
         t.add(0, {-150.0f, 0.0f, -100000.0f}, h);
-        const RenderResult r = render(t, s);
-        const Channels c{r.frame.image};
+        const core::Frame r = render(t, s);
+        const Channels c{r.image};
         const core::Camera camera(t.scene.camera);
         for (int y = 0; y < HEIGHT; ++y)
             for (int x = 0; x < WIDTH; ++x) {
@@ -259,8 +259,8 @@ TEST_F(RendererTest, ShadingMatchesTheCoreModel) {
                 t.particles.particles.dvdx[i] = {0.0f, 0.3f, 0.1f};
                 t.particles.particles.glow[i] = {0.1f * (x + 3), 0.0f, 0.0f};
             }
-    const RenderResult r = render(t, quiet());
-    const Channels c{r.frame.image};
+    const core::Frame r = render(t, quiet());
+    const Channels c{r.image};
     const core::Camera camera(t.scene.camera);
     int checked = 0;
     for (int y = 0; y < HEIGHT; ++y)
@@ -310,8 +310,8 @@ TEST_F(RendererTest, SmoothingNeverMixesTwoBodies) {
         // One normal per body, to recognise it (the field model turns at the slabs' edges).
         settings.particles.normal = NormalModel::Blend;
         settings.particles.sphereNormalWeight = 0.0;
-        const RenderResult r = render(t, settings);
-        const Channels c{r.frame.image};
+        const core::Frame r = render(t, settings);
+        const Channels c{r.image};
         int pixels[2] = {0, 0};
         for (int y = 0; y < HEIGHT; ++y)
             for (int x = 0; x < WIDTH; ++x) {
@@ -355,8 +355,8 @@ TEST_F(RendererTest, ExclusionIsSymmetric) {
             settings.ssss.radiusScale = 3.0;
             return render(t, settings);
         };
-        const RenderResult off = make(false), on = make(true);
-        const Channels a{off.frame.image}, b{on.frame.image};
+        const core::Frame off = make(false), on = make(true);
+        const Channels a{off.image}, b{on.image};
         int edges = 0, smoothedInside = 0;
         for (int y = 0; y < HEIGHT; ++y)
             for (int x = 0; x + 1 < WIDTH; ++x) {
@@ -385,8 +385,8 @@ TEST_F(RendererTest, SmoothingWrapsUAtTheSeam) {
         settings.ssss.separable = separable;
         settings.ssss.radiusScale = 4.0;
         settings.ssss.iterations = 2;
-        const RenderResult r = render(t, settings);
-        const Channels c{r.frame.image};
+        const core::Frame r = render(t, settings);
+        const Channels c{r.image};
         int nearSeam = 0;
         for (int y = 0; y < HEIGHT; ++y)
             for (int x = 0; x < WIDTH; ++x) {
@@ -400,50 +400,70 @@ TEST_F(RendererTest, SmoothingWrapsUAtTheSeam) {
     }
 }
 
+// A cube of (2 half + 1)^3 particles 0.2 apart, centred at (0.2 shift, 0, 0): the inner ones
+// are hidden, so culling drops them.
+TestScene cube(int half, float shift = 0.0f) {
+    TestScene t;
+    for (int z = -half; z <= half; ++z)
+        for (int y = -half; y <= half; ++y)
+            for (int x = -half; x <= half; ++x)
+                t.add(0, glm::vec3(x + shift, y, z) * 0.2f, 0.26f,
+                      {0.5f + 0.05f * x, 0.5f + 0.05f * y},
+                      glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.01f)));
+    return t;
+}
+
 // Occlusion culling changes the cost, never the image.
 TEST_F(RendererTest, CullingHiddenParticlesLeavesTheImageUnchanged) {
     auto make = [&](bool cull) {
-        TestScene t;
-        for (int z = -4; z <= 4; ++z)
-            for (int y = -4; y <= 4; ++y)
-                for (int x = -4; x <= 4; ++x)
-                    t.add(0, glm::vec3(x, y, z) * 0.2f, 0.26f, {0.5f + 0.05f * x, 0.5f + 0.05f * y},
-                          glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.01f)));
+        TestScene t = cube(4);
         Settings s = quiet();
         s.shadows = ShadowMode::Map;
         s.ssss.enabled = true;
         s.particles.cullHidden = cull;
         return render(t, s);
     };
-    const RenderResult culled = make(true), all = make(false);
-    EXPECT_LT(culled.frame.counters.at("particles_drawn"),
-              0.6 * all.frame.counters.at("particles_drawn"));
-    EXPECT_TRUE(culled.frame.image == all.frame.image);
+    const core::Frame culled = make(true), all = make(false);
+    EXPECT_LT(culled.counters.at("particles_drawn"), 0.6 * all.counters.at("particles_drawn"));
+    EXPECT_TRUE(culled.image == all.image);
 }
 
 // A recycled result's memory holds an older frame: the next frame overwrites all of it, and
 // the cached culling answer is recomputed for a changed particle set.
 TEST_F(RendererTest, RecycledFramesEqualFreshOnes) {
-    auto scene = [](float shift) {
-        TestScene t;
-        for (int z = -3; z <= 3; ++z)
-            for (int y = -3; y <= 3; ++y)
-                for (int x = -3; x <= 3; ++x)
-                    t.add(0, glm::vec3(x + shift, y, z) * 0.2f, 0.26f,
-                          {0.5f + 0.05f * x, 0.5f + 0.05f * y},
-                          glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.01f)));
-        return t;
-    };
     Settings s = quiet();
     s.shadows = ShadowMode::Map;
     s.ssss.enabled = true;
-    TestScene a = scene(0.0f), b = scene(2.0f);
-    renderer.recycle(render(a, s));
-    const RenderResult second = render(b, s);
-    Renderer fresh(context);
-    const RenderResult expected = fresh.render(b.scene, b.particles, b.materials, s);
-    EXPECT_TRUE(second.frame.image == expected.frame.image);
+    TestScene a = cube(3, 0.0f), b = cube(3, 2.0f);
+    a.finish();
+    b.finish();
+    Renderer renderer(device, s);
+    renderer.recycle(renderer.render({a.scene, a.particles, a.materials}));
+    const core::Frame second = renderer.render({b.scene, b.particles, b.materials});
+    Device freshDevice(context);
+    const core::Frame expected =
+        Renderer(freshDevice, s).render({b.scene, b.particles, b.materials});
+    EXPECT_TRUE(second.image == expected.image);
     EXPECT_TRUE(second.display == expected.display);
+}
+
+// Renderers on one device share its programs and its answers per particle set; a renderer
+// with other settings (another impostor radius: another culling answer and other field normals)
+// renders what it renders on a device of its own.
+TEST_F(RendererTest, RenderersSharingADeviceEqualFreshOnes) {
+    TestScene t = cube(3);
+    Settings small = quiet(), large = quiet();
+    large.particles.radiusScale = 1.3;
+    large.ssss.enabled = true;
+    large.shadows = ShadowMode::Pcf;
+    render(t, small);
+    const core::Frame shared = render(t, large);
+    Device freshDevice(context);
+    const core::Frame fresh =
+        Renderer(freshDevice, large).render({t.scene, t.particles, t.materials});
+    EXPECT_TRUE(shared.image == fresh.image);
+    EXPECT_TRUE(shared.display == fresh.display);
+    EXPECT_EQ(shared.counters.at("particles_drawn"), fresh.counters.at("particles_drawn"));
 }
 
 // A small ball between the light and a slab: its shadow falls where the light's rays put it.
@@ -465,8 +485,8 @@ TEST_F(RendererTest, ShadowFallsWhereTheLightPutsIt) {
                               glm::normalize(glm::vec3(x, y, z) + glm::vec3(0.0f, 0.0f, 0.01f)));
         Settings s = quiet();
         s.shadows = mode;
-        const RenderResult r = render(t, s);
-        const Channels c{r.frame.image};
+        const core::Frame r = render(t, s);
+        const Channels c{r.image};
         const core::Camera camera(t.scene.camera);
         // The slab's surface (z ~ 0.15) below the ball's centre along the light.
         const glm::dvec2 shadowed = camera.project({-1.0 + 1.35, 0.0, 0.15});
@@ -475,7 +495,7 @@ TEST_F(RendererTest, ShadowFallsWhereTheLightPutsIt) {
         ASSERT_EQ(c(sx, sy, "id"), 0.0f);
         EXPECT_EQ(c(lx, ly, "shadow"), 1.0f) << toString(mode);
         EXPECT_EQ(c(sx, sy, "shadow"), mode == ShadowMode::None ? 1.0f : 0.0f) << toString(mode);
-        EXPECT_EQ(r.frame.timingsMs.at("shadow") > 0.0,
+        EXPECT_EQ(r.timingsMs.at("shadow") > 0.0,
                   mode == ShadowMode::Map || mode == ShadowMode::Pcf)
             << toString(mode);
     }
@@ -484,20 +504,19 @@ TEST_F(RendererTest, ShadowFallsWhereTheLightPutsIt) {
 TEST_F(RendererTest, PassesTheSettingsDoNotNeedDoNotRun) {
     TestScene t;
     t.add(0, {0.0f, 0.0f, 0.0f}, 1.0f);
-    const RenderResult r = render(t, quiet());
-    EXPECT_EQ(r.frame.timingsMs.at("shadow"), 0.0);
-    EXPECT_EQ(r.frame.timingsMs.at("ssss"), 0.0);
-    EXPECT_GT(r.frame.timingsMs.at("gbuffer"), 0.0);
+    const core::Frame r = render(t, quiet());
+    EXPECT_EQ(r.timingsMs.at("shadow"), 0.0);
+    EXPECT_EQ(r.timingsMs.at("ssss"), 0.0);
+    EXPECT_GT(r.timingsMs.at("gbuffer"), 0.0);
     for (const char* key :
          {"total", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
-        EXPECT_TRUE(r.frame.timingsMs.count(key)) << key;
-    EXPECT_EQ(r.frame.settings.at("realtime.shadows"), "none");
+        EXPECT_TRUE(r.timingsMs.count(key)) << key;
+    EXPECT_EQ(r.settings.at("realtime.shadows"), "none");
     // The background carries core::aov::makeImage's values in every channel.
     const core::Image background = core::aov::makeImage(1, 1);
-    ASSERT_EQ(r.frame.image.channelNames(), background.channelNames());
+    ASSERT_EQ(r.image.channelNames(), background.channelNames());
     for (int c = 0; c < background.channelCount(); ++c)
-        EXPECT_EQ(r.frame.image.at(0, 0, c), background.at(0, 0, c))
-            << background.channelNames()[c];
+        EXPECT_EQ(r.image.at(0, 0, c), background.at(0, 0, c)) << background.channelNames()[c];
 }
 
 }  // namespace

@@ -1,0 +1,39 @@
+// The one interface of a renderer (STYLE.md 15): the reference raymarcher, the real-time
+// renderer and any third one take the same inputs and return the same Frame, so the commands,
+// sweeps and studies treat them alike. A renderer is constructed with its device and its typed
+// settings; everything a render reads about the scene comes in through RenderInput.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "core/frame.h"
+#include "core/particles.h"
+#include "core/scene.h"
+#include "core/texture.h"
+
+namespace twinrender::core {
+
+// What one render reads. The references must outlive the render() call only.
+struct RenderInput {
+    const Scene& scene;
+    const SceneParticles& particles;
+    const std::vector<Material>& materials;  // in Scene::materials order (loadMaterials)
+    // Optional: called with the finished fraction in [0, 1], possibly from worker threads.
+    std::function<void(double)> progress = {};
+};
+
+class Renderer {
+  public:
+    virtual ~Renderer();
+
+    // Renders the scene's camera view: the AOV image, the display image, counters and stage
+    // timings (Frame). Throws core::InputError when the scene exceeds what the device can do.
+    virtual Frame render(const RenderInput& input) = 0;
+
+    // Hands a finished frame back (optional): a renderer may write the next frame of the same
+    // size into its memory instead of fresh pages. The default drops it.
+    virtual void recycle(Frame&& /*frame*/) {}
+};
+
+}  // namespace twinrender::core

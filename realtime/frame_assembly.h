@@ -1,0 +1,27 @@
+// The last step of a real-time frame: the buffers read back from GL become the AOV image of
+// DESIGN.md and the display image. Pure CPU, no GL: the renderer reads the textures, this
+// turns OpenGL's bottom-up rows of RGBA floats into the images' top-down channels.
+#pragma once
+
+#include <span>
+
+#include "core/image.h"
+
+namespace twinrender::realtime {
+
+// Each buffer holds width x height RGBA floats, bottom row first (as glReadPixels gives them).
+struct ReadBackBuffers {
+    int width = 0, height = 0;
+    std::span<const float> normalUv;      // octahedral world normal (octahedral.h), u, v
+    std::span<const float> emission;      // emission rgb; empty: the scene emits nowhere (all 0)
+    std::span<const float> surface;       // eye depth, body (< 0 on the background), -, -
+    std::span<const float> beautyShadow;  // linear beauty rgb, light visibility
+    std::span<const float> display;       // display rgb (bloom, tonemapped), -
+};
+
+// Writes every pixel of `aov` (the core::aov channels; core::aov::makeImage's values on the
+// background) and of `display` (R, G, B). Both must have the buffers' size; their old values
+// (a recycled frame's) are all overwritten.
+void assembleFrame(const ReadBackBuffers& buffers, core::Image& aov, core::Image& display);
+
+}  // namespace twinrender::realtime
