@@ -40,7 +40,8 @@ compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
     report.checks = compare::evaluate(report.metrics, bounds);
     if (baseline) {
         if (const auto* blessed = baseline->metrics(s.scene.name)) report.baseline = *blessed;
-        auto more = compare::compareToBaseline(s.scene.name, report.metrics, *baseline, &report.settings);
+        auto more =
+            compare::compareToBaseline(s.scene.name, report.metrics, *baseline, &report.settings);
         report.checks.insert(report.checks.end(), more.begin(), more.end());
     }
 

@@ -1,13 +1,16 @@
 #include "app/progress.h"
 
-#include <cstdio>
 #include <unistd.h>
+
+#include <cstdio>
 
 namespace twinrender::app {
 
 Progress::Progress(std::string label) : mLabel(std::move(label)), mEnabled(isatty(STDERR_FILENO)) {}
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+    finish();
+}
 
 void Progress::update(double fraction) {
     if (!mEnabled) return;

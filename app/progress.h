@@ -9,14 +9,14 @@
 namespace twinrender::app {
 
 class Progress {
-public:
+  public:
     explicit Progress(std::string label);
     ~Progress();
     // Thread-safe; redraws at most every 100 ms.
     void update(double fraction);
     void finish();
 
-private:
+  private:
     std::string mLabel;
     bool mEnabled;
     std::mutex mMutex;

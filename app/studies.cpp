@@ -540,9 +540,9 @@ std::vector<StudyDef> checked(std::vector<StudyDef> defs) {
 
 const std::vector<StudyDef>& studies() {
     // What the studies of the screen-space smoothing tabulate.
-    const std::vector<std::string> smoothingColumns = {"normal.mean_deg", "normal.p95_deg", "uv.mean",
-                                                       "smoothness.ratio", "beauty.flip",
-                                                       "count.unbracketed_rays"};
+    const std::vector<std::string> smoothingColumns = {"normal.mean_deg", "normal.p95_deg",
+                                                       "uv.mean",         "smoothness.ratio",
+                                                       "beauty.flip",     "count.unbracketed_rays"};
     static const std::vector<StudyDef> all = checked({
         {"depth_range",
          "Depth range",
@@ -580,36 +580,17 @@ const std::vector<StudyDef>& studies() {
          shadowPoints,
          nullptr,
          shadowConclude},
-        {"particle_size",
-         "Particle size on screen",
+        {"particle_size", "Particle size on screen",
          "The camera backs away from a slab from about 40 pixels per particle to below one: SSSS's "
          "normal and uv errors and "
          "smoothness, on and off; where does the filter radius selection stop helping?",
-         "particle_size.toml",
-         "particle diameter on screen (px)",
-         true,
-         "normal.mean_deg",
-         smoothingColumns,
-         false,
-         false,
-         false,
-         sizePoints,
-         particlePixels,
-         sizeConclude},
-        {"view_angle",
-         "View angle",
+         "particle_size.toml", "particle diameter on screen (px)", true, "normal.mean_deg",
+         smoothingColumns, false, false, false, sizePoints, particlePixels, sizeConclude},
+        {"view_angle", "View angle",
          "The camera turns from face-on to grazing over a flat slab: the view dependence of the "
          "screen-space smoothing.",
-         "view_angle.toml",
-         "view angle from the surface normal (degrees)",
-         false,
-         "normal.mean_deg",
-         smoothingColumns,
-         false,
-         false,
-         false,
-         anglePoints,
-         nullptr,
+         "view_angle.toml", "view angle from the surface normal (degrees)", false,
+         "normal.mean_deg", smoothingColumns, false, false, false, anglePoints, nullptr,
          angleConclude},
         {"temporal",
          "Temporal stability",

@@ -95,7 +95,8 @@ ExitCode runCompare(const CompareOptions& o) {
         compare::Bounds bounds = compare::Thresholds::parseFile(o.thresholds).forScene(report.name);
         // Plain images have beauty metrics only: bounds on other buffers do not apply.
         if (!compare::isAovImage(ref) || !compare::isAovImage(test))
-            bounds = compare::filterBounds(bounds, [](const std::string& m) { return compare::computedOnPlainImages(m); });
+            bounds = compare::filterBounds(
+                bounds, [](const std::string& m) { return compare::computedOnPlainImages(m); });
         report.checks = compare::evaluate(report.metrics, bounds);
     }
     const fs::path out(o.out);

@@ -4,12 +4,13 @@
 // implicit surface is built on. Run: build/bench/raymarch_bench [--benchmark_repetitions=5]
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
+
 #include <ctime>
 
 #include "core/camera.h"
+#include "core/sph_kernel.h"
 #include "raymarch/renderer.h"
 #include "raymarch/sphere_scene.h"
-#include "core/sph_kernel.h"
 
 namespace tr = twinrender;
 
@@ -59,9 +60,15 @@ void renderBall(benchmark::State& state, bool spheres, bool shadows) {
     state.counters["process_cpu_ms"] = (processCpuMs() - cpuStart) / double(state.iterations());
 }
 
-void BM_BallImplicitShadows(benchmark::State& state) { renderBall(state, false, true); }
-void BM_BallImplicitNoShadows(benchmark::State& state) { renderBall(state, false, false); }
-void BM_BallSpheresShadows(benchmark::State& state) { renderBall(state, true, true); }
+void BM_BallImplicitShadows(benchmark::State& state) {
+    renderBall(state, false, true);
+}
+void BM_BallImplicitNoShadows(benchmark::State& state) {
+    renderBall(state, false, false);
+}
+void BM_BallSpheresShadows(benchmark::State& state) {
+    renderBall(state, true, true);
+}
 
 // Embree alone: one closest-hit query per pixel against the support spheres.
 void BM_BallClosestHitPerPixel(benchmark::State& state) {
@@ -79,7 +86,8 @@ void BM_BallClosestHitPerPixel(benchmark::State& state) {
             for (int x = 0; x < camera.width(); ++x) {
                 const auto ray = camera.ray(x + 0.5, y + 0.5);
                 tr::raymarch::SphereScene::Hit h;
-                hits += spheres.closestHit(glm::vec3(ray.origin), glm::vec3(ray.direction), 0.0f, 1e30f, h);
+                hits += spheres.closestHit(glm::vec3(ray.origin), glm::vec3(ray.direction), 0.0f,
+                                           1e30f, h);
             }
     }
     state.counters["hits"] = double(hits);
@@ -103,7 +111,8 @@ void BM_BallGatherPerHitPixel(benchmark::State& state) {
             const auto ray = camera.ray(x + 0.5, y + 0.5);
             tr::raymarch::SphereScene::Hit h;
             if (spheres.closestHit(glm::vec3(ray.origin), glm::vec3(ray.direction), 0.0f, 1e30f, h))
-                segs.push_back({glm::vec3(ray.origin + double(h.t) * ray.direction), glm::vec3(ray.direction)});
+                segs.push_back({glm::vec3(ray.origin + double(h.t) * ray.direction),
+                                glm::vec3(ray.direction)});
         }
     const float hMean = static_cast<float>(s.particles.bodies[0].meanH);
     for (auto _ : state) {
@@ -117,7 +126,9 @@ void BM_BallGatherPerHitPixel(benchmark::State& state) {
     }
     state.counters["rays"] = double(rays);
     state.counters["hits_per_ray"] = double(gathered) / double(rays);
-    state.counters["ns_per_hit"] = benchmark::Counter(double(gathered), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["ns_per_hit"] =
+        benchmark::Counter(double(gathered), benchmark::Counter::kIsIterationInvariantRate |
+                                                 benchmark::Counter::kInvert);
 }
 
 }  // namespace
@@ -126,6 +137,12 @@ BENCHMARK(BM_BallImplicitShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallImplicitNoShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallSpheresShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallClosestHitPerPixel)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_BallGatherPerHitPixel)->Arg(0)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BallGatherPerHitPixel)
+    ->Arg(0)
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(16)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 BENCHMARK_MAIN();

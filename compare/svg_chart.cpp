@@ -1,12 +1,12 @@
 #include "compare/svg_chart.h"
 
-#include "compare/markup.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+
+#include "compare/markup.h"
 
 namespace twinrender::compare {
 
@@ -17,7 +17,9 @@ bool drawable(const ChartPoint& p, bool logX) {
 }
 
 // Titles, labels and tick texts go both into text nodes and attributes: escape for both.
-std::string xmlText(std::string_view s) { return xmlEscape(s, true); }
+std::string xmlText(std::string_view s) {
+    return xmlEscape(s, true);
+}
 
 // A tick value as people write it: 0.05, 2, 1e+06.
 std::string tickText(double v) {
@@ -189,11 +191,12 @@ std::string scatterSvg(const ScatterChart& chart) {
     const Axis ax{xl, xh, logX, left, right};
     const Axis ay{yl, yh, false, bottom, top};
 
-    std::string s = chartOpening(chart.width, chart.height, chart.title, left,
-                                 ".point{fill:#0969da;fill-opacity:0.75;stroke:#ffffff;stroke-width:1}"
-                                 ".pareto-point{fill:#cf222e}.pareto{stroke:#cf222e;stroke-width:2;"
-                                 "fill:none}.point-label{fill:#24292f;font-size:10px}",
-                                 "");
+    std::string s =
+        chartOpening(chart.width, chart.height, chart.title, left,
+                     ".point{fill:#0969da;fill-opacity:0.75;stroke:#ffffff;stroke-width:1}"
+                     ".pareto-point{fill:#cf222e}.pareto{stroke:#cf222e;stroke-width:2;"
+                     "fill:none}.point-label{fill:#24292f;font-size:10px}",
+                     "");
 
     // Grid and ticks.
     const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
@@ -291,7 +294,6 @@ std::string scatterSvg(const ScatterChart& chart) {
     s += "</svg>\n";
     return s;
 }
-
 
 namespace {
 
@@ -446,8 +448,8 @@ std::string lineSvg(const LineChart& chart) {
             "x2=\"{4:.1f}\" y2=\"{3:.1f}\"/><circle class=\"point {0}\" cx=\"{5:.1f}\" "
             "cy=\"{3:.1f}\" r=\"4\"/><text class=\"label\" x=\"{6:.1f}\" y=\"{7:.1f}\">{8}</text>"
             "</g>\n",
-            cls, chart.series[k].dashed ? " dashed" : "", lx, ly, lx + 24, lx + 12, lx + 30,
-            ly + 4, xmlText(chart.series[k].name));
+            cls, chart.series[k].dashed ? " dashed" : "", lx, ly, lx + 24, lx + 12, lx + 30, ly + 4,
+            xmlText(chart.series[k].name));
     }
     s += "</g>\n";
     if (shown < total)

@@ -96,9 +96,8 @@ void addBound(Bounds& out, const std::string& key, std::optional<double> value,
         throw core::InputError(fmt::format("{}: key '{}': unknown bound '{}' for metric '{}'; {}",
                                            where, shownKey, bound, metric, BOUND_HINT));
     if (!findMetric(metric))
-        throw core::InputError(
-            fmt::format("{}: key '{}': unknown metric '{}'; the metrics are {}", where, shownKey,
-                        metric, metricNames()));
+        throw core::InputError(fmt::format("{}: key '{}': unknown metric '{}'; the metrics are {}",
+                                           where, shownKey, metric, metricNames()));
     if (!value)
         throw core::InputError(
             fmt::format("{}: key '{}': the bound must be a number", where, shownKey));

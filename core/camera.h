@@ -16,7 +16,7 @@ struct Ray {
 };
 
 class Camera {
-public:
+  public:
     explicit Camera(const CameraSettings& settings);
 
     const CameraSettings& settings() const { return mSettings; }
@@ -32,7 +32,9 @@ public:
     // The primary ray through image position (px, py) in pixels.
     Ray ray(double px, double py) const;
     // Distance from the camera plane along the view axis.
-    double eyeDepth(const glm::dvec3& p) const { return glm::dot(p - mSettings.position, mForward); }
+    double eyeDepth(const glm::dvec3& p) const {
+        return glm::dot(p - mSettings.position, mForward);
+    }
     // Image position in pixels of a world point in front of the camera.
     glm::dvec2 project(const glm::dvec3& p) const;
     // World-to-eye matrix (OpenGL convention: the camera looks down -z).
@@ -40,7 +42,7 @@ public:
     // Size in pixels of one scene unit at eye depth z (for projected radii).
     double pixelsPerUnitAt(double z) const { return 0.5 * mSettings.height / (mTanHalfFovY * z); }
 
-private:
+  private:
     CameraSettings mSettings;
     glm::dvec3 mForward, mRight, mUp;
     double mTanHalfFovY;

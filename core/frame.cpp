@@ -19,7 +19,8 @@ Image tonemappedBeauty(const Image& aovImage, float exposure) {
     const int r = aovImage.requireChannel("R"), g = aovImage.requireChannel("G"),
               b = aovImage.requireChannel("B");
     for (std::size_t p = 0; p < aovImage.pixelCount(); ++p) {
-        const glm::vec3 c = tonemap({aovImage.at(p, r), aovImage.at(p, g), aovImage.at(p, b)}, exposure);
+        const glm::vec3 c =
+            tonemap({aovImage.at(p, r), aovImage.at(p, g), aovImage.at(p, b)}, exposure);
         for (int k = 0; k < 3; ++k) out.at(p, k) = c[k];
     }
     return out;

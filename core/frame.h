@@ -17,7 +17,7 @@ namespace twinrender::core {
 namespace aov {
 inline const std::vector<std::string>& channelNames() {
     static const std::vector<std::string> names = {
-        "R",   "G",    "B",    "A",          "Z",          "N.X",        "N.Y",   "N.Z",
+        "R",    "G",    "B",  "A",          "Z",          "N.X",        "N.Y",   "N.Z",
         "uv.U", "uv.V", "id", "emission.R", "emission.G", "emission.B", "shadow"};
     return names;
 }
@@ -26,14 +26,14 @@ Image makeImage(int width, int height);
 }  // namespace aov
 
 struct Frame {
-    Image image;                              // the AOV image
+    Image image;  // the AOV image
     // What the PNG shows: sRGB R, G, B in [0, 1], top row first; core's tonemapper, after bloom
     // when the renderer does bloom.
     Image display;
-    std::string renderer;                     // "raymarch" or "realtime"
-    std::string device;                       // GL_RENDERER, or the CPU model and thread count
-    nlohmann::json settings;                  // every setting used, by dotted key
-    std::map<std::string, double> counters;   // e.g. "unbracketed_rays"
+    std::string renderer;                    // "raymarch" or "realtime"
+    std::string device;                      // GL_RENDERER, or the CPU model and thread count
+    nlohmann::json settings;                 // every setting used, by dotted key
+    std::map<std::string, double> counters;  // e.g. "unbracketed_rays"
     // "total" (the render, without process start and file I/O) and one entry per stage.
     std::map<std::string, double> timingsMs;
     std::size_t particleCount = 0;

@@ -1,8 +1,9 @@
 #include "core/image.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdint>
-#include <fmt/format.h>
 #ifdef __linux__
 #include <sys/mman.h>
 #endif
@@ -34,7 +35,8 @@ Image::Image(int width, int height, std::vector<std::string> channelNames)
     const std::size_t n = static_cast<std::size_t>(width) * height * mChannelNames.size();
     // Allocated untouched first, so that the advice comes before the pages are faulted in.
     mPixels.reserve(n);
-    if (n * sizeof(float) >= (std::size_t(4) << 20)) adviseHugePages(mPixels.data(), n * sizeof(float));
+    if (n * sizeof(float) >= (std::size_t(4) << 20))
+        adviseHugePages(mPixels.data(), n * sizeof(float));
     mPixels.assign(n, 0.0f);
 }
 

@@ -12,7 +12,7 @@
 namespace twinrender::core {
 
 class Image {
-public:
+  public:
     Image() = default;
     // All values start at zero.
     Image(int width, int height, std::vector<std::string> channelNames);
@@ -46,7 +46,7 @@ public:
 
     bool operator==(const Image& other) const = default;
 
-private:
+  private:
     std::size_t offset(int x, int y) const {
         return (static_cast<std::size_t>(y) * mWidth + x) * mChannelNames.size();
     }

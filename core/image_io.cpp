@@ -1,10 +1,11 @@
 #include "core/image_io.h"
 
 #include <OpenImageIO/imageio.h>
-#include <atomic>
 #include <fmt/format.h>
-#include <fstream>
 #include <unistd.h>
+
+#include <atomic>
+#include <fstream>
 
 #include "core/error.h"
 
@@ -30,15 +31,17 @@ Image readImage(const fs::path& path) {
     if (!isFloat) {
         // Plain images: name the channels by position, whatever the file says.
         static const char* kRgba[] = {"R", "G", "B", "A"};
-        if (spec.nchannels == 1) names = {"Y"};
+        if (spec.nchannels == 1)
+            names = {"Y"};
         else
             for (int c = 0; c < spec.nchannels && c < 4; ++c) names[c] = kRgba[c];
     }
     Image image(spec.width, spec.height, names);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels().data()))
-        throw InputError(fmt::format("{}: the image data cannot be read ({}); the file may be "
-                                     "truncated",
-                                     path.string(), in->geterror()));
+        throw InputError(
+            fmt::format("{}: the image data cannot be read ({}); the file may be "
+                        "truncated",
+                        path.string(), in->geterror()));
     // A grey image stands for R = G = B.
     if (!isFloat && spec.nchannels <= 2) {
         Image rgb(spec.width, spec.height, {"R", "G", "B"});
@@ -53,8 +56,8 @@ void writeFileAtomically(const fs::path& path, const std::function<void(const fs
     static std::atomic<unsigned> counter{0};
     if (path.has_parent_path()) fs::create_directories(path.parent_path());
     fs::path tmp = path;
-    tmp.replace_filename(fmt::format(".{}.tmp{}-{}{}", path.stem().string(), getpid(),
-                                     counter++, path.extension().string()));
+    tmp.replace_filename(fmt::format(".{}.tmp{}-{}{}", path.stem().string(), getpid(), counter++,
+                                     path.extension().string()));
     try {
         write(tmp);
         fs::rename(tmp, path);
@@ -80,10 +83,10 @@ void writeWithOiio(const fs::path& path, const OIIO::ImageSpec& spec, const void
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out || !out->open(path.string(), spec) || !out->write_image(dataType, data) ||
         !out->close())
-        throw InputError(fmt::format("{}: cannot write the image ({}); check that the folder is "
-                                     "writable",
-                                     path.string(),
-                                     out ? out->geterror() : OIIO::geterror()));
+        throw InputError(
+            fmt::format("{}: cannot write the image ({}); check that the folder is "
+                        "writable",
+                        path.string(), out ? out->geterror() : OIIO::geterror()));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "core/image_io.h"
 
 #include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -27,8 +28,10 @@ TEST(ImageIo, ExrKeepsChannelNamesAndFloatValues) {
         for (int y = 0; y < 3; ++y)
             for (int x = 0; x < 5; ++x) {
                 const float u = img.at(x, y, a), v = back.at(x, y, b);
-                if (std::isinf(u)) EXPECT_TRUE(std::isinf(v));
-                else EXPECT_EQ(u, v) << name << " " << x << "," << y;
+                if (std::isinf(u))
+                    EXPECT_TRUE(std::isinf(v));
+                else
+                    EXPECT_EQ(u, v) << name << " " << x << "," << y;
             }
     }
     EXPECT_EQ(back.at(1, 2, back.channelIndex("N.Y")), -0.25f);
@@ -37,9 +40,9 @@ TEST(ImageIo, ExrKeepsChannelNamesAndFloatValues) {
 
 TEST(ImageIo, PngIsEightBitClampedAndTopRowFirst) {
     tc::Image img(2, 2, {"R", "G", "B"});
-    img.at(0, 0, 0) = 1.0f;    // top-left red
-    img.at(1, 1, 2) = 2.0f;    // clamped to 1
-    img.at(1, 0, 1) = 0.5f;    // 127.5 -> 128
+    img.at(0, 0, 0) = 1.0f;  // top-left red
+    img.at(1, 1, 2) = 2.0f;  // clamped to 1
+    img.at(1, 0, 1) = 0.5f;  // 127.5 -> 128
     const fs::path p = fs::path(::testing::TempDir()) / "small.png";
     tc::writeImage(img, p);
     const tc::Image back = tc::readImage(p);

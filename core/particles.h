@@ -15,8 +15,8 @@ namespace twinrender::core {
 struct Scene;
 
 struct ParticleSet {
-    std::vector<glm::vec3> position;    // scene units
-    std::vector<float> h;               // smoothing length, scene units, > 0
+    std::vector<glm::vec3> position;  // scene units
+    std::vector<float> h;             // smoothing length, scene units, > 0
     // Colour-field volume v = m/rho, capped at 0.1 (4/3) pi h^3 (sph_kernel.h), or that cap
     // when mass or density are unknown; generated particles: min(spacing^3, cap).
     std::vector<float> volume;
@@ -37,17 +37,17 @@ struct ParticleSet {
 struct BodyInfo {
     std::string name;
     std::uint32_t material = 0;
-    glm::dvec3 center{0.0};         // origin of the body's uv frame, scene units
-    glm::dmat3 frame{1.0};          // columns: local x, y, z (z = the uv pole axis)
-    std::size_t begin = 0;          // particle range [begin, end) in the ParticleSet
+    glm::dvec3 center{0.0};  // origin of the body's uv frame, scene units
+    glm::dmat3 frame{1.0};   // columns: local x, y, z (z = the uv pole axis)
+    std::size_t begin = 0;   // particle range [begin, end) in the ParticleSet
     std::size_t end = 0;
-    double meanH = 0.0;             // scene units
+    double meanH = 0.0;  // scene units
 };
 
 struct SceneParticles {
     ParticleSet particles;
     std::vector<BodyInfo> bodies;
-    glm::dvec3 boundsMin{0.0};      // of the support spheres (position +- 2h)
+    glm::dvec3 boundsMin{0.0};  // of the support spheres (position +- 2h)
     glm::dvec3 boundsMax{0.0};
 };
 

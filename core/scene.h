@@ -39,19 +39,19 @@ struct LightSettings {
 struct TextureSource {
     enum class Kind { Constant, Procedural, File };
     Kind kind = Kind::Constant;
-    glm::dvec3 value{0.0};            // Constant: linear RGB
-    std::string procedural;           // Procedural: the name after "procedural:"
-    std::filesystem::path path;       // File: absolute (resolved against the scene file)
-    std::string where;                // "file:line:col: key 'materials[earth].diffuse'"
+    glm::dvec3 value{0.0};       // Constant: linear RGB
+    std::string procedural;      // Procedural: the name after "procedural:"
+    std::filesystem::path path;  // File: absolute (resolved against the scene file)
+    std::string where;           // "file:line:col: key 'materials[earth].diffuse'"
 };
 
 struct MaterialDesc {
     std::string name;
-    TextureSource diffuse;      // albedo, linear RGB
-    TextureSource specular;     // specular colour, linear RGB
-    TextureSource emission;     // emitted radiance, linear RGB
-    TextureSource cityLights;   // emitted radiance on the night side only
-    double shininess = 32.0;    // Blinn-Phong exponent, [1, 10000]
+    TextureSource diffuse;     // albedo, linear RGB
+    TextureSource specular;    // specular colour, linear RGB
+    TextureSource emission;    // emitted radiance, linear RGB
+    TextureSource cityLights;  // emitted radiance on the night side only
+    double shininess = 32.0;   // Blinn-Phong exponent, [1, 10000]
 };
 
 enum class Shape { Ball, Shell, Ring, File };
@@ -60,13 +60,13 @@ enum class Lattice { Hcp, Cubic, Random };
 struct BodyDesc {
     std::string name;
     Shape shape = Shape::Ball;
-    glm::dvec3 center{0.0};           // scene units
-    double radius = 1.0;              // ball/shell: outer radius, scene units
-    glm::dvec3 normal{0.0, 0.0, 1.0}; // ring: plane normal; all shapes: the uv pole axis
-    double innerRadius = 0.0;         // ring: scene units
-    double outerRadius = 0.0;         // ring: scene units
-    double thickness = 0.0;           // ring: full thickness; shell: wall thickness
-    std::int64_t particles = 1000;    // approximate count for generators, >= 1
+    glm::dvec3 center{0.0};            // scene units
+    double radius = 1.0;               // ball/shell: outer radius, scene units
+    glm::dvec3 normal{0.0, 0.0, 1.0};  // ring: plane normal; all shapes: the uv pole axis
+    double innerRadius = 0.0;          // ring: scene units
+    double outerRadius = 0.0;          // ring: scene units
+    double thickness = 0.0;            // ring: full thickness; shell: wall thickness
+    std::int64_t particles = 1000;     // approximate count for generators, >= 1
     Lattice lattice = Lattice::Hcp;
     std::uint64_t seed = 1;
     std::string material;             // a name from [[materials]]
@@ -79,16 +79,16 @@ struct BodyDesc {
 };
 
 struct Scene {
-    std::string name;                 // default: the file's stem
+    std::string name;  // default: the file's stem
     std::string description;
-    std::filesystem::path file;       // the scene file (absolute)
+    std::filesystem::path file;  // the scene file (absolute)
     CameraSettings camera;
     LightSettings light;
     std::vector<MaterialDesc> materials;
     std::vector<BodyDesc> bodies;
-    ParameterTable realtime;          // [realtime], parsed by realtime/
-    ParameterTable raymarch;          // [raymarch], parsed by raymarch/
-    ParameterTable compare;           // [compare], parsed by compare/
+    ParameterTable realtime;  // [realtime], parsed by realtime/
+    ParameterTable raymarch;  // [raymarch], parsed by raymarch/
+    ParameterTable compare;   // [compare], parsed by compare/
 };
 
 // Loads a scene file. `overrides` are "KEY=VALUE" strings with the scene's dotted keys

@@ -14,8 +14,8 @@
 namespace twinrender::core {
 
 struct SurfacePoint {
-    glm::vec3 normal;      // unit, world space
-    glm::vec3 toEye;       // unit, from the surface to the camera
+    glm::vec3 normal;  // unit, world space
+    glm::vec3 toEye;   // unit, from the surface to the camera
     glm::vec2 uv;
     std::uint32_t material = 0;
     glm::vec3 emission{0.0f};  // emission map + glow, already looked up
@@ -38,6 +38,5 @@ glm::vec3 tonemap(glm::vec3 linear, float exposure);
 // The sRGB transfer functions (IEC 61966-2-1).
 float linearToSrgb(float v);
 float srgbToLinear(float v);
-
 
 }  // namespace twinrender::core

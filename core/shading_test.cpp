@@ -1,10 +1,10 @@
 #include "core/shading.h"
 
 #include <gtest/gtest.h>
-#include <cmath>
-#include <string>
 
+#include <cmath>
 #include <glm/mat4x4.hpp>
+#include <string>
 
 #include "core/camera.h"
 

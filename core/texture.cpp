@@ -1,9 +1,10 @@
 #include "core/texture.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <fmt/format.h>
 #include <glm/common.hpp>
 
 #include "core/error.h"
@@ -53,7 +54,9 @@ float fbm(float u, float v, std::uint32_t seed) {
     return sum / norm;
 }
 
-bool isLand(float u, float v) { return fbm(u, v, 7) > 0.52f; }
+bool isLand(float u, float v) {
+    return fbm(u, v, 7) > 0.52f;
+}
 
 glm::vec3 proceduralTexel(const std::string& name, float u, float v) {
     if (name == "none") return glm::vec3(0.0f);
@@ -116,9 +119,10 @@ Texture Texture::load(const TextureSource& source) {
                         for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
                     }
             } catch (const std::out_of_range&) {
-                throw InputError(fmt::format("{}: unknown procedural '{}'; use none, latlong_grid, "
-                                             "checker, continents, city_lights or lava",
-                                             source.where, source.procedural));
+                throw InputError(
+                    fmt::format("{}: unknown procedural '{}'; use none, latlong_grid, "
+                                "checker, continents, city_lights or lava",
+                                source.where, source.procedural));
             }
             return Texture(std::move(img));
         }
@@ -129,13 +133,15 @@ Texture Texture::load(const TextureSource& source) {
             } catch (const InputError& e) {
                 throw InputError(fmt::format("{}: {}", source.where, e.what()));
             }
-            const bool isFloat = source.path.extension() == ".exr" || source.path.extension() == ".hdr";
+            const bool isFloat =
+                source.path.extension() == ".exr" || source.path.extension() == ".hdr";
             Image img(in.width(), in.height(), {"R", "G", "B"});
             const int r = in.channelIndex("R");
             const int g = in.channelIndex("G") >= 0 ? in.channelIndex("G") : r;
             const int b = in.channelIndex("B") >= 0 ? in.channelIndex("B") : r;
             if (r < 0)
-                throw InputError(fmt::format("{}: {} has no R channel", source.where, source.path.string()));
+                throw InputError(
+                    fmt::format("{}: {} has no R channel", source.where, source.path.string()));
             for (std::size_t p = 0; p < in.pixelCount(); ++p) {
                 const float rgb[3] = {in.at(p, r), in.at(p, g), in.at(p, b)};
                 for (int c = 0; c < 3; ++c) img.at(p, c) = isFloat ? rgb[c] : srgbToLinear(rgb[c]);

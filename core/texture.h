@@ -21,7 +21,7 @@
 namespace twinrender::core {
 
 class Texture {
-public:
+  public:
     Texture() = default;
     explicit Texture(Image rgb);  // channels R, G, B, linear
 
@@ -33,7 +33,7 @@ public:
     const Image& image() const { return mImage; }
     bool isConstant() const { return mImage.width() == 1 && mImage.height() == 1; }
 
-private:
+  private:
     Image mImage;
 };
 

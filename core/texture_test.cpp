@@ -44,10 +44,10 @@ TEST(Texture, ProceduralsAndConstants) {
     grid.kind = tc::TextureSource::Kind::Procedural;
     grid.procedural = "latlong_grid";
     const tc::Texture g = tc::Texture::load(grid);
-    EXPECT_GT(g.sample({0.0005f, 0.4f}).x, 0.5f);   // the red seam meridian
+    EXPECT_GT(g.sample({0.0005f, 0.4f}).x, 0.5f);  // the red seam meridian
     EXPECT_LT(g.sample({0.0005f, 0.4f}).y, 0.2f);
-    EXPECT_LT(g.sample({0.25f, 0.5f}).x, 0.1f);     // 90 degrees east on the equator: a line
-    EXPECT_GT(g.sample({0.27f, 0.4f}).x, 0.4f);     // between lines
+    EXPECT_LT(g.sample({0.25f, 0.5f}).x, 0.1f);  // 90 degrees east on the equator: a line
+    EXPECT_GT(g.sample({0.27f, 0.4f}).x, 0.4f);  // between lines
     tc::TextureSource unknown;
     unknown.kind = tc::TextureSource::Kind::Procedural;
     unknown.procedural.assign("plasma");

@@ -11,8 +11,9 @@
 // the caller guarantees it. The same scene answers first-entry queries along lines.
 #pragma once
 
-#include <cstdint>
 #include <embree3/rtcore.h>
+
+#include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -37,7 +38,7 @@ struct RayBundle {
 };
 
 class BundleGather {
-public:
+  public:
     // `margin[i]`: how far (scene units) any bundle ray may pass from the central ray near
     // particle i; the Embree bounds are the support spheres grown by it. The spans need not
     // outlive the object.
@@ -64,8 +65,8 @@ public:
     // The first support sphere grown by the margin along the line origin + t direction (unit)
     // in [tnear, tfar]: no ray of a bundle around the line enters a support sphere before its
     // point abreast of entry.t.
-    bool firstEntry(const glm::dvec3& origin, const glm::dvec3& direction, double tnear, double tfar,
-                    Entry& entry) const;
+    bool firstEntry(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
+                    double tfar, Entry& entry) const;
     // firstEntry for up to PACKET separate rays at once (a packet: much cheaper than a query
     // per ray when they are coherent); for a single ray, a safe start before its own entry.
     // Returns the mask of the rays that found one.
@@ -92,7 +93,7 @@ public:
         std::uint32_t prim[GROUP];
     };
 
-private:
+  private:
     static void bounds(const RTCBoundsFunctionArguments* args);
     static void intersect(const RTCIntersectFunctionNArguments* args);
     static void occluded(const RTCOccludedFunctionNArguments* args);

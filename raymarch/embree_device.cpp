@@ -1,6 +1,7 @@
 #include "raymarch/embree_device.h"
 
 #include <fmt/format.h>
+
 #include <stdexcept>
 
 namespace twinrender::raymarch {

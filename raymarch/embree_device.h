@@ -3,12 +3,13 @@
 #pragma once
 
 #include <embree3/rtcore.h>
+
 #include <string>
 
 namespace twinrender::raymarch {
 
 class EmbreeDevice {
-public:
+  public:
     // `config` is Embree's device configuration string ("" for the defaults).
     explicit EmbreeDevice(const char* config = "");
     ~EmbreeDevice();
@@ -20,7 +21,7 @@ public:
     // since the last check.
     void check(const char* what) const;
 
-private:
+  private:
     static void onError(void* self, RTCError code, const char* message);
 
     RTCDevice mDevice = nullptr;

@@ -19,11 +19,16 @@ Settings parseSettings(const core::ParameterTable& t) {
 }
 
 nlohmann::json toJson(const Settings& s) {
-    return {{"raymarch.surface_level", s.surfaceLevel},   {"raymarch.shadows", s.shadows},
-            {"raymarch.spheres", s.spheres},              {"raymarch.sphere_radius", s.sphereRadius},
-            {"raymarch.spp", s.spp},                      {"raymarch.root_tolerance", s.rootTolerance},
-            {"raymarch.segment_length", s.segmentLength}, {"raymarch.step_window", s.stepWindow},
-            {"raymarch.max_iterations", s.maxIterations}, {"raymarch.tile_size", s.tileSize}};
+    return {{"raymarch.surface_level", s.surfaceLevel},
+            {"raymarch.shadows", s.shadows},
+            {"raymarch.spheres", s.spheres},
+            {"raymarch.sphere_radius", s.sphereRadius},
+            {"raymarch.spp", s.spp},
+            {"raymarch.root_tolerance", s.rootTolerance},
+            {"raymarch.segment_length", s.segmentLength},
+            {"raymarch.step_window", s.stepWindow},
+            {"raymarch.max_iterations", s.maxIterations},
+            {"raymarch.tile_size", s.tileSize}};
 }
 
 }  // namespace twinrender::raymarch

@@ -8,16 +8,16 @@
 namespace twinrender::raymarch {
 
 struct Settings {
-    double surfaceLevel = 0.13;    // level of the colour field, (0, 10]; OpenSPH's default
-    bool shadows = true;           // trace shadow rays
-    bool spheres = false;          // plain spheres instead of the implicit surface (cost floor)
-    double sphereRadius = 0.5;     // spheres mode: sphere radius in units of h, (0, 2]
-    int spp = 1;                   // samples per pixel, 1..1024; 1 = the pixel centre
-    double rootTolerance = 1e-4;   // root accuracy along the ray, in units of h, [1e-8, 0.1]
-    double segmentLength = 2.0;    // candidates are gathered per segment of this many h, [0.5, 64]
-    double stepWindow = 0.5;       // window of the curvature bound, in units of h, [0.01, 4]
-    int maxIterations = 256;       // field evaluations per segment before a ray is unresolved
-    int tileSize = 16;             // pixels per tile side, 4..256
+    double surfaceLevel = 0.13;   // level of the colour field, (0, 10]; OpenSPH's default
+    bool shadows = true;          // trace shadow rays
+    bool spheres = false;         // plain spheres instead of the implicit surface (cost floor)
+    double sphereRadius = 0.5;    // spheres mode: sphere radius in units of h, (0, 2]
+    int spp = 1;                  // samples per pixel, 1..1024; 1 = the pixel centre
+    double rootTolerance = 1e-4;  // root accuracy along the ray, in units of h, [1e-8, 0.1]
+    double segmentLength = 2.0;   // candidates are gathered per segment of this many h, [0.5, 64]
+    double stepWindow = 0.5;      // window of the curvature bound, in units of h, [0.01, 4]
+    int maxIterations = 256;      // field evaluations per segment before a ray is unresolved
+    int tileSize = 16;            // pixels per tile side, 4..256
 };
 
 // Reads every key of the table and rejects the ones it does not know.

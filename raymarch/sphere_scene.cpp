@@ -37,9 +37,8 @@ SphereScene::SphereScene(const EmbreeDevice& device, std::span<const glm::vec3> 
     mScene = rtcNewScene(device.get());
     rtcSetSceneBuildQuality(mScene, RTC_BUILD_QUALITY_MEDIUM);
     RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT4, 4 * sizeof(float),
-                                                          centers.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), centers.size()));
     device.check("allocating the particle spheres");
     for (std::size_t i = 0; i < centers.size(); ++i) {
         v[4 * i + 0] = centers[i].x;

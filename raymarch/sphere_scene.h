@@ -3,8 +3,9 @@
 // Embree traces in float; every result is refined in double by the caller.
 #pragma once
 
-#include <cstdint>
 #include <embree3/rtcore.h>
+
+#include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -14,7 +15,7 @@
 namespace twinrender::raymarch {
 
 class SphereScene {
-public:
+  public:
     SphereScene(const EmbreeDevice& device, std::span<const glm::vec3> centers,
                 std::span<const float> radii);
     ~SphereScene();
@@ -30,14 +31,15 @@ public:
     bool closestHit(const glm::vec3& origin, const glm::vec3& direction, float tnear, float tfar,
                     Hit& hit) const;
     // True when any sphere surface is crossed in [tnear, tfar].
-    bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tnear, float tfar) const;
+    bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tnear,
+                  float tfar) const;
     // Appends to `out` every sphere whose entry or exit lies in [tnear, tfar], in no particular
     // order and possibly twice (entry and exit). A sphere that contains the whole range is not
     // reported: the caller moves the origin back to avoid that case.
     void gather(const glm::vec3& origin, const glm::vec3& direction, float tnear, float tfar,
                 std::vector<std::uint32_t>& out) const;
 
-private:
+  private:
     static void gatherFilter(const RTCFilterFunctionNArguments* args);
 
     const EmbreeDevice& mDevice;

@@ -194,7 +194,8 @@ TEST(BadInput, MissingSceneFile) {
 TEST(BadInput, ThresholdOnAnUnknownMetricNamesTheFileKeyAndTheMetrics) {
     const auto dir = tt::freshDir("unknown_metric");
     tt::writeFile(dir / "scene.toml", sceneText());
-    tt::writeFile(dir / "bounds.toml", "\"beauty.flip\" = { max = 0.2 }\n\"normal.mean_degs\" = { max = 3.0 }\n");
+    tt::writeFile(dir / "bounds.toml",
+                  "\"beauty.flip\" = { max = 0.2 }\n\"normal.mean_degs\" = { max = 3.0 }\n");
     const auto out = dir / "out";
     const auto r = tt::runTwinrender("run " + (dir / "scene.toml").string() + " --thresholds " +
                                      (dir / "bounds.toml").string() + " --out " + out.string());
@@ -205,8 +206,10 @@ TEST(BadInput, ThresholdOnAnUnknownMetricNamesTheFileKeyAndTheMetrics) {
     EXPECT_EQ(tt::countFiles(out), 0u);
 
     // The same in the scene file's own bounds.
-    tt::writeFile(dir / "own.toml", sceneText() + "\n[compare.thresholds]\n\"shadow.iou_min\" = { min = 0.9 }\n");
-    const auto own = tt::runTwinrender("run " + (dir / "own.toml").string() + " --out " + out.string());
+    tt::writeFile(dir / "own.toml",
+                  sceneText() + "\n[compare.thresholds]\n\"shadow.iou_min\" = { min = 0.9 }\n");
+    const auto own =
+        tt::runTwinrender("run " + (dir / "own.toml").string() + " --out " + out.string());
     EXPECT_EQ(own.exitCode, 4) << own.output;
     EXPECT_NE(own.output.find("own.toml:"), std::string::npos) << own.output;
     EXPECT_NE(own.output.find("unknown metric 'shadow.iou_min'"), std::string::npos) << own.output;

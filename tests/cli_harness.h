@@ -1,15 +1,16 @@
 // Runs the twinrender command as a user would and captures what it prints.
 #pragma once
 
+#include <sys/wait.h>
+
 #include <array>
 #include <cstdio>
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 #include "tests/scratch_dir.h"
 
@@ -22,13 +23,14 @@ struct CommandResult {
 
 // `environment`: "NAME=VALUE ..." set for this command only.
 inline CommandResult runTwinrender(const std::string& args, const std::string& environment = "") {
-    const std::string cmd =
-        (environment.empty() ? "" : "env " + environment + " ") + std::string(TWINRENDER_BIN) + " " + args + " 2>&1";
+    const std::string cmd = (environment.empty() ? "" : "env " + environment + " ") +
+                            std::string(TWINRENDER_BIN) + " " + args + " 2>&1";
     CommandResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
     std::array<char, 4096> buf{};
-    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe))
+        r.output.append(buf.data(), n);
     const int status = pclose(pipe);
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
@@ -44,7 +46,8 @@ inline void writeFile(const std::filesystem::path& path, const std::string& text
 inline std::size_t countFiles(const std::filesystem::path& dir) {
     if (!std::filesystem::exists(dir)) return 0;
     std::size_t n = 0;
-    for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) n += e.is_regular_file();
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+        n += e.is_regular_file();
     return n;
 }
 

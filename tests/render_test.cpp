@@ -1,5 +1,6 @@
 // The render command end to end: the AOV EXR, the PNG and the JSON of DESIGN.md.
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
 #include "core/frame.h"
@@ -10,14 +11,16 @@ namespace tt = twinrender::test;
 
 TEST(RenderCommand, WritesTheAovExrPngAndJson) {
     const auto dir = tt::freshDir("render_command");
-    const auto r = tt::runTwinrender(std::string("render ") + TWINRENDER_SOURCE_DIR +
-                                     "/scenes/planet.toml --renderer raymarch --out " + dir.string() +
-                                     " --set camera.width=48 --set camera.height=36 --threads 2");
+    const auto r =
+        tt::runTwinrender(std::string("render ") + TWINRENDER_SOURCE_DIR +
+                          "/scenes/planet.toml --renderer raymarch --out " + dir.string() +
+                          " --set camera.width=48 --set camera.height=36 --threads 2");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const auto exr = twinrender::core::readImage(dir / "planet" / "raymarch.exr");
     EXPECT_EQ(exr.width(), 48);
     EXPECT_EQ(exr.height(), 36);
-    for (const auto& name : twinrender::core::aov::channelNames()) EXPECT_TRUE(exr.hasChannel(name)) << name;
+    for (const auto& name : twinrender::core::aov::channelNames())
+        EXPECT_TRUE(exr.hasChannel(name)) << name;
     const auto png = twinrender::core::readImage(dir / "planet" / "raymarch.png");
     EXPECT_EQ(png.width(), 48);
     // Background: id -1, Z infinite; the planet in the middle: id 0, finite depth.

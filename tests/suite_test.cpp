@@ -197,7 +197,8 @@ TEST(Suite, ABaselineCatchesARegressionInsideTheBounds) {
                 namedTheChange = true;
     EXPECT_TRUE(namedTheChange) << worse.output;
     // The change is named once, by the key the user wrote.
-    EXPECT_NE(worse.output.find("settings changed since the baseline: realtime.ssss.radius_scale: 0.6 -> 0.8"),
+    EXPECT_NE(worse.output.find(
+                  "settings changed since the baseline: realtime.ssss.radius_scale: 0.6 -> 0.8"),
               std::string::npos)
         << worse.output;
     EXPECT_EQ(worse.output.find("realtime.realtime."), std::string::npos) << worse.output;

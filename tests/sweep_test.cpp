@@ -143,12 +143,12 @@ TEST(Sweep, RowsParetoFrontChartAndACachedReference) {
 
 TEST(Sweep, TheRaymarchersConvergenceAgainstATightRender) {
     const fs::path out = tt::freshDir("sweep_convergence");
-    const auto r = tt::runTwinrender(
-        "sweep " + SCENES +
-        "planet.toml --set camera.width=48 --set camera.height=36"
-        " --vary raymarch.root_tolerance=0.05,1e-4 --vary raymarch.spp=1,4"
-        " --metric beauty.flip --out " +
-        out.string());
+    const auto r =
+        tt::runTwinrender("sweep " + SCENES +
+                          "planet.toml --set camera.width=48 --set camera.height=36"
+                          " --vary raymarch.root_tolerance=0.05,1e-4 --vary raymarch.spp=1,4"
+                          " --metric beauty.flip --out " +
+                          out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const auto sweep = readJson(out / "sweep.json");
     EXPECT_EQ(sweep["test"], "raymarch");
