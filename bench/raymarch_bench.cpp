@@ -70,14 +70,19 @@ void BM_BallSpheresShadows(benchmark::State& state) {
     renderBall(state, true, true);
 }
 
+// The particles' support spheres (radius 2h, where the M4 kernel ends).
+tr::raymarch::SphereScene supportSpheres(tr::raymarch::EmbreeDevice& device,
+                                         const tr::core::ParticleSet& ps) {
+    std::vector<float> radii(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) radii[i] = 2.0f * ps.h[i];
+    return tr::raymarch::SphereScene(device, ps.position, radii);
+}
+
 // Embree alone: one closest-hit query per pixel against the support spheres.
 void BM_BallClosestHitPerPixel(benchmark::State& state) {
     const BallScene& s = ball();
     tr::raymarch::EmbreeDevice device;
-    const auto& ps = s.particles.particles;
-    std::vector<float> radii(ps.size());
-    for (std::size_t i = 0; i < ps.size(); ++i) radii[i] = 2.0f * ps.h[i];
-    tr::raymarch::SphereScene spheres(device, ps.position, radii);
+    tr::raymarch::SphereScene spheres = supportSpheres(device, s.particles.particles);
     tr::core::Camera camera(s.scene.camera);
     std::int64_t hits = 0;
     for (auto _ : state) {
@@ -97,10 +102,7 @@ void BM_BallClosestHitPerPixel(benchmark::State& state) {
 void BM_BallGatherPerHitPixel(benchmark::State& state) {
     const BallScene& s = ball();
     tr::raymarch::EmbreeDevice device;
-    const auto& ps = s.particles.particles;
-    std::vector<float> radii(ps.size());
-    for (std::size_t i = 0; i < ps.size(); ++i) radii[i] = 2.0f * ps.h[i];
-    tr::raymarch::SphereScene spheres(device, ps.position, radii);
+    tr::raymarch::SphereScene spheres = supportSpheres(device, s.particles.particles);
     tr::core::Camera camera(s.scene.camera);
     std::vector<std::uint32_t> prims;
     const float length = static_cast<float>(state.range(0)) * 0.25f;  // in units of h

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "compare/image_pair.h"
 #include "core/error.h"
 
 // The row kernels below are compiled twice, for AVX2 and for any x86-64, and picked at load
@@ -414,23 +415,6 @@ void flipErrorRow(const float* colourError, const float* __restrict refDx,
     }
 }
 
-void requireSameSize(const core::Image& reference, const core::Image& test) {
-    if (reference.width() != test.width() || reference.height() != test.height())
-        throw core::NotComparableError(fmt::format(
-            "beauty.flip: the reference is {}x{} pixels but the test is {}x{}; render both at "
-            "the same camera.width and camera.height",
-            reference.width(), reference.height(), test.width(), test.height()));
-}
-
-// R, G, B of an image as one interleaved array, 3 floats a pixel: the image's own pixels when
-// it holds exactly those channels in that order, else a copy in `storage`.
-const float* rgbPixels(const core::Image& image, core::Image& storage) {
-    static const std::vector<std::string> RGB = {"R", "G", "B"};
-    if (image.channelNames() == RGB) return image.pixels().data();
-    storage = image.select(RGB);
-    return storage.pixels().data();
-}
-
 using Row = std::vector<float>;
 
 // The per-row scratch of one thread.
@@ -455,7 +439,7 @@ struct RowBuffers {
 
 FlipResult flip(const core::Image& reference, const core::Image& test,
                 const FlipSettings& settings) {
-    requireSameSize(reference, test);
+    requireSameSize("beauty.flip", reference, test);
     if (!(settings.ppd > 0.0) || !std::isfinite(settings.ppd))
         throw std::invalid_argument(
             fmt::format("beauty.flip: ppd (pixels per degree) must be > 0, got {}", settings.ppd));

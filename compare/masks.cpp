@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "compare/distance_transform.h"
+#include "compare/image_pair.h"
 #include "core/error.h"
 
 namespace twinrender::compare {
@@ -36,14 +37,6 @@ void forEachPixel(int width, int height, F&& f) {
     });
 }
 
-void requireSameSize(const core::Image& reference, const core::Image& test) {
-    if (reference.width() != test.width() || reference.height() != test.height())
-        throw core::NotComparableError(fmt::format(
-            "masks: the reference is {}x{} pixels but the test is {}x{}; render both at the same "
-            "camera.width and camera.height",
-            reference.width(), reference.height(), test.width(), test.height()));
-}
-
 void requireMaskSize(const core::Image& image, const Mask& mask, const char* what) {
     if (image.width() != mask.width() || image.height() != mask.height())
         throw std::invalid_argument(fmt::format("masks: the {} mask is {}x{} but the image {}x{}",
@@ -63,7 +56,7 @@ Mask coveredMask(const core::Image& image) {
 
 Mask sameBodyMask(const core::Image& reference, const core::Image& test,
                   const Mask& coveredInBoth) {
-    requireSameSize(reference, test);
+    requireSameSize("masks", reference, test);
     requireMaskSize(reference, coveredInBoth, "covered-in-both");
     const int refId = reference.requireChannel("id");
     const int testId = test.requireChannel("id");
@@ -151,7 +144,7 @@ Mask facingLightMask(const core::Image& reference, const Mask& coveredInBoth,
 
 Masks computeMasks(const core::Image& reference, const core::Image& test,
                    const MaskSettings& settings) {
-    requireSameSize(reference, test);
+    requireSameSize("masks", reference, test);
     Masks m;
     m.referenceCovered = coveredMask(reference);
     m.testCovered = coveredMask(test);

@@ -9,25 +9,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "compare/image_pair.h"
 #include "core/error.h"
 
 namespace twinrender::compare {
 
-namespace {
-
-void requireSameSize(const core::Image& reference, const core::Image& test) {
-    if (reference.width() != test.width() || reference.height() != test.height())
-        throw core::NotComparableError(fmt::format(
-            "beauty.psnr: the reference is {}x{} pixels but the test is {}x{}; render both at "
-            "the same camera.width and camera.height",
-            reference.width(), reference.height(), test.width(), test.height()));
-}
-
-}  // namespace
+namespace {}  // namespace
 
 PsnrResult psnr(const core::Image& reference, const core::Image& test,
                 const PsnrSettings& settings) {
-    requireSameSize(reference, test);
+    requireSameSize("beauty.psnr", reference, test);
     if (!(settings.peak > 0.0))
         throw std::invalid_argument(
             fmt::format("beauty.psnr: peak must be > 0, got {}", settings.peak));

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "compare/image_pair.h"
 #include "core/error.h"
 
 // The row kernels below are compiled twice, for AVX2 and for any x86-64, and picked at load
@@ -27,23 +28,6 @@
 namespace twinrender::compare {
 
 namespace {
-
-void requireSameSize(const core::Image& reference, const core::Image& test) {
-    if (reference.width() != test.width() || reference.height() != test.height())
-        throw core::NotComparableError(fmt::format(
-            "beauty.ssim: the reference is {}x{} pixels but the test is {}x{}; render both at "
-            "the same camera.width and camera.height",
-            reference.width(), reference.height(), test.width(), test.height()));
-}
-
-// R, G, B of an image as one interleaved array, 3 floats a pixel: the image's own pixels when
-// it holds exactly those channels in that order, else a copy in `storage`.
-const float* rgbPixels(const core::Image& image, core::Image& storage) {
-    static const std::vector<std::string> RGB = {"R", "G", "B"};
-    if (image.channelNames() == RGB) return image.pixels().data();
-    storage = image.select(RGB);
-    return storage.pixels().data();
-}
 
 // scipy.ndimage mode 'reflect' (half-sample symmetric): index -1 reads 0, -2 reads 1, n reads
 // n - 1. Periodic, so any radius works on any size.
@@ -105,7 +89,7 @@ void convolveRgbRow(const double* __restrict padded, const double* __restrict ke
 
 SsimResult ssim(const core::Image& reference, const core::Image& test,
                 const SsimSettings& settings) {
-    requireSameSize(reference, test);
+    requireSameSize("beauty.ssim", reference, test);
     if (!(settings.sigma > 0.0) || !(settings.L > 0.0) || settings.K1 < 0.0 || settings.K2 < 0.0)
         throw std::invalid_argument(fmt::format(
             "beauty.ssim: need sigma > 0, L > 0, K1 >= 0, K2 >= 0; got sigma {}, L {}, K1 {}, "

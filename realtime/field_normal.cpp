@@ -40,20 +40,13 @@ std::vector<FieldNormal> fieldNormals(const core::ParticleSet& ps, std::span<con
 const std::vector<FieldNormal>& FieldNormalCache::normals(const core::ParticleSet& ps,
                                                           std::span<const float> radii,
                                                           std::span<const std::uint32_t> indices) {
-    mReused = mValid && std::equal(radii.begin(), radii.end(), mRadii.begin(), mRadii.end()) &&
-              std::equal(indices.begin(), indices.end(), mIndices.begin(), mIndices.end()) &&
-              ps.position == mPosition && ps.h == mH && ps.volume == mVolume &&
-              ps.normal == mNormal;
+    mReused = mKey.matches(ps) && sameValues(radii, mRadii) && sameValues(indices, mIndices);
     if (!mReused) {
-        mValid = false;
+        mKey.clear();
         mNormals = fieldNormals(ps, radii, indices);
         mRadii.assign(radii.begin(), radii.end());
         mIndices.assign(indices.begin(), indices.end());
-        mPosition = ps.position;
-        mH = ps.h;
-        mVolume = ps.volume;
-        mNormal = ps.normal;
-        mValid = true;
+        mKey.assign(ps);
     }
     return mNormals;
 }

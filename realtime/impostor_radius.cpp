@@ -74,17 +74,12 @@ const std::vector<float>& ImpostorRadiusCache::radii(const core::ParticleSet& ps
     const bool sameSettings =
         settings.radius == o.radius && settings.radiusScale == o.radiusScale &&
         settings.surfaceLevel == o.surfaceLevel && settings.crossingScale == o.crossingScale;
-    mReused = mValid && sameSettings && ps.position == mPosition && ps.h == mH &&
-              ps.volume == mVolume && ps.normal == mNormal;
+    mReused = sameSettings && mKey.matches(ps);
     if (!mReused) {
-        mValid = false;
+        mKey.clear();
         mRadii = impostorRadii(ps, settings);
         mSettings = settings;
-        mPosition = ps.position;
-        mNormal = ps.normal;
-        mH = ps.h;
-        mVolume = ps.volume;
-        mValid = true;
+        mKey.assign(ps);
     }
     return mRadii;
 }

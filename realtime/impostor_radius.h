@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/particles.h"
+#include "realtime/particle_set_key.h"
 #include "realtime/settings.h"
 
 namespace twinrender::realtime {
@@ -25,7 +26,7 @@ std::vector<float> impostorRadii(const core::ParticleSet& particles,
 
 // impostorRadii with the last answer kept: the radii depend on the particles (position, h,
 // volume, normal) and the particle settings, not on the view, so the frames of an unchanged
-// set reuse them (inputs compared exactly, as OcclusionCuller and FieldNormalCache do).
+// set reuse them (inputs kept and compared exactly, ParticleSetKey).
 class ImpostorRadiusCache {
   public:
     const std::vector<float>& radii(const core::ParticleSet& particles,
@@ -33,11 +34,9 @@ class ImpostorRadiusCache {
     bool reused() const { return mReused; }
 
   private:
-    bool mValid = false;
     bool mReused = false;
     ParticleSettings mSettings;
-    std::vector<glm::vec3> mPosition, mNormal;
-    std::vector<float> mH, mVolume;
+    ParticleSetKey mKey;
     std::vector<float> mRadii;
 };
 

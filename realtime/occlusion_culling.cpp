@@ -320,15 +320,12 @@ std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps,
 
 const std::vector<std::uint32_t>& OcclusionCuller::unoccluded(const core::ParticleSet& ps,
                                                               std::span<const float> radii) {
-    mReused = mValid && ps.position == mPosition && ps.body == mBody &&
-              std::equal(radii.begin(), radii.end(), mRadii.begin(), mRadii.end());
+    mReused = mKey.matches(ps) && sameValues(radii, mRadii);
     if (!mReused) {
-        mValid = false;
+        mKey.clear();
         mUnoccluded = unoccludedParticles(ps, radii);
-        mPosition = ps.position;
         mRadii.assign(radii.begin(), radii.end());
-        mBody = ps.body;
-        mValid = true;
+        mKey.assign(ps);
     }
     return mUnoccluded;
 }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/particles.h"
+#include "realtime/particle_set_key.h"
 
 namespace twinrender::realtime {
 
@@ -31,9 +32,8 @@ std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& particle
 
 // unoccludedParticles with the last answer kept: the test depends on the spheres only, not on
 // the camera or the light, so the frames of an unchanged particle set (a camera moving around
-// a stored snapshot, a sweep, a benchmark) reuse it. The inputs are kept and compared exactly
-// (positions, bodies, radii), which costs about 1 ms per 100k particles against the
-// test's 100-300 ms.
+// a stored snapshot, a sweep, a benchmark) reuse it (the set and the radii kept and compared
+// exactly, ParticleSetKey).
 class OcclusionCuller {
   public:
     // The same indices as unoccludedParticles(particles, radii).
@@ -43,11 +43,9 @@ class OcclusionCuller {
     bool reused() const { return mReused; }
 
   private:
-    bool mValid = false;
     bool mReused = false;
-    std::vector<glm::vec3> mPosition;
+    ParticleSetKey mKey;
     std::vector<float> mRadii;
-    std::vector<std::uint32_t> mBody;
     std::vector<std::uint32_t> mUnoccluded;
 };
 
