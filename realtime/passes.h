@@ -1,12 +1,13 @@
-// The frame as named passes (DESIGN.md, "Real-time"): shadow -> gbuffer -> ssss -> shade ->
-// post. Each pass takes the buffers it reads and returns the textures it writes; the renderer
-// (renderer.cpp) runs them in order, times each with a GL timer query and skips the passes the
-// settings do not need. Positions are camera-relative; the frame uniforms are bound at
-// uniform binding 0, particles and materials at storage bindings 0 and 2, the material
+// The frame as named passes (DESIGN.md, "Real-time"): shadow -> gbuffer -> normals ->
+// ssss or surface -> shade -> post. Each pass takes the buffers it reads and returns the textures
+// it writes; the renderer (renderer.cpp) runs them in order, times each with a GL timer query and
+// skips the passes the settings do not need. Positions are camera-relative; the frame uniforms are
+// bound at uniform binding 0, particles and materials at storage bindings 0 and 2, the material
 // texels at texture unit 7.
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "realtime/gl/buffer.h"
@@ -77,6 +78,29 @@ struct SmoothedSurface {
 SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
                             const gl::Texture& normalUv, const SsssSettings& settings,
                             bool emission, DepthMode mode);
+
+// surface (surface.method = "bilateral" | "narrow_range" | "curvature_flow" | "shader"): what
+// the shade pass reads after a depth filter (normals rebuilt from the filtered depth, uv and
+// emission as drawn) or after the user's shader.
+struct FilteredSurface {
+    std::optional<gl::Texture> surface;   // as GBuffer::surface; empty: the G-buffer's stands
+    gl::Texture normalUv;                 // world normal (octahedral), u, v
+    std::optional<gl::Texture> emission;  // the user's shader only; empty: the G-buffer's
+    const gl::Texture& resultSurface(const GBuffer& g) const {
+        return surface ? *surface : g.surface;
+    }
+    const gl::Texture& resultEmission(const GBuffer& g) const {
+        return emission ? *emission : g.emission;
+    }
+};
+// `normalUv`: the normal + uv drawn (the G-buffer's, or the gradient pass's).
+FilteredSurface runSurfacePass(ProgramCache& programs, const GBuffer& gbuffer,
+                               const gl::Texture& normalUv, const SurfaceSettings& settings);
+// Compiles the programs runSurfacePass will use with these settings.
+void compileSurfacePrograms(ProgramCache& programs, const SurfaceSettings& settings);
+// The program of the user's shader (surface.shader), compiled on first use; throws
+// core::InputError naming the file, with the compiler's messages by file and line.
+const gl::Program& userSurfaceProgram(ProgramCache& programs, const SurfaceSettings& settings);
 
 // shade: beauty (rgb) and light visibility (a). `shadowMap` may be null (no map).
 struct ShadeInputs {

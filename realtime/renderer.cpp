@@ -60,9 +60,6 @@ double msSince(Clock::time_point start) {
 bool usesShadowMap(ShadowMode mode) {
     return mode == ShadowMode::Map || mode == ShadowMode::Pcf;
 }
-bool usesSsss(const SsssSettings& s) {
-    return s.enabled && s.radiusScale > 0.0;
-}
 
 FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
                            const core::SceneParticles& particles, const Settings& settings,
@@ -152,12 +149,13 @@ void compilePrograms(ProgramCache& programs, const Settings& settings, bool emit
     if (usesShadowMap(settings.shadows))
         programs.get("impostor.vert", "shadow.frag", {"SHADOW_PASS"});
     programs.get("impostor.vert", "gbuffer.frag", {depthDefine(settings.depth)});
-    if (usesSsss(settings.ssss)) {
+    if (usesSsss(settings)) {
         std::vector<std::string> defines;
         if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
         if (emits) defines.emplace_back("EMISSION");
         programs.get("fullscreen.vert", "ssss.frag", defines);
     }
+    compileSurfacePrograms(programs, settings.surface);
     gl::finish();
 }
 
@@ -279,6 +277,7 @@ struct PassTargets {
     std::optional<GBuffer> gbuffer;
     std::optional<gl::Texture> gradientNormalUv;  // normal = "gradient"
     std::optional<SmoothedSurface> smoothed;
+    std::optional<FilteredSurface> filtered;
     std::optional<gl::Texture> beauty;   // linear beauty, light visibility
     std::optional<gl::Texture> display;  // bloom and tonemap
     std::vector<std::pair<const char*, gl::TimerQuery>> timers;
@@ -288,12 +287,20 @@ struct PassTargets {
     const gl::Texture& surfaceNormalUv() const {
         return gradientNormalUv ? *gradientNormalUv : gbuffer->normalUv;
     }
-    // The surface the shade pass reads: smoothed when SSSS ran.
+    // The surface the shade pass reads: smoothed when SSSS ran, filtered when a depth filter
+    // or the user's shader did.
     const gl::Texture& normalUv() const {
-        return smoothed ? smoothed->resultNormalUv() : surfaceNormalUv();
+        return smoothed   ? smoothed->resultNormalUv()
+               : filtered ? filtered->normalUv
+                          : surfaceNormalUv();
     }
     const gl::Texture& emission() const {
-        return smoothed ? smoothed->resultEmission(*gbuffer) : gbuffer->emission;
+        return smoothed   ? smoothed->resultEmission(*gbuffer)
+               : filtered ? filtered->resultEmission(*gbuffer)
+                          : gbuffer->emission;
+    }
+    const gl::Texture& surface() const {
+        return filtered ? filtered->resultSurface(*gbuffer) : gbuffer->surface;
     }
 };
 
@@ -302,7 +309,7 @@ ShadeInputs shadeInputs(const PassInputs& in, const PassTargets& t) {
     s.normalUv = &t.normalUv();
     s.emissionBuffer = &t.emission();
     s.emission = in.emits;
-    s.surface = &t.gbuffer->surface;
+    s.surface = &t.surface();
     s.depth = &t.gbuffer->depth;
     s.depthMode = in.settings.depth;
     s.shadowMap = t.shadowMap ? &*t.shadowMap : nullptr;
@@ -340,10 +347,15 @@ const Pass PASSES[] = {
          t.gradientNormalUv.emplace(runGradientNormalPass(
              in.programs, in.scene, *in.kernels, in.kernelCount, *t.gbuffer, in.settings.depth));
      }},
-    {"ssss", [](const PassInputs& in) { return usesSsss(in.settings.ssss); },
+    {"ssss", [](const PassInputs& in) { return usesSsss(in.settings); },
      [](const PassInputs& in, PassTargets& t) {
          t.smoothed.emplace(runSsssPass(in.programs, *t.gbuffer, t.surfaceNormalUv(),
                                         in.settings.ssss, in.emits, in.settings.depth));
+     }},
+    {"surface", [](const PassInputs& in) { return usesSurfaceFilter(in.settings); },
+     [](const PassInputs& in, PassTargets& t) {
+         t.filtered.emplace(
+             runSurfacePass(in.programs, *t.gbuffer, t.surfaceNormalUv(), in.settings.surface));
      }},
     {"shade", always,
      [](const PassInputs& in, PassTargets& t) {
@@ -409,7 +421,7 @@ void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, co
     readTexture(t.normalUv(), "read normal", d.normalUv);
     // Without emitters the emission buffer is zero, as the image's channels already are.
     if (emits) readTexture(t.emission(), "read emission", d.emission);
-    readTexture(t.gbuffer->surface, "read surface", d.surface);
+    readTexture(t.surface(), "read surface", d.surface);
     readTexture(*t.beauty, "read beauty", d.beautyShadow);
     readTexture(*t.display, "read display", d.display);
     frame.image = reuseOrCreate(d.spareImage, w, h, core::aov::channelNames());
@@ -429,7 +441,13 @@ void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, co
 }  // namespace
 
 Renderer::Renderer(Device& device, const Settings& settings)
-    : mDevice(*device.mState), mSettings(settings) {}
+    : mDevice(*device.mState), mSettings(settings) {
+    // A user's shader that does not compile is bad input: said before anything renders.
+    if (settings.surface.method == SurfaceMethod::Shader) {
+        mDevice.context.makeCurrent();
+        userSurfaceProgram(mDevice.programs, settings.surface);
+    }
+}
 
 void Renderer::recycle(core::Frame&& old) {
     mDevice.spareImage = std::move(old.image);

@@ -1,5 +1,15 @@
 #include "realtime/settings.h"
 
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+
 namespace twinrender::realtime {
 
 namespace {
@@ -61,6 +71,99 @@ std::string_view toString(RadiusModel model) {
     return model == RadiusModel::Fixed ? "fixed" : "field";
 }
 
+namespace {
+
+constexpr std::pair<SurfaceMethod, std::string_view> SURFACE_METHODS[] = {
+    {SurfaceMethod::Ssss, "ssss"},
+    {SurfaceMethod::Bilateral, "bilateral"},
+    {SurfaceMethod::NarrowRange, "narrow_range"},
+    {SurfaceMethod::CurvatureFlow, "curvature_flow"},
+    {SurfaceMethod::None, "none"},
+    {SurfaceMethod::Shader, "shader"},
+};
+
+// The surface.* keys: the method, the shader's text read (relative to the scene file), each
+// filter's parameters.
+SurfaceSettings parseSurface(const core::ParameterTable& t) {
+    const SurfaceSettings d;
+    SurfaceSettings s;
+    const std::string shader = t.getString("surface.shader", "");
+    const std::string method =
+        t.getEnum("surface.method", shader.empty() ? std::string(toString(d.method)) : "shader",
+                  {"ssss", "bilateral", "narrow_range", "curvature_flow", "none", "shader"});
+    for (const auto& [m, name] : SURFACE_METHODS)
+        if (name == method) s.method = m;
+    if (s.method == SurfaceMethod::Shader && shader.empty())
+        throw core::InputError(fmt::format(
+            "{}: surface.method = \"shader\" needs realtime.surface.shader = PATH (a GLSL file "
+            "defining filterSurface; see realtime/shaders/user_surface.frag)",
+            t.describe("surface.method")));
+    if (!shader.empty() && s.method != SurfaceMethod::Shader)
+        throw core::InputError(
+            fmt::format("{}: realtime.surface.shader is given but surface.method is \"{}\"; set "
+                        "surface.method = \"shader\" or leave it out",
+                        t.describe("surface.shader"), method));
+    if (!shader.empty()) {
+        std::filesystem::path path(shader);
+        // Relative to the scene file, as its other paths; an override's to the working folder.
+        const bool fromOverride = t.find("surface.shader")->where.starts_with("--set");
+        if (path.is_relative() && !t.file().empty() && !fromOverride)
+            path = std::filesystem::path(t.file()).parent_path() / path;
+        std::ifstream in(path, std::ios::binary);
+        if (!in)
+            throw core::InputError(fmt::format("{}: cannot read the shader file '{}'",
+                                               t.describe("surface.shader"), path.string()));
+        std::ostringstream text;
+        text << in.rdbuf();
+        s.shaderPath = path.string();
+        s.shaderSource = text.str();
+    }
+    s.shaderPasses = static_cast<int>(t.getInt("surface.shader_passes", d.shaderPasses, 1, 64));
+    s.shaderNormals = t.getBool("surface.shader_normals", d.shaderNormals);
+
+    const BilateralSettings& db = d.bilateral;
+    BilateralSettings& b = s.bilateral;
+    b.radius = t.getDouble("surface.bilateral.radius", db.radius, 1e-6, 16.0);
+    b.depthSigma = t.getDouble("surface.bilateral.depth_sigma", db.depthSigma, 1e-6, 1000.0);
+    b.iterations = static_cast<int>(t.getInt("surface.bilateral.iterations", db.iterations, 1, 16));
+    b.separable = t.getBool("surface.bilateral.separable", db.separable);
+    b.maxRadiusPx = t.getDouble("surface.bilateral.max_radius_px", db.maxRadiusPx, 1.0, 64.0);
+
+    const NarrowRangeSettings& dn = d.narrowRange;
+    NarrowRangeSettings& n = s.narrowRange;
+    n.radius = t.getDouble("surface.narrow_range.radius", dn.radius, 1e-6, 16.0);
+    n.threshold = t.getDouble("surface.narrow_range.threshold", dn.threshold, 1e-6, 1000.0);
+    n.clamp = t.getDouble("surface.narrow_range.clamp", dn.clamp, 0.0, 1000.0);
+    n.iterations =
+        static_cast<int>(t.getInt("surface.narrow_range.iterations", dn.iterations, 1, 16));
+    n.separable = t.getBool("surface.narrow_range.separable", dn.separable);
+    n.maxRadiusPx = t.getDouble("surface.narrow_range.max_radius_px", dn.maxRadiusPx, 1.0, 256.0);
+
+    const CurvatureFlowSettings& dc = d.curvatureFlow;
+    CurvatureFlowSettings& c = s.curvatureFlow;
+    c.iterations =
+        static_cast<int>(t.getInt("surface.curvature_flow.iterations", dc.iterations, 0, 500));
+    c.timeStep = t.getDouble("surface.curvature_flow.time_step", dc.timeStep, 1e-6, 0.25);
+    c.depthLimit = t.getDouble("surface.curvature_flow.depth_limit", dc.depthLimit, 1e-6, 1000.0);
+    return s;
+}
+
+}  // namespace
+
+std::string_view toString(SurfaceMethod method) {
+    for (const auto& [m, name] : SURFACE_METHODS)
+        if (m == method) return name;
+    return "ssss";
+}
+
+bool usesSsss(const Settings& s) {
+    return s.surface.method == SurfaceMethod::Ssss && s.ssss.enabled && s.ssss.radiusScale > 0.0;
+}
+
+bool usesSurfaceFilter(const Settings& s) {
+    return s.surface.method != SurfaceMethod::Ssss && s.surface.method != SurfaceMethod::None;
+}
+
 Settings parseSettings(const core::ParameterTable& t) {
     const Settings d;  // defaults
     Settings s;
@@ -94,6 +197,7 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.shadowMap.slopeBias = t.getDouble("shadow_map.slope_bias", d.shadowMap.slopeBias, 0.0, 100.0);
     s.shadowMap.pcfRadius = t.getDouble("shadow_map.pcf_radius", d.shadowMap.pcfRadius, 0.0, 16.0);
 
+    s.surface = parseSurface(t);
     s.ssss.enabled = t.getBool("ssss.enabled", d.ssss.enabled);
     s.ssss.radiusScale = t.getDouble("ssss.radius_scale", d.ssss.radiusScale, 0.0, 16.0);
     s.ssss.depthLimit = t.getDouble("ssss.depth_limit", d.ssss.depthLimit, 1e-6, 1000.0);
@@ -124,6 +228,24 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.shadow_map.bias", s.shadowMap.bias},
         {"realtime.shadow_map.slope_bias", s.shadowMap.slopeBias},
         {"realtime.shadow_map.pcf_radius", s.shadowMap.pcfRadius},
+        {"realtime.surface.method", toString(s.surface.method)},
+        {"realtime.surface.shader", s.surface.shaderPath},
+        {"realtime.surface.shader_passes", s.surface.shaderPasses},
+        {"realtime.surface.shader_normals", s.surface.shaderNormals},
+        {"realtime.surface.bilateral.radius", s.surface.bilateral.radius},
+        {"realtime.surface.bilateral.depth_sigma", s.surface.bilateral.depthSigma},
+        {"realtime.surface.bilateral.iterations", s.surface.bilateral.iterations},
+        {"realtime.surface.bilateral.separable", s.surface.bilateral.separable},
+        {"realtime.surface.bilateral.max_radius_px", s.surface.bilateral.maxRadiusPx},
+        {"realtime.surface.narrow_range.radius", s.surface.narrowRange.radius},
+        {"realtime.surface.narrow_range.threshold", s.surface.narrowRange.threshold},
+        {"realtime.surface.narrow_range.clamp", s.surface.narrowRange.clamp},
+        {"realtime.surface.narrow_range.iterations", s.surface.narrowRange.iterations},
+        {"realtime.surface.narrow_range.separable", s.surface.narrowRange.separable},
+        {"realtime.surface.narrow_range.max_radius_px", s.surface.narrowRange.maxRadiusPx},
+        {"realtime.surface.curvature_flow.iterations", s.surface.curvatureFlow.iterations},
+        {"realtime.surface.curvature_flow.time_step", s.surface.curvatureFlow.timeStep},
+        {"realtime.surface.curvature_flow.depth_limit", s.surface.curvatureFlow.depthLimit},
         {"realtime.ssss.enabled", s.ssss.enabled},
         {"realtime.ssss.radius_scale", s.ssss.radiusScale},
         {"realtime.ssss.depth_limit", s.ssss.depthLimit},

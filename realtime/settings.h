@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <string>
 #include <string_view>
 
 #include "core/parameters.h"
@@ -103,6 +104,78 @@ struct SsssSettings {
     int maxTaps = 4;
 };
 
+// How the surface is smoothed before shading (surface.method; docs/methods.md compares them).
+enum class SurfaceMethod {
+    Ssss,           // "ssss": Screen-Space Surface Smoothing of normal, uv and emission
+    Bilateral,      // "bilateral": bilateral filter of eye depth (van der Laan et al. 2009)
+    NarrowRange,    // "narrow_range": narrow-range filter of eye depth (Truong & Yuksel 2018)
+    CurvatureFlow,  // "curvature_flow": screen-space curvature flow of eye depth (van der Laan)
+    None,           // "none": the G-buffer as drawn
+    Shader,         // "shader": the user's fragment shader (surface.shader)
+};
+
+// The depth filters write a new eye depth; normals are then rebuilt from it (one-sided
+// differences, the smaller depth step per axis); uv and emission stay as drawn. Every filter
+// leaves other bodies' pixels and the background out. Lengths are in particle radii (the
+// radius of the impostor drawn at the centre pixel), so a filter does the same at every
+// distance.
+struct BilateralSettings {
+    // surface.bilateral.radius: kernel radius, 1 = the projected particle radius (as NVIDIA
+    // FleX: a blur radius of half the particle's diameter), (0, 16]. Spatial weight
+    // exp(-(d / radius)^2).
+    double radius = 1.0;
+    // surface.bilateral.depth_sigma: the range weight's sigma, exp(-dz^2 / 2 sigma^2), in particle
+    // radii, (0, 1000]: 10/3 as the bilateral baseline of Truong & Yuksel 2018.
+    double depthSigma = 10.0 / 3.0;
+    int iterations = 1;      // surface.bilateral.iterations: 1..16 (FleX: 1)
+    bool separable = false;  // surface.bilateral.separable: horizontal then vertical (Green 2010)
+    double maxRadiusPx = 5;  // surface.bilateral.max_radius_px: cap, 1..64 (FleX: 5)
+};
+
+struct NarrowRangeSettings {
+    // surface.narrow_range.radius: filter size in particle radii, (0, 16]; the Gaussian's sigma
+    // is a third of it. 0.5 as the authors' demo (0.1 * filter size 5).
+    double radius = 0.5;
+    // surface.narrow_range.threshold: delta, the half-width of the depth range that counts, in
+    // particle radii, (0, 1000]: samples nearer than it are dropped (with their mirror).
+    double threshold = 10.5;
+    // surface.narrow_range.clamp: mu, in particle radii, [0, 1000]: samples beyond the range
+    // (the background included) count as this far behind the centre.
+    double clamp = 1.0;
+    int iterations = 3;  // surface.narrow_range.iterations: 1..16
+    // surface.narrow_range.separable: iterations - 1 rounds of 1-D passes (x then y) and one
+    // final 2-D pass of 4 pixels, as the paper; false: every round the full 2-D kernel.
+    bool separable = true;
+    double maxRadiusPx = 100;  // surface.narrow_range.max_radius_px: cap, 1..256
+};
+
+struct CurvatureFlowSettings {
+    // surface.curvature_flow.iterations: explicit steps of dz/dt = H, 0..500.
+    int iterations = 40;
+    // surface.curvature_flow.time_step: each step moves depth by time_step * (pixel footprint)
+    // * H, a diffusion of time_step pixels^2 on a flat surface, (0, 0.25] (stable at every
+    // depth; the reach after n steps is about sqrt(2 n time_step) pixels).
+    double timeStep = 0.2;
+    // surface.curvature_flow.depth_limit: larger depth steps between neighbours, in particle
+    // radii, are edges: their derivatives count as zero, (0, 1000]: 5 as the authors' demo.
+    double depthLimit = 5.0;
+};
+
+struct SurfaceSettings {
+    // surface.method: "ssss" | "bilateral" | "narrow_range" | "curvature_flow" | "none" |
+    // "shader"; "shader" when only surface.shader is given.
+    SurfaceMethod method = SurfaceMethod::Ssss;
+    // surface.shader: a GLSL file (relative to the scene file) defining
+    // void filterSurface(ivec2 pixel, inout SurfaceSample s) (realtime/shaders/user_surface.frag
+    // says what it may read); `shaderPath` is the resolved path, `shaderSource` its text.
+    std::string shaderPath, shaderSource;
+    int shaderPasses = 1;        // surface.shader_passes: the shader applied this many times, 1..64
+    bool shaderNormals = false;  // surface.shader_normals: rebuild normals from its depth after
+    BilateralSettings bilateral;
+    NarrowRangeSettings narrowRange;
+    CurvatureFlowSettings curvatureFlow;
+};
+
 struct BloomSettings {
     bool enabled = true;     // bloom.enabled: bloom in the PNG (never in the EXR)
     double strength = 0.05;  // bloom.strength: weight of the bloom added to the beauty, 0..10
@@ -114,9 +187,15 @@ struct Settings {
     ShadowMode shadows = ShadowMode::Map;  // shadows: "map" | "pcf" | "spheres" | "none"
     ParticleSettings particles;
     ShadowMapSettings shadowMap;
+    SurfaceSettings surface;
     SsssSettings ssss;
     BloomSettings bloom;
 };
+
+// Whether the settings smooth with SSSS (surface.method = "ssss", ssss.enabled and a radius).
+bool usesSsss(const Settings& settings);
+// Whether a depth filter or the user's shader runs (the "surface" pass).
+bool usesSurfaceFilter(const Settings& settings);
 
 // Reads every key of the table (the scene's [realtime] section with --set overrides applied)
 // and then calls table.checkAllRead(): an unknown key, a wrong type or an out-of-range value
@@ -130,5 +209,6 @@ std::string_view toString(DepthMode mode);
 std::string_view toString(ShadowMode mode);
 std::string_view toString(NormalModel model);
 std::string_view toString(RadiusModel model);
+std::string_view toString(SurfaceMethod method);
 
 }  // namespace twinrender::realtime

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "core/error.h"
 
 namespace twinrender::realtime {
@@ -70,7 +73,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.depth"), "reversed");
     EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
     EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
-    EXPECT_EQ(j.size(), 22u);
+    EXPECT_EQ(j.size(), 40u);
 }
 
 void expectError(const core::ParameterTable& t, const std::string& fragment) {
@@ -94,6 +97,75 @@ TEST(Settings, RejectsBadValues) {
     expectError(table({{"shadow_map.resolution", std::int64_t(1 << 20)}}), "out of range");
     expectError(table({{"ssss.iterations", std::int64_t(0)}}), "out of range");
     expectError(table({{"ssss.enabled", std::int64_t(1)}}), "wrong type");
+}
+
+TEST(Settings, ReadsTheSurfaceMethodAndEachFiltersKeys) {
+    const Settings s = parseSettings(table({{"surface.method", std::string("narrow_range")},
+                                            {"surface.bilateral.radius", 2.0},
+                                            {"surface.bilateral.depth_sigma", 5.0},
+                                            {"surface.bilateral.iterations", std::int64_t(2)},
+                                            {"surface.bilateral.separable", true},
+                                            {"surface.bilateral.max_radius_px", 9.0},
+                                            {"surface.narrow_range.radius", 1.5},
+                                            {"surface.narrow_range.threshold", 8.0},
+                                            {"surface.narrow_range.clamp", 2.0},
+                                            {"surface.narrow_range.iterations", std::int64_t(4)},
+                                            {"surface.narrow_range.separable", false},
+                                            {"surface.narrow_range.max_radius_px", 50.0},
+                                            {"surface.curvature_flow.iterations", std::int64_t(60)},
+                                            {"surface.curvature_flow.time_step", 0.1},
+                                            {"surface.curvature_flow.depth_limit", 3.0}}));
+    EXPECT_EQ(s.surface.method, SurfaceMethod::NarrowRange);
+    EXPECT_DOUBLE_EQ(s.surface.bilateral.radius, 2.0);
+    EXPECT_DOUBLE_EQ(s.surface.bilateral.depthSigma, 5.0);
+    EXPECT_EQ(s.surface.bilateral.iterations, 2);
+    EXPECT_TRUE(s.surface.bilateral.separable);
+    EXPECT_DOUBLE_EQ(s.surface.bilateral.maxRadiusPx, 9.0);
+    EXPECT_DOUBLE_EQ(s.surface.narrowRange.radius, 1.5);
+    EXPECT_DOUBLE_EQ(s.surface.narrowRange.threshold, 8.0);
+    EXPECT_DOUBLE_EQ(s.surface.narrowRange.clamp, 2.0);
+    EXPECT_EQ(s.surface.narrowRange.iterations, 4);
+    EXPECT_FALSE(s.surface.narrowRange.separable);
+    EXPECT_DOUBLE_EQ(s.surface.narrowRange.maxRadiusPx, 50.0);
+    EXPECT_EQ(s.surface.curvatureFlow.iterations, 60);
+    EXPECT_DOUBLE_EQ(s.surface.curvatureFlow.timeStep, 0.1);
+    EXPECT_DOUBLE_EQ(s.surface.curvatureFlow.depthLimit, 3.0);
+    EXPECT_TRUE(usesSurfaceFilter(s));
+    EXPECT_FALSE(usesSsss(s));
+    EXPECT_EQ(toJson(s).at("realtime.surface.method"), "narrow_range");
+}
+
+// ssss.enabled = false keeps meaning no smoothing; the default method is SSSS.
+TEST(Settings, SsssEnabledFalseMeansNoSmoothing) {
+    EXPECT_TRUE(usesSsss(parseSettings(table({}))));
+    const Settings off = parseSettings(table({{"ssss.enabled", false}}));
+    EXPECT_FALSE(usesSsss(off));
+    EXPECT_FALSE(usesSurfaceFilter(off));
+}
+
+TEST(Settings, UserShaderIsReadRelativeToTheSceneFile) {
+    const auto dir = std::filesystem::temp_directory_path() / "twinrender_settings_shader";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "mine.glsl") << "void filterSurface(ivec2 p, inout SurfaceSample s) {}\n";
+    core::ParameterTable t("realtime", (dir / "scene.toml").string());
+    t.set("surface.shader", std::string("mine.glsl"), "scene.toml:3:1");
+    const Settings s = parseSettings(t);
+    EXPECT_EQ(s.surface.method, SurfaceMethod::Shader);
+    EXPECT_EQ(s.surface.shaderPath, (dir / "mine.glsl").string());
+    EXPECT_NE(s.surface.shaderSource.find("filterSurface"), std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Settings, UserShaderErrorsNameTheKeys) {
+    expectError(table({{"surface.method", std::string("shader")}}),
+                "realtime.surface.shader = PATH");
+    expectError(table({{"surface.shader", std::string("x.glsl")},
+                       {"surface.method", std::string("bilateral")}}),
+                "surface.method = \"shader\"");
+    expectError(table({{"surface.shader", std::string("/nonexistent/x.glsl")}}),
+                "cannot read the shader file '/nonexistent/x.glsl'");
+    expectError(table({{"surface.method", std::string("blur")}}), "realtime.surface.method");
+    expectError(table({{"surface.curvature_flow.time_step", 0.5}}), "out of range");
 }
 
 }  // namespace

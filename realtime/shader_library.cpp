@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 #include <sstream>
 
 #include "realtime/gl/error.h"
@@ -13,34 +14,47 @@ namespace {
 
 struct Composer {
     gl::ShaderSource out;
+    const IncludedFile* user = nullptr;
+    std::vector<std::string> included;  // by #include name, parallel to out.files
+    int line = 1;                       // the next line of out.text
 
     int fileNumber(std::string_view name) {
-        auto it = std::find(out.files.begin(), out.files.end(), name);
-        if (it != out.files.end()) return -1;  // already included
-        out.files.emplace_back(name);
+        auto it = std::find(included.begin(), included.end(), name);
+        if (it != included.end()) return -1;  // already included
+        included.emplace_back(name);
+        out.files.emplace_back(user && name == user->include ? user->shownName : name);
         return static_cast<int>(out.files.size()) - 1;
     }
 
+    std::string_view text(std::string_view name) const {
+        return user && name == user->include ? std::string_view(user->text) : shaderFile(name);
+    }
+
+    void addLine(std::string_view text) {
+        out.text += text;
+        out.text += '\n';
+        ++line;
+    }
+
     void append(std::string_view name, int number) {
-        std::istringstream lines{std::string(shaderFile(name))};
-        out.text += fmt::format("#line 1 {}\n", number);
-        std::string line;
+        std::istringstream lines{std::string(text(name))};
+        out.spans.push_back({line, number, 1});
+        std::string text;
         int lineNumber = 0;
-        while (std::getline(lines, line)) {
+        while (std::getline(lines, text)) {
             ++lineNumber;
-            const auto first = line.find_first_not_of(" \t");
-            if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
-                const auto open = line.find('"'), close = line.rfind('"');
+            const auto first = text.find_first_not_of(" \t");
+            if (first != std::string::npos && text.compare(first, 8, "#include") == 0) {
+                const auto open = text.find('"'), close = text.rfind('"');
                 if (open == std::string::npos || close <= open)
                     throw gl::Error(fmt::format("{}:{}: malformed #include", name, lineNumber));
-                const std::string included = line.substr(open + 1, close - open - 1);
+                const std::string included = text.substr(open + 1, close - open - 1);
                 const int n = fileNumber(included);
                 if (n >= 0) append(included, n);
-                out.text += fmt::format("#line {} {}\n", lineNumber + 1, number);
+                out.spans.push_back({line, number, lineNumber + 1});
                 continue;
             }
-            out.text += line;
-            out.text += '\n';
+            addLine(text);
         }
     }
 };
@@ -52,23 +66,29 @@ std::string_view shaderFile(std::string_view name) {
     throw gl::Error(fmt::format("no embedded shader file '{}' (realtime/shaders/)", name));
 }
 
-gl::ShaderSource composeShader(std::string_view file, std::span<const std::string> defines) {
+gl::ShaderSource composeShader(std::string_view file, std::span<const std::string> defines,
+                               const IncludedFile* user) {
     Composer c;
-    c.out.text = "#version 450 core\n";
-    for (const auto& d : defines) c.out.text += "#define " + d + "\n";
-    c.out.files.emplace_back("(version and defines)");
+    c.user = user;
+    c.out.spans.push_back({1, c.fileNumber("(version and defines)"), 1});
+    c.addLine("#version 450 core");
+    for (const auto& d : defines) c.addLine("#define " + d);
     c.append(file, c.fileNumber(file));
     return std::move(c.out);
 }
 
 const gl::Program& ProgramCache::get(std::string_view vertexFile, std::string_view fragmentFile,
-                                     const std::vector<std::string>& defines) {
+                                     const std::vector<std::string>& defines,
+                                     const IncludedFile* user) {
     std::string key = fmt::format("{}+{}", vertexFile, fragmentFile);
     for (const auto& d : defines) key += " -D" + d;
+    if (user)
+        key += fmt::format(" {}={} ({:016x})", user->include, user->shownName,
+                           std::hash<std::string>{}(user->text));
     auto it = mPrograms.find(key);
     if (it == mPrograms.end()) {
         gl::Program program(key, composeShader(vertexFile, defines),
-                            composeShader(fragmentFile, defines));
+                            composeShader(fragmentFile, defines, user));
         it = mPrograms.emplace(key, std::move(program)).first;
     }
     return it->second;

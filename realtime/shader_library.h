@@ -1,7 +1,8 @@
 // The GLSL files of realtime/shaders/, embedded at build time (cmake/embed_files.cmake), and the
 // programs built from them. A shader is composed as: "#version 450 core", the variant's
 // #defines, then the file with each `#include "name.glsl"` line replaced by that file (once
-// per shader, like #pragma once), with #line directives so compile errors name the file.
+// per shader, like #pragma once), with the map of its lines to files (gl::ShaderSource) so
+// compile errors name the file and line.
 #pragma once
 
 #include <map>
@@ -23,14 +24,23 @@ std::span<const EmbeddedFile> embeddedShaderFiles();
 // The text of one embedded file; throws gl::Error naming it when there is none.
 std::string_view shaderFile(std::string_view name);
 
+// A file given at run time in place of an embedded one: `#include "<include>"` reads `text`,
+// and compile errors name it `shownName` (the user's path).
+struct IncludedFile {
+    std::string include, shownName, text;
+};
+
 // `defines`: "NAME" or "NAME VALUE", each becoming a #define line.
-gl::ShaderSource composeShader(std::string_view file, std::span<const std::string> defines);
+gl::ShaderSource composeShader(std::string_view file, std::span<const std::string> defines,
+                               const IncludedFile* user = nullptr);
 
 // Programs by (vertex file, fragment file, defines), compiled on first use.
 class ProgramCache {
   public:
+    // `user`: a file the fragment shader includes; programs are kept per its name and text.
     const gl::Program& get(std::string_view vertexFile, std::string_view fragmentFile,
-                           const std::vector<std::string>& defines = {});
+                           const std::vector<std::string>& defines = {},
+                           const IncludedFile* user = nullptr);
 
     std::size_t size() const { return mPrograms.size(); }
 

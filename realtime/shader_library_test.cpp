@@ -23,7 +23,11 @@ TEST(ShaderLibrary, ComposesVersionDefinesAndIncludesOnce) {
     EXPECT_EQ(s.text.find("uniform FrameUniforms", first + 1), std::string::npos);
     ASSERT_GE(s.files.size(), 4u);
     EXPECT_EQ(s.files[1], "shade.frag");
-    EXPECT_NE(s.text.find("#line 1 1\n"), std::string::npos);
+    // Line 4 of the text (after the version and two defines) is shade.frag's first line.
+    ASSERT_GE(s.spans.size(), 2u);
+    EXPECT_EQ(s.spans[1].firstLine, 4);
+    EXPECT_EQ(s.spans[1].file, 1);
+    EXPECT_EQ(s.spans[1].fileLine, 1);
 }
 
 }  // namespace

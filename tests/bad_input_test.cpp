@@ -215,3 +215,31 @@ TEST(BadInput, ThresholdOnAnUnknownMetricNamesTheFileKeyAndTheMetrics) {
     EXPECT_NE(own.output.find("unknown metric 'shadow.iou_min'"), std::string::npos) << own.output;
     EXPECT_EQ(tt::countFiles(out), 0u);
 }
+
+// A user's surface shader that does not compile: exit 4 naming the shader's file and line,
+// before anything renders (the raymarcher included), no output.
+TEST(BadInput, UserShaderThatDoesNotCompileNamesItsLineAndWritesNothing) {
+    const auto dir = tt::freshDir("bad_user_shader");
+    tt::writeFile(dir / "scene.toml", sceneText());
+    tt::writeFile(dir / "mine.glsl",
+                  "void filterSurface(ivec2 pixel, inout SurfaceSample s) {\n"
+                  "    s.depth = s.depht;\n"
+                  "}\n");
+    const auto out = dir / "out";
+    const auto r = tt::runTwinrender(
+        "render " + (dir / "scene.toml").string() + " --renderer both --out " + out.string() +
+        " --set realtime.surface.shader=" + (dir / "mine.glsl").string());
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_NE(r.output.find((dir / "mine.glsl").string() + ":2:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("depht"), std::string::npos) << r.output;
+    EXPECT_EQ(tt::countFiles(out), 0u);
+}
+
+// A shader file that cannot be read names the key and the path.
+TEST(BadInput, MissingUserShaderNamesTheKeyAndThePath) {
+    const auto r = renderBroken("missing_user_shader", sceneText(),
+                                "--set realtime.surface.shader=nowhere/mine.glsl");
+    EXPECT_NE(r.output.find("realtime.surface.shader"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("nowhere/mine.glsl"), std::string::npos) << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
+}

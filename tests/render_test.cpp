@@ -40,3 +40,24 @@ TEST(RenderCommand, WritesTheAovExrPngAndJson) {
     // No temporary file is left behind.
     EXPECT_EQ(tt::countFiles(dir / "planet"), 3u);
 }
+
+// The example pass-through surface shader shipped in examples/ renders what
+// realtime.surface.method = "none" renders, bit for bit.
+TEST(RenderCommand, PassThroughExampleShaderEqualsNone) {
+    const auto dir = tt::freshDir("pass_through_shader");
+    auto render = [&](const std::string& name, const std::string& set) {
+        const auto r = tt::runTwinrender(std::string("render ") + TWINRENDER_SOURCE_DIR +
+                                         "/scenes/planet.toml --renderer realtime --out " +
+                                         (dir / name).string() +
+                                         " --set camera.width=64 --set camera.height=48 " + set);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return twinrender::core::readImage(dir / name / "planet" / "realtime.exr");
+    };
+    const auto none = render("none", "--set realtime.surface.method=none");
+    const auto pass =
+        render("pass", std::string("--set realtime.surface.shader=") + TWINRENDER_SOURCE_DIR +
+                           "/examples/surface_pass_through.glsl");
+    EXPECT_TRUE(none == pass);
+    EXPECT_EQ(tt::readText(dir / "none" / "planet" / "realtime.png"),
+              tt::readText(dir / "pass" / "planet" / "realtime.png"));
+}

@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <glm/gtc/type_ptr.hpp>
+#include <regex>
+#include <sstream>
 
 #include "realtime/gl/error.h"
 
@@ -14,10 +16,32 @@ void deleteProgram(unsigned id) {
     glDeleteProgram(id);
 }
 
-std::string fileMap(const ShaderSource& source) {
-    std::string out;
-    for (std::size_t i = 0; i < source.files.size(); ++i)
-        out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", i, source.files[i]);
+// "FILE:LINE" of line `line` of the composed text.
+std::string place(const ShaderSource& source, int line) {
+    const ShaderSource::Span* span = nullptr;
+    for (const auto& s : source.spans)
+        if (s.firstLine <= line) span = &s;
+    if (!span || span->file >= static_cast<int>(source.files.size()))
+        return fmt::format("line {}", line);
+    return fmt::format("{}:{}", source.files[span->file], span->fileLine + line - span->firstLine);
+}
+
+// The driver's log with each "N:LINE(COLUMN): " (Mesa) or "N(LINE) : " (NVIDIA) prefix
+// rewritten as "FILE:LINE:COLUMN: " / "FILE:LINE: ".
+std::string namedLog(const std::string& log, const ShaderSource& source) {
+    static const std::regex MESA(R"(^\d+:(\d+)\((\d+)\): )");
+    static const std::regex NVIDIA(R"(^\d+\((\d+)\) : )");
+    std::istringstream lines(log);
+    std::string line, out;
+    while (std::getline(lines, line)) {
+        std::smatch m;
+        if (std::regex_search(line, m, MESA))
+            line = fmt::format("{}:{}: {}", place(source, std::stoi(m[1])), m[2].str(),
+                               m.suffix().str());
+        else if (std::regex_search(line, m, NVIDIA))
+            line = fmt::format("{}: {}", place(source, std::stoi(m[1])), m.suffix().str());
+        out += line + "\n";
+    }
     return out;
 }
 
@@ -34,9 +58,9 @@ GLuint compile(const std::string& program, GLenum stage, const ShaderSource& sou
         std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
         glGetShaderInfoLog(shader, length, nullptr, log.data());
         glDeleteShader(shader);
-        throw Error(fmt::format(
-            "program '{}': the {} shader does not compile (source numbers: {}):\n{}", program,
-            stage == GL_VERTEX_SHADER ? "vertex" : "fragment", fileMap(source), log.c_str()));
+        throw Error(fmt::format("program '{}': the {} shader does not compile:\n{}", program,
+                                stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
+                                namedLog(log.c_str(), source)));
     }
     return shader;
 }

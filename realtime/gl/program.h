@@ -1,6 +1,6 @@
 // A linked GLSL program (vertex + fragment) and typed uniform setters. Sources arrive
-// composed (version line, #defines, resolved includes); `files` names GLSL source-string
-// numbers used in #line directives, so compile logs can be mapped back to files.
+// composed (version line, #defines, resolved includes) with the map of their lines to files,
+// so compile logs name the file and line.
 #pragma once
 
 #include <glm/mat3x3.hpp>
@@ -18,16 +18,23 @@
 
 namespace twinrender::realtime::gl {
 
+// A composed shader and where its lines come from: `text` line `firstLine` (1-based) and the
+// lines after it, up to the next span, are lines `fileLine`... of files[file]. Drivers name
+// lines of the composed text; compile errors are reported by file and line through this map.
 struct ShaderSource {
+    struct Span {
+        int firstLine = 1, file = 0, fileLine = 1;
+    };
     std::string text;
-    std::vector<std::string> files;  // files[i]: the file of "#line N i"
+    std::vector<std::string> files;
+    std::vector<Span> spans;
 };
 
 class Program {
   public:
     Program() = default;
-    // Compiles and links; throws Error with the program name, the driver's log and the
-    // source-number-to-file map when either step fails.
+    // Compiles and links; throws Error with the program name and the driver's log, its lines
+    // named by file and line, when either step fails.
     Program(std::string name, const ShaderSource& vertex, const ShaderSource& fragment);
 
     void use() const;
