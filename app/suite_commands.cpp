@@ -157,6 +157,10 @@ ExitCode runSuite(const RunOptions& o) {
     // The GL context before the first render: without one, nothing can be compared.
     Devices devices(o.requireGpu);
     devices.realtime();
+    // Making a real-time renderer compiles a user's surface shader: one that does not compile
+    // is bad input, said before the first render.
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+        if (selected[i]) makeRenderer("realtime", devices, scenes[i]);
 
     compare::RunReport run;
     run.createdAt = nowUtc();
