@@ -8,6 +8,7 @@
 // answer and the field normals are computed once (in the warm-up render) and the previous
 // frame is handed back (Renderer::recycle). BM_Planet100k720pFirstFrame is a new device and
 // renderer per frame: culling and field normals included, compile excluded.
+// BM_Planet100k720pSurface/<method>: each surface method at its defaults.
 // Run: build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
@@ -113,6 +114,19 @@ void BM_Planet100k720pNoCulling(benchmark::State& state) {
 void BM_Planet100k720pFull2dSsss(benchmark::State& state) {
     frame(state, 100000, 1280, 720, [](tr::realtime::Settings& s) { s.ssss.separable = false; });
 }
+// Each surface method at its defaults (realtime.surface.method; docs/methods.md): the
+// "ssss" or "surface" counter is the method's pass, "normals" the gradient pass before it.
+void BM_Planet100k720pSurface(benchmark::State& state, tr::realtime::SurfaceMethod method) {
+    static tr::realtime::SurfaceMethod chosen;
+    chosen = method;
+    frame(state, 100000, 1280, 720, [](tr::realtime::Settings& s) {
+        s.surface.method = chosen;
+        if (chosen == tr::realtime::SurfaceMethod::Shader) {
+            s.surface.shaderPath = "surface_pass_through.glsl";
+            s.surface.shaderSource = "void filterSurface(ivec2 p, inout SurfaceSample s) {}\n";
+        }
+    });
+}
 // The GPU target of the issue (slow on llvmpipe: run it where a GPU is present).
 void BM_Planet1M1080p(benchmark::State& state) {
     frame(state, 1000000, 1920, 1080, nullptr);
@@ -135,6 +149,26 @@ BENCHMARK(BM_Planet100k720p)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet100k720pFirstFrame)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_Planet100k720pNoSsss)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet100k720pFull2dSsss)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(BM_Planet100k720pSurface, none, tr::realtime::SurfaceMethod::None)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet100k720pSurface, ssss, tr::realtime::SurfaceMethod::Ssss)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet100k720pSurface, bilateral, tr::realtime::SurfaceMethod::Bilateral)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet100k720pSurface, narrow_range, tr::realtime::SurfaceMethod::NarrowRange)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet100k720pSurface, curvature_flow,
+                  tr::realtime::SurfaceMethod::CurvatureFlow)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet100k720pSurface, shader_pass_through,
+                  tr::realtime::SurfaceMethod::Shader)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK(BM_Planet100k720pNoCulling)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_Cull100k)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet1M1080p)->Unit(benchmark::kMillisecond)->Iterations(2);

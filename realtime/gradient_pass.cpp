@@ -12,11 +12,19 @@ gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& sc
     const int w = gbuffer.surface.width(), h = gbuffer.surface.height();
     gl::Texture gradient(w, h, gl::Format::RGBA32F);
     {
-        gl::Framebuffer target("gradient splat", {{&gradient}});
+        // The G-buffer's depth, read only: a splat runs only where the surface does not lie
+        // in front of its whole support (support.vert).
+        gl::Framebuffer target("gradient splat", {{&gradient}}, gl::Attachment{&gbuffer.depth});
         target.bind();
         target.clearColor(0, glm::vec4(0.0f));
-        gl::setPipelineState({.depthClamp = true, .additiveBlend = true});
-        programs.get("support.vert", "gradient_splat.frag", {}).use();
+        const bool reversed = mode == DepthMode::Reversed;
+        gl::setPipelineState(
+            {.depthTest = reversed ? gl::DepthTest::Greater : gl::DepthTest::Less,
+             .depthWrite = false,
+             .depthClamp = true,
+             .clipDepth = reversed ? gl::ClipDepth::ZeroToOne : gl::ClipDepth::MinusOneToOne,
+             .additiveBlend = true});
+        programs.get("support.vert", "gradient_splat.frag", {depthDefine(mode)}).use();
         scene.bind();
         kernels.bindStorage(3);
         gbuffer.surface.bind(0);

@@ -155,6 +155,10 @@ void compilePrograms(ProgramCache& programs, const Settings& settings, bool emit
         if (emits) defines.emplace_back("EMISSION");
         programs.get("fullscreen.vert", "ssss.frag", defines);
     }
+    if (settings.particles.normal == NormalModel::Gradient) {
+        programs.get("support.vert", "gradient_splat.frag", {depthDefine(settings.depth)});
+        programs.get("fullscreen.vert", "gradient_resolve.frag");
+    }
     compileSurfacePrograms(programs, settings.surface);
     gl::finish();
 }
