@@ -146,6 +146,9 @@ int main(int argc, char** argv) {
             "--frames", sweepOpts.frames,
             "frames per combination, timed as their median (default 5; 1 when varying raymarch.*)")
         ->check(CLI::Range(1, 1000));
+    sweepCmd->add_option("--thresholds", sweepOpts.thresholds,
+                         "thresholds file (TOML): mark the combinations that pass and name the "
+                         "cheapest");
     sweepCmd->add_option("--cache", sweepOpts.cache,
                          "reference cache folder (default: OUT/reference_cache)");
     addPpd(sweepCmd, sweepOpts.ppd);

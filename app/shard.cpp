@@ -10,6 +10,7 @@
 #include <set>
 
 #include "app/comparison.h"
+#include "app/sweep_command.h"
 #include "compare/junit.h"
 #include "compare/report.h"
 #include "compare/report_json.h"
@@ -135,7 +136,6 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
     const std::size_t total = manifests.front().at("combinations").get<std::size_t>();
     std::optional<compare::SweepReport> merged;
     std::map<std::size_t, fs::path> seen;
-    bool anyError = false;
     for (std::size_t i = 0; i < dirs.size(); ++i) {
         if (manifests[i].at("combinations").get<std::size_t>() != total)
             throw core::InputError(fmt::format(
@@ -154,7 +154,6 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
                                 row.index >= total ? "is beyond the sweep"
                                                    : "is also in " + seen[row.index].string()));
             seen[row.index] = dirs[i];
-            anyError = anyError || !row.error.empty();
             if (fs::is_directory(dirs[i] / row.dir)) copyTree(dirs[i] / row.dir, out / row.dir);
         }
         if (fs::is_directory(dirs[i] / "reference_cache"))
@@ -177,7 +176,7 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
     compare::writeSweepReport(*merged, out);
     std::printf("merged %zu shards, %zu combinations -> %s, %s\n", dirs.size(), merged->rows.size(),
                 (out / "sweep.csv").c_str(), (out / "index.html").c_str());
-    return anyError ? ExitCode::Fail : ExitCode::Pass;
+    return finishSweep(*merged);
 }
 
 }  // namespace

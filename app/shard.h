@@ -54,7 +54,7 @@ struct MergeOptions {
 };
 // Checks that the shards belong together (same command, the same N, every K once, equal
 // settings) and writes what one unsharded run writes. Returns the run's exit code (the
-// worst verdict) or, for sweeps, Pass (Fail when a combination failed).
+// worst verdict) or the sweep's (finishSweep, app/sweep_command.h).
 ExitCode runMerge(const MergeOptions& options);
 
 }  // namespace twinrender::app

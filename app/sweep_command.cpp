@@ -1,6 +1,7 @@
 #include "app/sweep_command.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -63,7 +64,25 @@ struct Job {
     // non-realtime part), in raymarch mode the tight scene.
     std::optional<LoadedScene> tight;
     std::vector<std::string> tightOverrides;
+    compare::Bounds bounds;  // the scene's, with --thresholds
 };
+
+bool anyRowError(const compare::SweepReport& report) {
+    return std::any_of(report.rows.begin(), report.rows.end(),
+                       [](const compare::SweepRow& r) { return !r.error.empty(); });
+}
+
+// After a combination's line: ", pass", ", warn (smoothness.ratio)" or
+// ", fail (normal.mean_deg; warned: normal.p95_deg)"; "" when it is not checked.
+std::string verdictSuffix(const compare::SweepRow& row) {
+    if (!row.status) return "";
+    std::string metrics = fmt::format("{}", fmt::join(row.failed, ", "));
+    if (!row.warned.empty())
+        metrics +=
+            fmt::format("{}{}", metrics.empty() ? "" : "; warned: ", fmt::join(row.warned, ", "));
+    return fmt::format(", {}{}", compare::toString(*row.status),
+                       metrics.empty() ? "" : " (" + metrics + ")");
+}
 
 std::string combinationDir(std::size_t index, std::size_t total) {
     const int digits = std::max<int>(3, static_cast<int>(std::to_string(total - 1).size()));
@@ -152,6 +171,8 @@ ExitCode runSweep(const SweepOptions& o) {
                                            compare::metricNames(true)));
     std::optional<Shard> shard;
     if (!o.shard.empty()) shard = parseShard(o.shard);
+    std::optional<compare::Thresholds> thresholds;
+    if (!o.thresholds.empty()) thresholds = compare::Thresholds::parseFile(o.thresholds);
     if (!fs::is_regular_file(o.scene))
         throw core::InputError(
             fmt::format("{}: scene file not found; give the path of a .toml scene", o.scene));
@@ -192,6 +213,10 @@ ExitCode runSweep(const SweepOptions& o) {
             }
             throw core::InputError(fmt::format("{} (in the combination {})", message, which));
         }
+        // The bounds as `run` takes them: the file's, the scene file's own, the file's
+        // [scenes.NAME].
+        if (thresholds)
+            job.bounds = thresholds->forScene(job.test.scene.name, &job.test.scene.compare);
         if (convergence) {
             for (const auto& s : job.testOverrides)
                 if (!(startsWith(s, "raymarch.") &&
@@ -230,8 +255,8 @@ ExitCode runSweep(const SweepOptions& o) {
     report.combinations = total;
     report.createdAt = nowUtc();
     report.commandLine = o.commandLine;
+    report.thresholdsFile = o.thresholds;
 
-    bool anyError = false;
     for (std::size_t j = 0; j < jobs.size(); ++j) {
         const Job& job = jobs[j];
         compare::SweepRow row;
@@ -281,6 +306,15 @@ ExitCode runSweep(const SweepOptions& o) {
             scene.renderers[testRenderer] = rr;
             if (const auto it = result.errorMaps.find("beauty.flip"); it != result.errorMaps.end())
                 scene.errorMaps = compare::writeErrorMapImages({*it}, dir);
+            if (thresholds) {
+                // What the bounds see, as in `run`: the metrics and the renders' times, the
+                // test renderer's being its median frame.
+                compare::MetricValues checked = row.metrics;
+                addTimeMetrics(ref, test, checked);
+                checked["time." + testRenderer + "_ms"] = row.timingsMs.at("total");
+                scene.checks = compare::evaluate(checked, job.bounds);
+                compare::recordChecks(row, scene.checks);
+            }
             json settings = json::object();
             for (const auto& [k, v] : row.settings) settings[k] = v;
             scene.settings = {{"varied", settings},
@@ -289,16 +323,17 @@ ExitCode runSweep(const SweepOptions& o) {
                               {"reference_key", key}};
             compare::writeMetricsJson(scene, dir / "metrics.json");
             const auto m = row.metrics.find(o.metric);
-            std::printf("[%zu/%zu] %s: %s %.2f ms, %s %s\n", j + 1, jobs.size(),
+            std::printf("[%zu/%zu] %s: %s %.2f ms, %s %s%s\n", j + 1, jobs.size(),
                         row.label().c_str(), testRenderer.c_str(), row.timingsMs.at("total"),
                         o.metric.c_str(),
-                        m == row.metrics.end() ? "-" : compare::formatValue(m->second).c_str());
+                        m == row.metrics.end() ? "-" : compare::formatValue(m->second).c_str(),
+                        verdictSuffix(row).c_str());
         } catch (const core::InputError&) {
             throw;
         } catch (const std::exception& e) {
             // One combination that cannot be rendered fails; the others still run.
             row.error = e.what();
-            anyError = true;
+            if (thresholds) compare::recordChecks(row, {});
             std::printf("[%zu/%zu] %s: error: %s\n", j + 1, jobs.size(), row.label().c_str(),
                         e.what());
         }
@@ -313,6 +348,7 @@ ExitCode runSweep(const SweepOptions& o) {
                          {"vary", o.vary},
                          {"sets", o.sets},
                          {"metric", o.metric},
+                         {"thresholds", o.thresholds},
                          {"frames", frames},
                          {"ppd", o.ppd}};
         writeShardManifest(*shard,
@@ -326,7 +362,18 @@ ExitCode runSweep(const SweepOptions& o) {
     }
     std::printf("%zu combinations -> %s, %s\n", report.rows.size(), (out / "sweep.csv").c_str(),
                 (out / "index.html").c_str());
-    return anyError ? ExitCode::Fail : ExitCode::Pass;
+    if (!shard) return finishSweep(report);
+    // A shard holds part of the combinations: whether one passes is for the merged sweep to
+    // say, so a shard fails only when a combination could not be rendered.
+    for (const auto& line : compare::verdictLines(report))
+        std::printf("shard %d/%d: %s\n", shard->index, shard->count, line.c_str());
+    return anyRowError(report) ? ExitCode::Fail : ExitCode::Pass;
+}
+
+ExitCode finishSweep(const compare::SweepReport& report) {
+    for (const auto& line : compare::verdictLines(report)) std::printf("%s\n", line.c_str());
+    if (!report.thresholdsFile.empty()) return exitCodeOf(compare::sweepStatus(report));
+    return anyRowError(report) ? ExitCode::Fail : ExitCode::Pass;
 }
 
 }  // namespace twinrender::app

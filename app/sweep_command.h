@@ -3,7 +3,9 @@
 // reference that is rendered once per distinct reference and cached on disk by a hash of
 // everything that affects it. Varying realtime.* keys measures the real-time renderer against
 // the reference; varying raymarch.* keys measures the raymarcher against a tight render of
-// itself (its convergence). Writes compare/sweep_report.h's outputs.
+// itself (its convergence). With thresholds, each combination is held to the scene's bounds
+// as `run` holds a scene, and the cheapest that passes is named. Writes
+// compare/sweep_report.h's outputs.
 #pragma once
 
 #include <cstddef>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "app/exit_code.h"
+#include "compare/sweep_report.h"
 
 namespace twinrender::app {
 
@@ -22,13 +25,19 @@ struct SweepOptions {
     std::string out = "out/sweep";
     std::string cache;  // empty: OUT/reference_cache
     std::string metric = "beauty.flip";
-    int frames = 0;  // frames per combination, 0: 5 for realtime, 1 for raymarch
+    std::string thresholds;  // thresholds file; empty: the combinations are not checked
+    int frames = 0;          // frames per combination, 0: 5 for realtime, 1 for raymarch
     double ppd = 67.0;
     bool requireGpu = false;
     std::string shard;  // "K/N"; empty: all
     std::string commandLine;
 };
 ExitCode runSweep(const SweepOptions& options);
+
+// How a sweep ends, whole or merged from its shards: prints compare::verdictLines and returns
+// the exit code. Held to thresholds, the best combination's verdict (Pass when one passes);
+// else Fail when a combination could not be rendered, and Pass otherwise.
+ExitCode finishSweep(const compare::SweepReport& report);
 
 // "KEY=V1,V2,..." -> key and values. Commas inside [...] or quotes do not split (TOML arrays:
 // camera.position=[0,-4,1],[0,-8,1]). Throws core::InputError naming the argument.

@@ -96,9 +96,11 @@ std::string metricHeaderCell(const std::string& metric) {
 }
 
 std::string metricValueCell(const MetricValues& metrics, const std::string& metric,
-                            bool highlighted) {
+                            bool highlighted, std::optional<Status> status) {
     const auto it = metrics.find(metric);
-    return std::string("<td class=\"num") + (highlighted ? " pass" : "") + "\">" +
+    // A check's status, else the chart column's mark (pass-coloured).
+    const std::string_view mark = status ? toString(*status) : highlighted ? "pass" : "";
+    return fmt::format("<td class=\"num{}{}\">", mark.empty() ? "" : " ", mark) +
            (it == metrics.end() ? std::string("—") : htmlEscape(formatValue(it->second))) + "</td>";
 }
 

@@ -48,9 +48,9 @@ std::string metricTitle(const std::string& metric);
 std::string metricHeaderCell(const std::string& metric);
 
 // A table cell of a metric's value, "—" when the map lacks it; `highlighted` marks the
-// column of the page's chart.
+// column of the page's chart. A `status` (the metric's checks) colours the cell instead.
 std::string metricValueCell(const MetricValues& metrics, const std::string& metric,
-                            bool highlighted);
+                            bool highlighted, std::optional<Status> status = std::nullopt);
 
 // The row under a table row that failed: the error across `columns` columns, after one
 // empty cell.

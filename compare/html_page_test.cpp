@@ -39,6 +39,9 @@ TEST(HtmlPage, ValueCellsAndErrorRows) {
     const MetricValues m = {{"beauty.flip", 0.123456}};
     EXPECT_EQ(metricValueCell(m, "beauty.flip", true), "<td class=\"num pass\">0.1235</td>");
     EXPECT_EQ(metricValueCell(m, "beauty.ssim", false), "<td class=\"num\">—</td>");
+    // A check's status colours the cell, over the chart column's mark.
+    EXPECT_EQ(metricValueCell(m, "beauty.flip", true, Status::Fail),
+              "<td class=\"num fail\">0.1235</td>");
     EXPECT_EQ(errorRow(3, "no <GL>"),
               "<tr class=\"problems\"><td></td><td colspan=\"3\"><ul><li class=\"fail\">no "
               "&lt;GL&gt;</li></ul></td></tr>\n");

@@ -1,6 +1,7 @@
 // `twinrender sweep` end to end, on the planet scene at 64x48 so each sweep takes seconds:
 // the rows of the cartesian product, the Pareto front and the chart, the reference cache, the
-// raymarcher's convergence sweep, and bad input.
+// raymarcher's convergence sweep, the combinations held to thresholds, and bad input.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,6 +34,14 @@ std::size_t count(const std::string& text, const std::string& what) {
     std::size_t n = 0;
     for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
     return n;
+}
+
+// The line of the output that starts with `prefix`, without its end; empty when none does.
+std::string lineStarting(const std::string& text, const std::string& prefix) {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind(prefix, 0) == 0) return line;
+    return "";
 }
 
 }  // namespace
@@ -202,5 +211,119 @@ TEST(Sweep, BadInputIsExitFourBeforeAnyRender) {
     EXPECT_NE(metric.output.find("beauty.nope"), std::string::npos) << metric.output;
     const auto noVary = tt::runTwinrender("sweep " + scene + " --out " + out.string());
     EXPECT_EQ(noVary.exitCode, 4) << noVary.output;
+    // Thresholds are read before the first render: an unknown metric, a missing file.
+    const fs::path bounds = twinrender::testing::scratchFile("sweep_bad_thresholds.toml");
+    tt::writeFile(bounds, "\"beauty.flip\" = { max = 0.1 }\n\"beauty.nope\" = { max = 1 }\n");
+    const auto unknownMetric = tt::runTwinrender("sweep " + scene + GRID + " --thresholds " +
+                                                 bounds.string() + " --out " + out.string());
+    EXPECT_EQ(unknownMetric.exitCode, 4) << unknownMetric.output;
+    EXPECT_NE(unknownMetric.output.find("sweep_bad_thresholds.toml:2:25: key 'beauty.nope.max': "
+                                        "unknown metric 'beauty.nope'"),
+              std::string::npos)
+        << unknownMetric.output;
+    EXPECT_EQ(count(unknownMetric.output, "rendered in"), 0u) << unknownMetric.output;
+    const auto missing = tt::runTwinrender(
+        "sweep " + scene + GRID + " --thresholds " +
+        twinrender::testing::scratchFile("nowhere.toml").string() + " --out " + out.string());
+    EXPECT_EQ(missing.exitCode, 4) << missing.output;
+    EXPECT_NE(missing.output.find("thresholds file not found"), std::string::npos)
+        << missing.output;
     EXPECT_EQ(tt::countFiles(out), 0u);
+}
+
+// At 64x48 with 1500 particles, ꟻLIP is about 0.096 with SSSS and 0.107 without, whatever
+// the shadow map's resolution; SSSS off is also the faster. A bound of 0.1 passes the SSSS
+// rows only, so the cheapest passing combination is not the cheapest one.
+TEST(Sweep, ThresholdsMarkThePassingCombinationsAndNameTheCheapest) {
+    const fs::path out = tt::freshDir("sweep_thresholds");
+    const fs::path bounds = twinrender::testing::scratchFile("sweep_thresholds.toml");
+    tt::writeFile(bounds,
+                  "\"beauty.flip\" = { max = 0.1 }\n"
+                  "[scenes.planet]\n"
+                  "\"smoothness.ratio\" = { warn_max = 0.95 }\n");
+    const auto r =
+        tt::runTwinrender("sweep " + SCENES + "planet.toml" + SMALL + GRID + " --thresholds " +
+                          bounds.string() + " --frames 1 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto sweep = readJson(out / "sweep.json");
+    ASSERT_EQ(sweep["rows"].size(), 4u);
+    EXPECT_EQ(sweep["thresholds"], bounds.string());
+    const nlohmann::json* cheapest = nullptr;
+    for (const auto& row : sweep["rows"]) {
+        const bool ssss = row["settings"]["realtime.ssss.enabled"] == "true";
+        const double flip = row["metrics"]["beauty.flip"].get<double>();
+        ASSERT_EQ(flip <= 0.1, ssss) << row;  // the premise of the bound
+        EXPECT_EQ(row["status"], ssss ? "pass" : "fail") << row;
+        EXPECT_EQ(row["failed"], ssss ? nlohmann::json::array() : nlohmann::json{"beauty.flip"});
+        // The file's [scenes.planet] table applies too: the unsmoothed normals warn.
+        EXPECT_EQ(row["warned"],
+                  ssss ? nlohmann::json::array() : nlohmann::json{"smoothness.ratio"});
+        const double ms = row["timings_ms"]["total"].get<double>();
+        if (ssss && (!cheapest || ms < (*cheapest)["timings_ms"]["total"].get<double>()))
+            cheapest = &row;
+        // The combination's metrics.json holds its checks.
+        const auto metrics = readJson(out / row["dir"].get<std::string>() / "metrics.json");
+        EXPECT_EQ(metrics["status"], row["status"]) << metrics.dump(1);
+    }
+    ASSERT_NE(cheapest, nullptr);
+    const std::string set =
+        "--set realtime.ssss.enabled=true --set realtime.shadow_map.resolution=" +
+        (*cheapest)["settings"]["realtime.shadow_map.resolution"].get<std::string>();
+    const std::string line = lineStarting(r.output, "cheapest passing: ");
+    EXPECT_EQ(line, fmt::format("cheapest passing: {:.2f} ms: {}",
+                                (*cheapest)["timings_ms"]["total"].get<double>(), set))
+        << r.output;
+    EXPECT_NE(r.output.find(", fail (beauty.flip; warned: smoothness.ratio)"), std::string::npos)
+        << r.output;
+
+    // CSV: the verdict beside the settings (its columns: compare/sweep_report_test.cpp).
+    EXPECT_NE(readText(out / "sweep.csv").find("\n2,false,256,fail,beauty.flip,smoothness.ratio,"),
+              std::string::npos);
+    // The page: the verdict of every row, and the cheapest with its --set line.
+    const std::string html = readText(out / "index.html");
+    EXPECT_NE(html.find("Cheapest passing combination"), std::string::npos);
+    EXPECT_NE(html.find("<code>" + set + "</code>"), std::string::npos);
+    EXPECT_EQ(count(html, "<span class=\"badge pass\">pass</span>"), 2u + 1u);  // + header
+    EXPECT_EQ(count(html, "<span class=\"badge fail\">fail</span>"), 2u);
+    EXPECT_EQ(count(html, ">cheapest</span>"), 1u);
+
+    // The line, given back to `run` with the sweep's own settings, passes the same bounds.
+    const auto run =
+        tt::runTwinrender("run " + SCENES + "planet.toml" + SMALL + " " + set + " --thresholds " +
+                          bounds.string() + " --out " + (out / "run").string());
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    // While a combination that failed in the sweep fails there too.
+    const auto failing =
+        tt::runTwinrender("run " + SCENES + "planet.toml" + SMALL +
+                          " --set realtime.ssss.enabled=false --thresholds " + bounds.string() +
+                          " --out " + (out / "run_failing").string());
+    EXPECT_EQ(failing.exitCode, 2) << failing.output;
+}
+
+TEST(Sweep, NoPassingCombinationIsExitTwoAndSaysWhichMetricFailed) {
+    const fs::path out = tt::freshDir("sweep_none_pass");
+    const fs::path bounds = twinrender::testing::scratchFile("sweep_none_pass.toml");
+    tt::writeFile(bounds,
+                  "\"beauty.flip\" = { max = 0.01 }\n"
+                  "\"smoothness.ratio\" = { max = 0.95 }\n");
+    const std::string sweep = "sweep " + SCENES + "planet.toml" + SMALL +
+                              " --vary realtime.ssss.enabled=true,false --frames 1 --out " +
+                              out.string() + " --thresholds ";
+    const auto r = tt::runTwinrender(sweep + bounds.string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    // ꟻLIP fails in both, smoothness only without SSSS: the most frequent first.
+    EXPECT_EQ(lineStarting(r.output, "no combination passes"),
+              "no combination passes: beauty.flip failed in 2 of 2 combinations, "
+              "smoothness.ratio failed in 1")
+        << r.output;
+    EXPECT_EQ(r.output.find("cheapest"), std::string::npos) << r.output;
+    EXPECT_NE(readText(out / "index.html").find("No combination passes"), std::string::npos);
+
+    // Past warning bounds only: the best verdict is a warning, and the cheapest such is named.
+    tt::writeFile(bounds, "\"beauty.flip\" = { warn_max = 0.01 }\n");
+    const auto warned = tt::runTwinrender(sweep + bounds.string());
+    EXPECT_EQ(warned.exitCode, 1) << warned.output;
+    EXPECT_NE(lineStarting(warned.output, "cheapest with warnings only: ").find("--set "),
+              std::string::npos)
+        << warned.output;
 }
