@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/colour_field.h"
+#include "core/sph_kernel.h"
 
 namespace twinrender::realtime {
 
@@ -58,11 +59,17 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
         [&](const tbb::blocked_range<std::size_t>& range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const double maxRadius = settings.radiusScale * ps.h[i];
-                const double crossing = crossingDistance(field, glm::dvec3(ps.position[i]),
-                                                         glm::normalize(glm::dvec3(ps.normal[i])),
-                                                         maxRadius, settings.surfaceLevel);
-                radii[i] =
-                    static_cast<float>(std::min(maxRadius, settings.crossingScale * crossing));
+                const glm::dvec3 centre(ps.position[i]);
+                const double crossing =
+                    crossingDistance(field, centre, glm::normalize(glm::dvec3(ps.normal[i])),
+                                     maxRadius, settings.surfaceLevel);
+                // A particle alone in its support has a spherical droplet: the crossing is its
+                // radius exactly. crossing_scale is for the level set bulging between
+                // neighbours.
+                const double own = ps.volume[i] * core::m4Kernel(0.0, double(ps.h[i]));
+                const bool alone = field.value(centre) <= own * (1.0 + 1e-4);
+                radii[i] = static_cast<float>(
+                    std::min(maxRadius, (alone ? 1.0 : settings.crossingScale) * crossing));
             }
         });
     return radii;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/vec3.hpp>
 
 #include "core/sph_kernel.h"
 
@@ -20,7 +21,8 @@ core::ParticleSet lone(float h) {
 }
 
 // A lone particle's level set is the sphere where v W(r, h) = level: the field radius finds it
-// (to the bisection's 1e-4 h), times the crossing scale.
+// (to the bisection's 1e-4 h), whatever the crossing scale (which is for the level set bulging
+// between neighbours).
 TEST(ImpostorRadius, ALoneParticleGetsItsLevelSetDroplet) {
     const float h = 0.5f;
     const core::ParticleSet ps = lone(h);
@@ -36,7 +38,7 @@ TEST(ImpostorRadius, ALoneParticleGetsItsLevelSetDroplet) {
     EXPECT_NEAR(r[0], lo, 2e-4 * h);
     EXPECT_LT(r[0], 0.15 * h);  // about 0.13 h: far smaller than the fixed 0.9 h
     s.crossingScale = 1.2;
-    EXPECT_NEAR(impostorRadii(ps, s)[0], 1.2 * lo, 3e-4 * h);
+    EXPECT_NEAR(impostorRadii(ps, s)[0], lo, 2e-4 * h);
     s.radius = RadiusModel::Fixed;
     EXPECT_FLOAT_EQ(impostorRadii(ps, s)[0], 0.9f * h);
 }
@@ -66,8 +68,32 @@ TEST(ImpostorRadius, ALatticeSurfaceKeepsTheCap) {
     EXPECT_FLOAT_EQ(r[centreTop], 0.9f * 1.3f * s);
 }
 
+// Two particles 1.5 h apart: each one's crossing along its outward normal, times the crossing
+// scale (their level set bulges between them beyond the spheres of the crossings).
+core::ParticleSet pair(float h) {
+    core::ParticleSet ps = lone(h);
+    ps.resize(2);
+    ps.position[1] = ps.position[0] + glm::vec3(1.5f * h, 0.0f, 0.0f);
+    ps.h[1] = h;
+    ps.volume[1] = ps.volume[0];
+    ps.normal[0] = {-1.0f, 0.0f, 0.0f};
+    ps.normal[1] = {1.0f, 0.0f, 0.0f};
+    return ps;
+}
+
+TEST(ImpostorRadius, NeighboursGetTheCrossingScale) {
+    const core::ParticleSet ps = pair(0.5f);
+    ParticleSettings s;
+    s.crossingScale = 1.0;
+    const std::vector<float> plain = impostorRadii(ps, s);
+    EXPECT_GT(plain[0], impostorRadii(lone(0.5f), s)[0]);  // the neighbour's field adds
+    s.crossingScale = 1.2;
+    const std::vector<float> scaled = impostorRadii(ps, s);
+    for (int i = 0; i < 2; ++i) EXPECT_NEAR(scaled[i], 1.2f * plain[i], 1e-5f);
+}
+
 TEST(ImpostorRadius, TheCacheReusesItsAnswerOnlyForTheSameInputs) {
-    core::ParticleSet ps = lone(0.5f);
+    core::ParticleSet ps = pair(0.5f);
     ImpostorRadiusCache cache;
     ParticleSettings s;
     const float first = cache.radii(ps, s)[0];

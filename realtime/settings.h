@@ -54,11 +54,12 @@ struct ParticleSettings {
     // the raymarcher's raymarch.surface_level (0.13, as OpenSPH) unless set.
     double surfaceLevel = 0.13;
     // particles.crossing_scale ("field" only): the radius is this times the distance to the
-    // crossing along the normal (at most radius_scale * h), [1, 4]. The crossing along the
+    // crossing along the normal (at most radius_scale * h), [1, 4]; a particle alone in its
+    // support keeps the crossing itself, its droplet's exact radius. The crossing along the
     // normal is the nearest the level set comes on that side; between particles the smooth
     // level set bulges beyond the union of such spheres. Coverage IoU on the LAMMPS splash
-    // frames 0/12/20/40: 0.979/0.912/0.905/0.900 at 1, 0.979/0.932/0.933/0.920 at 1.15,
-    // 0.975/0.936/0.935/0.911 at 1.25, 0.970/0.934/0.927/0.897 at 1.35 (docs/methods.md).
+    // frames 0/12/20/40 at 320 x 240: 0.979/0.939/0.938/0.928 at 1.2, -/0.931/0.929/0.924 at
+    // 1.1, 0.974/0.943/0.938/0.922 at 1.3, 0.968/0.939/0.930/0.911 at 1.4 (docs/methods.md).
     double crossingScale = 1.2;
     // particles.normal: "field" | "blend". The particle normal (the colour-field gradient at
     // the centre) is one direction per particle, while the rendered surface turns across a
