@@ -47,13 +47,16 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
     return out;
 }
 
-std::vector<GpuKernel> packKernels(const core::ParticleSet& ps, const glm::dvec3& camera) {
-    std::vector<GpuKernel> out(ps.size());
-    for (std::size_t i = 0; i < ps.size(); ++i) {
+std::vector<GpuKernel> packKernels(const core::ParticleSet& ps, const glm::dvec3& camera,
+                                   std::span<const std::uint32_t> indices) {
+    const std::size_t n = indices.empty() ? ps.size() : indices.size();
+    std::vector<GpuKernel> out(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = indices.empty() ? k : indices[k];
         const double h = ps.h[i];
-        out[i].positionSupport = glm::vec4(glm::vec3(glm::dvec3(ps.position[i]) - camera),
+        out[k].positionSupport = glm::vec4(glm::vec3(glm::dvec3(ps.position[i]) - camera),
                                            static_cast<float>(core::M4_SUPPORT * h));
-        out[i].coefficients =
+        out[k].coefficients =
             glm::vec4(static_cast<float>(ps.volume[i] / (std::numbers::pi * h * h * h * h)),
                       static_cast<float>(1.0 / h), 0.0f, 0.0f);
     }

@@ -45,9 +45,10 @@ struct GpuKernel {
 };
 static_assert(sizeof(GpuKernel) == 32);
 
-// Every particle of the set, in order.
+// The particles `indices` of the set (every particle when empty), in order.
 std::vector<GpuKernel> packKernels(const core::ParticleSet& particles,
-                                   const glm::dvec3& cameraPosition);
+                                   const glm::dvec3& cameraPosition,
+                                   std::span<const std::uint32_t> indices = {});
 
 // shaders/textures.glsl, struct MaterialRecord (std430).
 struct GpuMaterial {

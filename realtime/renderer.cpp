@@ -25,6 +25,7 @@
 #include "realtime/light_frustum.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/passes.h"
+#include "realtime/surface_kernels.h"
 
 namespace twinrender::realtime {
 
@@ -33,9 +34,10 @@ struct DeviceState {
     const gl::Context& context;
     gl::Limits limits;
     ProgramCache programs;
-    OcclusionCuller culler;         // keeps the last particle set's answer (view-independent)
-    FieldNormalCache fieldNormals;  // the same for the G-buffer's field normal models
-    ImpostorRadiusCache radii;      // and for the impostor radii
+    OcclusionCuller culler;             // keeps the last particle set's answer (view-independent)
+    FieldNormalCache fieldNormals;      // the same for the G-buffer's field normal models
+    ImpostorRadiusCache radii;          // and for the impostor radii
+    SurfaceKernelCache surfaceKernels;  // and for the kernels the gradient pass adds
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
@@ -187,7 +189,8 @@ void checkBufferLimits(const core::RenderInput& in, const DeviceState& d, std::s
 // normals come from the colour field's gradient.
 struct Uploaded {
     SceneBuffers scene;
-    std::optional<gl::Buffer> kernels;
+    std::optional<gl::Buffer> kernels;  // those that reach the surface (surface_kernels.h)
+    std::size_t kernelCount = 0;
 };
 
 // The drawn particles: those that may be seen (`culled`, hidden ones removed; empty = all)
@@ -248,15 +251,25 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
                          gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
                          gpuParticles.size()};
     std::optional<gl::Buffer> kernels;
+    std::size_t kernelCount = 0;
     if (settings.particles.normal == NormalModel::Gradient) {
-        const std::vector<GpuKernel> packed = packKernels(ps, in.scene.camera.position);
-        kernels.emplace(gl::Buffer::of(std::span<const GpuKernel>(packed)));
+        const auto kernelStart = Clock::now();
+        const std::vector<std::uint32_t>& reaching =
+            d.surfaceKernels.kernels(ps, settings.particles.surfaceLevel);
+        frame.timingsMs["radius"] += msSince(kernelStart);
+        frame.counters["kernels_splatted"] = static_cast<double>(reaching.size());
+        if (!reaching.empty()) {
+            const std::vector<GpuKernel> packed =
+                packKernels(ps, in.scene.camera.position, reaching);
+            kernels.emplace(gl::Buffer::of(std::span<const GpuKernel>(packed)));
+            kernelCount = packed.size();
+        }
     }
     gl::checkErrors("upload");
     gl::finish();
     frame.timingsMs["upload"] =
         msSince(start) - frame.timingsMs["cull"] - frame.timingsMs["radius"];
-    return {std::move(buffers), std::move(kernels)};
+    return {std::move(buffers), std::move(kernels), kernelCount};
 }
 
 // ---- Passes ----
@@ -483,7 +496,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     PassInputs passInputs{d.programs, uploaded.scene, mSettings};
     if (uploaded.kernels) {
         passInputs.kernels = &*uploaded.kernels;
-        passInputs.kernelCount = in.particles.particles.size();
+        passInputs.kernelCount = uploaded.kernelCount;
     }
     passInputs.width = camera.width();
     passInputs.height = camera.height();
