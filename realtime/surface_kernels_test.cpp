@@ -39,8 +39,7 @@ TEST(SurfaceKernels, DeepParticlesAreLeftOutSurfaceOnesKept) {
                                   static_cast<std::uint32_t>((z * n + y) * n + x));
     };
     for (int layer = 0; layer < 2; ++layer) EXPECT_TRUE(isKept(layer, n / 2, n / 2)) << layer;
-    for (int layer = 3; layer <= n / 2; ++layer)
-        EXPECT_FALSE(isKept(layer, n / 2, n / 2)) << layer;
+    for (int layer = 3; layer <= n / 2; ++layer) EXPECT_FALSE(isKept(layer, n / 2, n / 2)) << layer;
     EXPECT_LT(kept.size(), ps.size() * 3 / 4);
     EXPECT_GT(kept.size(), ps.size() / 3);
     // A lone particle far away: its support is mostly outside.
