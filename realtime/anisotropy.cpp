@@ -46,7 +46,17 @@ Neighbourhood gather(const core::ParticleGrid& grid, const glm::dvec3& x, std::u
     return n;
 }
 
-Ellipsoid ellipsoidOf(const Neighbourhood& n, float radius, const AnisotropySettings& settings) {
+// anchor = "surface": the shift that moves the ellipsoid along the unit normal until it
+// reaches `radius` along it, as the impostor sphere about the particle does. Its reach along
+// n from the particle is shift . n + |A^T n| (|A^T n|: the support of {A u : |u| <= 1}).
+glm::dvec3 surfaceShift(const glm::dvec3& shift, const glm::dmat3& axes, const glm::dvec3& normal,
+                        double radius) {
+    const double reach = glm::dot(shift, normal) + glm::length(normal * axes);
+    return shift + (radius - reach) * normal;
+}
+
+Ellipsoid ellipsoidOf(const Neighbourhood& n, float radius, const glm::vec3& normal,
+                      const AnisotropySettings& settings) {
     const Ellipsoid sphere = Ellipsoid::sphere(radius);
     if (n.neighbours < settings.minNeighbours || !(n.weight > 0.0)) return sphere;
     const glm::dvec3 mean = n.first / n.weight;
@@ -58,9 +68,15 @@ Ellipsoid ellipsoidOf(const Neighbourhood& n, float radius, const AnisotropySett
     for (int k = 0; k < 3; ++k) spread[k] = std::max(e.values[k], largest / settings.maxAxisRatio);
     // Unit product: the volume of the sphere of the impostor radius.
     const double scale = double(radius) / std::cbrt(spread.x * spread.y * spread.z);
+    glm::dmat3 axes;
+    for (int k = 0; k < 3; ++k) axes[k] = scale * spread[k] * e.vectors[k];
+    glm::dvec3 shift = settings.smoothing * mean;
+    const double normalLength = glm::length(glm::dvec3(normal));
+    if (settings.anchor == EllipsoidAnchor::Surface && normalLength > 0.0)
+        shift = surfaceShift(shift, axes, glm::dvec3(normal) / normalLength, radius);
     Ellipsoid out;
-    out.shift = glm::vec3(settings.smoothing * mean);
-    for (int k = 0; k < 3; ++k) out.axes[k] = glm::vec3(scale * spread[k] * e.vectors[k]);
+    out.shift = glm::vec3(shift);
+    for (int k = 0; k < 3; ++k) out.axes[k] = glm::vec3(axes[k]);
     return out;
 }
 
@@ -69,7 +85,7 @@ Ellipsoid particleEllipsoid(const core::ParticleGrid& grid, const core::Particle
     if (!(radius > 0.0f)) return Ellipsoid::sphere(radius);  // no surface: not drawn
     const Neighbourhood n = gather(grid, glm::dvec3(ps.position[i]), static_cast<std::uint32_t>(i),
                                    NEIGHBOURHOOD_SCALE * double(ps.h[i]));
-    return ellipsoidOf(n, radius, settings);
+    return ellipsoidOf(n, radius, ps.normal[i], settings);
 }
 
 }  // namespace
@@ -108,9 +124,9 @@ const std::vector<Ellipsoid>& AnisotropyCache::ellipsoids(const core::ParticleSe
                                                           std::span<const float> radii,
                                                           const AnisotropySettings& settings) {
     const AnisotropySettings& o = mSettings;
-    const bool sameSettings = settings.smoothing == o.smoothing &&
-                              settings.maxAxisRatio == o.maxAxisRatio &&
-                              settings.minNeighbours == o.minNeighbours;
+    const bool sameSettings =
+        settings.smoothing == o.smoothing && settings.maxAxisRatio == o.maxAxisRatio &&
+        settings.minNeighbours == o.minNeighbours && settings.anchor == o.anchor;
     mReused = sameSettings && mKey.matches(ps) && sameValues(radii, mRadii);
     if (!mReused) {
         mKey.clear();

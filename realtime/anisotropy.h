@@ -7,17 +7,25 @@
 // the smoothed centre x_i + lambda (x_i^w - x_i), and the clamped spread
 //   S_i = diag(s_1, max(s_2, s_1 / k_r), max(s_3, s_1 / k_r)),
 // whose entries the paper's kernel takes as its axis lengths (G_i = R S_i^-1 R^T / h_i, times
-// a scale k_s = 1400 that assumes its scenes' units). Here the size is scale-free: the axis
-// lengths are the particle's impostor radius r (realtime/impostor_radius.h) times S_i
-// normalised to a unit product, a_k = r s_k / cbrt(s_1 s_2 s_3), so an ellipsoid has the
-// volume of the sphere it replaces, and the impostor radius keeps deciding the size (an
-// isolated particle stays the level set's small droplet, a particle without a surface is not
-// drawn). A particle with fewer than N_eps neighbours, or whose neighbours all coincide with
-// it, stays that sphere, about its own position.
+// a scale k_s = 1400 that assumes its scenes' units).
+//
+// Here the size is scale-free and the impostor radius r (realtime/impostor_radius.h) keeps
+// deciding it: the axis lengths are r times S_i normalised to a unit product,
+// a_k = r s_k / cbrt(s_1 s_2 s_3), so an ellipsoid has the volume of the sphere it replaces
+// (an isolated particle stays the level set's small droplet, one without a surface is not
+// drawn). Drawn as they are, the kernels of a body's outer layer lie inside the level set:
+// flattened across the surface (their short axis 0.4 r at k_r = 4) and pulled inwards by
+// the smoothing (about half their neighbourhood's offset, 0.3-0.5 h), they end most of a
+// radius below where the spheres ended. With anchor = "surface" (the default) each ellipsoid
+// is then moved along its particle's normal until it reaches as far along it as the sphere:
+// the surface stays where the radius model put it (the level set, with field radii), and
+// the smoothing acts along the surface only. anchor = "centre" keeps the paper's placement.
+// A particle with fewer than N_eps neighbours, or whose neighbours all coincide with it, stays
+// that sphere, about its own position.
 //
 // The raymarcher's isotropic level set stays the truth: an ellipsoid flattened along a flat
 // neighbourhood's normal (ratio k_r in a single layer) approximates a flat surface better than
-// the bumps of spheres, while the centre smoothing pulls a body's outer layer inwards.
+// the bumps of spheres.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,7 @@
 #include "realtime/anisotropy.h"
 
 #include <gtest/gtest.h>
+#include <tbb/info.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -61,8 +62,9 @@ Axes axesOf(const Ellipsoid& e) {
 
 // Inside a single layer the neighbourhood has no spread across the layer: the ellipsoid is
 // the paper's clamp exactly, k_r : k_r : 1 (the square lattice spreads equally along x and y),
-// its short axis along the layer's normal, its volume the impostor sphere's and its centre
-// the particle's (the neighbourhood is symmetric about it).
+// its short axis along the layer's normal, its volume the impostor sphere's. About the smoothed
+// centre ("centre") it is centred on the particle (the neighbourhood is symmetric about it);
+// "surface" lifts it along the normal until it reaches as far as the sphere.
 TEST(Anisotropy, ALayerFlattensToTheAxisRatioClamp) {
     const core::ParticleSet ps = lattice(15, 15, 1, 2.0f * SPACING);  // ~48 neighbours
     const std::size_t centre = nearest(ps, glm::vec3(0.0f));
@@ -71,6 +73,7 @@ TEST(Anisotropy, ALayerFlattensToTheAxisRatioClamp) {
     for (double ratio : {4.0, 2.0}) {
         AnisotropySettings s;
         s.maxAxisRatio = ratio;
+        s.anchor = EllipsoidAnchor::Centre;
         const Ellipsoid e = anisotropicEllipsoids(ps, radii, s)[centre];
         const Axes a = axesOf(e);
         const float k = static_cast<float>(ratio);
@@ -83,6 +86,10 @@ TEST(Anisotropy, ALayerFlattensToTheAxisRatioClamp) {
         // The axes are orthogonal.
         EXPECT_NEAR(glm::dot(e.axes[0], e.axes[1]), 0.0f, 1e-8f);
         EXPECT_NEAR(glm::dot(e.axes[0], e.axes[2]), 0.0f, 1e-8f);
+        s.anchor = EllipsoidAnchor::Surface;
+        const Ellipsoid lifted = anisotropicEllipsoids(ps, radii, s)[centre];
+        EXPECT_NEAR(lifted.shift.z, r - a.length[2], 1e-6f);
+        EXPECT_LT(glm::length(glm::vec2(lifted.shift)), 1e-7f);
     }
 }
 
@@ -92,7 +99,9 @@ TEST(Anisotropy, ASlabParticleIsFlattenedAlongTheNormal) {
     const core::ParticleSet ps = lattice(12, 12, 2, 1.3f * SPACING);
     const std::size_t i = nearest(ps, glm::vec3(0.05f, 0.05f, 0.05f));
     const std::vector<float> radii(ps.size(), 0.117f);
-    const Ellipsoid e = anisotropicEllipsoids(ps, radii, AnisotropySettings{})[i];
+    AnisotropySettings s;
+    s.anchor = EllipsoidAnchor::Centre;
+    const Ellipsoid e = anisotropicEllipsoids(ps, radii, s)[i];
     const Axes a = axesOf(e);
     EXPECT_NEAR(std::abs(a.shortest.z), 1.0f, 1e-5f);
     EXPECT_NEAR(a.length[0], a.length[1], 1e-5f);
@@ -110,6 +119,7 @@ TEST(Anisotropy, MatchesTheFormulasSummedOverEveryParticle) {
     const std::vector<float> radii(ps.size(), 0.1f);
     AnisotropySettings s;
     s.smoothing = 0.75;
+    s.anchor = EllipsoidAnchor::Centre;
     const std::vector<Ellipsoid> ellipsoids = anisotropicEllipsoids(ps, radii, s);
     int flattened = 0;
     for (std::size_t i :
@@ -157,6 +167,35 @@ TEST(Anisotropy, MatchesTheFormulasSummedOverEveryParticle) {
     EXPECT_GE(flattened, 2);  // the boundary particles at least
 }
 
+// "surface" moves the smoothed centre along the particle's normal only, until the ellipsoid
+// reaches as far along it as the impostor sphere: the top of a slab stays where the spheres'
+// was, while across it the centre keeps the smoothing.
+TEST(Anisotropy, TheSurfaceAnchorKeepsTheSpheresReachAlongTheNormal) {
+    core::ParticleSet ps = lattice(10, 10, 4, 1.3f * SPACING, 0.2f, 5);
+    const glm::vec3 normal = glm::normalize(glm::vec3(0.1f, -0.2f, 1.0f));
+    ps.normal.assign(ps.size(), normal);
+    const std::vector<float> radii(ps.size(), 0.11f);
+    AnisotropySettings s;
+    s.anchor = EllipsoidAnchor::Centre;
+    const std::vector<Ellipsoid> centred = anisotropicEllipsoids(ps, radii, s);
+    s.anchor = EllipsoidAnchor::Surface;
+    const std::vector<Ellipsoid> lifted = anisotropicEllipsoids(ps, radii, s);
+    const std::size_t top = nearest(ps, glm::vec3(0.0f, 0.0f, 0.15f));
+    int moved = 0;
+    for (std::size_t i : {top, nearest(ps, glm::vec3(0.0f)), nearest(ps, glm::vec3(0.4f))}) {
+        const Ellipsoid& e = lifted[i];
+        const glm::vec3 support(glm::dot(e.axes[0], normal), glm::dot(e.axes[1], normal),
+                                glm::dot(e.axes[2], normal));
+        EXPECT_NEAR(glm::dot(e.shift, normal) + glm::length(support), radii[i], 1e-6f) << i;
+        const glm::vec3 across = e.shift - centred[i].shift;
+        EXPECT_NEAR(glm::length(across - glm::dot(across, normal) * normal), 0.0f, 1e-6f) << i;
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(e.axes[k], centred[i].axes[k]);
+        moved += glm::length(across) > 0.1f * radii[i];
+    }
+    EXPECT_GE(moved, 1);  // the top layer's, flattened and pulled inwards about its centre
+    EXPECT_LT(glm::dot(centred[top].shift, normal), 0.0f);
+}
+
 // An isolated particle, and one with fewer than N_eps neighbours, stays the sphere of its
 // impostor radius about its own position; so does every particle with k_r = 1.
 TEST(Anisotropy, SparseParticlesStaySpheres) {
@@ -199,9 +238,10 @@ TEST(Anisotropy, DeterministicWhateverTheThreadCount) {
         arena.execute([&] { out = anisotropicEllipsoids(ps, radii, AnisotropySettings{}); });
         return out;
     };
-    const std::vector<Ellipsoid> one = with(1), four = with(4);
-    ASSERT_EQ(one.size(), four.size());
-    EXPECT_EQ(std::memcmp(one.data(), four.data(), one.size() * sizeof(Ellipsoid)), 0);
+    const std::vector<Ellipsoid> one = with(1),
+                                 many = with(std::max(2, tbb::info::default_concurrency()));
+    ASSERT_EQ(one.size(), many.size());
+    EXPECT_EQ(std::memcmp(one.data(), many.data(), one.size() * sizeof(Ellipsoid)), 0);
 }
 
 TEST(Anisotropy, TheCacheKeepsTheAnswerOfAnUnchangedSet) {
@@ -214,6 +254,9 @@ TEST(Anisotropy, TheCacheKeepsTheAnswerOfAnUnchangedSet) {
     EXPECT_TRUE(cache.reused());
     AnisotropySettings other;
     other.smoothing = 0.5;
+    cache.ellipsoids(ps, radii, other);
+    EXPECT_FALSE(cache.reused());
+    other.anchor = EllipsoidAnchor::Centre;
     cache.ellipsoids(ps, radii, other);
     EXPECT_FALSE(cache.reused());
     radii[3] = 0.05f;

@@ -115,9 +115,9 @@ class EllipsoidTest : public ::testing::Test {
 };
 
 // A layer tilted by 35 degrees seen obliquely: in its interior ellipsoids flattened 4 : 4 : 1
-// across the layer, towards its edge ellipsoids with shifted centres and at the edge spheres
-// (fewer than 25 neighbours). Every pixel agrees with the CPU ray cast: coverage, eye depth
-// and the ellipsoid's normal.
+// across the layer and lifted along its normal (anchor = "surface"), towards its edge also
+// pulled inwards, and at the edge spheres (fewer than 25 neighbours). Every pixel agrees with
+// the CPU ray cast: coverage, eye depth and the ellipsoid's normal.
 TEST_F(EllipsoidTest, TheGBufferHoldsTheEllipsoids) {
     LayerScene t({0.4, -2.4, 1.6});
     const glm::dmat3 tilt =
@@ -176,7 +176,7 @@ TEST_F(EllipsoidTest, TheGBufferHoldsTheEllipsoids) {
                          glm::degrees(std::acos(std::clamp(glm::dot(n, front.normal), -1.0, 1.0))));
         }
     EXPECT_GT(covered, 2000);
-    EXPECT_GT(compared, 1500);
+    EXPECT_GT(compared, 1000);
     // Float ray casting at a distance of about 20 ellipsoid radii (measured 1.4e-6 and 0.03
     // degrees).
     EXPECT_LT(worstDepth, 1e-5);

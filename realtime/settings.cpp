@@ -77,6 +77,10 @@ std::string_view toString(ParticleShape shape) {
     return shape == ParticleShape::Ellipsoid ? "ellipsoid" : "sphere";
 }
 
+std::string_view toString(EllipsoidAnchor anchor) {
+    return anchor == EllipsoidAnchor::Centre ? "centre" : "surface";
+}
+
 namespace {
 
 constexpr std::pair<SurfaceMethod, std::string_view> SURFACE_METHODS[] = {
@@ -207,6 +211,10 @@ Settings parseSettings(const core::ParameterTable& t) {
     a.maxAxisRatio = t.getDouble("particles.anisotropy.max_axis_ratio", da.maxAxisRatio, 1.0, 16.0);
     a.minNeighbours = static_cast<int>(
         t.getInt("particles.anisotropy.min_neighbours", da.minNeighbours, 1, 1000));
+    a.anchor = t.getEnum("particles.anisotropy.anchor", std::string(toString(da.anchor)),
+                         {"surface", "centre"}) == "centre"
+                   ? EllipsoidAnchor::Centre
+                   : EllipsoidAnchor::Surface;
 
     s.shadowMap.resolution =
         static_cast<int>(t.getInt("shadow_map.resolution", d.shadowMap.resolution, 16, 16384));
@@ -245,6 +253,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.anisotropy.smoothing", s.particles.anisotropy.smoothing},
         {"realtime.particles.anisotropy.max_axis_ratio", s.particles.anisotropy.maxAxisRatio},
         {"realtime.particles.anisotropy.min_neighbours", s.particles.anisotropy.minNeighbours},
+        {"realtime.particles.anisotropy.anchor", toString(s.particles.anisotropy.anchor)},
         {"realtime.shadow_map.resolution", s.shadowMap.resolution},
         {"realtime.shadow_map.bias", s.shadowMap.bias},
         {"realtime.shadow_map.slope_bias", s.shadowMap.slopeBias},

@@ -48,6 +48,12 @@ enum class ParticleShape {
     Ellipsoid,  // "ellipsoid": stretched along the neighbourhood's spread (Yu & Turk 2013)
 };
 
+// Where an ellipsoid sits along its particle's normal (particles.anisotropy.anchor).
+enum class EllipsoidAnchor {
+    Surface,  // "surface": as far along the normal as the impostor sphere reaches
+    Centre,   // "centre": about the smoothed centre (Yu & Turk)
+};
+
 // particles.anisotropy.*: the ellipsoids of shape = "ellipsoid" (realtime/anisotropy.h). The
 // paper's constants, except its size scale k_s (a covariance in its scene's units): an
 // ellipsoid has the volume of the particle's impostor sphere instead.
@@ -62,6 +68,13 @@ struct AnisotropySettings {
     // particles.anisotropy.min_neighbours: N_eps, particles with fewer neighbours within 2 h
     // (themselves not counted) stay spheres, 1..1000. The paper's 25.
     int minNeighbours = 25;
+    // particles.anisotropy.anchor: "surface" | "centre". About the smoothed centre, a surface
+    // particle's ellipsoid (flattened across the surface, pulled inwards by the smoothing)
+    // ends a good part of a radius below the level set its impostor sphere reaches: coverage
+    // IoU 0.871 on the planet against 0.988 for spheres, depth error 10x. "surface" moves it
+    // along the particle's normal until it reaches as far as the sphere (the smoothing then
+    // acts along the surface only): 0.981, depth error 1.2x (realtime/README.md).
+    EllipsoidAnchor anchor = EllipsoidAnchor::Surface;
 };
 
 struct ParticleSettings {
@@ -240,5 +253,6 @@ std::string_view toString(NormalModel model);
 std::string_view toString(RadiusModel model);
 std::string_view toString(SurfaceMethod method);
 std::string_view toString(ParticleShape shape);
+std::string_view toString(EllipsoidAnchor anchor);
 
 }  // namespace twinrender::realtime
