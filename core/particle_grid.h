@@ -58,43 +58,54 @@ class ParticleGrid {
     // rows of cells, then particles in grid order). Runs may hold particles beyond the
     // support: the caller tests the distance.
     template <typename Visit>
-    void visitSupport(const glm::dvec3& p, Visit&& visit) const;
+    void visitSupport(const glm::dvec3& p, Visit&& visit) const {
+        for (const Level& g : mLevels) visitLevel(g, p, M4_SUPPORT * g.hMax, visit);
+    }
+
+    // The same for the particles within `radius` of p (a neighbourhood of its own size, not
+    // the particles' supports): runs in the same fixed order, which may hold particles beyond
+    // the radius.
+    template <typename Visit>
+    void visitBall(const glm::dvec3& p, double radius, Visit&& visit) const {
+        for (const Level& g : mLevels) visitLevel(g, p, radius, visit);
+    }
 
   private:
+    // The runs of level g's cells that the ball of radius `reach` around p reaches.
+    template <typename Visit>
+    static void visitLevel(const Level& g, const glm::dvec3& p, double reach, Visit& visit);
+
     std::vector<Level> mLevels;
 };
 
 template <typename Visit>
-void ParticleGrid::visitSupport(const glm::dvec3& p, Visit&& visit) const {
-    for (const Level& g : mLevels) {
-        const double reach = M4_SUPPORT * g.hMax;
-        const double reach2 = reach * reach;
-        const std::int64_t rawZ0 = floorToInt((p.z - reach - g.origin.z) * g.invCell);
-        const std::int64_t rawZ1 = floorToInt((p.z + reach - g.origin.z) * g.invCell);
-        const std::int64_t rawY0 = floorToInt((p.y - reach - g.origin.y) * g.invCell);
-        const std::int64_t rawY1 = floorToInt((p.y + reach - g.origin.y) * g.invCell);
-        if (rawZ1 < 0 || rawZ0 >= g.nz || rawY1 < 0 || rawY0 >= g.ny) continue;
-        const std::int64_t z0 = std::max<std::int64_t>(rawZ0, 0), z1 = std::min(rawZ1, g.nz - 1);
-        const std::int64_t y0 = std::max<std::int64_t>(rawY0, 0), y1 = std::min(rawY1, g.ny - 1);
-        for (std::int64_t iz = z0; iz <= z1; ++iz) {
-            const double zLo = g.origin.z + static_cast<double>(iz) * g.cell;
-            const double dz = std::max({0.0, zLo - p.z, p.z - (zLo + g.cell)});
-            for (std::int64_t iy = y0; iy <= y1; ++iy) {
-                const double yLo = g.origin.y + static_cast<double>(iy) * g.cell;
-                const double dy = std::max({0.0, yLo - p.y, p.y - (yLo + g.cell)});
-                const double rest = reach2 - dy * dy - dz * dz;
-                if (rest < 0.0) continue;
-                // The row's cells that the support sphere reaches.
-                const double half = std::sqrt(rest);
-                const std::int64_t rawX0 = floorToInt((p.x - half - g.origin.x) * g.invCell);
-                const std::int64_t rawX1 = floorToInt((p.x + half - g.origin.x) * g.invCell);
-                if (rawX1 < 0 || rawX0 >= g.nx) continue;
-                const std::int64_t x0 = std::max<std::int64_t>(rawX0, 0);
-                const std::int64_t x1 = std::min(rawX1, g.nx - 1);
-                const auto first = static_cast<std::size_t>(g.cellIndex(x0, iy, iz));
-                const auto last = static_cast<std::size_t>(g.cellIndex(x1, iy, iz));
-                visit(g, g.cellStart[first], g.cellStart[last + 1]);
-            }
+void ParticleGrid::visitLevel(const Level& g, const glm::dvec3& p, double reach, Visit& visit) {
+    const double reach2 = reach * reach;
+    const std::int64_t rawZ0 = floorToInt((p.z - reach - g.origin.z) * g.invCell);
+    const std::int64_t rawZ1 = floorToInt((p.z + reach - g.origin.z) * g.invCell);
+    const std::int64_t rawY0 = floorToInt((p.y - reach - g.origin.y) * g.invCell);
+    const std::int64_t rawY1 = floorToInt((p.y + reach - g.origin.y) * g.invCell);
+    if (rawZ1 < 0 || rawZ0 >= g.nz || rawY1 < 0 || rawY0 >= g.ny) return;
+    const std::int64_t z0 = std::max<std::int64_t>(rawZ0, 0), z1 = std::min(rawZ1, g.nz - 1);
+    const std::int64_t y0 = std::max<std::int64_t>(rawY0, 0), y1 = std::min(rawY1, g.ny - 1);
+    for (std::int64_t iz = z0; iz <= z1; ++iz) {
+        const double zLo = g.origin.z + static_cast<double>(iz) * g.cell;
+        const double dz = std::max({0.0, zLo - p.z, p.z - (zLo + g.cell)});
+        for (std::int64_t iy = y0; iy <= y1; ++iy) {
+            const double yLo = g.origin.y + static_cast<double>(iy) * g.cell;
+            const double dy = std::max({0.0, yLo - p.y, p.y - (yLo + g.cell)});
+            const double rest = reach2 - dy * dy - dz * dz;
+            if (rest < 0.0) continue;
+            // The row's cells that the ball reaches.
+            const double half = std::sqrt(rest);
+            const std::int64_t rawX0 = floorToInt((p.x - half - g.origin.x) * g.invCell);
+            const std::int64_t rawX1 = floorToInt((p.x + half - g.origin.x) * g.invCell);
+            if (rawX1 < 0 || rawX0 >= g.nx) continue;
+            const std::int64_t x0 = std::max<std::int64_t>(rawX0, 0);
+            const std::int64_t x1 = std::min(rawX1, g.nx - 1);
+            const auto first = static_cast<std::size_t>(g.cellIndex(x0, iy, iz));
+            const auto last = static_cast<std::size_t>(g.cellIndex(x1, iy, iz));
+            visit(g, g.cellStart[first], g.cellStart[last + 1]);
         }
     }
 }

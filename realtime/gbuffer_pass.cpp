@@ -29,7 +29,10 @@ GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int wi
          .depthWrite = true,
          .depthClamp = true,
          .clipDepth = reversed ? gl::ClipDepth::ZeroToOne : gl::ClipDepth::MinusOneToOne});
-    programs.get("impostor.vert", "gbuffer.frag", {depthDefine(mode)}).use();
+    programs
+        .get("impostor.vert", "gbuffer.frag",
+             impostorDefines(scene.ellipsoids.has_value(), {depthDefine(mode)}))
+        .use();
     scene.bind();
     gl::drawTriangles(static_cast<int>(6 * scene.particleCount));
     gl::setPipelineState({});

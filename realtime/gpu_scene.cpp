@@ -47,6 +47,17 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
     return out;
 }
 
+std::vector<GpuEllipsoid> packEllipsoids(std::span<const Ellipsoid> ellipsoids,
+                                         std::span<const std::uint32_t> indices) {
+    const std::size_t n = indices.empty() ? ellipsoids.size() : indices.size();
+    std::vector<GpuEllipsoid> out(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const Ellipsoid& e = ellipsoids[indices.empty() ? k : indices[k]];
+        for (int a = 0; a < 3; ++a) out[k].axisShift[a] = glm::vec4(e.axes[a], e.shift[a]);
+    }
+    return out;
+}
+
 std::vector<GpuKernel> packKernels(const core::ParticleSet& ps, const glm::dvec3& camera,
                                    std::span<const std::uint32_t> indices) {
     const std::size_t n = indices.empty() ? ps.size() : indices.size();

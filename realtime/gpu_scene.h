@@ -11,6 +11,7 @@
 
 #include "core/particles.h"
 #include "core/texture.h"
+#include "realtime/anisotropy.h"
 #include "realtime/field_normal.h"
 
 namespace twinrender::realtime {
@@ -37,6 +38,18 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& particles,
                                        std::span<const float> radii,
                                        std::span<const std::uint32_t> indices = {},
                                        std::span<const FieldNormal> fieldNormals = {});
+
+// shaders/particles.glsl, struct EllipsoidRecord (std430; realtime.particles.shape =
+// "ellipsoid"): the semi-axis vectors of one packed particle's ellipsoid (world space, scene
+// units) in xyz, the shift of its centre from the particle's position in the w components.
+struct GpuEllipsoid {
+    glm::vec4 axisShift[3];
+};
+static_assert(sizeof(GpuEllipsoid) == 48);
+
+// One record per packed particle: `indices` as for packParticles (all when empty).
+std::vector<GpuEllipsoid> packEllipsoids(std::span<const Ellipsoid> ellipsoids,
+                                         std::span<const std::uint32_t> indices = {});
 
 // shaders/kernels.glsl, struct Kernel (std430): a particle's share of the colour field.
 struct GpuKernel {

@@ -8,6 +8,12 @@ void SceneBuffers::bind() const {
     particles.bindStorage(0);
     texels.bind(7);
     materials.bindStorage(2);
+    if (ellipsoids) ellipsoids->bindStorage(4);
+}
+
+std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::string> defines) {
+    if (ellipsoids) defines.emplace_back("ELLIPSOID");
+    return defines;
 }
 
 const char* depthDefine(DepthMode mode) {

@@ -2,12 +2,13 @@
 // ssss or surface -> shade -> post. Each pass takes the buffers it reads and returns the textures
 // it writes; the renderer (renderer.cpp) runs them in order, times each with a GL timer query and
 // skips the passes the settings do not need. Positions are camera-relative; the frame uniforms are
-// bound at uniform binding 0, particles and materials at storage bindings 0 and 2, the material
-// texels at texture unit 7.
+// bound at uniform binding 0, particles and materials at storage bindings 0 and 2 (ellipsoids at
+// 4), the material texels at texture unit 7.
 #pragma once
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "realtime/gl/buffer.h"
@@ -28,9 +29,16 @@ struct SceneBuffers {
     gl::BufferTexture texels;  // GpuMaterials::texels (RGB32F), texture unit 7
     gl::Buffer materials;      // GpuMaterial[]
     std::size_t particleCount = 0;
+    // realtime.particles.shape = "ellipsoid": GpuEllipsoid[], one per particle, storage
+    // binding 4; the impostor programs then take the ELLIPSOID variant (impostorDefines).
+    std::optional<gl::Buffer> ellipsoids = std::nullopt;
 
     void bind() const;
 };
+
+// `defines` with the one that selects the impostor shape of impostor.vert, gbuffer.frag and
+// shadow.frag: ELLIPSOID when `ellipsoids`.
+std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::string> defines);
 
 // The #define selecting the depth encoding in common.glsl.
 const char* depthDefine(DepthMode mode);

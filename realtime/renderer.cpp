@@ -14,6 +14,7 @@
 
 #include "core/camera.h"
 #include "core/error.h"
+#include "realtime/anisotropy.h"
 #include "realtime/field_normal.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/gl/context.h"
@@ -38,6 +39,7 @@ struct DeviceState {
     FieldNormalCache fieldNormals;      // the same for the G-buffer's field normal models
     ImpostorRadiusCache radii;          // and for the impostor radii
     SurfaceKernelCache surfaceKernels;  // and for the kernels the gradient pass adds
+    AnisotropyCache anisotropy;         // and for the ellipsoids (shape = "ellipsoid")
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
@@ -86,9 +88,12 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
         glm::vec4(light.nearDepth, light.farDepth, light.texelSize, settings.shadowMap.resolution);
     u.shadowBias = glm::vec4(settings.shadowMap.bias, settings.shadowMap.slopeBias,
                              settings.shadowMap.pcfRadius, 0.0);
-    const bool blend = settings.particles.normal == NormalModel::Blend;
-    u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale,
-                       blend ? settings.particles.sphereNormalWeight : 0.0, 0.0);
+    // The share of the impostor's own normal in the G-buffer's (gbuffer.frag).
+    const double impostorNormal = settings.particles.normal == NormalModel::Blend
+                                      ? settings.particles.sphereNormalWeight
+                                  : settings.particles.normal == NormalModel::Sphere ? 1.0
+                                                                                     : 0.0;
+    u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale, impostorNormal, 0.0);
     (void)particles;
     return u;
 }
@@ -148,9 +153,11 @@ void checkLimits(const core::RenderInput& in, const Settings& settings, const De
 // Compiles (once per device) the programs the settings use that are not built on first use
 // inside the passes.
 void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
+    const bool ellipsoids = settings.particles.shape == ParticleShape::Ellipsoid;
     if (usesShadowMap(settings.shadows))
-        programs.get("impostor.vert", "shadow.frag", {"SHADOW_PASS"});
-    programs.get("impostor.vert", "gbuffer.frag", {depthDefine(settings.depth)});
+        programs.get("impostor.vert", "shadow.frag", impostorDefines(ellipsoids, {"SHADOW_PASS"}));
+    programs.get("impostor.vert", "gbuffer.frag",
+                 impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
     if (usesSsss(settings)) {
         std::vector<std::string> defines;
         if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
@@ -213,9 +220,9 @@ std::vector<std::uint32_t> withSurface(std::span<const std::uint32_t> culled,
 }
 
 // The particles that may be seen (hidden ones culled where that is exact, those without a
-// surface left out) with their impostor radii and field normal models, the materials and the
-// frame uniforms, uploaded. Times "radius" and "cull" (both kept per particle set by the
-// device) and "upload" (the rest), counts "particles_drawn".
+// surface left out) with their impostor radii, ellipsoids and field normal models, the
+// materials and the frame uniforms, uploaded. Times "radius", "anisotropy" and "cull" (kept
+// per particle set by the device) and "upload" (the rest), counts "particles_drawn".
 Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
                 const Settings& settings, core::Frame& frame) {
     const auto start = Clock::now();
@@ -226,8 +233,16 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
         fitLightFrustum(in.particles.boundsMin, in.particles.boundsMax, in.scene.camera.position,
                         in.scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(in.scene, camera, in.particles, settings, light);
+    const std::vector<Ellipsoid>* ellipsoids = nullptr;
+    if (settings.particles.shape == ParticleShape::Ellipsoid) {
+        const auto anisotropyStart = Clock::now();
+        ellipsoids = &d.anisotropy.ellipsoids(ps, radii, settings.particles.anisotropy);
+        frame.timingsMs["anisotropy"] = msSince(anisotropyStart);
+    }
+    // The culling test is exact for spheres only: an ellipsoid inside the union of its
+    // neighbours' bounding spheres may still show between their ellipsoids.
     std::span<const std::uint32_t> culled;
-    if (settings.particles.cullHidden && cullingIsExact(ps, camera, radii)) {
+    if (settings.particles.cullHidden && !ellipsoids && cullingIsExact(ps, camera, radii)) {
         const auto cullStart = Clock::now();
         culled = d.culler.unoccluded(ps, radii);
         frame.timingsMs["cull"] = msSince(cullStart);
@@ -250,6 +265,11 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
                                                gl::BufferFormat::RGB32F),
                          gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
                          gpuParticles.size()};
+    if (ellipsoids) {
+        const std::vector<GpuEllipsoid> packed =
+            nothingDrawn ? std::vector<GpuEllipsoid>{} : packEllipsoids(*ellipsoids, drawn);
+        buffers.ellipsoids.emplace(gl::Buffer::of(std::span<const GpuEllipsoid>(packed)));
+    }
     std::optional<gl::Buffer> kernels;
     std::size_t kernelCount = 0;
     if (settings.particles.normal == NormalModel::Gradient) {
@@ -267,8 +287,8 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     }
     gl::checkErrors("upload");
     gl::finish();
-    frame.timingsMs["upload"] =
-        msSince(start) - frame.timingsMs["cull"] - frame.timingsMs["radius"];
+    frame.timingsMs["upload"] = msSince(start) - frame.timingsMs["cull"] -
+                                frame.timingsMs["radius"] - frame.timingsMs["anisotropy"];
     return {std::move(buffers), std::move(kernels), kernelCount};
 }
 
@@ -481,7 +501,8 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     frame.device = d.context.renderer();
     frame.settings = toJson(mSettings);
     frame.particleCount = in.particles.particles.size();
-    for (const char* stage : {"radius", "cull", "upload", "readback"}) frame.timingsMs[stage] = 0.0;
+    for (const char* stage : {"radius", "anisotropy", "cull", "upload", "readback"})
+        frame.timingsMs[stage] = 0.0;
     for (const Pass& pass : PASSES) frame.timingsMs[pass.name] = 0.0;
 
     // Whether anything emits: otherwise the emission buffer is zero and SSSS leaves it alone.

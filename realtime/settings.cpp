@@ -61,6 +61,8 @@ std::string_view toString(NormalModel model) {
             return "blend";
         case NormalModel::Gradient:
             return "gradient";
+        case NormalModel::Sphere:
+            return "sphere";
         case NormalModel::Field:
             break;
     }
@@ -69,6 +71,14 @@ std::string_view toString(NormalModel model) {
 
 std::string_view toString(RadiusModel model) {
     return model == RadiusModel::Fixed ? "fixed" : "field";
+}
+
+std::string_view toString(ParticleShape shape) {
+    return shape == ParticleShape::Ellipsoid ? "ellipsoid" : "sphere";
+}
+
+std::string_view toString(EllipsoidAnchor anchor) {
+    return anchor == EllipsoidAnchor::Centre ? "centre" : "surface";
 }
 
 namespace {
@@ -183,13 +193,28 @@ Settings parseSettings(const core::ParameterTable& t) {
         t.getDouble("particles.surface_level", d.particles.surfaceLevel, 1e-6, 1e6);
     const std::string normal =
         t.getEnum("particles.normal", std::string(toString(d.particles.normal)),
-                  {"field", "blend", "gradient"});
+                  {"field", "blend", "gradient", "sphere"});
     s.particles.normal = normal == "blend"      ? NormalModel::Blend
                          : normal == "gradient" ? NormalModel::Gradient
+                         : normal == "sphere"   ? NormalModel::Sphere
                                                 : NormalModel::Field;
     s.particles.sphereNormalWeight =
         t.getDouble("particles.sphere_normal_weight", d.particles.sphereNormalWeight, 0.0, 1.0);
     s.particles.cullHidden = t.getBool("particles.cull_hidden", d.particles.cullHidden);
+    s.particles.shape = t.getEnum("particles.shape", std::string(toString(d.particles.shape)),
+                                  {"sphere", "ellipsoid"}) == "ellipsoid"
+                            ? ParticleShape::Ellipsoid
+                            : ParticleShape::Sphere;
+    const AnisotropySettings& da = d.particles.anisotropy;
+    AnisotropySettings& a = s.particles.anisotropy;
+    a.smoothing = t.getDouble("particles.anisotropy.smoothing", da.smoothing, 0.0, 1.0);
+    a.maxAxisRatio = t.getDouble("particles.anisotropy.max_axis_ratio", da.maxAxisRatio, 1.0, 16.0);
+    a.minNeighbours = static_cast<int>(
+        t.getInt("particles.anisotropy.min_neighbours", da.minNeighbours, 1, 1000));
+    a.anchor = t.getEnum("particles.anisotropy.anchor", std::string(toString(da.anchor)),
+                         {"surface", "centre"}) == "centre"
+                   ? EllipsoidAnchor::Centre
+                   : EllipsoidAnchor::Surface;
 
     s.shadowMap.resolution =
         static_cast<int>(t.getInt("shadow_map.resolution", d.shadowMap.resolution, 16, 16384));
@@ -224,6 +249,11 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.normal", toString(s.particles.normal)},
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},
+        {"realtime.particles.shape", toString(s.particles.shape)},
+        {"realtime.particles.anisotropy.smoothing", s.particles.anisotropy.smoothing},
+        {"realtime.particles.anisotropy.max_axis_ratio", s.particles.anisotropy.maxAxisRatio},
+        {"realtime.particles.anisotropy.min_neighbours", s.particles.anisotropy.minNeighbours},
+        {"realtime.particles.anisotropy.anchor", toString(s.particles.anisotropy.anchor)},
         {"realtime.shadow_map.resolution", s.shadowMap.resolution},
         {"realtime.shadow_map.bias", s.shadowMap.bias},
         {"realtime.shadow_map.slope_bias", s.shadowMap.slopeBias},

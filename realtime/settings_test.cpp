@@ -73,7 +73,36 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.depth"), "reversed");
     EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
     EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
-    EXPECT_EQ(j.size(), 40u);
+    EXPECT_EQ(j.size(), 45u);
+}
+
+TEST(Settings, ReadsTheParticleShapeKeys) {
+    const Settings d = parseSettings(table({}));
+    EXPECT_EQ(d.particles.shape, ParticleShape::Sphere);
+    EXPECT_DOUBLE_EQ(d.particles.anisotropy.smoothing, 0.9);
+    EXPECT_DOUBLE_EQ(d.particles.anisotropy.maxAxisRatio, 4.0);
+    EXPECT_EQ(d.particles.anisotropy.minNeighbours, 25);
+    EXPECT_EQ(d.particles.anisotropy.anchor, EllipsoidAnchor::Surface);
+    const Settings s =
+        parseSettings(table({{"particles.shape", std::string("ellipsoid")},
+                             {"particles.normal", std::string("sphere")},
+                             {"particles.anisotropy.smoothing", 0.5},
+                             {"particles.anisotropy.max_axis_ratio", 3.0},
+                             {"particles.anisotropy.min_neighbours", 10L},
+                             {"particles.anisotropy.anchor", std::string("centre")}}));
+    EXPECT_EQ(s.particles.shape, ParticleShape::Ellipsoid);
+    EXPECT_EQ(s.particles.normal, NormalModel::Sphere);
+    EXPECT_DOUBLE_EQ(s.particles.anisotropy.smoothing, 0.5);
+    EXPECT_DOUBLE_EQ(s.particles.anisotropy.maxAxisRatio, 3.0);
+    EXPECT_EQ(s.particles.anisotropy.minNeighbours, 10);
+    EXPECT_EQ(s.particles.anisotropy.anchor, EllipsoidAnchor::Centre);
+    const nlohmann::json j = toJson(s);
+    EXPECT_EQ(j.at("realtime.particles.shape"), "ellipsoid");
+    EXPECT_EQ(j.at("realtime.particles.normal"), "sphere");
+    EXPECT_EQ(j.at("realtime.particles.anisotropy.smoothing"), 0.5);
+    EXPECT_EQ(j.at("realtime.particles.anisotropy.max_axis_ratio"), 3.0);
+    EXPECT_EQ(j.at("realtime.particles.anisotropy.min_neighbours"), 10);
+    EXPECT_EQ(j.at("realtime.particles.anisotropy.anchor"), "centre");
 }
 
 void expectError(const core::ParameterTable& t, const std::string& fragment) {
@@ -93,7 +122,13 @@ TEST(Settings, UnknownKeyNamesFileLineAndKey) {
 TEST(Settings, RejectsBadValues) {
     expectError(table({{"depth", std::string("logarithmic")}}), "realtime.depth");
     expectError(table({{"shadows", std::string("esm")}}), "realtime.shadows");
-    expectError(table({{"particles.normal", std::string("sphere")}}), "realtime.particles.normal");
+    expectError(table({{"particles.normal", std::string("flat")}}), "realtime.particles.normal");
+    expectError(table({{"particles.shape", std::string("disc")}}), "realtime.particles.shape");
+    expectError(table({{"particles.anisotropy.smoothing", 1.5}}), "out of range");
+    expectError(table({{"particles.anisotropy.max_axis_ratio", 0.5}}), "out of range");
+    expectError(table({{"particles.anisotropy.min_neighbours", 0L}}), "out of range");
+    expectError(table({{"particles.anisotropy.anchor", std::string("top")}}),
+                "realtime.particles.anisotropy.anchor");
     expectError(table({{"shadow_map.resolution", std::int64_t(1 << 20)}}), "out of range");
     expectError(table({{"ssss.iterations", std::int64_t(0)}}), "out of range");
     expectError(table({{"ssss.enabled", std::int64_t(1)}}), "wrong type");

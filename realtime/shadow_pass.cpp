@@ -12,7 +12,10 @@ gl::Texture runShadowPass(ProgramCache& programs, const SceneBuffers& scene, int
     framebuffer.clearDepth(1.0f);
     gl::setPipelineState(
         {.depthTest = gl::DepthTest::Less, .depthWrite = true, .depthClamp = true});
-    programs.get("impostor.vert", "shadow.frag", {"SHADOW_PASS"}).use();
+    programs
+        .get("impostor.vert", "shadow.frag",
+             impostorDefines(scene.ellipsoids.has_value(), {"SHADOW_PASS"}))
+        .use();
     scene.bind();
     gl::drawTriangles(static_cast<int>(6 * scene.particleCount));
     gl::setPipelineState({});

@@ -1,6 +1,8 @@
-// The G-buffer pass: ray-sphere intersection per pixel, depth in the selected encoding, and
-// the particle's attributes: normal (blended with the sphere's), uv extrapolated to the hit point with d(uv)/dx, body and
-// material, projected radius, emission (emission map at uv + blackbody glow).
+// The G-buffer pass: ray-impostor intersection per pixel (a sphere, or with ELLIPSOID an
+// ellipsoid), depth in the selected encoding, and the particle's attributes: normal (the
+// model of realtime.particles.normal, blended with the impostor's own), uv extrapolated to
+// the hit point with d(uv)/dx, body and material, projected radius, emission (emission map at
+// uv + blackbody glow).
 #include "common.glsl"
 #include "textures.glsl"
 
@@ -8,6 +10,10 @@ in vec2 vOffset;
 in vec3 vQuadPoint;
 flat in float vCentreDistance;
 flat in float vRadius;
+#ifdef ELLIPSOID
+in vec3 vQuadOffset;
+flat in mat3 vInverseAxes;
+#endif
 flat in vec3 vCentre;
 flat in vec3 vNormal;
 flat in vec3 vHessianDiagonal;
@@ -24,6 +30,21 @@ layout(location = 1) out vec4 outEmission;  // emission (linear RGB), 0
 layout(location = 2) out vec4 outSurface;   // eye depth, body, projected radius (px), material
 
 void main() {
+#ifdef ELLIPSOID
+    // The eye ray as q + s dir from the quad point q, in the ellipsoid's unit-sphere space
+    // o + s m with o = A^-1 (q - centre): o is of order 1 whatever the distance to the
+    // particle, so the quadratic |o + s m|^2 = 1 has no large-number cancellation.
+    vec3 dir = normalize(vQuadPoint);
+    vec3 o = vInverseAxes * vQuadOffset;
+    vec3 m = vInverseAxes * dir;
+    float a = dot(m, m), b = dot(o, m);
+    float disc = b * b - a * (dot(o, o) - 1.0);
+    if (disc < 0.0) discard;
+    float s = (-b - sqrt(disc)) / a;
+    vec3 hit = vQuadPoint + s * dir;  // eye space
+    // The normal of |A^-1 (x - centre)| = 1: A^-T times the hit point in unit-sphere space.
+    vec3 impostorNormal = normalize(transpose(vInverseAxes) * (o + s * m));
+#else
     // The eye ray through the quad point q: with rho = |q - c| in the plane perpendicular to
     // the centre direction, the ray passes the centre at distance D rho / sqrt(D^2 + rho^2)
     // and its closest approach lies at D^2 / sqrt(D^2 + rho^2). No large-number cancellation,
@@ -37,6 +58,8 @@ void main() {
     if (miss2 >= r2) discard;
     float t = d2 / sqrt(d2 + rho2) - sqrt(r2 - miss2);
     vec3 hit = normalize(vQuadPoint) * t;  // eye space
+    vec3 impostorNormal = (hit - vCentre) / vRadius;
+#endif
     float z = -hit.z;
     if (z < cameraNear() || z > cameraFar()) discard;
     gl_FragDepth = windowDepth(z);
@@ -50,12 +73,12 @@ void main() {
     // over the impostor (realtime/field_normal.h), misc.z = 0; "blend", the particle's normal
     // (no Hessian) tilted towards the impostor's own normal by misc.z: at a surface point the
     // particle's own kernel adds a gradient along (x - x_i), which the normal taken at the
-    // particle's centre lacks.
-    vec3 d = vHessianDiagonal, o = vHessianOffDiagonal;
-    vec3 model = vNormal + vec3(dot(vec3(d.x, o.x, o.y), offset), dot(vec3(o.x, d.y, o.z), offset),
-                                dot(vec3(o.y, o.z, d.z), offset));
-    vec3 sphereNormal = worldFromView * ((hit - vCentre) / vRadius);
-    outNormalUv = vec4(octEncode(normalize(mix(model, sphereNormal, misc.z))), u, v);
+    // particle's centre lacks; "sphere", the impostor's own normal, misc.z = 1.
+    vec3 d = vHessianDiagonal, h = vHessianOffDiagonal;
+    vec3 model = vNormal + vec3(dot(vec3(d.x, h.x, h.y), offset), dot(vec3(h.x, d.y, h.z), offset),
+                                dot(vec3(h.y, h.z, d.z), offset));
+    outNormalUv =
+        vec4(octEncode(normalize(mix(model, worldFromView * impostorNormal, misc.z))), u, v);
     outEmission = vec4(emission, 0.0);
     outSurface = vec4(z, vBody, vRadius * pixelsPerUnitAt(-vCentre.z), vGlowMaterial.w);
 }
