@@ -127,6 +127,12 @@ void BM_Planet100k720pSurface(benchmark::State& state, tr::realtime::SurfaceMeth
         }
     });
 }
+// Ellipsoid particles (realtime.particles.shape; never culled) with the default surface method.
+void BM_Planet100k720pEllipsoids(benchmark::State& state) {
+    frame(state, 100000, 1280, 720, [](tr::realtime::Settings& s) {
+        s.particles.shape = tr::realtime::ParticleShape::Ellipsoid;
+    });
+}
 // The GPU target of the issue (slow on llvmpipe: run it where a GPU is present).
 void BM_Planet1M1080p(benchmark::State& state) {
     frame(state, 1000000, 1920, 1080, nullptr);
@@ -169,6 +175,7 @@ BENCHMARK_CAPTURE(BM_Planet100k720pSurface, shader_pass_through,
                   tr::realtime::SurfaceMethod::Shader)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+BENCHMARK(BM_Planet100k720pEllipsoids)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet100k720pNoCulling)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_Cull100k)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet1M1080p)->Unit(benchmark::kMillisecond)->Iterations(2);
