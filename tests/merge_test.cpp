@@ -84,6 +84,9 @@ TEST(Merge, ShardedRunEqualsTheUnshardedRun) {
             EXPECT_TRUE(fs::exists(dir / "merged" / scene / f)) << scene << "/" << f;
     }
     EXPECT_TRUE(fs::exists(dir / "merged" / "index.html"));
+    // summary.md has no times and no command line: the same file.
+    EXPECT_FALSE(readText(dir / "whole" / "summary.md").empty());
+    EXPECT_EQ(readText(dir / "whole" / "summary.md"), readText(dir / "merged" / "summary.md"));
     EXPECT_EQ(count(readText(dir / "merged" / "junit.xml"), "<testcase "),
               count(readText(dir / "whole" / "junit.xml"), "<testcase "));
 }

@@ -21,14 +21,16 @@ struct RunResult {
     int exitCode;
     std::string output;
     nlohmann::json summary;
+    std::string markdown;  // summary.md
 };
 
 RunResult run(const std::string& name, const std::string& args) {
     const fs::path out = tt::freshDir("suite_" + name);
     const auto r = tt::runTwinrender("run " + args + " --out " + out.string());
-    RunResult result{r.exitCode, r.output, nullptr};
+    RunResult result{r.exitCode, r.output, nullptr, ""};
     std::ifstream in(out / "summary.json");
     if (in) result.summary = nlohmann::json::parse(in);
+    result.markdown = tt::readText(out / "summary.md");
     return result;
 }
 
@@ -60,9 +62,10 @@ TEST(Suite, TheDefaultScenesPassTheirThresholds) {
     const auto r = tt::runTwinrender("run " + SCENES + " --thresholds " + THRESHOLDS + " --out " +
                                      out.string() + " --junit " + (out / "junit.xml").string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
-    for (const char* f : {"index.html", "summary.json", "junit.xml", "ringworld/index.html",
-                          "ringworld/metrics.json", "ringworld/realtime.exr",
-                          "ringworld/raymarch.exr", "ringworld/error.beauty.png"})
+    for (const char* f :
+         {"index.html", "summary.json", "summary.md", "junit.xml", "ringworld/index.html",
+          "ringworld/metrics.json", "ringworld/realtime.exr", "ringworld/raymarch.exr",
+          "ringworld/error.beauty.png"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     std::ifstream in(out / "summary.json");
     const auto summary = nlohmann::json::parse(in);
@@ -202,6 +205,15 @@ TEST(Suite, ABaselineCatchesARegressionInsideTheBounds) {
               std::string::npos)
         << worse.output;
     EXPECT_EQ(worse.output.find("realtime.realtime."), std::string::npos) << worse.output;
+    // summary.md: the metric, linked to its row of the scene page, with its change.
+    EXPECT_NE(worse.markdown.find("| Change from baseline |"), std::string::npos) << worse.markdown;
+    EXPECT_NE(worse.markdown.find("| [planet](planet/index.html) | ❌ fail | "), std::string::npos)
+        << worse.markdown;
+    EXPECT_NE(worse.markdown.find("[normal.mean\\_deg](planet/index.html#metric-normal.mean_deg)"),
+              std::string::npos)
+        << worse.markdown;
+    EXPECT_NE(same.markdown.find("| [planet](planet/index.html) | ✅ pass |"), std::string::npos)
+        << same.markdown;
 }
 
 TEST(Suite, NoOpenGlIsExitFourWithWhatWasTried) {
