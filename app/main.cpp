@@ -48,6 +48,15 @@ void addPpd(CLI::App* cmd, double& ppd) {
         ->capture_default_str();
 }
 
+// CI annotations of the checks that did not pass, for the commands that write a run's report.
+void addAnnotations(CLI::App* cmd, std::string& format) {
+    cmd->add_option("--annotations", format,
+                    "print the failures and warnings as CI annotations: github (the default when "
+                    "GITHUB_ACTIONS=true) | none")
+        ->check(CLI::IsMember({"github", "none"}))
+        ->type_name("github|none");
+}
+
 void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
                  const std::filesystem::path& dir) {
     std::printf("%s: %s %dx%d, %zu particles, %.1f ms on %s -> %s\n", s.scene.name.c_str(),
@@ -118,6 +127,7 @@ int main(int argc, char** argv) {
             "--shard", runOpts.shard,
             "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
         ->type_name("K/N");
+    addAnnotations(runCmd, runOpts.annotations);
     std::string runStudies;
     runCmd
         ->add_option(
@@ -180,6 +190,7 @@ int main(int argc, char** argv) {
         app.add_subcommand("merge", "join the output folders of `run|sweep --shard K/N`");
     mergeCmd->add_option("DIRS", mergeOpts.inputs, "the shards' output folders")->required();
     mergeCmd->add_option("--out", mergeOpts.out, "output folder of the joined report")->required();
+    addAnnotations(mergeCmd, mergeOpts.annotations);
 
     std::string blessDir, blessOut;
     auto* blessCmd = app.add_subcommand("bless", "write the baseline of a run");

@@ -7,12 +7,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 
 #include "app/comparison.h"
 #include "app/progress.h"
 #include "app/shard.h"
+#include "compare/annotations.h"
 #include "compare/error_maps.h"
 #include "compare/junit.h"
 #include "compare/metric_table.h"
@@ -188,6 +190,7 @@ ExitCode runSuite(const RunOptions& o) {
             report = compare::SceneReport{};
             report.name = s.scene.name;
             report.description = s.scene.description;
+            report.settings = {{"scene_file", s.scene.file.string()}};
             report.error = e.what();
         }
         run.scenes.push_back(std::move(report));
@@ -247,7 +250,19 @@ ExitCode runSuite(const RunOptions& o) {
     const compare::Status status = run.status();
     std::printf("%s: %s\n", std::string(compare::toString(status)).c_str(),
                 (out / "index.html").c_str());
+    printAnnotations(run, o.annotations);
     return exitCodeOf(status);
+}
+
+void printAnnotations(const compare::RunReport& run, const std::string& format) {
+    const char* actions = std::getenv("GITHUB_ACTIONS");
+    const bool github =
+        format == "github" || (format.empty() && actions && std::string(actions) == "true");
+    if (!github) return;
+    const char* workspace = std::getenv("GITHUB_WORKSPACE");
+    const fs::path root = workspace && *workspace ? fs::path(workspace) : fs::current_path();
+    std::fputs(compare::githubAnnotations(run, root).c_str(), stdout);
+    std::fflush(stdout);
 }
 
 ExitCode runBless(const std::string& runDir, const std::string& out) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/exit_code.h"
+#include "compare/report.h"
 
 namespace twinrender::app {
 
@@ -33,8 +34,15 @@ struct RunOptions {
     // Whether the report links to the stability studies in OUT/studies (main runs them after
     // the scenes: `run --studies`).
     bool linkStudies = false;
+    std::string annotations;  // "github" | "none"; "": printAnnotations decides
 };
 ExitCode runSuite(const RunOptions& options);
+
+// Prints the run's checks that did not pass as CI annotations (compare/annotations.h) in
+// `format`: "github", "none", or "" for "github" when the environment has GITHUB_ACTIONS=true
+// (as GitHub Actions sets it), else none. Paths are relative to GITHUB_WORKSPACE when set,
+// else to the working folder.
+void printAnnotations(const compare::RunReport& run, const std::string& format);
 
 // Writes the baseline of RUN_DIR (its summary.json) to `out` (default RUN_DIR/baseline.json).
 ExitCode runBless(const std::string& runDir, const std::string& out);

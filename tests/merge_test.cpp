@@ -10,6 +10,7 @@
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
+using tt::count;
 using tt::readJson;
 using tt::readText;
 namespace fs = std::filesystem;
@@ -34,12 +35,6 @@ void dropTimes(json& j) {
     } else if (j.is_array()) {
         for (auto& v : j) dropTimes(v);
     }
-}
-
-std::size_t count(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-    return n;
 }
 
 }  // namespace
