@@ -7,9 +7,10 @@
 
 namespace twinrender::app {
 
-compare::MetricSettings metricSettings(const LoadedScene& s, double ppd) {
+compare::MetricSettings metricSettings(const LoadedScene& s, double ppd, double flipOver) {
     compare::MetricSettings m;
     m.ppd = ppd;
+    m.flipOver = flipOver;
     m.exposure = s.scene.camera.exposure;
     m.lightDirection = s.scene.light.direction;
     m.hasLight = true;
@@ -24,13 +25,13 @@ void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
 
 compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
                                   const core::Frame& test, const compare::Bounds& bounds,
-                                  const compare::Baseline* baseline, double ppd,
+                                  const compare::Baseline* baseline, double ppd, double flipOver,
                                   const std::filesystem::path& dir) {
     compare::SceneReport report;
     report.name = s.scene.name;
     report.description = s.scene.description;
     const compare::MetricResult result =
-        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd));
+        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd, flipOver));
     report.metrics = result.values;
     addTimeMetrics(ref, test, report.metrics);
 

@@ -89,6 +89,7 @@ ExitCode runCompare(const CompareOptions& o) {
     const core::Image test = core::readImage(o.test);
     compare::MetricSettings settings;
     settings.ppd = o.ppd;
+    settings.flipOver = o.flipOver;
     const compare::MetricResult result = compare::computeMetrics(ref, test, settings);
     compare::SceneReport report;
     report.name = fs::path(o.test).stem().string();
@@ -183,8 +184,8 @@ ExitCode runSuite(const RunOptions& o) {
             writeRender(s, ref, dir);
             const core::Frame test = render("realtime", devices, s);
             writeRender(s, test, dir);
-            report =
-                compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd, dir);
+            report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd,
+                                  o.flipOver, dir);
         } catch (const std::exception& e) {
             // One scene that cannot be rendered or compared fails; the others still run.
             report = compare::SceneReport{};
@@ -209,8 +210,9 @@ ExitCode runSuite(const RunOptions& o) {
         }
         for (const auto& r : run.scenes) reports.push_back(compare::sceneReportJson(r));
         const nlohmann::json settings = {
-            {"scenes", files},        {"sets", o.sets}, {"thresholds", thresholdsFile},
-            {"baseline", o.baseline}, {"ppd", o.ppd},   {"junit", !o.junit.empty()}};
+            {"scenes", files},          {"sets", o.sets}, {"thresholds", thresholdsFile},
+            {"baseline", o.baseline},   {"ppd", o.ppd},   {"flip_over", o.flipOver},
+            {"junit", !o.junit.empty()}};
         writeShardManifest(*shard,
                            {{"command", "run"},
                             {"settings", settings},

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/exit_code.h"
+#include "compare/flip_pooling.h"
 #include "compare/report.h"
 
 namespace twinrender::app {
@@ -17,6 +18,7 @@ struct CompareOptions {
     std::string out = "out/compare";
     std::string thresholds;  // empty: no bounds, the verdict is pass
     double ppd = 67.0;       // ꟻLIP's pixels per degree
+    double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
 };
 ExitCode runCompare(const CompareOptions& options);
 
@@ -29,8 +31,9 @@ struct RunOptions {
     std::vector<std::string> sets;
     bool requireGpu = false;
     double ppd = 67.0;
-    std::string commandLine;  // recorded in the report
-    std::string shard;        // "K/N" (app/shard.h); empty: every scene
+    double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
+    std::string commandLine;                                     // recorded in the report
+    std::string shard;  // "K/N" (app/shard.h); empty: every scene
     // Whether the report links to the stability studies in OUT/studies (main runs them after
     // the scenes: `run --studies`).
     bool linkStudies = false;

@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 
+#include "compare/flip_pooling.h"
 #include "compare/masks.h"
 #include "core/image.h"
 
@@ -19,6 +20,9 @@ namespace twinrender::compare {
 struct MetricSettings {
     // FLIP observer's pixels per degree (`--ppd`), > 0; 67 is FLIP's default.
     double ppd = 67.0;
+    // The ꟻLIP error above which a pixel counts in beauty.flip_over (`--flip-over`), in
+    // (0, 1); flip_pooling.h.
+    double flipOver = FlipPoolingSettings{}.overLevel;
     // Multiplies the linear beauty before the tonemapper (core::tonemap), > 0. AOV images only.
     double exposure = 1.0;
     // The way the light travels (the scene's light.direction, core::LightSettings::direction),
@@ -35,9 +39,9 @@ MaskSettings maskSettings(const MetricSettings& settings);
 
 struct MetricResult {
     // By metric key (metric_table.h): the table's AnyPair metrics (beauty.psnr, beauty.ssim,
-    // beauty.flip) for every pair, its AovPair ones too for AOV images. A metric whose mask is
-    // empty is NaN (and silhouette.mean_px is +inf when only one image has an outline): a JSON
-    // writer must map both.
+    // beauty.flip and its pooled statistics) for every pair, its AovPair ones too for AOV images. A
+    // metric whose mask is empty is NaN (and silhouette.mean_px is +inf when only one image has an
+    // outline): a JSON writer must map both.
     std::map<std::string, double> values;
     // One-channel float images of the pair's size: "beauty.flip" always; for AOV images also
     // "normal" (angle, degrees), "depth" (relative error), "uv" (seam-aware uv distance), "id"

@@ -251,6 +251,24 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
                           (dir / "strict.toml").string() + " --out " + (dir / "c2").string());
     EXPECT_EQ(png.exitCode, 2) << png.output;
     EXPECT_EQ(png.output.find("normal.mean_deg"), std::string::npos) << png.output;
+    // The pooled ꟻLIP statistics can be bounded; --flip-over sets the level of flip_over.
+    const std::string pngs = "compare " + (dir / "planet" / "raymarch.png").string() + " " +
+                             (dir / "planet" / "realtime.png").string();
+    tt::writeFile(dir / "tail.toml", "\"beauty.flip_p99\" = { max = 0.01 }\n");
+    const auto tail = tt::runTwinrender(pngs + " --thresholds " + (dir / "tail.toml").string() +
+                                        " --out " + (dir / "c4").string());
+    EXPECT_EQ(tail.exitCode, 2) << tail.output;
+    EXPECT_NE(tail.output.find("beauty.flip_p99 = "), std::string::npos) << tail.output;
+    const auto low = tt::runTwinrender(pngs + " --flip-over 0.05 --out " + (dir / "c5").string());
+    ASSERT_EQ(low.exitCode, 0) << low.output;
+    const double overDefault =
+        tt::readJson(dir / "c4" / "metrics.json")["metrics"]["beauty.flip_over"].get<double>();
+    const double overLow =
+        tt::readJson(dir / "c5" / "metrics.json")["metrics"]["beauty.flip_over"].get<double>();
+    EXPECT_GT(overLow, overDefault);
+    EXPECT_EQ(tt::runTwinrender(pngs + " --flip-over 1 --out " + (dir / "c6").string()).exitCode,
+              4);
+    EXPECT_FALSE(fs::exists(dir / "c6"));
     // Not comparable (an EXR against a PNG of another size), unreadable.
     const auto sizes =
         tt::runTwinrender("compare " + ref + " " + (dir / "c1" / "error.beauty.png").string() +
