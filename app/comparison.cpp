@@ -38,6 +38,7 @@ compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
     report.settings = {{"scene_file", s.scene.file.string()},
                        {ref.renderer, ref.settings},
                        {test.renderer, test.settings}};
+    if (result.hdrExposures) report.settings["compare"] = hdrExposuresJson(*result.hdrExposures);
     report.checks = compare::evaluate(report.metrics, bounds);
     if (baseline) {
         if (const auto* blessed = baseline->metrics(s.scene.name)) report.baseline = *blessed;
@@ -59,6 +60,13 @@ compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
     }
     report.errorMaps = compare::writeErrorMapImages(result.errorMaps, dir);
     return report;
+}
+
+nlohmann::json hdrExposuresJson(const compare::ExposureRange& range) {
+    return {{"hdrflip",
+             {{"start_exposure", range.start},
+              {"stop_exposure", range.stop},
+              {"exposures", range.count}}}};
 }
 
 std::string nowUtc() {

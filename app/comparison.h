@@ -26,6 +26,10 @@ compare::SceneReport compareScene(const LoadedScene& scene, const core::Frame& r
                                   const compare::Baseline* baseline, double ppd, double flipOver,
                                   const std::filesystem::path& sceneDir);
 
+// The exposures beauty.hdrflip was taken over, as a report's settings show them:
+// {"hdrflip": {"start_exposure", "stop_exposure", "exposures"}} (stops, and their count).
+nlohmann::json hdrExposuresJson(const compare::ExposureRange& range);
+
 // The time a report is written, "2026-11-21 16:40 UTC".
 std::string nowUtc();
 

@@ -106,6 +106,10 @@ ExitCode runCompare(const CompareOptions& o) {
     report.errorMaps = compare::writeErrorMapImages(result.errorMaps, out);
     compare::writeMetricsJson(report, out / "metrics.json");
     printMetricTable(report.metrics, report.checks);
+    if (result.hdrExposures)
+        std::printf("beauty.hdrflip over %d exposures from %.3f to %.3f stops\n",
+                    result.hdrExposures->count, result.hdrExposures->start,
+                    result.hdrExposures->stop);
     const compare::Status status = report.status();
     std::printf("%s -> %s (%s)\n", o.test.c_str(), (out / "metrics.json").c_str(),
                 std::string(compare::toString(status)).c_str());

@@ -43,6 +43,10 @@ const std::vector<MetricInfo>& metricTable() {
         {"beauty.flip_over", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, false, false,
          "fraction of the pixels whose ꟻLIP error is above the level --flip-over (default 0.5): "
          "rare large errors the mean hides"},
+        {"beauty.hdrflip", "", B::Lower, 0.0, 1e-3, "beauty", S::AovPair, false, false,
+         "mean HDR-ꟻLIP of the linear beauty (Andersson et al. 2021): per pixel the largest "
+         "LDR-ꟻLIP over ACES-tonemapped exposures from the reference's brightest pixel to its "
+         "median lit one, 0 to 1"},
         {"coverage.iou", "", B::Higher, 1.0, 1e-3, "A", S::AovPair, true, false,
          "intersection over union of the pixels each render covers"},
         {"silhouette.mean_px", "px", B::Lower, 0.0, 0.05, "A", S::AovPair, true, false,

@@ -11,6 +11,7 @@
 
 #include "compare/buffer_metrics.h"
 #include "compare/flip.h"
+#include "compare/hdr_flip.h"
 #include "compare/masks.h"
 #include "compare/psnr.h"
 #include "compare/ssim.h"
@@ -147,6 +148,12 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
         result.errorMaps["beauty.flip"] = std::move(f.errorMap);
     }
     if (!refAov) return result;
+
+    HdrFlipSettings hdrSettings;
+    hdrSettings.ppd = settings.ppd;
+    const HdrFlipResult hdr = hdrFlip(reference, test, hdrSettings);
+    result.values["beauty.hdrflip"] = hdr.mean;
+    result.hdrExposures = hdr.range;
 
     const Masks masks = computeMasks(reference, test, maskSettings(settings));
 

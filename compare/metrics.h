@@ -2,16 +2,18 @@
 // `twinrender compare` and `run` make.
 //
 // Two AOV images (every channel of core::aov::channelNames()): the beauty metrics on the
-// tonemapped sRGB beauty (the image a person sees) and every per-buffer metric over its mask
-// (masks.h, buffer_metrics.h). Two plain images (no AOV channel other than R, G, B, A; e.g.
-// PNGs): the beauty metrics only, on R, G, B as given.
+// tonemapped sRGB beauty (the image a person sees), beauty.hdrflip on the linear beauty, and
+// every per-buffer metric over its mask (masks.h, buffer_metrics.h). Two plain images (no AOV
+// channel other than R, G, B, A; e.g. PNGs): the beauty metrics only, on R, G, B as given.
 #pragma once
 
 #include <glm/vec3.hpp>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "compare/flip_pooling.h"
+#include "compare/hdr_flip.h"
 #include "compare/masks.h"
 #include "core/image.h"
 
@@ -48,6 +50,8 @@ struct MetricResult {
     // (1 where the visible body differs), "shadow" (1 false, 2 missed shadow) and "emission"
     // (per-pixel RMS over R, G, B), each 0 where its mask does not reach.
     std::map<std::string, core::Image> errorMaps;
+    // AOV images: the exposures beauty.hdrflip was taken over (hdr_flip.h), to report beside it.
+    std::optional<ExposureRange> hdrExposures;
 };
 
 // True when the image carries every AOV channel; false when it carries none but R, G, B, A.

@@ -25,12 +25,13 @@ const std::set<std::string> BEAUTY_KEYS = {"beauty.psnr",     "beauty.ssim",
                                            "beauty.flip",     "beauty.flip_p95",
                                            "beauty.flip_p99", "beauty.flip_over"};
 const std::set<std::string> ALL_KEYS = {
-    "beauty.psnr",     "beauty.ssim",         "beauty.flip",
-    "beauty.flip_p95", "beauty.flip_p99",     "beauty.flip_over",
-    "coverage.iou",    "silhouette.mean_px",  "depth.rel_mean",
-    "id.mismatch",     "normal.mean_deg",     "normal.p95_deg",
-    "uv.mean",         "emission.rmse",       "smoothness.ratio",
-    "shadow.iou",      "shadow.false_shadow", "shadow.missed_shadow"};
+    "beauty.psnr",         "beauty.ssim",     "beauty.flip",
+    "beauty.flip_p95",     "beauty.flip_p99", "beauty.flip_over",
+    "beauty.hdrflip",      "coverage.iou",    "silhouette.mean_px",
+    "depth.rel_mean",      "id.mismatch",     "normal.mean_deg",
+    "normal.p95_deg",      "uv.mean",         "emission.rmse",
+    "smoothness.ratio",    "shadow.iou",      "shadow.false_shadow",
+    "shadow.missed_shadow"};
 const std::set<std::string> MAP_KEYS = {"beauty.flip", "normal", "depth",   "uv",
                                         "id",          "shadow", "emission"};
 
@@ -110,6 +111,9 @@ TEST(Metrics, IdenticalAovImagesArePerfect) {
     EXPECT_EQ(r.values.at("beauty.flip_p95"), 0.0);
     EXPECT_EQ(r.values.at("beauty.flip_p99"), 0.0);
     EXPECT_EQ(r.values.at("beauty.flip_over"), 0.0);
+    EXPECT_EQ(r.values.at("beauty.hdrflip"), 0.0);
+    ASSERT_TRUE(r.hdrExposures.has_value());
+    EXPECT_EQ(r.hdrExposures->start, exposureRange(img).start);
     EXPECT_EQ(r.values.at("coverage.iou"), 1.0);
     EXPECT_EQ(r.values.at("silhouette.mean_px"), 0.0);
     EXPECT_EQ(r.values.at("depth.rel_mean"), 0.0);
@@ -153,6 +157,8 @@ TEST(Metrics, ADifferentTestIsWorseOnEveryMetric) {
     EXPECT_LT(r.values.at("beauty.psnr"), 40.0);
     EXPECT_LT(r.values.at("beauty.ssim"), 1.0);
     EXPECT_GT(r.values.at("beauty.flip"), 0.0);
+    EXPECT_EQ(r.values.at("beauty.hdrflip"), hdrFlip(ref, test).mean);
+    EXPECT_GT(r.values.at("beauty.hdrflip"), 0.0);
     EXPECT_LT(r.values.at("coverage.iou"), 1.0);
     // Outlines shifted 2 pixels horizontally: the mean distance lies between 0 and 2.
     EXPECT_GT(r.values.at("silhouette.mean_px"), 0.5);
@@ -225,6 +231,7 @@ TEST(Metrics, PlainImagesGetTheBeautyMetricsOnThePixelsAsGiven) {
     const MetricResult r = computeMetrics(ref, test);
     EXPECT_EQ(keys(r.values), BEAUTY_KEYS);
     EXPECT_EQ(keys(r.errorMaps), std::set<std::string>{"beauty.flip"});
+    EXPECT_FALSE(r.hdrExposures.has_value());
     EXPECT_EQ(r.values.at("beauty.psnr"), psnr(ref, test).psnr);
     EXPECT_EQ(r.values.at("beauty.flip"), flip(ref, test).mean);
     // A PNG with alpha (R, G, B, A) is a plain image too.

@@ -71,6 +71,14 @@ TEST(Suite, TheDefaultScenesPassTheirThresholds) {
     const auto summary = nlohmann::json::parse(in);
     EXPECT_EQ(summary["status"], "pass");
     EXPECT_EQ(summary["scenes"].size(), 8u);
+    // HDR-ꟻLIP on every scene, particles on black included, with the exposures it took.
+    for (const auto& s : summary["scenes"]) {
+        EXPECT_TRUE(s["metrics"]["beauty.hdrflip"].is_number()) << s["name"];
+        EXPECT_GE(s["settings"]["compare"]["hdrflip"]["exposures"].get<int>(), 2) << s["name"];
+        EXPECT_LT(s["settings"]["compare"]["hdrflip"]["start_exposure"].get<double>(),
+                  s["settings"]["compare"]["hdrflip"]["stop_exposure"].get<double>())
+            << s["name"];
+    }
 }
 
 TEST(Suite, LogDepthKeepsTheTelescopeInOrderWhereStandardDoesNot) {
@@ -240,6 +248,7 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
         tt::runTwinrender("compare " + ref + " " + test + " --out " + (dir / "c1").string());
     EXPECT_EQ(all.exitCode, 0) << all.output;
     EXPECT_NE(all.output.find("normal.mean_deg"), std::string::npos) << all.output;
+    EXPECT_NE(all.output.find("beauty.hdrflip over "), std::string::npos) << all.output;
     EXPECT_TRUE(fs::exists(dir / "c1" / "metrics.json"));
     EXPECT_TRUE(fs::exists(dir / "c1" / "error.beauty.png"));
     // Plain images: the beauty metrics only, and a bound that fails.
