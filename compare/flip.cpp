@@ -348,10 +348,10 @@ void filterRow(const std::vector<float>& row, const std::vector<float>& kernel,
     convolvePadded(padded.data(), kernel.data(), static_cast<int>(kernel.size()), width, out);
 }
 
-// Linear RGB (clamped to [0, 1], NaN -> 0) -> YCxCz, and the achromatic channel normalised to
-// [0, 1] (Y / Yn, what the feature detectors see).
+// Linear RGB in [0, 1] -> YCxCz, and the achromatic channel normalised to [0, 1] (Y / Yn,
+// what the feature detectors see).
 inline void toYCxCz(Vec3 lin, float& Y, float& Cx, float& Cz, float& luminance) {
-    const Vec3 v = xyzToYCxCz(mul(K.rgbToXyz, clamp01(lin)));
+    const Vec3 v = xyzToYCxCz(mul(K.rgbToXyz, lin));
     Y = v.x;
     Cx = v.y;
     Cz = v.z;
@@ -365,7 +365,8 @@ void toYCxCzRow(const float* __restrict rgb, int n, bool linear, float* __restri
                 float* __restrict Cx, float* __restrict Cz, float* __restrict luminance) {
     if (linear) {
         for (int i = 0; i < n; ++i)
-            toYCxCz({rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]}, Y[i], Cx[i], Cz[i], luminance[i]);
+            toYCxCz(clamp01({rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]}), Y[i], Cx[i], Cz[i],
+                    luminance[i]);
         return;
     }
     for (int i = 0; i < n; ++i) {
