@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <map>
 #include <optional>
 
 namespace twinrender::compare {
@@ -89,8 +90,11 @@ std::string githubAnnotations(const RunReport& run, const fs::path& root) {
                            "twinrender " + scene.name + ": not rendered or compared", scene.error);
             continue;
         }
+        // A metric past its max is past its warn_max too: only its worst checks are said.
+        std::map<std::string, Status> worstOf;
+        for (const Check& c : scene.checks) worstOf[c.metric] = worst(worstOf[c.metric], c.status);
         for (const Check& c : scene.checks) {
-            if (c.status == Status::Pass) continue;
+            if (c.status == Status::Pass || c.status != worstOf[c.metric]) continue;
             out += annotation(c.status, shown, lineInSceneFile(c.where, file),
                               fmt::format("twinrender {}: {} {}", scene.name, c.metric,
                                           c.status == Status::Fail ? "failed" : "warned"),

@@ -1,6 +1,7 @@
 // A run's failures and warnings as GitHub Actions annotations: workflow commands that GitHub
 // reads from a step's output and shows on the run's page and beside the pull request's files.
-// One line per check that did not pass,
+// One line per check that did not pass (of a metric's checks, the worst only: one past its max
+// is past its warn_max too),
 //
 //     ::error file=scenes/planet.toml,title=twinrender planet%3A beauty.flip failed::beauty.flip
 //     = 0.2 is above its max 0.15 (scenes/thresholds.toml:3:1)

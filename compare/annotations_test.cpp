@@ -47,6 +47,25 @@ TEST(GithubAnnotations, OneLinePerCheckThatDidNotPassNamingTheSceneFile) {
     EXPECT_EQ(githubAnnotations(passing, "/repo"), "");
 }
 
+TEST(GithubAnnotations, AFailedMetricIsOneErrorWithoutItsWarning) {
+    SceneReport s;
+    s.name = "planet";
+    s.metrics = {{"beauty.flip", 0.2}, {"beauty.ssim", 0.8}};
+    s.checks = evaluate(s.metrics, Thresholds::parseString("\"beauty.flip\" = { max = 0.15, "
+                                                           "warn_max = 0.1 }\n\"beauty.ssim\" = { "
+                                                           "warn_min = 0.9 }\n",
+                                                           "t.toml")
+                                       .global());
+    RunReport run;
+    run.scenes.push_back(s);
+    const std::string lines = githubAnnotations(run, "");
+    EXPECT_EQ(lines,
+              "::error title=twinrender planet%3A beauty.flip failed::beauty.flip = 0.2 is above "
+              "its max 0.15 (t.toml:1:25)\n"
+              "::warning title=twinrender planet%3A beauty.ssim warned::beauty.ssim = 0.8 is below "
+              "its warn_min 0.9 (t.toml:2:30)\n");
+}
+
 TEST(GithubAnnotations, ABoundOfTheSceneFileGivesItsLine) {
     SceneReport s;
     s.name = "planet";

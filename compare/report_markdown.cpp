@@ -30,7 +30,8 @@ std::string statusCell(Status s) {
     return "";
 }
 
-// One metric of a scene that failed or warned: its checks that did not pass.
+// One metric of a scene that failed or warned: its checks of that status (a metric past its
+// max is past its warn_max too; the warning says nothing more).
 struct Flagged {
     std::string metric;
     Status status = Status::Pass;
@@ -50,7 +51,11 @@ std::vector<Flagged> flaggedMetrics(const SceneReport& scene) {
     std::vector<std::string> keys;
     for (const auto& [metric, f] : byMetric) keys.push_back(metric);
     std::vector<Flagged> out;
-    for (const std::string& m : inMetricOrder(keys)) out.push_back(byMetric[m]);
+    for (const std::string& m : inMetricOrder(keys)) {
+        Flagged f = byMetric[m];
+        std::erase_if(f.checks, [&](const Check* c) { return c->status != f.status; });
+        out.push_back(std::move(f));
+    }
     return out;
 }
 

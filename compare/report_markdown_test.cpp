@@ -78,6 +78,21 @@ TEST(ReportMarkdown, NoChangeColumnWithoutABaseline) {
     }
 }
 
+TEST(ReportMarkdown, AFailedMetricShowsTheBoundItFailedNotItsWarning) {
+    RunReport run;
+    SceneReport s;
+    s.name = "planet";
+    s.metrics = {{"beauty.flip", 0.2}};
+    s.checks = evaluate(
+        s.metrics,
+        Thresholds::parseString("\"beauty.flip\" = { max = 0.15, warn_max = 0.1 }\n", "t.toml")
+            .global());
+    run.scenes.push_back(s);
+    const std::string md = summaryMarkdown(run);
+    EXPECT_NE(md.find("| 0.2 | max 0.15 |\n"), std::string::npos) << md;
+    EXPECT_EQ(md.find("warn\\_max"), std::string::npos) << md;
+}
+
 TEST(ReportMarkdown, APassingRunAndAnEmptyOne) {
     RunReport run;
     EXPECT_EQ(summaryMarkdown(run),
