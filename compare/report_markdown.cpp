@@ -19,15 +19,8 @@ namespace {
 
 // A status as a table cell: a mark that reads at a glance, and the word.
 std::string statusCell(Status s) {
-    switch (s) {
-        case Status::Pass:
-            return "✅ pass";
-        case Status::Warn:
-            return "⚠️ warn";
-        case Status::Fail:
-            return "❌ fail";
-    }
-    return "";
+    const char* mark = s == Status::Pass ? "✅" : s == Status::Warn ? "⚠️" : "❌";
+    return fmt::format("{} {}", mark, toString(s));
 }
 
 // One metric of a scene that failed or warned: its checks of that status (a metric past its
