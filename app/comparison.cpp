@@ -7,9 +7,10 @@
 
 namespace twinrender::app {
 
-compare::MetricSettings metricSettings(const LoadedScene& s, double ppd) {
+compare::MetricSettings metricSettings(const LoadedScene& s, double ppd, double flipOver) {
     compare::MetricSettings m;
     m.ppd = ppd;
+    m.flipOver = flipOver;
     m.exposure = s.scene.camera.exposure;
     m.lightDirection = s.scene.light.direction;
     m.hasLight = true;
@@ -24,19 +25,20 @@ void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
 
 compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
                                   const core::Frame& test, const compare::Bounds& bounds,
-                                  const compare::Baseline* baseline, double ppd,
+                                  const compare::Baseline* baseline, double ppd, double flipOver,
                                   const std::filesystem::path& dir) {
     compare::SceneReport report;
     report.name = s.scene.name;
     report.description = s.scene.description;
     const compare::MetricResult result =
-        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd));
+        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd, flipOver));
     report.metrics = result.values;
     addTimeMetrics(ref, test, report.metrics);
 
     report.settings = {{"scene_file", s.scene.file.string()},
                        {ref.renderer, ref.settings},
                        {test.renderer, test.settings}};
+    if (result.hdrExposures) report.settings["compare"] = hdrExposuresJson(*result.hdrExposures);
     report.checks = compare::evaluate(report.metrics, bounds);
     if (baseline) {
         if (const auto* blessed = baseline->metrics(s.scene.name)) report.baseline = *blessed;
@@ -58,6 +60,13 @@ compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
     }
     report.errorMaps = compare::writeErrorMapImages(result.errorMaps, dir);
     return report;
+}
+
+nlohmann::json hdrExposuresJson(const compare::ExposureRange& range) {
+    return {{"hdrflip",
+             {{"start_exposure", range.start},
+              {"stop_exposure", range.stop},
+              {"exposures", range.count}}}};
 }
 
 std::string nowUtc() {

@@ -13,16 +13,22 @@
 
 namespace twinrender::app {
 
-// Metric settings for a scene: its light and exposure, FLIP's pixels per degree.
-compare::MetricSettings metricSettings(const LoadedScene& scene, double ppd);
+// Metric settings for a scene: its light and exposure, FLIP's pixels per degree and the error
+// level of beauty.flip_over.
+compare::MetricSettings metricSettings(const LoadedScene& scene, double ppd,
+                                       double flipOver = compare::MetricSettings{}.flipOver);
 
 // Compares the real-time render (test) with the reference (ref), writes the scene folder's
 // images (per-buffer PNGs of both renders, colour-mapped error maps) and returns the scene's
 // report with its checks. `bounds` from the thresholds; `baseline` may be null.
 compare::SceneReport compareScene(const LoadedScene& scene, const core::Frame& ref,
                                   const core::Frame& test, const compare::Bounds& bounds,
-                                  const compare::Baseline* baseline, double ppd,
+                                  const compare::Baseline* baseline, double ppd, double flipOver,
                                   const std::filesystem::path& sceneDir);
+
+// The exposures beauty.hdrflip was taken over, as a report's settings show them:
+// {"hdrflip": {"start_exposure", "stop_exposure", "exposures"}} (stops, and their count).
+nlohmann::json hdrExposuresJson(const compare::ExposureRange& range);
 
 // The time a report is written, "2026-11-21 16:40 UTC".
 std::string nowUtc();

@@ -48,6 +48,29 @@ void addPpd(CLI::App* cmd, double& ppd) {
         ->capture_default_str();
 }
 
+// CI annotations of the checks that did not pass, for the commands that write a run's report.
+void addAnnotations(CLI::App* cmd, std::string& format) {
+    cmd->add_option("--annotations", format,
+                    "print the failures and warnings as CI annotations: github (the default when "
+                    "GITHUB_ACTIONS=true) | none")
+        ->check(CLI::IsMember({"github", "none"}))
+        ->type_name("github|none");
+}
+
+// The ꟻLIP error level of beauty.flip_over, for the commands that compare.
+void addFlipOver(CLI::App* cmd, double& level) {
+    cmd->add_option("--flip-over", level,
+                    "ꟻLIP error above which a pixel counts in beauty.flip_over, in (0, 1)")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                const double v = std::strtod(text.c_str(), nullptr);
+                return v > 0.0 && v < 1.0 ? std::string()
+                                          : "must be a number between 0 and 1 (exclusive)";
+            },
+            "(0, 1)"))
+        ->capture_default_str();
+}
+
 void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
                  const std::filesystem::path& dir) {
     std::printf("%s: %s %dx%d, %zu particles, %.1f ms on %s -> %s\n", s.scene.name.c_str(),
@@ -102,6 +125,7 @@ int main(int argc, char** argv) {
     compareCmd->add_option("--out", compareOpts.out, "output folder")->capture_default_str();
     compareCmd->add_option("--thresholds", compareOpts.thresholds, "thresholds file (TOML)");
     addPpd(compareCmd, compareOpts.ppd);
+    addFlipOver(compareCmd, compareOpts.flipOver);
 
     tr::app::RunOptions runOpts;
     CommonOptions runCommon;
@@ -113,11 +137,13 @@ int main(int argc, char** argv) {
     runCmd->add_option("--baseline", runOpts.baseline, "baseline from `twinrender bless`");
     runCmd->add_option("--junit", runOpts.junit, "also write JUnit XML here");
     addPpd(runCmd, runOpts.ppd);
+    addFlipOver(runCmd, runOpts.flipOver);
     runCmd
         ->add_option(
             "--shard", runOpts.shard,
             "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
         ->type_name("K/N");
+    addAnnotations(runCmd, runOpts.annotations);
     std::string runStudies;
     runCmd
         ->add_option(
@@ -152,6 +178,7 @@ int main(int argc, char** argv) {
     sweepCmd->add_option("--cache", sweepOpts.cache,
                          "reference cache folder (default: OUT/reference_cache)");
     addPpd(sweepCmd, sweepOpts.ppd);
+    addFlipOver(sweepCmd, sweepOpts.flipOver);
     sweepCmd
         ->add_option("--shard", sweepOpts.shard,
                      "K/N: every N-th combination starting at the K-th; join with `merge`")
@@ -180,6 +207,7 @@ int main(int argc, char** argv) {
         app.add_subcommand("merge", "join the output folders of `run|sweep --shard K/N`");
     mergeCmd->add_option("DIRS", mergeOpts.inputs, "the shards' output folders")->required();
     mergeCmd->add_option("--out", mergeOpts.out, "output folder of the joined report")->required();
+    addAnnotations(mergeCmd, mergeOpts.annotations);
 
     std::string blessDir, blessOut;
     auto* blessCmd = app.add_subcommand("bless", "write the baseline of a run");

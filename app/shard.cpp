@@ -10,6 +10,7 @@
 #include <set>
 
 #include "app/comparison.h"
+#include "app/suite_commands.h"
 #include "app/sweep_command.h"
 #include "compare/junit.h"
 #include "compare/report.h"
@@ -90,7 +91,7 @@ void copyTree(const fs::path& from, const fs::path& to) {
 namespace {
 
 ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
-                  const fs::path& out, const std::string& commandLine) {
+                  const fs::path& out, const MergeOptions& o) {
     const json& first = manifests.front();
     const auto order = first.at("scenes").get<std::vector<std::string>>();
     std::map<std::string, compare::SceneReport> reports;
@@ -108,7 +109,7 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
         }
     compare::RunReport run;
     run.createdAt = nowUtc();
-    run.commandLine = commandLine;
+    run.commandLine = o.commandLine;
     run.thresholdsFile = first.at("settings").value("thresholds", "");
     run.baselineFile = first.at("settings").value("baseline", "");
     for (const std::string& name : order) {
@@ -128,6 +129,7 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
     if (first.value("junit", false)) compare::writeJunit(run, out / "junit.xml");
     std::printf("merged %zu shards, %zu scenes: %s -> %s\n", dirs.size(), run.scenes.size(),
                 std::string(compare::toString(run.status())).c_str(), (out / "index.html").c_str());
+    printAnnotations(run, o.annotations);
     return exitCodeOf(run.status());
 }
 
@@ -232,7 +234,7 @@ ExitCode runMerge(const MergeOptions& o) {
                 fmt::format("shard {}/{} is missing; give all {} shard folders", k, n, n));
     fs::create_directories(out);
     const std::string command = first.at("command").get<std::string>();
-    if (command == "run") return mergeRun(dirs, manifests, out, o.commandLine);
+    if (command == "run") return mergeRun(dirs, manifests, out, o);
     if (command == "sweep") return mergeSweep(dirs, manifests, out, o.commandLine);
     throw core::InputError(
         fmt::format("{}: unknown command '{}' in the manifest", dirs[0].string(), command));

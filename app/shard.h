@@ -51,6 +51,7 @@ struct MergeOptions {
     std::vector<std::string> inputs;  // shard output folders
     std::string out;
     std::string commandLine;
+    std::string annotations;  // for a run's shards: as RunOptions::annotations
 };
 // Checks that the shards belong together (same command, the same N, every K once, equal
 // settings) and writes what one unsharded run writes. Returns the run's exit code (the

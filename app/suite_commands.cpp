@@ -7,12 +7,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 
 #include "app/comparison.h"
 #include "app/progress.h"
 #include "app/shard.h"
+#include "compare/annotations.h"
 #include "compare/error_maps.h"
 #include "compare/junit.h"
 #include "compare/metric_table.h"
@@ -87,6 +89,7 @@ ExitCode runCompare(const CompareOptions& o) {
     const core::Image test = core::readImage(o.test);
     compare::MetricSettings settings;
     settings.ppd = o.ppd;
+    settings.flipOver = o.flipOver;
     const compare::MetricResult result = compare::computeMetrics(ref, test, settings);
     compare::SceneReport report;
     report.name = fs::path(o.test).stem().string();
@@ -103,6 +106,10 @@ ExitCode runCompare(const CompareOptions& o) {
     report.errorMaps = compare::writeErrorMapImages(result.errorMaps, out);
     compare::writeMetricsJson(report, out / "metrics.json");
     printMetricTable(report.metrics, report.checks);
+    if (result.hdrExposures)
+        std::printf("beauty.hdrflip over %d exposures from %.3f to %.3f stops\n",
+                    result.hdrExposures->count, result.hdrExposures->start,
+                    result.hdrExposures->stop);
     const compare::Status status = report.status();
     std::printf("%s -> %s (%s)\n", o.test.c_str(), (out / "metrics.json").c_str(),
                 std::string(compare::toString(status)).c_str());
@@ -181,13 +188,14 @@ ExitCode runSuite(const RunOptions& o) {
             writeRender(s, ref, dir);
             const core::Frame test = render("realtime", devices, s);
             writeRender(s, test, dir);
-            report =
-                compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd, dir);
+            report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd,
+                                  o.flipOver, dir);
         } catch (const std::exception& e) {
             // One scene that cannot be rendered or compared fails; the others still run.
             report = compare::SceneReport{};
             report.name = s.scene.name;
             report.description = s.scene.description;
+            report.settings = {{"scene_file", s.scene.file.string()}};
             report.error = e.what();
         }
         run.scenes.push_back(std::move(report));
@@ -206,8 +214,9 @@ ExitCode runSuite(const RunOptions& o) {
         }
         for (const auto& r : run.scenes) reports.push_back(compare::sceneReportJson(r));
         const nlohmann::json settings = {
-            {"scenes", files},        {"sets", o.sets}, {"thresholds", thresholdsFile},
-            {"baseline", o.baseline}, {"ppd", o.ppd},   {"junit", !o.junit.empty()}};
+            {"scenes", files},          {"sets", o.sets}, {"thresholds", thresholdsFile},
+            {"baseline", o.baseline},   {"ppd", o.ppd},   {"flip_over", o.flipOver},
+            {"junit", !o.junit.empty()}};
         writeShardManifest(*shard,
                            {{"command", "run"},
                             {"settings", settings},
@@ -247,7 +256,19 @@ ExitCode runSuite(const RunOptions& o) {
     const compare::Status status = run.status();
     std::printf("%s: %s\n", std::string(compare::toString(status)).c_str(),
                 (out / "index.html").c_str());
+    printAnnotations(run, o.annotations);
     return exitCodeOf(status);
+}
+
+void printAnnotations(const compare::RunReport& run, const std::string& format) {
+    const char* actions = std::getenv("GITHUB_ACTIONS");
+    const bool github =
+        format == "github" || (format.empty() && actions && std::string(actions) == "true");
+    if (!github) return;
+    const char* workspace = std::getenv("GITHUB_WORKSPACE");
+    const fs::path root = workspace && *workspace ? fs::path(workspace) : fs::current_path();
+    std::fputs(compare::githubAnnotations(run, root).c_str(), stdout);
+    std::fflush(stdout);
 }
 
 ExitCode runBless(const std::string& runDir, const std::string& out) {

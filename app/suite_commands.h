@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "app/exit_code.h"
+#include "compare/flip_pooling.h"
+#include "compare/report.h"
 
 namespace twinrender::app {
 
@@ -16,6 +18,7 @@ struct CompareOptions {
     std::string out = "out/compare";
     std::string thresholds;  // empty: no bounds, the verdict is pass
     double ppd = 67.0;       // ꟻLIP's pixels per degree
+    double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
 };
 ExitCode runCompare(const CompareOptions& options);
 
@@ -28,13 +31,21 @@ struct RunOptions {
     std::vector<std::string> sets;
     bool requireGpu = false;
     double ppd = 67.0;
-    std::string commandLine;  // recorded in the report
-    std::string shard;        // "K/N" (app/shard.h); empty: every scene
+    double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
+    std::string commandLine;                                     // recorded in the report
+    std::string shard;  // "K/N" (app/shard.h); empty: every scene
     // Whether the report links to the stability studies in OUT/studies (main runs them after
     // the scenes: `run --studies`).
     bool linkStudies = false;
+    std::string annotations;  // "github" | "none"; "": printAnnotations decides
 };
 ExitCode runSuite(const RunOptions& options);
+
+// Prints the run's checks that did not pass as CI annotations (compare/annotations.h) in
+// `format`: "github", "none", or "" for "github" when the environment has GITHUB_ACTIONS=true
+// (as GitHub Actions sets it), else none. Paths are relative to GITHUB_WORKSPACE when set,
+// else to the working folder.
+void printAnnotations(const compare::RunReport& run, const std::string& format);
 
 // Writes the baseline of RUN_DIR (its summary.json) to `out` (default RUN_DIR/baseline.json).
 ExitCode runBless(const std::string& runDir, const std::string& out);

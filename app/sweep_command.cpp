@@ -285,8 +285,8 @@ ExitCode runSweep(const SweepOptions& o) {
                         times[stage].push_back(ms);  // not part of a frame's time
             }
             for (const auto& [stage, v] : times) row.timingsMs[stage] = median(v);
-            const compare::MetricResult result =
-                compare::computeMetrics(ref.image, test.image, metricSettings(job.test, o.ppd));
+            const compare::MetricResult result = compare::computeMetrics(
+                ref.image, test.image, metricSettings(job.test, o.ppd, o.flipOver));
             row.metrics = result.values;
             for (const auto& [name, n] : test.counters) row.metrics["count." + name] = n;
 
@@ -350,7 +350,8 @@ ExitCode runSweep(const SweepOptions& o) {
                          {"metric", o.metric},
                          {"thresholds", o.thresholds},
                          {"frames", frames},
-                         {"ppd", o.ppd}};
+                         {"ppd", o.ppd},
+                         {"flip_over", o.flipOver}};
         writeShardManifest(*shard,
                            {{"command", "sweep"},
                             {"settings", settings},

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/exit_code.h"
+#include "compare/flip_pooling.h"
 #include "compare/sweep_report.h"
 
 namespace twinrender::app {
@@ -28,6 +29,7 @@ struct SweepOptions {
     std::string thresholds;  // thresholds file; empty: the combinations are not checked
     int frames = 0;          // frames per combination, 0: 5 for realtime, 1 for raymarch
     double ppd = 67.0;
+    double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
     bool requireGpu = false;
     std::string shard;  // "K/N"; empty: all
     std::string commandLine;

@@ -237,6 +237,14 @@ std::string signedValue(double v) {
 
 }  // namespace
 
+std::string changeText(double value, double baseline) {
+    const double d = value - baseline;
+    std::string text = fmt::format("{}{}", d > 0 ? "+" : "", formatValue(d));
+    if (baseline != 0.0 && std::isfinite(d) && std::isfinite(baseline) && d != 0.0)
+        text += fmt::format(" ({}{:.1f} %)", d > 0 ? "+" : "", 100.0 * d / std::abs(baseline));
+    return text;
+}
+
 std::vector<std::string> settingsChanges(const json& before, const json& after) {
     const std::map<std::string, std::string> a = settingValues(before), b = settingValues(after);
     std::vector<std::string> out;

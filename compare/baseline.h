@@ -101,6 +101,10 @@ std::vector<Check> compareToBaseline(const std::string& scene, const MetricValue
                                      const Baseline& baseline,
                                      const nlohmann::json* settings = nullptr);
 
+// The change of a metric from its blessed value, for tables: "+0.0422 (+35.1 %)", the
+// percentage only where it is defined (a finite, non-zero baseline and a non-zero change).
+std::string changeText(double value, double baseline);
+
 // The differences between two settings objects, one line per dotted key:
 // "realtime.ssss.enabled: true -> false", "raymarch.level: added (0.2)", "x: removed".
 std::vector<std::string> settingsChanges(const nlohmann::json& before, const nlohmann::json& after);

@@ -348,19 +348,31 @@ void filterRow(const std::vector<float>& row, const std::vector<float>& kernel,
     convolvePadded(padded.data(), kernel.data(), static_cast<int>(kernel.size()), width, out);
 }
 
-// Display sRGB (n pixels, R G B interleaved) -> YCxCz, and the achromatic channel normalised
-// to [0, 1] (Y / Yn, what the feature detectors see).
+// Linear RGB in [0, 1] -> YCxCz, and the achromatic channel normalised to [0, 1] (Y / Yn,
+// what the feature detectors see).
+inline void toYCxCz(Vec3 lin, float& Y, float& Cx, float& Cz, float& luminance) {
+    const Vec3 v = xyzToYCxCz(mul(K.rgbToXyz, lin));
+    Y = v.x;
+    Cx = v.y;
+    Cz = v.z;
+    luminance = (v.x + 16.0f) / 116.0f;
+}
+
+// A row of n pixels, R G B interleaved, to YCxCz planes: display sRGB, or linear values
+// (`linear`), each loop free of branches so that it vectorises.
 TWINRENDER_ROW_KERNEL
-void toYCxCzRow(const float* __restrict rgb, int n, float* __restrict Y, float* __restrict Cx,
-                float* __restrict Cz, float* __restrict luminance) {
+void toYCxCzRow(const float* __restrict rgb, int n, bool linear, float* __restrict Y,
+                float* __restrict Cx, float* __restrict Cz, float* __restrict luminance) {
+    if (linear) {
+        for (int i = 0; i < n; ++i)
+            toYCxCz(clamp01({rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]}), Y[i], Cx[i], Cz[i],
+                    luminance[i]);
+        return;
+    }
     for (int i = 0; i < n; ++i) {
         const Vec3 lin = {srgbToLinear(rgb[3 * i]), srgbToLinear(rgb[3 * i + 1]),
                           srgbToLinear(rgb[3 * i + 2])};
-        const Vec3 v = xyzToYCxCz(mul(K.rgbToXyz, lin));
-        Y[i] = v.x;
-        Cx[i] = v.y;
-        Cz[i] = v.z;
-        luminance[i] = (v.x + 16.0f) / 116.0f;
+        toYCxCz(lin, Y[i], Cx[i], Cz[i], luminance[i]);
     }
 }
 
@@ -460,9 +472,9 @@ FlipResult flip(const core::Image& reference, const core::Image& test,
         for (int y = rows.begin(); y != rows.end(); ++y) {
             const std::size_t at = static_cast<std::size_t>(y) * width;
             for (int image = 0; image < 2; ++image)
-                toYCxCzRow(rgb[image] + 3 * at, width, &planes[4 * image + 0][at],
-                           &planes[4 * image + 1][at], &planes[4 * image + 2][at],
-                           &planes[4 * image + 3][at]);
+                toYCxCzRow(rgb[image] + 3 * at, width, settings.input == FlipInput::Linear,
+                           &planes[4 * image + 0][at], &planes[4 * image + 1][at],
+                           &planes[4 * image + 2][at], &planes[4 * image + 3][at]);
         }
     });
 

@@ -22,10 +22,17 @@
 
 namespace twinrender::compare {
 
+// How the R, G, B values handed to flip() are encoded.
+enum class FlipInput {
+    Srgb,    // sRGB display values (a tonemapped image, a PNG): LDR-ꟻLIP
+    Linear,  // linear values in [0, 1]: each tonemapped exposure of HDR-ꟻLIP (hdr_flip.h)
+};
+
 struct FlipSettings {
     // Observer's pixels per degree of visual angle, > 0. FLIP's default, 67, is a 0.7 m wide
     // 3840-pixel display seen from 0.7 m. Larger values hide finer detail.
     double ppd = 67.0;
+    FlipInput input = FlipInput::Srgb;
 };
 
 struct FlipResult {
@@ -34,7 +41,8 @@ struct FlipResult {
 };
 
 // reference and test: images with channels R, G, B holding sRGB display values in [0, 1] (the
-// tonemapped image). Values outside [0, 1] are clamped and NaN counts as 0, as the reference
+// tonemapped image), or linear values in [0, 1] (settings.input). Values outside [0, 1] are
+// clamped and NaN counts as 0, as the reference
 // code does. Pooling other than the mean (percentiles, histograms) is a separate step on
 // errorMap. Throws core::NotComparableError when the sizes differ (naming both) or a channel
 // is missing; std::invalid_argument when ppd <= 0.

@@ -62,6 +62,21 @@ std::string xmlEscape(std::string_view text, bool attribute) {
     return out;
 }
 
+std::string markdownEscape(std::string_view text) {
+    static constexpr std::string_view SPECIAL = "\\`*_[]<>|~&$#@!";
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text) {
+        if (c == '\n' || c == '\r' || c == '\t')
+            out += ' ';
+        else if (SPECIAL.find(c) != std::string_view::npos)
+            out += std::string{'\\', c};
+        else
+            out += c;
+    }
+    return out;
+}
+
 std::string urlPath(std::string_view path) {
     std::string out;
     for (char ch : path) {

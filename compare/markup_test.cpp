@@ -16,6 +16,15 @@ TEST(Markup, XmlEscapesTextAndAttributesApart) {
     EXPECT_EQ(xmlEscape(std::string("x\x01y'"), false), "x y'");  // not allowed in XML 1.0
 }
 
+TEST(Markup, MarkdownEscapesWhatCouldBecomeMarkupAndKeepsTheLine) {
+    EXPECT_EQ(markdownEscape("a|b *c* _d_ `e` [f](g) <h> ~i~ & $j$ #1 @k!\\"),
+              "a\\|b \\*c\\* \\_d\\_ \\`e\\` \\[f\\](g) \\<h\\> \\~i\\~ \\& \\$j\\$ \\#1 "
+              "\\@k\\!\\\\");
+    EXPECT_EQ(markdownEscape("two\nlines\r\tand tab"), "two lines  and tab");
+    EXPECT_EQ(markdownEscape("beauty.flip = 0.2 (t.toml:1:25) ꟻ°"),
+              "beauty.flip = 0.2 (t.toml:1:25) ꟻ°");
+}
+
 TEST(Markup, UrlPathsKeepSlashesAndEncodeTheRest) {
     EXPECT_EQ(urlPath("a b&<c>/beauty #1.png"), "a%20b%26%3Cc%3E/beauty%20%231.png");
     EXPECT_EQ(urlPath("planet/realtime.beauty.png"), "planet/realtime.beauty.png");

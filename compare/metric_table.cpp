@@ -35,6 +35,18 @@ const std::vector<MetricInfo>& metricTable() {
          "Gaussian σ 1.5)"},
         {"beauty.flip", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, true, false,
          "mean LDR-ꟻLIP error of the tonemapped beauty (Andersson et al. 2020), 0 to 1"},
+        {"beauty.flip_p95", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, false, false,
+         "95th percentile of the per-pixel ꟻLIP error of the tonemapped beauty over every pixel "
+         "(numpy's linear method): the error of the worst 5 % of the pixels"},
+        {"beauty.flip_p99", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, false, false,
+         "99th percentile of that error: the worst 1 %"},
+        {"beauty.flip_over", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, false, false,
+         "fraction of the pixels whose ꟻLIP error is above the level --flip-over (default 0.5): "
+         "rare large errors the mean hides"},
+        {"beauty.hdrflip", "", B::Lower, 0.0, 1e-3, "beauty", S::AovPair, false, false,
+         "mean HDR-ꟻLIP of the linear beauty (Andersson et al. 2021): per pixel the largest "
+         "LDR-ꟻLIP over ACES-tonemapped exposures from the reference's brightest pixel to its "
+         "median lit one, 0 to 1"},
         {"coverage.iou", "", B::Higher, 1.0, 1e-3, "A", S::AovPair, true, false,
          "intersection over union of the pixels each render covers"},
         {"silhouette.mean_px", "px", B::Lower, 0.0, 0.05, "A", S::AovPair, true, false,

@@ -11,6 +11,7 @@
 
 #include "compare/buffer_metrics.h"
 #include "compare/flip.h"
+#include "compare/hdr_flip.h"
 #include "compare/masks.h"
 #include "compare/psnr.h"
 #include "compare/ssim.h"
@@ -56,6 +57,10 @@ core::Image tonemapped(const core::Image& aovImage, float exposure) {
 void validate(const MetricSettings& settings) {
     if (!(settings.ppd > 0.0))
         throw std::invalid_argument(fmt::format("metrics: ppd must be > 0, got {}", settings.ppd));
+    if (!(settings.flipOver > 0.0 && settings.flipOver < 1.0))
+        throw std::invalid_argument(fmt::format(
+            "metrics: the ꟻLIP error level of beauty.flip_over must be in (0, 1), got {}",
+            settings.flipOver));
     if (!(settings.exposure > 0.0))
         throw std::invalid_argument(
             fmt::format("metrics: exposure must be > 0, got {}", settings.exposure));
@@ -134,9 +139,21 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
         flipSettings.ppd = settings.ppd;
         FlipResult f = flip(r, t, flipSettings);
         result.values["beauty.flip"] = f.mean;
+        FlipPoolingSettings pooling;
+        pooling.overLevel = settings.flipOver;
+        const FlipPooled pooled = poolFlip(f.errorMap, pooling);
+        result.values["beauty.flip_p95"] = pooled.p95;
+        result.values["beauty.flip_p99"] = pooled.p99;
+        result.values["beauty.flip_over"] = pooled.over;
         result.errorMaps["beauty.flip"] = std::move(f.errorMap);
     }
     if (!refAov) return result;
+
+    HdrFlipSettings hdrSettings;
+    hdrSettings.ppd = settings.ppd;
+    const HdrFlipResult hdr = hdrFlip(reference, test, hdrSettings);
+    result.values["beauty.hdrflip"] = hdr.mean;
+    result.hdrExposures = hdr.range;
 
     const Masks masks = computeMasks(reference, test, maskSettings(settings));
 

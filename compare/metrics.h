@@ -2,15 +2,18 @@
 // `twinrender compare` and `run` make.
 //
 // Two AOV images (every channel of core::aov::channelNames()): the beauty metrics on the
-// tonemapped sRGB beauty (the image a person sees) and every per-buffer metric over its mask
-// (masks.h, buffer_metrics.h). Two plain images (no AOV channel other than R, G, B, A; e.g.
-// PNGs): the beauty metrics only, on R, G, B as given.
+// tonemapped sRGB beauty (the image a person sees), beauty.hdrflip on the linear beauty, and
+// every per-buffer metric over its mask (masks.h, buffer_metrics.h). Two plain images (no AOV
+// channel other than R, G, B, A; e.g. PNGs): the beauty metrics only, on R, G, B as given.
 #pragma once
 
 #include <glm/vec3.hpp>
 #include <map>
+#include <optional>
 #include <string>
 
+#include "compare/flip_pooling.h"
+#include "compare/hdr_flip.h"
 #include "compare/masks.h"
 #include "core/image.h"
 
@@ -19,6 +22,9 @@ namespace twinrender::compare {
 struct MetricSettings {
     // FLIP observer's pixels per degree (`--ppd`), > 0; 67 is FLIP's default.
     double ppd = 67.0;
+    // The ꟻLIP error above which a pixel counts in beauty.flip_over (`--flip-over`), in
+    // (0, 1); flip_pooling.h.
+    double flipOver = FlipPoolingSettings{}.overLevel;
     // Multiplies the linear beauty before the tonemapper (core::tonemap), > 0. AOV images only.
     double exposure = 1.0;
     // The way the light travels (the scene's light.direction, core::LightSettings::direction),
@@ -35,15 +41,17 @@ MaskSettings maskSettings(const MetricSettings& settings);
 
 struct MetricResult {
     // By metric key (metric_table.h): the table's AnyPair metrics (beauty.psnr, beauty.ssim,
-    // beauty.flip) for every pair, its AovPair ones too for AOV images. A metric whose mask is
-    // empty is NaN (and silhouette.mean_px is +inf when only one image has an outline): a JSON
-    // writer must map both.
+    // beauty.flip and its pooled statistics) for every pair, its AovPair ones too for AOV images. A
+    // metric whose mask is empty is NaN (and silhouette.mean_px is +inf when only one image has an
+    // outline): a JSON writer must map both.
     std::map<std::string, double> values;
     // One-channel float images of the pair's size: "beauty.flip" always; for AOV images also
     // "normal" (angle, degrees), "depth" (relative error), "uv" (seam-aware uv distance), "id"
     // (1 where the visible body differs), "shadow" (1 false, 2 missed shadow) and "emission"
     // (per-pixel RMS over R, G, B), each 0 where its mask does not reach.
     std::map<std::string, core::Image> errorMaps;
+    // AOV images: the exposures beauty.hdrflip was taken over (hdr_flip.h), to report beside it.
+    std::optional<ExposureRange> hdrExposures;
 };
 
 // True when the image carries every AOV channel; false when it carries none but R, G, B, A.

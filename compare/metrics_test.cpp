@@ -21,13 +21,17 @@
 namespace twinrender::compare {
 namespace {
 
-const std::set<std::string> BEAUTY_KEYS = {"beauty.psnr", "beauty.ssim", "beauty.flip"};
+const std::set<std::string> BEAUTY_KEYS = {"beauty.psnr",     "beauty.ssim",
+                                           "beauty.flip",     "beauty.flip_p95",
+                                           "beauty.flip_p99", "beauty.flip_over"};
 const std::set<std::string> ALL_KEYS = {
-    "beauty.psnr",  "beauty.ssim",         "beauty.flip",
-    "coverage.iou", "silhouette.mean_px",  "depth.rel_mean",
-    "id.mismatch",  "normal.mean_deg",     "normal.p95_deg",
-    "uv.mean",      "emission.rmse",       "smoothness.ratio",
-    "shadow.iou",   "shadow.false_shadow", "shadow.missed_shadow"};
+    "beauty.psnr",         "beauty.ssim",     "beauty.flip",
+    "beauty.flip_p95",     "beauty.flip_p99", "beauty.flip_over",
+    "beauty.hdrflip",      "coverage.iou",    "silhouette.mean_px",
+    "depth.rel_mean",      "id.mismatch",     "normal.mean_deg",
+    "normal.p95_deg",      "uv.mean",         "emission.rmse",
+    "smoothness.ratio",    "shadow.iou",      "shadow.false_shadow",
+    "shadow.missed_shadow"};
 const std::set<std::string> MAP_KEYS = {"beauty.flip", "normal", "depth",   "uv",
                                         "id",          "shadow", "emission"};
 
@@ -104,6 +108,12 @@ TEST(Metrics, IdenticalAovImagesArePerfect) {
     EXPECT_EQ(r.values.at("beauty.psnr"), std::numeric_limits<double>::infinity());
     EXPECT_EQ(r.values.at("beauty.ssim"), 1.0);
     EXPECT_EQ(r.values.at("beauty.flip"), 0.0);
+    EXPECT_EQ(r.values.at("beauty.flip_p95"), 0.0);
+    EXPECT_EQ(r.values.at("beauty.flip_p99"), 0.0);
+    EXPECT_EQ(r.values.at("beauty.flip_over"), 0.0);
+    EXPECT_EQ(r.values.at("beauty.hdrflip"), 0.0);
+    ASSERT_TRUE(r.hdrExposures.has_value());
+    EXPECT_EQ(r.hdrExposures->start, exposureRange(img).start);
     EXPECT_EQ(r.values.at("coverage.iou"), 1.0);
     EXPECT_EQ(r.values.at("silhouette.mean_px"), 0.0);
     EXPECT_EQ(r.values.at("depth.rel_mean"), 0.0);
@@ -147,6 +157,8 @@ TEST(Metrics, ADifferentTestIsWorseOnEveryMetric) {
     EXPECT_LT(r.values.at("beauty.psnr"), 40.0);
     EXPECT_LT(r.values.at("beauty.ssim"), 1.0);
     EXPECT_GT(r.values.at("beauty.flip"), 0.0);
+    EXPECT_EQ(r.values.at("beauty.hdrflip"), hdrFlip(ref, test).mean);
+    EXPECT_GT(r.values.at("beauty.hdrflip"), 0.0);
     EXPECT_LT(r.values.at("coverage.iou"), 1.0);
     // Outlines shifted 2 pixels horizontally: the mean distance lies between 0 and 2.
     EXPECT_GT(r.values.at("silhouette.mean_px"), 0.5);
@@ -175,6 +187,30 @@ TEST(Metrics, BeautyIsTakenOnTheTonemappedImage) {
     const FlipResult f = flip(refDisplay, testDisplay);
     EXPECT_EQ(r.values.at("beauty.flip"), f.mean);
     EXPECT_EQ(r.errorMaps.at("beauty.flip"), f.errorMap);
+    const FlipPooled pooled = poolFlip(f.errorMap);
+    EXPECT_EQ(r.values.at("beauty.flip_p95"), pooled.p95);
+    EXPECT_EQ(r.values.at("beauty.flip_p99"), pooled.p99);
+    EXPECT_EQ(r.values.at("beauty.flip_over"), pooled.over);
+    // The pooled statistics see the tail the mean averages away.
+    EXPECT_GT(r.values.at("beauty.flip_p99"), r.values.at("beauty.flip_p95"));
+    EXPECT_GT(r.values.at("beauty.flip_p95"), r.values.at("beauty.flip"));
+}
+
+TEST(Metrics, FlipOverLevelReachesThePooling) {
+    const core::Image ref = spheres(96, 64), test = spheres(96, 64, 1);
+    MetricSettings low;
+    low.flipOver = 0.05;
+    const double atDefault = computeMetrics(ref, test).values.at("beauty.flip_over");
+    const double atLow = computeMetrics(ref, test, low).values.at("beauty.flip_over");
+    FlipPoolingSettings pooling;
+    pooling.overLevel = 0.05;
+    EXPECT_EQ(
+        atLow,
+        poolFlip(
+            flip(core::tonemappedBeauty(ref, 1.0f), core::tonemappedBeauty(test, 1.0f)).errorMap,
+            pooling)
+            .over);
+    EXPECT_GT(atLow, atDefault);
 }
 
 TEST(Metrics, PpdReachesFlip) {
@@ -195,6 +231,7 @@ TEST(Metrics, PlainImagesGetTheBeautyMetricsOnThePixelsAsGiven) {
     const MetricResult r = computeMetrics(ref, test);
     EXPECT_EQ(keys(r.values), BEAUTY_KEYS);
     EXPECT_EQ(keys(r.errorMaps), std::set<std::string>{"beauty.flip"});
+    EXPECT_FALSE(r.hdrExposures.has_value());
     EXPECT_EQ(r.values.at("beauty.psnr"), psnr(ref, test).psnr);
     EXPECT_EQ(r.values.at("beauty.flip"), flip(ref, test).mean);
     // A PNG with alpha (R, G, B, A) is a plain image too.
@@ -260,6 +297,11 @@ TEST(Metrics, SettingsOutOfRange) {
     s = {};
     s.interiorRadius = -2;
     EXPECT_THROW(computeMetrics(img, img, s), std::invalid_argument);
+    for (double level : {0.0, 1.0}) {
+        s = {};
+        s.flipOver = level;
+        EXPECT_THROW(computeMetrics(img, img, s), std::invalid_argument) << level;
+    }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "compare/report_html.h"
 #include "compare/report_json.h"
+#include "compare/report_markdown.h"
 
 namespace twinrender::compare {
 
@@ -22,6 +23,7 @@ void writeReport(const RunReport& run, const fs::path& dir) {
     fs::create_directories(dir);
     for (const SceneReport& s : run.scenes) writeMetricsJson(s, dir / s.name / "metrics.json");
     writeSummaryJson(run, dir / "summary.json");
+    writeSummaryMarkdown(run, dir / "summary.md");
     writeHtmlReport(run, dir);
 }
 

@@ -1,9 +1,11 @@
 // What a run leaves for people and for CI (DESIGN.md, "Command line" and "Thresholds and
-// baselines"): per-scene metrics.json, summary.json, JUnit XML, and an HTML report that works
-// offline (one folder, no network: CSS and JavaScript inline, images as files beside it).
+// baselines"): per-scene metrics.json, summary.json, summary.md, JUnit XML, and an HTML report
+// that works offline (one folder, no network: CSS and JavaScript inline, images as files
+// beside it).
 //
 // This header holds the report's data; its files are written by report_json.h (metrics.json,
-// summary.json, and the scene reports `merge` reads back), junit.h and report_html.h.
+// summary.json, and the scene reports `merge` reads back), report_markdown.h (summary.md),
+// junit.h and report_html.h.
 //
 // Report layout (writeHtmlReport): DIR/index.html, one row per scene; DIR/<scene>/index.html,
 // the scene page. Image paths in SceneReport are relative to DIR/<scene>/, where the renders
@@ -64,7 +66,8 @@ struct RunReport {
     Status status() const;  // the worst scene; Pass when there are none
 };
 
-// Everything of a run in DIR: summary.json, DIR/<scene>/metrics.json, the HTML pages.
+// Everything of a run in DIR: summary.json, summary.md, DIR/<scene>/metrics.json, the HTML
+// pages.
 void writeReport(const RunReport& run, const std::filesystem::path& dir);
 
 }  // namespace twinrender::compare

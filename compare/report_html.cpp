@@ -244,10 +244,8 @@ std::string baselineCells(const SceneReport& s, const std::string& m,
                                      ? d
                                      : std::abs(it->second - p.origin) - std::abs(*base - p.origin);
         const char* cls = worsening > 0 ? "delta-worse" : worsening < 0 ? "delta-better" : "";
-        std::string text = fmt::format("{}{}", d > 0 ? "+" : "", formatValue(d));
-        if (*base != 0.0 && std::isfinite(d) && std::isfinite(*base) && d != 0.0)
-            text += fmt::format(" ({}{:.1f} %)", d > 0 ? "+" : "", 100.0 * d / std::abs(*base));
-        delta = fmt::format("<span class=\"{}\">{}</span>", cls, htmlEscape(text));
+        delta = fmt::format("<span class=\"{}\">{}</span>", cls,
+                            htmlEscape(changeText(it->second, *base)));
     }
     return "<td class=\"num\">" + (base ? htmlEscape(formatValue(*base)) : std::string("—")) +
            "</td><td class=\"num\">" + (delta.empty() ? std::string("—") : delta) + "</td>";
@@ -268,7 +266,9 @@ std::string metricTable(const SceneReport& s) {
         for (const Check& c : s.checks)
             if (c.metric == m) checks.push_back(&c);
         auto st = metricStatus(s, m);
-        h += fmt::format("<tr><td class=\"mono\"{}>{}</td>", metricTitle(m), htmlEscape(m));
+        // The row's id is what summary.md links to (report_markdown.h).
+        h += fmt::format("<tr id=\"metric-{}\"><td class=\"mono\"{}>{}</td>", htmlEscape(m),
+                         metricTitle(m), htmlEscape(m));
         h += valueCell(s, m);
         h += "<td class=\"unit\">" + htmlEscape(metricUnit(m)) + "</td>";
         h += "<td class=\"num\">" + htmlEscape(boundsText(checks, false)) + "</td>";

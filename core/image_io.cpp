@@ -118,6 +118,10 @@ void writeImage(const Image& image, const fs::path& path) {
             }
         OIIO::ImageSpec spec(image.width(), image.height(), nc, OIIO::TypeDesc::UINT8);
         if (nc == 4) spec.alpha_channel = 3;
+        // zlib level 1: on a 1920x1080 error map (noisy, 2 MB) level 6, the default, takes
+        // 0.45 s to level 1's 0.04 s, for a file 17 % smaller; these images are written once
+        // per render or comparison and read by a browser.
+        spec.attribute("png:compressionLevel", 1);
         writeWithOiio(tmp, spec, bytes.data(), OIIO::TypeDesc::UINT8);
     });
 }

@@ -58,6 +58,13 @@ inline std::string readText(const std::filesystem::path& file) {
     return ss.str();
 }
 
+// How often `what` occurs in `text` (overlapping occurrences too).
+inline std::size_t count(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+    return n;
+}
+
 // The parsed file, or a discarded value when it is not JSON.
 inline nlohmann::json readJson(const std::filesystem::path& file) {
     std::ifstream in(file);

@@ -10,6 +10,7 @@
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
+using tt::count;
 using tt::readJson;
 using tt::readText;
 namespace fs = std::filesystem;
@@ -34,12 +35,6 @@ void dropTimes(json& j) {
     } else if (j.is_array()) {
         for (auto& v : j) dropTimes(v);
     }
-}
-
-std::size_t count(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-    return n;
 }
 
 }  // namespace
@@ -84,6 +79,9 @@ TEST(Merge, ShardedRunEqualsTheUnshardedRun) {
             EXPECT_TRUE(fs::exists(dir / "merged" / scene / f)) << scene << "/" << f;
     }
     EXPECT_TRUE(fs::exists(dir / "merged" / "index.html"));
+    // summary.md has no times and no command line: the same file.
+    EXPECT_FALSE(readText(dir / "whole" / "summary.md").empty());
+    EXPECT_EQ(readText(dir / "whole" / "summary.md"), readText(dir / "merged" / "summary.md"));
     EXPECT_EQ(count(readText(dir / "merged" / "junit.xml"), "<testcase "),
               count(readText(dir / "whole" / "junit.xml"), "<testcase "));
 }

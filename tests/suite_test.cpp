@@ -21,14 +21,16 @@ struct RunResult {
     int exitCode;
     std::string output;
     nlohmann::json summary;
+    std::string markdown;  // summary.md
 };
 
 RunResult run(const std::string& name, const std::string& args) {
     const fs::path out = tt::freshDir("suite_" + name);
     const auto r = tt::runTwinrender("run " + args + " --out " + out.string());
-    RunResult result{r.exitCode, r.output, nullptr};
+    RunResult result{r.exitCode, r.output, nullptr, ""};
     std::ifstream in(out / "summary.json");
     if (in) result.summary = nlohmann::json::parse(in);
+    result.markdown = tt::readText(out / "summary.md");
     return result;
 }
 
@@ -60,14 +62,23 @@ TEST(Suite, TheDefaultScenesPassTheirThresholds) {
     const auto r = tt::runTwinrender("run " + SCENES + " --thresholds " + THRESHOLDS + " --out " +
                                      out.string() + " --junit " + (out / "junit.xml").string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
-    for (const char* f : {"index.html", "summary.json", "junit.xml", "ringworld/index.html",
-                          "ringworld/metrics.json", "ringworld/realtime.exr",
-                          "ringworld/raymarch.exr", "ringworld/error.beauty.png"})
+    for (const char* f :
+         {"index.html", "summary.json", "summary.md", "junit.xml", "ringworld/index.html",
+          "ringworld/metrics.json", "ringworld/realtime.exr", "ringworld/raymarch.exr",
+          "ringworld/error.beauty.png"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     std::ifstream in(out / "summary.json");
     const auto summary = nlohmann::json::parse(in);
     EXPECT_EQ(summary["status"], "pass");
     EXPECT_EQ(summary["scenes"].size(), 8u);
+    // HDR-ꟻLIP on every scene, particles on black included, with the exposures it took.
+    for (const auto& s : summary["scenes"]) {
+        EXPECT_TRUE(s["metrics"]["beauty.hdrflip"].is_number()) << s["name"];
+        EXPECT_GE(s["settings"]["compare"]["hdrflip"]["exposures"].get<int>(), 2) << s["name"];
+        EXPECT_LT(s["settings"]["compare"]["hdrflip"]["start_exposure"].get<double>(),
+                  s["settings"]["compare"]["hdrflip"]["stop_exposure"].get<double>())
+            << s["name"];
+    }
 }
 
 TEST(Suite, LogDepthKeepsTheTelescopeInOrderWhereStandardDoesNot) {
@@ -202,6 +213,15 @@ TEST(Suite, ABaselineCatchesARegressionInsideTheBounds) {
               std::string::npos)
         << worse.output;
     EXPECT_EQ(worse.output.find("realtime.realtime."), std::string::npos) << worse.output;
+    // summary.md: the metric, linked to its row of the scene page, with its change.
+    EXPECT_NE(worse.markdown.find("| Change from baseline |"), std::string::npos) << worse.markdown;
+    EXPECT_NE(worse.markdown.find("| [planet](planet/index.html) | ❌ fail | "), std::string::npos)
+        << worse.markdown;
+    EXPECT_NE(worse.markdown.find("[normal.mean\\_deg](planet/index.html#metric-normal.mean_deg)"),
+              std::string::npos)
+        << worse.markdown;
+    EXPECT_NE(same.markdown.find("| [planet](planet/index.html) | ✅ pass |"), std::string::npos)
+        << same.markdown;
 }
 
 TEST(Suite, NoOpenGlIsExitFourWithWhatWasTried) {
@@ -228,6 +248,7 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
         tt::runTwinrender("compare " + ref + " " + test + " --out " + (dir / "c1").string());
     EXPECT_EQ(all.exitCode, 0) << all.output;
     EXPECT_NE(all.output.find("normal.mean_deg"), std::string::npos) << all.output;
+    EXPECT_NE(all.output.find("beauty.hdrflip over "), std::string::npos) << all.output;
     EXPECT_TRUE(fs::exists(dir / "c1" / "metrics.json"));
     EXPECT_TRUE(fs::exists(dir / "c1" / "error.beauty.png"));
     // Plain images: the beauty metrics only, and a bound that fails.
@@ -239,6 +260,24 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
                           (dir / "strict.toml").string() + " --out " + (dir / "c2").string());
     EXPECT_EQ(png.exitCode, 2) << png.output;
     EXPECT_EQ(png.output.find("normal.mean_deg"), std::string::npos) << png.output;
+    // The pooled ꟻLIP statistics can be bounded; --flip-over sets the level of flip_over.
+    const std::string pngs = "compare " + (dir / "planet" / "raymarch.png").string() + " " +
+                             (dir / "planet" / "realtime.png").string();
+    tt::writeFile(dir / "tail.toml", "\"beauty.flip_p99\" = { max = 0.01 }\n");
+    const auto tail = tt::runTwinrender(pngs + " --thresholds " + (dir / "tail.toml").string() +
+                                        " --out " + (dir / "c4").string());
+    EXPECT_EQ(tail.exitCode, 2) << tail.output;
+    EXPECT_NE(tail.output.find("beauty.flip_p99 = "), std::string::npos) << tail.output;
+    const auto low = tt::runTwinrender(pngs + " --flip-over 0.05 --out " + (dir / "c5").string());
+    ASSERT_EQ(low.exitCode, 0) << low.output;
+    const double overDefault =
+        tt::readJson(dir / "c4" / "metrics.json")["metrics"]["beauty.flip_over"].get<double>();
+    const double overLow =
+        tt::readJson(dir / "c5" / "metrics.json")["metrics"]["beauty.flip_over"].get<double>();
+    EXPECT_GT(overLow, overDefault);
+    EXPECT_EQ(tt::runTwinrender(pngs + " --flip-over 1 --out " + (dir / "c6").string()).exitCode,
+              4);
+    EXPECT_FALSE(fs::exists(dir / "c6"));
     // Not comparable (an EXR against a PNG of another size), unreadable.
     const auto sizes =
         tt::runTwinrender("compare " + ref + " " + (dir / "c1" / "error.beauty.png").string() +

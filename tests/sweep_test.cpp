@@ -16,6 +16,7 @@
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
+using tt::count;
 using tt::readJson;
 using tt::readText;
 using tt::selftestInBrowser;
@@ -29,12 +30,6 @@ const std::string SMALL =
     " --set camera.width=64 --set camera.height=48 --set bodies.planet.particles=1500";
 const std::string GRID =
     " --vary realtime.ssss.enabled=true,false --vary realtime.shadow_map.resolution=256,1024";
-
-std::size_t count(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-    return n;
-}
 
 // The line of the output that starts with `prefix`, without its end; empty when none does.
 std::string lineStarting(const std::string& text, const std::string& prefix) {

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Prints the reference values pinned in compare/*_test.cpp, from independent implementations.
 
-1. Write the test pairs (8-bit PNGs, exactly the pixels the tests use):
+1. Write the test pairs (8-bit PNGs, exactly the pixels the tests use; the HDR pairs as EXRs):
      TWINRENDER_WRITE_TEST_PAIRS=/tmp/pairs \
-       build/compare/twinrender_compare_tests --gtest_filter=ReferencePairs.*
+       build/compare/twinrender_compare_tests --gtest_filter='*ReferencePairs.*'
 2. /usr/bin/python3 compare/testdata/reference_values.py /tmp/pairs [--flip-repo DIR]
 
 PSNR and SSIM come from scikit-image (Debian 12: python3-skimage 0.19.3, numpy 1.24.2).
@@ -11,7 +11,9 @@ With --flip-repo (a checkout of github.com/NVlabs/flip, v1.6 at commit 1eb247c),
 builds NVlabs' C++ flip tool and prints the mean it reports for each pair at 67 and 30 pixels
 per degree (`flip -r REF.png -t TEST.png -ppd 67 -v 1`), then error-map values at a few pixels
 from FLIP::evaluate() in that repository's FLIP.h (a small driver, below, that loads the PNGs
-as the tool does).
+as the tool does). For the HDR pairs (hdr_flip_test.cpp) it prints the tool's HDR-FLIP mean at
+67 and 30 ppd, with its own exposure range or, where that is infinite (a black median), the one
+our test printed, given as -cstart/-cstop, and FLIP.h's HDR error map at a few pixels.
 """
 import argparse
 import os
@@ -26,6 +28,13 @@ from skimage.metrics import peak_signal_noise_ratio, structural_similarity
 
 PAIRS = ["gradient_noise", "checker_shift", "disc_blur", "colour_shift", "dark_noise",
          "black_white"]
+HDR_PAIRS = ["glow_on_black", "noisy_sky"]
+# Our exposure range of the pair whose median is black (HdrReferencePairs.WriteForReferenceTools
+# prints it): the tool's own is infinite there.
+HDR_RANGES = {"glow_on_black": ("-2.651069", "1.796123")}
+HDR_PIXELS = [("glow_on_black", 40, 35), ("glow_on_black", 21, 35), ("glow_on_black", 60, 35),
+              ("glow_on_black", 30, 20), ("glow_on_black", 5, 5), ("noisy_sky", 10, 10),
+              ("noisy_sky", 50, 40), ("noisy_sky", 70, 20), ("noisy_sky", 90, 60)]
 # (pair, x, y) pixels whose FLIP error flip_test.cpp pins.
 FLIP_PIXELS = [("checker_shift", 15, 14), ("checker_shift", 48, 35), ("checker_shift", 0, 0),
                ("disc_blur", 27, 35), ("disc_blur", 48, 13), ("colour_shift", 96, 70),
@@ -47,6 +56,32 @@ int main(int argc, char** argv) {  // REF.png TEST.png PPD X Y [X Y ...]
     FLIP::evaluate(ref, test, false, params, map);
     for (int i = 4; i + 1 < argc; i += 2)
         std::printf("%.7f\n", map.get(std::atoi(argv[i]), std::atoi(argv[i + 1])));
+}
+"""
+
+HDR_DRIVER = r"""
+#include "src/cpp/FLIP.h"
+#include "src/cpp/tool/imagehelpers.h"
+#include <cstdio>
+#include <cstdlib>
+int main(int argc, char** argv) {  // REF.exr TEST.exr PPD CSTART CSTOP X Y [X Y ...]
+    FLIP::image<FLIP::color3> ref, test;
+    if (!ImageHelpers::load(ref, argv[1]) || !ImageHelpers::load(test, argv[2])) return 1;
+    FLIP::Parameters params;
+    params.PPD = float(std::atof(argv[3]));
+    params.startExposure = float(std::atof(argv[4]));
+    params.stopExposure = float(std::atof(argv[5]));
+    FLIP::image<float> map(ref.getWidth(), ref.getHeight(), 0.0f);
+    FLIP::evaluate(ref, test, true, params, map);
+    double sum = 0.0;
+    for (int y = 0; y < map.getHeight(); ++y)
+        for (int x = 0; x < map.getWidth(); ++x) sum += map.get(x, y);
+    std::printf("exposures %.6f to %.6f, %d; map mean %.7f\n", params.startExposure,
+                params.stopExposure, params.numExposures,
+                sum / (map.getWidth() * map.getHeight()));
+    for (int i = 6; i + 1 < argc; i += 2)
+        std::printf("(%s, %s) %.7f\n", argv[i], argv[i + 1],
+                    map.get(std::atoi(argv[i]), std::atoi(argv[i + 1])));
 }
 """
 
@@ -100,6 +135,33 @@ def main():
                                   os.path.join(args.pairs, name + ".test.png"), "67", str(x),
                                   str(y)], check=True, capture_output=True, text=True).stdout
             print(f"{name:16s} ({x:2d}, {y:2d}) {out.strip()}")
+        if not os.path.exists(os.path.join(args.pairs, HDR_PAIRS[0] + ".ref.exr")):
+            return
+        hdr_driver = os.path.join(tmp, "hdr_driver")
+        with open(hdr_driver + ".cpp", "w") as f:
+            f.write(HDR_DRIVER)
+        subprocess.run(["g++", "-std=c++17", "-O2", "-fopenmp", "-I", args.flip_repo, "-o",
+                        hdr_driver, hdr_driver + ".cpp"], check=True)
+        print("\nNVlabs flip tool, HDR-FLIP (flip -r REF.exr -t TEST.exr [-cstart C -cstop C])")
+        for name in HDR_PAIRS:
+            ref, test = (os.path.join(args.pairs, name + s) for s in (".ref.exr", ".test.exr"))
+            given = ["-cstart", HDR_RANGES[name][0], "-cstop", HDR_RANGES[name][1]] \
+                if name in HDR_RANGES else []
+            for ppd in ("67", "30"):
+                out = subprocess.run([tool, "-r", ref, "-t", test, "-ppd", ppd, "-v", "2",
+                                      "--no-error-map", "--no-exposure-map"] + given,
+                                     check=True, capture_output=True, text=True, cwd=tmp).stdout
+                fields = {k.strip(): v.split()[0] for k, v in
+                          (line.split(":", 1) for line in out.splitlines() if ":" in line)}
+                print(f"{name:16s} ppd {ppd}: exposures {fields['Start exposure']} to "
+                      f"{fields['Stop exposure']}, {fields['Number of exposures']}; "
+                      f"mean {fields['Mean']}")
+            # "inf": FLIP.h computes the range itself, as the tool did.
+            start, stop = HDR_RANGES.get(name, ("inf", "inf"))
+            pixels = [str(v) for n, x, y in HDR_PIXELS if n == name for v in (x, y)]
+            out = subprocess.run([hdr_driver, ref, test, "67", start, stop] + pixels, check=True,
+                                 capture_output=True, text=True).stdout
+            print(out.strip())
 
 
 if __name__ == "__main__":

@@ -1,0 +1,74 @@
+// The whole `twinrender compare` process on a 1920x1080 PNG pair, as CI runs it: start-up,
+// decoding both PNGs, every beauty metric, the ꟻLIP error map's PNG and metrics.json. Beside
+// it, when TWINRENDER_NVLABS_FLIP names NVlabs' flip tool (github.com/NVlabs/flip, built as
+// compare/testdata/reference_values.py builds it), that tool on the same pair in the same run
+// (it computes ꟻLIP alone). Run:
+//   TWINRENDER_NVLABS_FLIP=/path/to/flip build/bench/compare_process_bench
+//       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true   (one line)
+// and read the medians (wall time).
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "bench/render_like_pair.h"
+#include "core/image_io.h"
+
+namespace twinrender::compare {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The pair as 8-bit PNGs in a folder of its own, written once.
+const fs::path& pairFolder() {
+    static const fs::path dir = [] {
+        const fs::path d =
+            fs::temp_directory_path() / ("twinrender_compare_bench_" + std::to_string(getpid()));
+        const Pair p;
+        core::writeImage(p.reference, d / "ref.png");
+        core::writeImage(p.test, d / "test.png");
+        return d;
+    }();
+    return dir;
+}
+
+void runProcess(benchmark::State& state, const std::string& command) {
+    for (auto _ : state)
+        if (std::system((command + " > /dev/null 2>&1").c_str()) != 0)
+            state.SkipWithError(("failed: " + command).c_str());
+}
+
+void BM_TwinrenderCompare(benchmark::State& state) {
+    const fs::path& d = pairFolder();
+    runProcess(state, std::string(TWINRENDER_BIN) + " compare " + (d / "ref.png").string() + " " +
+                          (d / "test.png").string() + " --out " + (d / "out").string());
+}
+BENCHMARK(BM_TwinrenderCompare)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+void BM_NvlabsFlip(benchmark::State& state) {
+    const char* tool = std::getenv("TWINRENDER_NVLABS_FLIP");
+    if (!tool) {
+        state.SkipWithError("set TWINRENDER_NVLABS_FLIP to NVlabs' flip tool to time it");
+        for (auto _ : state) {
+        }
+        return;
+    }
+    const fs::path& d = pairFolder();
+    // -v 1: the mean only; the error map written as its PNG, as ours is.
+    runProcess(state, std::string(tool) + " -r " + (d / "ref.png").string() + " -t " +
+                          (d / "test.png").string() + " -v 1 -d " + (d / "nvlabs").string());
+}
+BENCHMARK(BM_NvlabsFlip)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+}  // namespace
+}  // namespace twinrender::compare
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    std::error_code ec;
+    std::filesystem::remove_all(twinrender::compare::pairFolder(), ec);
+}
