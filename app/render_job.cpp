@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "app/progress.h"
 #include "core/error.h"
 #include "raymarch/embree_device.h"
@@ -69,6 +73,32 @@ core::Frame render(core::Renderer& renderer, std::string_view name, const Loaded
 
 core::Frame render(std::string_view name, Devices& devices, const LoadedScene& s) {
     return render(*makeRenderer(name, devices, s), name, s);
+}
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& s, int frames,
+                       bool warmUp) {
+    const auto renderer = makeRenderer(name, devices, s);
+    if (warmUp) render(*renderer, name, s);
+    TimedFrame timed;
+    std::map<std::string, std::vector<double>> times;
+    for (int f = 0; f < std::max(frames, 1); ++f) {
+        timed.frame = render(*renderer, name, s);
+        for (const auto& [stage, ms] : timed.frame.timingsMs)
+            if (stage != "compile") times[stage].push_back(ms);
+    }
+    for (const auto& [stage, v] : times) timed.medianMs[stage] = median(v);
+    return timed;
 }
 
 void writeRender(const LoadedScene& s, const core::Frame& frame, const std::filesystem::path& dir) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -76,6 +77,20 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
 core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& scene);
 // One frame of a renderer made for it (makeRenderer).
 core::Frame render(std::string_view name, Devices& devices, const LoadedScene& scene);
+
+// A frame and its cost: the median time of each stage and of the total over several frames.
+struct TimedFrame {
+    core::Frame frame;                       // the last frame rendered
+    std::map<std::string, double> medianMs;  // stage -> median ms, "total" included
+};
+
+// Renders `frames` (>= 1) frames of the scene with one renderer and takes the median of each
+// stage's time. With `warmUp`, one untimed frame first: the driver compiles shader variants on
+// first use, and a particle set's first frame does its per-set work (culling, impostor radii).
+// The "compile" stage (programs built for the renderer) is not part of a frame's time and is
+// left out.
+TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& scene,
+                       int frames, bool warmUp);
 
 // Writes DIR/<renderer>.exr|.png|.json for a frame of the scene.
 void writeRender(const LoadedScene& scene, const core::Frame& frame,
