@@ -114,7 +114,8 @@ std::vector<StudyPoint> depthPoints(bool quick) {
                             set("bodies.planet.center", vec(0, 0.5 * far, 0)),
                             set("bodies.planet.radius", fmt::format("{:.9g}", 0.05 * far)),
                             set("bodies.moon.center", vec(0.02 * far, 0.45 * far, 0.01 * far)),
-                            set("bodies.moon.radius", fmt::format("{:.9g}", 0.015 * far))}});
+                            set("bodies.moon.radius", fmt::format("{:.9g}", 0.015 * far))},
+                           ""});
         }
     return pts;
 }
@@ -184,7 +185,8 @@ std::vector<StudyPoint> sizePoints(bool quick) {
                 {ssss ? "SSSS on" : "SSSS off",
                  NAN,
                  {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                  set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a)))}});
+                  set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a)))},
+                 ""});
     if (quick)
         for (auto& p : pts) p.sets.push_back("bodies.slab.particles=6000");
     return pts;
@@ -273,7 +275,8 @@ std::vector<StudyPoint> anglePoints(bool quick) {
                  {set("realtime.ssss.enabled", ssss ? "true" : "false"),
                   set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a))),
                   // Perpendicular to the view direction at every angle.
-                  set("camera.up", vec(0.0, std::cos(a), std::sin(a)))}});
+                  set("camera.up", vec(0.0, std::cos(a), std::sin(a)))},
+                 ""});
         }
     return pts;
 }
@@ -321,10 +324,11 @@ std::vector<StudyPoint> shadowPoints(bool quick) {
                            double(r),
                            {"realtime.shadows=\"map\"",
                             set("realtime.shadow_map.resolution", std::to_string(r)),
-                            set("realtime.shadow_map.bias", fmt::format("{:g}", b))}});
+                            set("realtime.shadow_map.bias", fmt::format("{:g}", b))},
+                           ""});
     // The baseline does not use the map: one render, drawn across the axis.
-    pts.push_back({"occlusion spheres", double(res.front()), {"realtime.shadows=\"spheres\""}});
-    pts.push_back({"occlusion spheres", double(res.back()), {"realtime.shadows=\"spheres\""}});
+    pts.push_back({"occlusion spheres", double(res.front()), {"realtime.shadows=\"spheres\""}, ""});
+    pts.push_back({"occlusion spheres", double(res.back()), {"realtime.shadows=\"spheres\""}, ""});
     // The ring's shadow covers a few hundred pixels at the scene's 96 x 54; the full study
     // doubles that so one pixel moves IoU by less.
     if (!quick)
@@ -403,11 +407,12 @@ std::vector<StudyPoint> collisionPoints(bool quick) {
     for (const bool ssss : {true, false})
         for (double g : gaps) {
             const double c = 0.6 + 0.5 * g;
-            pts.push_back({ssss ? "SSSS on" : "SSSS off",
-                           g,
-                           {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                            set("bodies.cold.center", vec(-c, 0, 0)),
-                            set("bodies.hot.center", vec(c, 0, 0))}});
+            pts.push_back(
+                {ssss ? "SSSS on" : "SSSS off",
+                 g,
+                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
+                  set("bodies.cold.center", vec(-c, 0, 0)), set("bodies.hot.center", vec(c, 0, 0))},
+                 ""});
         }
     return pts;
 }
@@ -466,11 +471,12 @@ std::vector<StudyPoint> orbitPoints(bool quick) {
     for (const bool ssss : {true, false})
         for (int f = 0; f < frames; ++f) {
             const double a = -0.5 * std::numbers::pi + f * step;
-            pts.push_back({ssss ? "SSSS on" : "SSSS off",
-                           double(f),
-                           {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                            set("camera.position",
-                                vec(radius * std::cos(a), radius * std::sin(a), height))}});
+            pts.push_back(
+                {ssss ? "SSSS on" : "SSSS off",
+                 double(f),
+                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
+                  set("camera.position", vec(radius * std::cos(a), radius * std::sin(a), height))},
+                 ""});
         }
     return pts;
 }
@@ -560,6 +566,7 @@ const std::vector<StudyDef>& studies() {
          false,
          true,
          false,
+         1,
          depthPoints,
          nullptr,
          depthConclude},
@@ -577,6 +584,7 @@ const std::vector<StudyDef>& studies() {
          false,
          false,
          false,
+         1,
          shadowPoints,
          nullptr,
          shadowConclude},
@@ -585,12 +593,12 @@ const std::vector<StudyDef>& studies() {
          "normal and uv errors and "
          "smoothness, on and off; where does the filter radius selection stop helping?",
          "particle_size.toml", "particle diameter on screen (px)", true, "normal.mean_deg",
-         smoothingColumns, false, false, false, sizePoints, particlePixels, sizeConclude},
+         smoothingColumns, false, false, false, 1, sizePoints, particlePixels, sizeConclude},
         {"view_angle", "View angle",
          "The camera turns from face-on to grazing over a flat slab: the view dependence of the "
          "screen-space smoothing.",
          "view_angle.toml", "view angle from the surface normal (degrees)", false,
-         "normal.mean_deg", smoothingColumns, false, false, false, anglePoints, nullptr,
+         "normal.mean_deg", smoothingColumns, false, false, false, 1, anglePoints, nullptr,
          angleConclude},
         {"temporal",
          "Temporal stability",
@@ -606,6 +614,7 @@ const std::vector<StudyDef>& studies() {
          false,
          false,
          true,
+         1,
          orbitPoints,
          nullptr,
          temporalConclude},
@@ -623,6 +632,7 @@ const std::vector<StudyDef>& studies() {
          true,
          false,
          false,
+         1,
          collisionPoints,
          nullptr,
          collisionConclude},

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,7 +45,7 @@ struct Point {
 
 struct Planned {
     const StudyDef* def;
-    fs::path sceneFile;
+    std::vector<fs::path> sceneFiles;  // every scene its points render, in order of first use
     std::vector<Point> points;
 };
 
@@ -71,19 +72,27 @@ ExitCode runStudies(const StudyOptions& o) {
     const fs::path scenesDir = o.scenesDir.empty() ? defaultStudyScenes() : fs::path(o.scenesDir);
     std::vector<Planned> plans;
     for (const StudyDef* d : chosen) {
-        Planned p{d, scenesDir / d->scene, {}};
-        if (!fs::is_regular_file(p.sceneFile))
-            throw core::InputError(
-                fmt::format("{}: the scene of study {} is missing", p.sceneFile.string(), d->name));
+        Planned p{d, {}, {}};
         for (StudyPoint& sp : d->points(o.quick)) {
+            const fs::path sceneFile =
+                (scenesDir / (sp.scene.empty() ? d->scene : sp.scene)).lexically_normal();
+            if (std::find(p.sceneFiles.begin(), p.sceneFiles.end(), sceneFile) ==
+                p.sceneFiles.end()) {
+                if (!fs::is_regular_file(sceneFile))
+                    throw core::InputError(fmt::format("{}: the scene of study {} is missing",
+                                                       sceneFile.string(), d->name));
+                p.sceneFiles.push_back(sceneFile);
+            }
             Point pt;
             pt.overrides = o.sets;
             pt.overrides.insert(pt.overrides.end(), sp.sets.begin(), sp.sets.end());
             try {
-                pt.scene = loadScene(p.sceneFile, pt.overrides);
+                pt.scene = loadScene(sceneFile, pt.overrides);
             } catch (const core::InputError& e) {
                 throw core::InputError(
-                    fmt::format("study {}, {} at x = {}: {}", d->name, sp.series, sp.x, e.what()));
+                    fmt::format("study {}, {}{} at x = {}: {}", d->name,
+                                sp.scene.empty() ? "" : sceneFile.stem().string() + ", ", sp.series,
+                                sp.x, e.what()));
             }
             if (std::isnan(sp.x) && d->xOf) sp.x = d->xOf(pt.scene);
             pt.point = std::move(sp);
@@ -107,7 +116,8 @@ ExitCode runStudies(const StudyOptions& o) {
         s.name = d.name;
         s.title = d.title;
         s.question = d.question;
-        s.sceneFile = plan.sceneFile.string();
+        for (const fs::path& f : plan.sceneFiles)
+            s.sceneFile += (s.sceneFile.empty() ? "" : ", ") + f.string();
         s.xLabel = d.xLabel;
         s.xLog = d.xLog;
         s.metric = d.metric;
@@ -121,6 +131,7 @@ ExitCode runStudies(const StudyOptions& o) {
         for (std::size_t i = 0; i < plan.points.size(); ++i) {
             const Point& pt = plan.points[i];
             compare::StudyRow row;
+            if (!pt.point.scene.empty()) row.scene = pt.scene.scene.name;
             row.series = pt.point.series;
             row.x = pt.point.x;
             row.sets = pt.point.sets;
@@ -132,9 +143,10 @@ ExitCode runStudies(const StudyOptions& o) {
                 const auto u = ref.counters.find("unbracketed_rays");
                 row.metrics["count.unbracketed_rays"] = u == ref.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
-                const core::Frame test = render("realtime", devices, pt.scene);
-                for (const auto& [stage, ms] : test.timingsMs)
-                    if (stage != "compile") row.timingsMs[stage] = ms;
+                const int frames = o.quick ? 1 : std::max(d.frames, 1);
+                TimedFrame timed = renderTimed("realtime", devices, pt.scene, frames, frames > 1);
+                const core::Frame test = std::move(timed.frame);
+                row.timingsMs = std::move(timed.medianMs);
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
                 const compare::MetricResult m = compare::computeMetrics(ref.image, test.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
@@ -173,8 +185,10 @@ ExitCode runStudies(const StudyOptions& o) {
                 if (!fs::exists(dir / refPng)) core::writeImage(ref.display, dir / refPng);
                 row.images["reference"] = refPng;
                 const auto y = row.metrics.find(d.metric);
-                std::printf("[%s %zu/%zu] %s, x = %g: %s %s (real-time %.1f ms)\n", d.name.c_str(),
-                            i + 1, plan.points.size(), row.series.c_str(), row.x, d.metric.c_str(),
+                std::printf("[%s %zu/%zu] %s%s%s, x = %g: %s %s (real-time %.1f ms)\n",
+                            d.name.c_str(), i + 1, plan.points.size(), row.scene.c_str(),
+                            row.scene.empty() ? "" : ": ", row.series.c_str(), row.x,
+                            d.metric.c_str(),
                             y == row.metrics.end() ? "-" : compare::formatValue(y->second).c_str(),
                             row.timingsMs.count("total") ? row.timingsMs.at("total") : NAN);
             } catch (const core::InputError&) {
@@ -183,8 +197,9 @@ ExitCode runStudies(const StudyOptions& o) {
                 // One point that cannot be rendered fails; the others still run.
                 row.error = e.what();
                 anyError = true;
-                std::printf("[%s %zu/%zu] %s, x = %g: error: %s\n", d.name.c_str(), i + 1,
-                            plan.points.size(), row.series.c_str(), row.x, e.what());
+                std::printf("[%s %zu/%zu] %s%s%s, x = %g: error: %s\n", d.name.c_str(), i + 1,
+                            plan.points.size(), row.scene.c_str(), row.scene.empty() ? "" : ": ",
+                            row.series.c_str(), row.x, e.what());
             }
             std::fflush(stdout);
             s.rows.push_back(std::move(row));
