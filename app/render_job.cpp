@@ -4,10 +4,10 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cmath>
 #include <vector>
 
 #include "app/progress.h"
+#include "compare/study_summary.h"
 #include "core/error.h"
 #include "raymarch/embree_device.h"
 #include "raymarch/renderer.h"
@@ -75,17 +75,6 @@ core::Frame render(std::string_view name, Devices& devices, const LoadedScene& s
     return render(*makeRenderer(name, devices, s), name, s);
 }
 
-namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty()) return NAN;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
-
 TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& s, int frames,
                        bool warmUp) {
     const auto renderer = makeRenderer(name, devices, s);
@@ -97,7 +86,7 @@ TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScen
         for (const auto& [stage, ms] : timed.frame.timingsMs)
             if (stage != "compile") times[stage].push_back(ms);
     }
-    for (const auto& [stage, v] : times) timed.medianMs[stage] = median(v);
+    for (const auto& [stage, v] : times) timed.medianMs[stage] = compare::median(v);
     return timed;
 }
 
