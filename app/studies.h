@@ -44,8 +44,8 @@ struct StudyDef {
     bool frameToFrame = false;
     // Real-time frames rendered per point: 1, the first frame of a renderer (the studies of
     // stability); more, an untimed warm-up frame and then this many, their median time per
-    // stage (app/render_job.h renderTimed), for a study that compares costs. Quick runs render
-    // one.
+    // stage (app/render_job.h renderTimed), for a study that compares costs. Quick runs time
+    // one frame (after the warm-up).
     int frames = 1;
     std::function<std::vector<StudyPoint>(bool quick)> points;
     std::function<double(const LoadedScene&)> xOf;  // for points without an x

@@ -143,8 +143,9 @@ ExitCode runStudies(const StudyOptions& o) {
                 const auto u = ref.counters.find("unbracketed_rays");
                 row.metrics["count.unbracketed_rays"] = u == ref.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
+                // A study that compares costs times frames after a warm-up, quick ones too.
                 const int frames = o.quick ? 1 : std::max(d.frames, 1);
-                TimedFrame timed = renderTimed("realtime", devices, pt.scene, frames, frames > 1);
+                TimedFrame timed = renderTimed("realtime", devices, pt.scene, frames, d.frames > 1);
                 const core::Frame test = std::move(timed.frame);
                 row.timingsMs = std::move(timed.medianMs);
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);

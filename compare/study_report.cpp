@@ -172,8 +172,7 @@ std::string studyMarkdown(const StudyResult& s, int level) {
     const std::string h(static_cast<std::size_t>(std::max(level, 1)), '#');
     std::string md =
         h + " " + s.title + "\n\n" + s.question + "\n\n**Finding:** " + s.finding + "\n\n";
-    md +=
-        "![" + s.title + ": " + (s.scatter ? s.scatter->title : s.chart.title) + "](study.svg)\n\n";
+    md += "![" + (s.scatter ? s.scatter->title : s.chart.title) + "](study.svg)\n\n";
     for (const StudyFigure& f : s.figures)
         md += "![" + f.chart.title + "](" + f.file + ".svg)\n\n*" + f.caption + "*\n\n";
     // One cell: " text |"; a bar in the text is escaped (Markdown table cells cannot hold one).
@@ -298,9 +297,9 @@ std::string studySection(const StudyResult& s) {
     h += "<img src=\"" + base + "study.svg\" alt=\"" + htmlEscape(s.title) +
          ": chart\" style=\"max-width:100%;height:auto\">\n";
     for (const StudyFigure& f : s.figures)
-        h += "<figure><img src=\"" + base + urlPath(f.file) + ".svg\" alt=\"" +
-             htmlEscape(f.chart.title) + "\" style=\"max-width:100%;height:auto\"><figcaption>" +
-             htmlEscape(f.caption) + "</figcaption></figure>\n";
+        h += "<img src=\"" + base + urlPath(f.file) + ".svg\" alt=\"" + htmlEscape(f.chart.title) +
+             "\" style=\"max-width:100%;height:auto\">\n<p class=\"muted\">" +
+             htmlEscape(f.caption) + "</p>\n";
     for (const StudyTable& t : s.tables) h += tableSection(t, base);
     const bool scenes = spansScenes(s);
     // The rows fold away: the chart and the finding are the page's reading.

@@ -181,7 +181,7 @@ TEST(StudyReport, ScatterFiguresAndTablesAreWrittenAndShown) {
     EXPECT_EQ(svg.classCounts.at("pareto"), 2);  // the front's line and its legend entry
     const std::string html = readText(dir / "index.html");
     EXPECT_NE(html.find("<img src=\"methods/particle_size.svg\""), std::string::npos);
-    EXPECT_NE(html.find("<figcaption>Normal error against particle size.</figcaption>"),
+    EXPECT_NE(html.find("<p class=\"muted\">Normal error against particle size.</p>"),
               std::string::npos);
     EXPECT_NE(html.find("<a href=\"methods/summary.csv\">"), std::string::npos);
     EXPECT_NE(html.find("<th>Scene</th>"), std::string::npos);
