@@ -75,19 +75,30 @@ core::Frame render(std::string_view name, Devices& devices, const LoadedScene& s
     return render(*makeRenderer(name, devices, s), name, s);
 }
 
+std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& devices,
+                                          const std::vector<const LoadedScene*>& scenes, int frames,
+                                          bool warmUp) {
+    std::vector<std::unique_ptr<core::Renderer>> renderers;
+    for (const LoadedScene* s : scenes) {
+        renderers.push_back(makeRenderer(name, devices, *s));
+        if (warmUp) render(*renderers.back(), name, *s);
+    }
+    std::vector<TimedFrame> timed(scenes.size());
+    std::vector<std::map<std::string, std::vector<double>>> times(scenes.size());
+    for (int f = 0; f < std::max(frames, 1); ++f)
+        for (std::size_t i = 0; i < scenes.size(); ++i) {
+            timed[i].frame = render(*renderers[i], name, *scenes[i]);
+            for (const auto& [stage, ms] : timed[i].frame.timingsMs)
+                if (stage != "compile") times[i][stage].push_back(ms);
+        }
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+        for (const auto& [stage, v] : times[i]) timed[i].medianMs[stage] = compare::median(v);
+    return timed;
+}
+
 TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& s, int frames,
                        bool warmUp) {
-    const auto renderer = makeRenderer(name, devices, s);
-    if (warmUp) render(*renderer, name, s);
-    TimedFrame timed;
-    std::map<std::string, std::vector<double>> times;
-    for (int f = 0; f < std::max(frames, 1); ++f) {
-        timed.frame = render(*renderer, name, s);
-        for (const auto& [stage, ms] : timed.frame.timingsMs)
-            if (stage != "compile") times[stage].push_back(ms);
-    }
-    for (const auto& [stage, v] : times) timed.medianMs[stage] = compare::median(v);
-    return timed;
+    return std::move(renderTimedRounds(name, devices, {&s}, frames, warmUp).front());
 }
 
 void writeRender(const LoadedScene& s, const core::Frame& frame, const std::filesystem::path& dir) {

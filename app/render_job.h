@@ -91,6 +91,12 @@ struct TimedFrame {
 // left out.
 TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& scene,
                        int frames, bool warmUp);
+// The same for several scenes (or settings of one), their frames rendered in rounds, one frame
+// of each in turn: a change of the machine's load over the rounds then falls on every scene
+// alike, where one scene's frames after another's would give the later ones another load.
+std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& devices,
+                                          const std::vector<const LoadedScene*>& scenes, int frames,
+                                          bool warmUp);
 
 // Writes DIR/<renderer>.exr|.png|.json for a frame of the scene.
 void writeRender(const LoadedScene& scene, const core::Frame& frame,

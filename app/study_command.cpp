@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "app/comparison.h"
@@ -48,6 +49,37 @@ struct Planned {
     std::vector<fs::path> sceneFiles;  // every scene its points render, in order of first use
     std::vector<Point> points;
 };
+
+// The end of the run of points from `first` whose frames are timed together: for a study that
+// compares costs, the consecutive points of one scene file (their frames in rounds: see
+// renderTimedRounds); else the point alone.
+std::size_t timedTogetherEnd(const Planned& plan, std::size_t first) {
+    std::size_t end = first + 1;
+    if (plan.def->frames > 1)
+        while (end < plan.points.size() &&
+               plan.points[end].point.scene == plan.points[first].point.scene)
+            ++end;
+    return end;
+}
+
+// Renders the real-time frames of the points [first, end) (timedTogetherEnd) and their median
+// stage times: one frame each for a stability study; for a study that compares costs, one
+// untimed warm-up frame each and then `frames` rounds (one in quick runs).
+void renderPoints(const Planned& plan, std::size_t first, std::size_t end, bool quick,
+                  Devices& devices, std::vector<std::optional<TimedFrame>>& timed) {
+    const StudyDef& d = *plan.def;
+    std::vector<const LoadedScene*> scenes;
+    for (std::size_t k = first; k < end; ++k) scenes.push_back(&plan.points[k].scene);
+    const int frames = quick ? 1 : std::max(d.frames, 1);
+    if (scenes.size() > 1) {
+        std::printf("[%s] %s: %zu settings, %d frame%s each in rounds after a warm-up frame\n",
+                    d.name.c_str(), plan.points[first].scene.scene.name.c_str(), scenes.size(),
+                    frames, frames == 1 ? "" : "s");
+        std::fflush(stdout);
+    }
+    auto frameTimes = renderTimedRounds("realtime", devices, scenes, frames, d.frames > 1);
+    for (std::size_t k = first; k < end; ++k) timed[k] = std::move(frameTimes[k - first]);
+}
 
 }  // namespace
 
@@ -128,6 +160,7 @@ ExitCode runStudies(const StudyOptions& o) {
         std::map<std::string, double> unbracketed;  // per distinct reference
         // Frame-to-frame: the previous frame's two display images, per series.
         std::map<std::string, std::pair<core::Image, core::Image>> previous;
+        std::vector<std::optional<TimedFrame>> timed(plan.points.size());
         for (std::size_t i = 0; i < plan.points.size(); ++i) {
             const Point& pt = plan.points[i];
             compare::StudyRow row;
@@ -143,11 +176,11 @@ ExitCode runStudies(const StudyOptions& o) {
                 const auto u = ref.counters.find("unbracketed_rays");
                 row.metrics["count.unbracketed_rays"] = u == ref.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
-                // A study that compares costs times frames after a warm-up, quick ones too.
-                const int frames = o.quick ? 1 : std::max(d.frames, 1);
-                TimedFrame timed = renderTimed("realtime", devices, pt.scene, frames, d.frames > 1);
-                const core::Frame test = std::move(timed.frame);
-                row.timingsMs = std::move(timed.medianMs);
+                if (!timed[i])
+                    renderPoints(plan, i, timedTogetherEnd(plan, i), o.quick, devices, timed);
+                const core::Frame test = std::move(timed[i]->frame);
+                row.timingsMs = std::move(timed[i]->medianMs);
+                timed[i].reset();
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
                 const compare::MetricResult m = compare::computeMetrics(ref.image, test.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
