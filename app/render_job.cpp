@@ -85,8 +85,11 @@ std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& device
     }
     std::vector<TimedFrame> timed(scenes.size());
     std::vector<std::map<std::string, std::vector<double>>> times(scenes.size());
-    for (int f = 0; f < std::max(frames, 1); ++f)
-        for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const std::size_t n = scenes.size(), rounds = static_cast<std::size_t>(std::max(frames, 1));
+    for (std::size_t f = 0; f < rounds; ++f)
+        // Each round starts further along, so that each scene takes another place in each.
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t i = (k + f * n / rounds) % n;
             timed[i].frame = render(*renderers[i], name, *scenes[i]);
             for (const auto& [stage, ms] : timed[i].frame.timingsMs)
                 if (stage != "compile") times[i][stage].push_back(ms);

@@ -92,8 +92,9 @@ struct TimedFrame {
 TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& scene,
                        int frames, bool warmUp);
 // The same for several scenes (or settings of one), their frames rendered in rounds, one frame
-// of each in turn: a change of the machine's load over the rounds then falls on every scene
-// alike, where one scene's frames after another's would give the later ones another load.
+// of each in turn, each round starting at another: a change of the machine's load over the
+// rounds, or within each, then falls on every scene alike, where one scene's frames after
+// another's would give the later ones another load.
 std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& devices,
                                           const std::vector<const LoadedScene*>& scenes, int frames,
                                           bool warmUp);

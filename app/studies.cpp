@@ -1172,7 +1172,8 @@ const std::vector<StudyDef>& studies() {
          "Every surface method at its defaults and along its main parameter, with each particle "
          "shape, on the default scenes and along particle size and view angle: how far each is "
          "from the exact surface (normals, depth, coverage, outlines, uv, ꟻLIP, smoothness) and "
-         "what its frame costs (the median of 5 frames after a warm-up frame).",
+         "what its frame costs (the median of 5 frames, rendered in rounds with the other "
+         "settings of its scene after a warm-up frame).",
          "",
          "the method's parameter (particle radii; steps for curvature_flow); particle_size: "
          "px per particle; view_angle: degrees",
