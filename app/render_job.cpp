@@ -95,7 +95,10 @@ std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& device
                 if (stage != "compile") times[i][stage].push_back(ms);
         }
     for (std::size_t i = 0; i < scenes.size(); ++i)
-        for (const auto& [stage, v] : times[i]) timed[i].medianMs[stage] = compare::median(v);
+        for (const auto& [stage, v] : times[i]) {
+            timed[i].medianMs[stage] = compare::median(v);
+            timed[i].fastestMs[stage] = *std::min_element(v.begin(), v.end());
+        }
     return timed;
 }
 

@@ -78,17 +78,21 @@ core::Frame render(core::Renderer& renderer, std::string_view name, const Loaded
 // One frame of a renderer made for it (makeRenderer).
 core::Frame render(std::string_view name, Devices& devices, const LoadedScene& scene);
 
-// A frame and its cost: the median time of each stage and of the total over several frames.
+// A frame and its cost over several frames: per stage and for the total, the median and the
+// fastest. On a machine that other processes share they lengthen some frames and shorten
+// none, so the fastest frame is the nearest to the frame's own cost; the median is the typical
+// frame under that load.
 struct TimedFrame {
-    core::Frame frame;                       // the last frame rendered
-    std::map<std::string, double> medianMs;  // stage -> median ms, "total" included
+    core::Frame frame;                        // the last frame rendered
+    std::map<std::string, double> medianMs;   // stage -> median ms, "total" included
+    std::map<std::string, double> fastestMs;  // stage -> least ms, "total" included
 };
 
-// Renders `frames` (>= 1) frames of the scene with one renderer and takes the median of each
-// stage's time. With `warmUp`, one untimed frame first: the driver compiles shader variants on
-// first use, and a particle set's first frame does its per-set work (culling, impostor radii).
-// The "compile" stage (programs built for the renderer) is not part of a frame's time and is
-// left out.
+// Renders `frames` (>= 1) frames of the scene with one renderer and takes the median and the
+// least of each stage's time. With `warmUp`, one untimed frame first: the driver compiles shader
+// variants on first use, and a particle set's first frame does its per-set work (culling, impostor
+// radii). The "compile" stage (programs built for the renderer) is not part of a frame's time and
+// is left out.
 TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& scene,
                        int frames, bool warmUp);
 // The same for several scenes (or settings of one), their frames rendered in rounds, one frame

@@ -43,9 +43,10 @@ struct StudyDef {
     // (temporal.frame_flip) and the reference (temporal.reference_frame_flip).
     bool frameToFrame = false;
     // Real-time frames rendered per point: 1, the first frame of a renderer (the studies of
-    // stability); more, an untimed warm-up frame and then this many, their median time per
-    // stage (app/render_job.h renderTimed), for a study that compares costs. Quick runs time
-    // one frame (after the warm-up).
+    // stability); more, an untimed warm-up frame and then this many, in rounds with the other
+    // points of the scene, for a study that compares costs: a point's time per stage is then
+    // the fastest of its frames (app/render_job.h renderTimedRounds). Quick runs time one
+    // frame (after the warm-up).
     int frames = 1;
     std::function<std::vector<StudyPoint>(bool quick)> points;
     std::function<double(const LoadedScene&)> xOf;  // for points without an x
