@@ -524,27 +524,66 @@ void temporalConclude(StudyResult& s) {
 
 // A surface method (realtime.surface.method) and its main parameter: the one that sets the
 // filter's reach, in particle radii (steps for curvature flow). The default is the renderer's
-// (realtime/settings.h); the full study also takes the values `steps` below and above it.
+// (realtime/settings.h); the full study also takes the values `step` below and above it.
 struct MethodSweep {
-    realtime::SurfaceMethod method;
-    const char* key;  // nullptr: none has no parameter
+    std::string name;               // the series' method: "bilateral"
+    std::vector<std::string> sets;  // what selects it
+    const char* key;                // the main parameter's key; nullptr: none has none
     double defaultValue;
     double step;  // the full study's values: default / step, default, default * step
+    // What it is measured against along particle size and view angle: the same surface
+    // unfiltered ("none" for SSSS and the depth normals, the depth normals for a depth filter);
+    // "" for none itself.
+    std::string control;
 };
+
+// The unfiltered surface with the normals a depth filter would rebuild from it: the example
+// pass-through shader with realtime.surface.shader_normals, the control of the depth filters.
+const std::string DEPTH_NORMALS = "depth_normals";
 
 std::vector<MethodSweep> methodSweeps() {
     using realtime::SurfaceMethod;
     const realtime::Settings d;
+    auto method = [](SurfaceMethod m) {
+        return set("realtime.surface.method", fmt::format("\"{}\"", realtime::toString(m)));
+    };
+    const std::string none(realtime::toString(SurfaceMethod::None));
     return {
-        {SurfaceMethod::None, nullptr, 0.0, 1.0},
-        {SurfaceMethod::Ssss, "realtime.ssss.radius_scale", d.ssss.radiusScale, 2.0},
-        {SurfaceMethod::Bilateral, "realtime.surface.bilateral.radius", d.surface.bilateral.radius,
-         2.0},
-        {SurfaceMethod::NarrowRange, "realtime.surface.narrow_range.radius",
-         d.surface.narrowRange.radius, 2.0},
+        {none, {method(SurfaceMethod::None)}, nullptr, 0.0, 1.0, ""},
+        {DEPTH_NORMALS,
+         {method(SurfaceMethod::Shader),
+          set("realtime.surface.shader",
+              fmt::format("\"{}/examples/surface_pass_through.glsl\"", TWINRENDER_SOURCE_DIR)),
+          "realtime.surface.shader_normals=true"},
+         nullptr,
+         0.0,
+         1.0,
+         none},
+        {"ssss",
+         {method(SurfaceMethod::Ssss)},
+         "realtime.ssss.radius_scale",
+         d.ssss.radiusScale,
+         2.0,
+         none},
+        {"bilateral",
+         {method(SurfaceMethod::Bilateral)},
+         "realtime.surface.bilateral.radius",
+         d.surface.bilateral.radius,
+         2.0,
+         DEPTH_NORMALS},
+        {"narrow_range",
+         {method(SurfaceMethod::NarrowRange)},
+         "realtime.surface.narrow_range.radius",
+         d.surface.narrowRange.radius,
+         2.0,
+         DEPTH_NORMALS},
         // Curvature flow reaches about sqrt(2 n time_step) pixels after n steps.
-        {SurfaceMethod::CurvatureFlow, "realtime.surface.curvature_flow.iterations",
-         double(d.surface.curvatureFlow.iterations), 4.0},
+        {"curvature_flow",
+         {method(SurfaceMethod::CurvatureFlow)},
+         "realtime.surface.curvature_flow.iterations",
+         double(d.surface.curvatureFlow.iterations),
+         4.0,
+         DEPTH_NORMALS},
     };
 }
 
@@ -588,12 +627,11 @@ std::vector<SuiteScene> suiteScenes(bool quick) {
 }
 
 std::string methodSeries(const MethodSweep& m, const std::string& shape) {
-    return fmt::format("{}, {}", realtime::toString(m.method), shape);
+    return fmt::format("{}, {}", m.name, shape);
 }
 
 std::vector<std::string> methodSets(const MethodSweep& m, double value, const std::string& shape) {
-    std::vector<std::string> sets = {
-        set("realtime.surface.method", fmt::format("\"{}\"", realtime::toString(m.method)))};
+    std::vector<std::string> sets = m.sets;
     if (m.key) sets.push_back(set(m.key, fmt::format("{:g}", value)));
     if (shape != "sphere") sets.push_back(set("realtime.particles.shape", "\"" + shape + "\""));
     return sets;
@@ -656,7 +694,7 @@ std::pair<std::string, std::string> methodAndShape(const std::string& series) {
 const MethodSweep* sweepOf(const std::string& method) {
     static const std::vector<MethodSweep> all = methodSweeps();
     for (const MethodSweep& m : all)
-        if (realtime::toString(m.method) == method) return &m;
+        if (m.name == method) return &m;
     return nullptr;
 }
 
@@ -704,7 +742,15 @@ const std::map<double, double>* errorsOf(const NormalErrors& all, const std::str
     return nullptr;
 }
 
-// The series of one method's none counterpart: "none, <shape>".
+// The series a method's series is measured against ("bilateral, sphere" -> "depth_normals,
+// sphere"); "" for none.
+std::string controlOf(const std::string& series) {
+    const auto [method, shape] = methodAndShape(series);
+    const MethodSweep* m = sweepOf(method);
+    return m && !m->control.empty() ? fmt::format("{}, {}", m->control, shape) : "";
+}
+
+// The series of none with the same shape.
 std::string noneOf(const std::string& series) {
     return fmt::format("{}, {}", realtime::toString(realtime::SurfaceMethod::None),
                        methodAndShape(series).second);
@@ -714,13 +760,14 @@ std::string noneOf(const std::string& series) {
 // raises it where it is this fraction or more above none's.
 constexpr double HELP_MARGIN = 0.10;
 
-// Along particle size: where each filter helps and where it raises the error against none.
+// Along particle size: where each method helps and where it raises the error against its
+// control.
 std::string sizeFinding(const std::vector<const StudyRow*>& rows, json& facts) {
     const auto normal = normalBySeries(rows);
     std::string out;
     for (const auto& [series, errors] : normal) {
-        const auto* none = errorsOf(normal, noneOf(series));
-        if (series == noneOf(series) || !none) continue;
+        const auto* none = errorsOf(normal, controlOf(series));
+        if (!none) continue;
         std::vector<double> helps, raises;
         json gains = json::object();
         for (const auto& [x, e] : errors) {
@@ -743,6 +790,7 @@ std::string sizeFinding(const std::vector<const StudyRow*>& rows, json& facts) {
                 std::find(helps.begin(), helps.end(), x) == helps.end())
                 contiguous = false;
         json& f = facts[series];
+        f["control"] = controlOf(series);
         f["gain"] = gains;
         f["smallest_helping_px"] = helps.empty() ? json(nullptr) : json(helps.front());
         f["largest_helping_px"] = helps.empty() ? json(nullptr) : json(helps.back());
@@ -760,14 +808,14 @@ std::string sizeFinding(const std::vector<const StudyRow*>& rows, json& facts) {
     return out;
 }
 
-// Along view angle: from which angle each filter raises the error against none for good, and
-// its error face-on and at the largest angle.
+// Along view angle: from which angle each method raises the error against its control for
+// good, and its error face-on and at the largest angle.
 std::string angleFinding(const std::vector<const StudyRow*>& rows, json& facts) {
     const auto normal = normalBySeries(rows);
     std::string raised, growth;
     for (const auto& [series, errors] : normal) {
-        const auto* none = errorsOf(normal, noneOf(series));
-        if (series == noneOf(series) || !none || errors.empty()) continue;
+        const auto* none = errorsOf(normal, controlOf(series));
+        if (!none || errors.empty()) continue;
         double from = NAN;
         for (auto it = errors.rbegin(); it != errors.rend(); ++it) {
             const auto n = none->find(it->first);
@@ -776,6 +824,7 @@ std::string angleFinding(const std::vector<const StudyRow*>& rows, json& facts) 
         }
         const std::string name = methodName(series);
         json& f = facts[series];
+        f["control"] = controlOf(series);
         f["raises_from_deg"] = jsonOrNull(from);
         f["face_on_deg"] = jsonOrNull(errors.begin()->second);
         f["last_angle"] = errors.rbegin()->first;
@@ -791,8 +840,9 @@ std::string angleFinding(const std::vector<const StudyRow*>& rows, json& facts) 
         return a;
     }();
     return (raised.empty()
-                ? fmt::format("no filter raises the normal error above none's up to {}°", num(last))
-                : "the normal error rises above none's for " + raised) +
+                ? fmt::format("no method raises the normal error above its control's up to {}°",
+                              num(last))
+                : "the normal error rises above the control's for " + raised) +
            fmt::format("; face-on → {}°: {}", num(last), growth);
 }
 
@@ -931,26 +981,36 @@ std::string frontFinding(const std::vector<compare::SettingMedians>& settings,
     return text;
 }
 
-// Each method at its default against none of its shape: its error and time over none's.
+// Each method at its default against none of its shape: its error and time over none's, and a
+// depth filter's error over its control's.
 std::string againstNoneFinding(const std::vector<compare::SettingMedians>& settings, json& facts) {
+    auto find = [&](const std::string& series) -> const compare::SettingMedians* {
+        for (const auto& o : settings)
+            if (o.series == series) return &o;
+        return nullptr;
+    };
     std::string none, against;
     for (const auto& st : settings) {
-        if (st.series == noneOf(st.series))
-            none += fmt::format("{}{}{}° at {} ms", none.empty() ? "" : ", ",
-                                shapeSuffix(methodAndShape(st.series).second).empty()
-                                    ? ""
-                                    : methodName(st.series) + " ",
-                                num(normalOf(st)), num(timeOf(st)));
-        const MethodSweep* m = sweepOf(methodAndShape(st.series).first);
-        if (!m || !m->key || st.x != m->defaultValue) continue;
-        const auto n = std::find_if(settings.begin(), settings.end(),
-                                    [&](const auto& o) { return o.series == noneOf(st.series); });
-        if (n == settings.end()) continue;
-        const double e = normalOf(st) / normalOf(*n), t = timeOf(st) / timeOf(*n);
         const std::string label = settingLabel(st.series, st.x);
+        if (st.series == noneOf(st.series)) {
+            none +=
+                fmt::format("{}{}{}° at {} ms", none.empty() ? "" : ", ",
+                            label == "none" ? "" : label + " ", num(normalOf(st)), num(timeOf(st)));
+            continue;
+        }
+        const MethodSweep* m = sweepOf(methodAndShape(st.series).first);
+        const auto* n = find(noneOf(st.series));
+        if (!m || (m->key && st.x != m->defaultValue) || !n) continue;
+        const double e = normalOf(st) / normalOf(*n), t = timeOf(st) / timeOf(*n);
         facts[label] = {{"normal_ratio", jsonOrNull(e)}, {"time_ratio", jsonOrNull(t)}};
-        against += fmt::format("{}{} {}° ({}x) at {}x the time", against.empty() ? "" : ", ", label,
-                               num(normalOf(st)), num(e), num(t));
+        std::string versus = fmt::format("{}x", num(e));
+        if (const auto* c = find(controlOf(st.series)); c && c != n) {
+            facts[label]["control_normal_ratio"] = jsonOrNull(normalOf(st) / normalOf(*c));
+            versus += fmt::format(", {}x {}'s", num(normalOf(st) / normalOf(*c)),
+                                  settingLabel(c->series, c->x));
+        }
+        against += fmt::format("{}{} {}° ({}) at {}x the time", against.empty() ? "" : ", ", label,
+                               num(normalOf(st)), versus, num(t));
     }
     return fmt::format("at their defaults against none ({}): {}", none, against);
 }
@@ -1026,8 +1086,10 @@ void methodsConclude(StudyResult& s) {
         scenes.size(), frontFinding(settings, front, s.facts["front"]),
         againstNoneFinding(settings, s.facts["against_none"]));
     if (!size.empty())
-        s.finding += "; along particle size (normal error at least 10 % below none's): " +
-                     sizeFinding(size, s.facts["particle_size"]);
+        s.finding +=
+            "; along particle size, where each method's normal error is at least 10 % below its "
+            "control's (none for ssss and depth_normals, depth_normals for the depth filters): " +
+            sizeFinding(size, s.facts["particle_size"]);
     if (!angle.empty())
         s.finding += "; along view angle, " + angleFinding(angle, s.facts["view_angle"]);
 

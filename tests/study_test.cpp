@@ -232,9 +232,10 @@ TEST(Study, CollisionBleedingInTheContactBand) {
 }
 
 TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
-    // Quick: the planet and the splash sheet with 9 settings each (none, and each filter at its
-    // default and twice it), and the 5 methods at 2 particle sizes and 2 view angles.
-    const json s = runStudy("methods", 2 * 9 + 5 * 2 + 5 * 2, "normal.mean_deg");
+    // Quick: the planet and the splash sheet with 10 settings each (none, the unfiltered depth
+    // normals, and each filter at its default and twice it), and the 6 methods at 2 particle
+    // sizes and 2 view angles.
+    const json s = runStudy("methods", 2 * 10 + 6 * 2 + 6 * 2, "normal.mean_deg");
     ASSERT_FALSE(s.is_discarded());
     std::set<std::string> scenes;
     for (const json& r : s["rows"]) {
@@ -271,7 +272,7 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
         points.push_back({time / n, normal / n, ""});
         labels.push_back(setting["label"]);
     }
-    EXPECT_EQ(labels.size(), 9u);
+    EXPECT_EQ(labels.size(), 10u);
     json front = json::array();
     for (std::size_t i : twinrender::compare::paretoFront(points, true)) front.push_back(labels[i]);
     EXPECT_EQ(s["facts"]["front"], front);
@@ -280,17 +281,22 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
         EXPECT_NE(finding.find(label.get<std::string>() + " ("), std::string::npos) << finding;
     }
 
-    // Along particle size: the smallest size at which each filter's normal error is at least
-    // 10 % below none's.
+    // Along particle size: the smallest size at which each method's normal error is at least
+    // 10 % below its control's (none for SSSS and the depth normals, the depth normals for the
+    // depth filters).
     std::map<std::string, std::map<double, double>> size;
     for (const json& r : s["rows"])
         if (r["scene"] == "particle_size") size[r["series"]][r["x"]] = metric(r, "normal.mean_deg");
-    ASSERT_EQ(size.size(), 5u);
+    ASSERT_EQ(size.size(), 6u);
+    EXPECT_EQ(s["facts"]["particle_size"].size(), 5u);
+    EXPECT_EQ(s["facts"]["particle_size"]["bilateral, sphere"]["control"], "depth_normals, sphere");
+    EXPECT_EQ(s["facts"]["particle_size"]["ssss, sphere"]["control"], "none, sphere");
     for (const auto& [series, errors] : size) {
         if (series == "none, sphere") continue;
+        const std::string control = s["facts"]["particle_size"][series]["control"];
         double smallest = NAN;
         for (const auto& [x, e] : errors)
-            if (std::isnan(smallest) && 1.0 - e / size["none, sphere"][x] >= 0.10) smallest = x;
+            if (std::isnan(smallest) && 1.0 - e / size[control][x] >= 0.10) smallest = x;
         const json& f = s["facts"]["particle_size"][series]["smallest_helping_px"];
         if (std::isnan(smallest)) {
             EXPECT_TRUE(f.is_null()) << series;
@@ -300,8 +306,8 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
     }
     EXPECT_NE(finding.find("along particle size"), std::string::npos) << finding;
     EXPECT_NE(finding.find("along view angle"), std::string::npos) << finding;
-    // The view angle's facts: face-on and grazing errors of every filter.
-    EXPECT_EQ(s["facts"]["view_angle"].size(), 4u) << s["facts"]["view_angle"];
+    // The view angle's facts: face-on and grazing errors of every method but none.
+    EXPECT_EQ(s["facts"]["view_angle"].size(), 5u) << s["facts"]["view_angle"];
 
     // The tables and the Markdown section beside the rows.
     const fs::path dir = fs::path(TWINRENDER_TEST_SCRATCH) / "study_methods" / "methods";
@@ -311,7 +317,7 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
     EXPECT_EQ(line.rfind("method,parameter,shape,front,normal.mean_deg,", 0), 0u) << line;
     std::size_t lines = 0;
     while (std::getline(summary, line)) ++lines;
-    EXPECT_EQ(lines, 9u);
+    EXPECT_EQ(lines, 10u);
     for (const char* f : {"stages.csv", "normal_by_scene.csv", "particle_size.csv",
                           "view_angle.csv", "particle_size.svg", "view_angle.svg", "study.md"})
         EXPECT_TRUE(fs::exists(dir / f)) << f;
