@@ -1025,6 +1025,9 @@ compare::ScatterChart frontChart(const std::vector<compare::SettingMedians>& set
         fmt::format("Surface methods: time against normal error, median over {} scenes", scenes);
     chart.xLabel = "real-time frame (ms): the fastest of its frames, median over the scenes";
     chart.yLabel = "normal.mean_deg (°), median over the scenes";
+    // Room for a label beside each of the settings that crowd near the fastest frame.
+    chart.width = 960;
+    chart.height = 640;
     facts = json::array();
     for (std::size_t i = 0; i < settings.size(); ++i) {
         const auto& st = settings[i];

@@ -296,8 +296,9 @@ std::string scatterSvg(const ScatterChart& chart) {
         s += "\"/>\n";
     }
     s += "<g class=\"points\">\n";
-    // Labels beside their markers, moved up or down past labels already placed (estimated
-    // widths: 6 px per character at 10 px), and left of the marker near the right edge.
+    // Labels beside their markers: right of the marker (left near the right edge), else on the
+    // other side, else moved up or down past labels already placed (estimated widths: 6 px per
+    // character at 10 px).
     struct Box {
         double x0, y0, x1, y1;
     };
@@ -320,22 +321,31 @@ std::string scatterSvg(const ScatterChart& chart) {
             xmlText(tickText(p.x)), xmlText(tickText(p.y)));
         if (!p.label.empty()) {
             const double w = 6.0 * static_cast<double>(p.label.size());
-            const bool flip = px + 8 + w > W - 4 && px - 8 - w >= 4;
-            const double x0 = flip ? px - 8 - w : px + 8;
+            const bool rightFits = px + 8 + w <= W - 4, leftFits = px - 8 - w >= 4;
+            const bool preferLeft = !rightFits && leftFits;
+            bool left = preferLeft;
             double y = py - 6;
+            bool done = false;
             for (double dy : {0.0, 14.0, -12.0, 26.0, -24.0, 38.0, -36.0}) {
-                const Box b{x0, py - 6 + dy - 9, x0 + w, py - 6 + dy + 2};
-                const bool clash = std::any_of(placed.begin(), placed.end(), [&](const Box& o) {
-                    return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1;
-                });
-                if (!clash || dy == -36.0) {
-                    y = py - 6 + dy;
-                    placed.push_back(b);
-                    break;
+                for (const bool side : {preferLeft, !preferLeft}) {
+                    if (side != preferLeft && !(side ? leftFits : rightFits)) continue;
+                    const double x0 = side ? px - 8 - w : px + 8;
+                    const Box b{x0, py - 6 + dy - 9, x0 + w, py - 6 + dy + 2};
+                    const bool clash = std::any_of(placed.begin(), placed.end(), [&](const Box& o) {
+                        return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1;
+                    });
+                    if (!clash || (dy == -36.0 && side == preferLeft)) {
+                        y = py - 6 + dy;
+                        left = side;
+                        placed.push_back(b);
+                        done = true;
+                        break;
+                    }
                 }
+                if (done) break;
             }
             s += fmt::format("<text class=\"point-label\" x=\"{:.1f}\" y=\"{:.1f}\"{}>{}</text>",
-                             flip ? px - 8 : px + 8, y, flip ? " text-anchor=\"end\"" : "",
+                             left ? px - 8 : px + 8, y, left ? " text-anchor=\"end\"" : "",
                              xmlText(p.label));
         }
         s += "\n";
