@@ -1077,6 +1077,7 @@ void methodsConclude(StudyResult& s) {
     const auto settings = compare::mediansOverScenes(suite);
     const auto front = compare::settingsFront(settings, "normal.mean_deg");
     s.facts["scenes"] = scenes;
+    s.facts["shapes"] = SHAPES;
     s.facts["aggregate"] = "median over the default scenes";
     s.scatter = frontChart(settings, front, scenes.size(), s.facts["settings"]);
     if (settings.empty()) {
