@@ -1003,7 +1003,7 @@ std::string againstNoneFinding(const std::vector<compare::SettingMedians>& setti
         if (!m || (m->key && st.x != m->defaultValue) || !n) continue;
         const double e = normalOf(st) / normalOf(*n), t = timeOf(st) / timeOf(*n);
         facts[label] = {{"normal_ratio", jsonOrNull(e)}, {"time_ratio", jsonOrNull(t)}};
-        std::string versus = fmt::format("{}x none", num(e));
+        std::string versus = fmt::format("{}x {}", num(e), settingLabel(n->series, n->x));
         if (const auto* c = find(controlOf(st.series)); c && c != n) {
             facts[label]["control_normal_ratio"] = jsonOrNull(normalOf(st) / normalOf(*c));
             versus += fmt::format(", {}x {}", num(normalOf(st) / normalOf(*c)),
