@@ -3,7 +3,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "app/progress.h"
+#include "compare/study_summary.h"
 #include "core/error.h"
 #include "raymarch/embree_device.h"
 #include "raymarch/renderer.h"
@@ -69,6 +73,38 @@ core::Frame render(core::Renderer& renderer, std::string_view name, const Loaded
 
 core::Frame render(std::string_view name, Devices& devices, const LoadedScene& s) {
     return render(*makeRenderer(name, devices, s), name, s);
+}
+
+std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& devices,
+                                          const std::vector<const LoadedScene*>& scenes, int frames,
+                                          bool warmUp) {
+    std::vector<std::unique_ptr<core::Renderer>> renderers;
+    for (const LoadedScene* s : scenes) {
+        renderers.push_back(makeRenderer(name, devices, *s));
+        if (warmUp) render(*renderers.back(), name, *s);
+    }
+    std::vector<TimedFrame> timed(scenes.size());
+    std::vector<std::map<std::string, std::vector<double>>> times(scenes.size());
+    const std::size_t n = scenes.size(), rounds = static_cast<std::size_t>(std::max(frames, 1));
+    for (std::size_t f = 0; f < rounds; ++f)
+        // Each round starts further along, so that each scene takes another place in each.
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t i = (k + f * n / rounds) % n;
+            timed[i].frame = render(*renderers[i], name, *scenes[i]);
+            for (const auto& [stage, ms] : timed[i].frame.timingsMs)
+                if (stage != "compile") times[i][stage].push_back(ms);
+        }
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+        for (const auto& [stage, v] : times[i]) {
+            timed[i].medianMs[stage] = compare::median(v);
+            timed[i].fastestMs[stage] = *std::min_element(v.begin(), v.end());
+        }
+    return timed;
+}
+
+TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& s, int frames,
+                       bool warmUp) {
+    return std::move(renderTimedRounds(name, devices, {&s}, frames, warmUp).front());
 }
 
 void writeRender(const LoadedScene& s, const core::Frame& frame, const std::filesystem::path& dir) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -76,6 +77,31 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
 core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& scene);
 // One frame of a renderer made for it (makeRenderer).
 core::Frame render(std::string_view name, Devices& devices, const LoadedScene& scene);
+
+// A frame and its cost over several frames: per stage and for the total, the median and the
+// fastest. On a machine that other processes share they lengthen some frames and shorten
+// none, so the fastest frame is the nearest to the frame's own cost; the median is the typical
+// frame under that load.
+struct TimedFrame {
+    core::Frame frame;                        // the last frame rendered
+    std::map<std::string, double> medianMs;   // stage -> median ms, "total" included
+    std::map<std::string, double> fastestMs;  // stage -> least ms, "total" included
+};
+
+// Renders `frames` (>= 1) frames of the scene with one renderer and takes the median and the
+// least of each stage's time. With `warmUp`, one untimed frame first: the driver compiles shader
+// variants on first use, and a particle set's first frame does its per-set work (culling, impostor
+// radii). The "compile" stage (programs built for the renderer) is not part of a frame's time and
+// is left out.
+TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& scene,
+                       int frames, bool warmUp);
+// The same for several scenes (or settings of one), their frames rendered in rounds, one frame
+// of each in turn, each round starting at another: a change of the machine's load over the
+// rounds, or within each, then falls on every scene alike, where one scene's frames after
+// another's would give the later ones another load.
+std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& devices,
+                                          const std::vector<const LoadedScene*>& scenes, int frames,
+                                          bool warmUp);
 
 // Writes DIR/<renderer>.exr|.png|.json for a frame of the scene.
 void writeRender(const LoadedScene& scene, const core::Frame& frame,

@@ -7,9 +7,11 @@
 #include <iterator>
 #include <map>
 #include <numbers>
+#include <set>
 #include <stdexcept>
 
 #include "compare/metric_table.h"
+#include "compare/study_summary.h"
 #include "compare/thresholds.h"
 
 namespace twinrender::app {
@@ -114,7 +116,8 @@ std::vector<StudyPoint> depthPoints(bool quick) {
                             set("bodies.planet.center", vec(0, 0.5 * far, 0)),
                             set("bodies.planet.radius", fmt::format("{:.9g}", 0.05 * far)),
                             set("bodies.moon.center", vec(0.02 * far, 0.45 * far, 0.01 * far)),
-                            set("bodies.moon.radius", fmt::format("{:.9g}", 0.015 * far))}});
+                            set("bodies.moon.radius", fmt::format("{:.9g}", 0.015 * far))},
+                           ""});
         }
     return pts;
 }
@@ -172,21 +175,26 @@ void depthConclude(StudyResult& s) {
 
 // The camera moves along the line 25 degrees off the slab's normal through the target; the
 // distances give about 40, 20, ... 0.6 pixels per particle (fewer, larger particles in quick).
-std::vector<StudyPoint> sizePoints(bool quick) {
-    const std::vector<double> distances =
-        quick ? std::vector<double>{0.55, 2.2, 8.8, 35.0}
-              : std::vector<double>{0.37, 0.75, 1.5, 3.0, 6.0, 12.0, 25.0};
+std::vector<double> sizeDistances(bool quick) {
+    return quick ? std::vector<double>{0.55, 2.2, 8.8, 35.0}
+                 : std::vector<double>{0.37, 0.75, 1.5, 3.0, 6.0, 12.0, 25.0};
+}
+std::string sizeCamera(double distance) {
     const double a = 25.0 * std::numbers::pi / 180.0;
+    return set("camera.position", vec(0.0, -distance * std::sin(a), 0.1 + distance * std::cos(a)));
+}
+const char* const SIZE_QUICK_PARTICLES = "bodies.slab.particles=6000";
+
+std::vector<StudyPoint> sizePoints(bool quick) {
     std::vector<StudyPoint> pts;
     for (const bool ssss : {true, false})
-        for (double d : distances)
-            pts.push_back(
-                {ssss ? "SSSS on" : "SSSS off",
-                 NAN,
-                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                  set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a)))}});
+        for (double d : sizeDistances(quick))
+            pts.push_back({ssss ? "SSSS on" : "SSSS off",
+                           NAN,
+                           {set("realtime.ssss.enabled", ssss ? "true" : "false"), sizeCamera(d)},
+                           ""});
     if (quick)
-        for (auto& p : pts) p.sets.push_back("bodies.slab.particles=6000");
+        for (auto& p : pts) p.sets.push_back(SIZE_QUICK_PARTICLES);
     return pts;
 }
 
@@ -260,20 +268,28 @@ void sizeConclude(StudyResult& s) {
 
 // ---- view_angle -------------------------------------------------------------------------------
 
+std::vector<double> viewAngles(bool quick) {
+    return quick ? std::vector<double>{0, 45, 80}
+                 : std::vector<double>{0, 15, 30, 45, 60, 70, 80, 85};
+}
+// The camera at `deg` from the slab's normal, 3 from the target.
+std::vector<std::string> angleCamera(double deg) {
+    const double a = deg * std::numbers::pi / 180.0, d = 3.0;
+    return {set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a))),
+            // Perpendicular to the view direction at every angle.
+            set("camera.up", vec(0.0, std::cos(a), std::sin(a)))};
+}
+
 std::vector<StudyPoint> anglePoints(bool quick) {
-    const std::vector<double> angles =
-        quick ? std::vector<double>{0, 45, 80} : std::vector<double>{0, 15, 30, 45, 60, 70, 80, 85};
     std::vector<StudyPoint> pts;
     for (const bool ssss : {true, false})
-        for (double deg : angles) {
-            const double a = deg * std::numbers::pi / 180.0, d = 3.0;
-            pts.push_back(
-                {ssss ? "SSSS on" : "SSSS off",
-                 deg,
-                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                  set("camera.position", vec(0.0, -d * std::sin(a), 0.1 + d * std::cos(a))),
-                  // Perpendicular to the view direction at every angle.
-                  set("camera.up", vec(0.0, std::cos(a), std::sin(a)))}});
+        for (double deg : viewAngles(quick)) {
+            StudyPoint p{ssss ? "SSSS on" : "SSSS off",
+                         deg,
+                         {set("realtime.ssss.enabled", ssss ? "true" : "false")},
+                         ""};
+            for (std::string& c : angleCamera(deg)) p.sets.push_back(std::move(c));
+            pts.push_back(std::move(p));
         }
     return pts;
 }
@@ -321,10 +337,11 @@ std::vector<StudyPoint> shadowPoints(bool quick) {
                            double(r),
                            {"realtime.shadows=\"map\"",
                             set("realtime.shadow_map.resolution", std::to_string(r)),
-                            set("realtime.shadow_map.bias", fmt::format("{:g}", b))}});
+                            set("realtime.shadow_map.bias", fmt::format("{:g}", b))},
+                           ""});
     // The baseline does not use the map: one render, drawn across the axis.
-    pts.push_back({"occlusion spheres", double(res.front()), {"realtime.shadows=\"spheres\""}});
-    pts.push_back({"occlusion spheres", double(res.back()), {"realtime.shadows=\"spheres\""}});
+    pts.push_back({"occlusion spheres", double(res.front()), {"realtime.shadows=\"spheres\""}, ""});
+    pts.push_back({"occlusion spheres", double(res.back()), {"realtime.shadows=\"spheres\""}, ""});
     // The ring's shadow covers a few hundred pixels at the scene's 96 x 54; the full study
     // doubles that so one pixel moves IoU by less.
     if (!quick)
@@ -403,11 +420,12 @@ std::vector<StudyPoint> collisionPoints(bool quick) {
     for (const bool ssss : {true, false})
         for (double g : gaps) {
             const double c = 0.6 + 0.5 * g;
-            pts.push_back({ssss ? "SSSS on" : "SSSS off",
-                           g,
-                           {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                            set("bodies.cold.center", vec(-c, 0, 0)),
-                            set("bodies.hot.center", vec(c, 0, 0))}});
+            pts.push_back(
+                {ssss ? "SSSS on" : "SSSS off",
+                 g,
+                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
+                  set("bodies.cold.center", vec(-c, 0, 0)), set("bodies.hot.center", vec(c, 0, 0))},
+                 ""});
         }
     return pts;
 }
@@ -466,11 +484,12 @@ std::vector<StudyPoint> orbitPoints(bool quick) {
     for (const bool ssss : {true, false})
         for (int f = 0; f < frames; ++f) {
             const double a = -0.5 * std::numbers::pi + f * step;
-            pts.push_back({ssss ? "SSSS on" : "SSSS off",
-                           double(f),
-                           {set("realtime.ssss.enabled", ssss ? "true" : "false"),
-                            set("camera.position",
-                                vec(radius * std::cos(a), radius * std::sin(a), height))}});
+            pts.push_back(
+                {ssss ? "SSSS on" : "SSSS off",
+                 double(f),
+                 {set("realtime.ssss.enabled", ssss ? "true" : "false"),
+                  set("camera.position", vec(radius * std::cos(a), radius * std::sin(a), height))},
+                 ""});
         }
     return pts;
 }
@@ -499,6 +518,590 @@ void temporalConclude(StudyResult& s) {
     s.finding = fmt::format(
         "flicker: real-time {} vs reference {} mean frame-to-frame ꟻLIP over {} frames (excess {})",
         parts, num(reference), all.empty() ? 0 : all.front().second.size(), excess);
+}
+
+// ---- methods ----------------------------------------------------------------------------------
+
+// A surface method (realtime.surface.method) and its main parameter: the one that sets the
+// filter's reach, in particle radii (steps for curvature flow). The default is the renderer's
+// (realtime/settings.h); the full study also takes the values `step` below and above it.
+struct MethodSweep {
+    std::string name;               // the series' method: "bilateral"
+    std::vector<std::string> sets;  // what selects it
+    const char* key;                // the main parameter's key; nullptr: none has none
+    double defaultValue;
+    double step;  // the full study's values: default / step, default, default * step
+    // What it is measured against along particle size and view angle: the same surface
+    // unfiltered ("none" for SSSS and the depth normals, the depth normals for a depth filter);
+    // "" for none itself.
+    std::string control;
+};
+
+// The unfiltered surface with the normals a depth filter would rebuild from it: the example
+// pass-through shader with realtime.surface.shader_normals, the control of the depth filters.
+const std::string DEPTH_NORMALS = "depth_normals";
+
+std::vector<MethodSweep> methodSweeps() {
+    using realtime::SurfaceMethod;
+    const realtime::Settings d;
+    auto method = [](SurfaceMethod m) {
+        return set("realtime.surface.method", fmt::format("\"{}\"", realtime::toString(m)));
+    };
+    const std::string none(realtime::toString(SurfaceMethod::None));
+    return {
+        {none, {method(SurfaceMethod::None)}, nullptr, 0.0, 1.0, ""},
+        {DEPTH_NORMALS,
+         {method(SurfaceMethod::Shader),
+          set("realtime.surface.shader",
+              fmt::format("\"{}/examples/surface_pass_through.glsl\"", TWINRENDER_SOURCE_DIR)),
+          "realtime.surface.shader_normals=true"},
+         nullptr,
+         0.0,
+         1.0,
+         none},
+        {"ssss",
+         {method(SurfaceMethod::Ssss)},
+         "realtime.ssss.radius_scale",
+         d.ssss.radiusScale,
+         2.0,
+         none},
+        {"bilateral",
+         {method(SurfaceMethod::Bilateral)},
+         "realtime.surface.bilateral.radius",
+         d.surface.bilateral.radius,
+         2.0,
+         DEPTH_NORMALS},
+        {"narrow_range",
+         {method(SurfaceMethod::NarrowRange)},
+         "realtime.surface.narrow_range.radius",
+         d.surface.narrowRange.radius,
+         2.0,
+         DEPTH_NORMALS},
+        // Curvature flow reaches about sqrt(2 n time_step) pixels after n steps.
+        {"curvature_flow",
+         {method(SurfaceMethod::CurvatureFlow)},
+         "realtime.surface.curvature_flow.iterations",
+         double(d.surface.curvatureFlow.iterations),
+         4.0,
+         DEPTH_NORMALS},
+    };
+}
+
+// The values a sweep takes: the default and, in the full study, one step below it; quick and
+// full, one step above.
+std::vector<double> sweepValues(const MethodSweep& m, bool quick) {
+    if (!m.key) return {0.0};
+    if (quick) return {m.defaultValue, m.defaultValue * m.step};
+    return {m.defaultValue / m.step, m.defaultValue, m.defaultValue * m.step};
+}
+
+// The particle shapes every method is rendered with. "sphere" is the renderer's default and is
+// not set, any other shape is (realtime.particles.shape): add "ellipsoid" here when the
+// renderer has it, and its series follow.
+const std::vector<std::string> SHAPES = {"sphere"};
+
+// The study scenes whose own x the methods are also rendered along, at their defaults.
+const std::string SIZE_SCENE = "particle_size";
+const std::string ANGLE_SCENE = "view_angle";
+
+struct SuiteScene {
+    std::string name;               // scenes/<name>.toml
+    std::vector<std::string> sets;  // what the study changes in it
+};
+
+// The default suite (scenes/*.toml) at the size `run` renders it, opensph_ball (800 x 600
+// there) at 320 x 240; quick: the planet and the splash sheet, small.
+std::vector<SuiteScene> suiteScenes(bool quick) {
+    if (quick)
+        return {
+            {"planet", {"camera.width=160", "camera.height=120", "bodies.planet.particles=3000"}},
+            {"splash_sheet", {"camera.width=160", "camera.height=120"}}};
+    return {{"contact", {}},
+            {"heated", {}},
+            {"opensph_ball", {"camera.width=320", "camera.height=240"}},
+            {"planet", {}},
+            {"ringworld", {}},
+            {"splash_droplets", {}},
+            {"splash_sheet", {}},
+            {"telescope", {}}};
+}
+
+std::string methodSeries(const MethodSweep& m, const std::string& shape) {
+    return fmt::format("{}, {}", m.name, shape);
+}
+
+std::vector<std::string> methodSets(const MethodSweep& m, double value, const std::string& shape) {
+    std::vector<std::string> sets = m.sets;
+    if (m.key) sets.push_back(set(m.key, fmt::format("{:g}", value)));
+    if (shape != "sphere") sets.push_back(set("realtime.particles.shape", "\"" + shape + "\""));
+    return sets;
+}
+
+StudyPoint methodPoint(const MethodSweep& m, double x, const std::string& shape,
+                       const std::string& scene, std::vector<std::string> more) {
+    StudyPoint p{methodSeries(m, shape), x, methodSets(m, x, shape), scene};
+    p.sets.insert(p.sets.end(), more.begin(), more.end());
+    return p;
+}
+
+// On the default scenes, x is the method's parameter (0 for none); along particle size the
+// pixels per particle (NaN here: particlePixels computes it), along view angle the degrees.
+std::vector<StudyPoint> methodPoints(bool quick) {
+    std::vector<StudyPoint> pts;
+    for (const SuiteScene& scene : suiteScenes(quick))
+        for (const std::string& shape : SHAPES)
+            for (const MethodSweep& m : methodSweeps())
+                for (double v : sweepValues(m, quick))
+                    pts.push_back(
+                        methodPoint(m, v, shape, "../" + scene.name + ".toml", scene.sets));
+    // Quick: the largest and a small particle, face-on and grazing.
+    const std::vector<double> distances =
+        quick ? std::vector<double>{sizeDistances(true)[0], sizeDistances(true)[2]}
+              : sizeDistances(false);
+    const std::vector<double> angles =
+        quick ? std::vector<double>{viewAngles(true).front(), viewAngles(true).back()}
+              : viewAngles(false);
+    for (const std::string& shape : SHAPES)
+        for (const MethodSweep& m : methodSweeps())
+            for (double d : distances) {
+                StudyPoint p =
+                    methodPoint(m, m.defaultValue, shape, SIZE_SCENE + ".toml", {sizeCamera(d)});
+                if (quick) p.sets.push_back(SIZE_QUICK_PARTICLES);
+                p.x = NAN;
+                pts.push_back(std::move(p));
+            }
+    for (const std::string& shape : SHAPES)
+        for (const MethodSweep& m : methodSweeps())
+            for (double deg : angles) {
+                StudyPoint p =
+                    methodPoint(m, m.defaultValue, shape, ANGLE_SCENE + ".toml", angleCamera(deg));
+                p.x = deg;
+                pts.push_back(std::move(p));
+            }
+    // Quick: a coarse shadow map, the largest stage of these small frames on llvmpipe.
+    if (quick)
+        for (StudyPoint& p : pts) p.sets.push_back("realtime.shadow_map.resolution=256");
+    return pts;
+}
+
+// "bilateral, sphere" -> {"bilateral", "sphere"}.
+std::pair<std::string, std::string> methodAndShape(const std::string& series) {
+    const auto comma = series.find(", ");
+    if (comma == std::string::npos) return {series, ""};
+    return {series.substr(0, comma), series.substr(comma + 2)};
+}
+
+const MethodSweep* sweepOf(const std::string& method) {
+    static const std::vector<MethodSweep> all = methodSweeps();
+    for (const MethodSweep& m : all)
+        if (m.name == method) return &m;
+    return nullptr;
+}
+
+// A shape other than spheres, as the labels name it: "" or " (ellipsoid)".
+std::string shapeSuffix(const std::string& shape) {
+    return shape.empty() || shape == "sphere" ? "" : " (" + shape + ")";
+}
+
+// "none", "ssss 0.6", "curvature_flow 40"; "ssss 0.6 (ellipsoid)" for another shape.
+std::string settingLabel(const std::string& series, double x) {
+    const auto [method, shape] = methodAndShape(series);
+    const MethodSweep* m = sweepOf(method);
+    return (m && m->key ? fmt::format("{} {:g}", method, x) : method) + shapeSuffix(shape);
+}
+
+std::string parameterText(const std::string& series, double x) {
+    const MethodSweep* m = sweepOf(methodAndShape(series).first);
+    if (!m || !m->key) return "";
+    return fmt::format("{:g}{}", x, x == m->defaultValue ? " (default)" : "");
+}
+
+// "bilateral" for spheres, "bilateral (ellipsoid)" for another shape.
+std::string methodName(const std::string& series) {
+    const auto [method, shape] = methodAndShape(series);
+    return method + shapeSuffix(shape);
+}
+
+// Per series in order of first appearance, its x -> normal.mean_deg over some rows (one
+// scene's).
+using NormalErrors = std::vector<std::pair<std::string, std::map<double, double>>>;
+NormalErrors normalBySeries(const std::vector<const StudyRow*>& rows) {
+    NormalErrors out;
+    for (const StudyRow* r : rows) {
+        if (!r->error.empty()) continue;
+        auto it = std::find_if(out.begin(), out.end(),
+                               [&](const auto& p) { return p.first == r->series; });
+        if (it == out.end()) it = out.insert(out.end(), {r->series, {}});
+        it->second[r->x] = metricOf(*r, "normal.mean_deg");
+    }
+    return out;
+}
+const std::map<double, double>* errorsOf(const NormalErrors& all, const std::string& series) {
+    for (const auto& [name, errors] : all)
+        if (name == series) return &errors;
+    return nullptr;
+}
+
+// The series a method's series is measured against ("bilateral, sphere" -> "depth_normals,
+// sphere"); "" for none.
+std::string controlOf(const std::string& series) {
+    const auto [method, shape] = methodAndShape(series);
+    const MethodSweep* m = sweepOf(method);
+    return m && !m->control.empty() ? fmt::format("{}, {}", m->control, shape) : "";
+}
+
+// The series of none with the same shape.
+std::string noneOf(const std::string& series) {
+    return fmt::format("{}, {}", realtime::toString(realtime::SurfaceMethod::None),
+                       methodAndShape(series).second);
+}
+
+// A filter helps where it lowers the normal error against none by this fraction or more, and
+// raises it where it is this fraction or more above none's.
+constexpr double HELP_MARGIN = 0.10;
+
+// Along particle size: where each method helps and where it raises the error against its
+// control.
+std::string sizeFinding(const std::vector<const StudyRow*>& rows, json& facts) {
+    const auto normal = normalBySeries(rows);
+    std::string out;
+    for (const auto& [series, errors] : normal) {
+        const auto* none = errorsOf(normal, controlOf(series));
+        if (!none) continue;
+        std::vector<double> helps, raises;
+        json gains = json::object();
+        for (const auto& [x, e] : errors) {
+            const auto n = none->find(x);
+            if (n == none->end()) continue;
+            const double g = 1.0 - e / n->second;
+            gains[fmt::format("{:.4g}", x)] = jsonOrNull(g);
+            if (g >= HELP_MARGIN) helps.push_back(x);
+            if (g <= -HELP_MARGIN) raises.push_back(x);
+        }
+        auto list = [](const std::vector<double>& xs) {
+            std::string t;
+            for (double x : xs) t += (t.empty() ? "" : ", ") + num(x);
+            return t;
+        };
+        // Contiguous: every size between the smallest and the largest that helps helps too.
+        bool contiguous = true;
+        for (const auto& [x, e] : errors)
+            if (!helps.empty() && x > helps.front() && x < helps.back() &&
+                std::find(helps.begin(), helps.end(), x) == helps.end())
+                contiguous = false;
+        json& f = facts[series];
+        f["control"] = controlOf(series);
+        f["gain"] = gains;
+        f["smallest_helping_px"] = helps.empty() ? json(nullptr) : json(helps.front());
+        f["largest_helping_px"] = helps.empty() ? json(nullptr) : json(helps.back());
+        f["raises_at_px"] = raises;
+        std::string text = methodName(series);
+        if (helps.empty())
+            text += " at no size";
+        else if (contiguous && helps.size() > 1)
+            text += fmt::format(" from {} down to {} px", num(helps.back()), num(helps.front()));
+        else
+            text += fmt::format(" at {} px", list(helps));
+        if (!raises.empty()) text += fmt::format(" (raises it at {} px)", list(raises));
+        out += (out.empty() ? "" : ", ") + text;
+    }
+    return out;
+}
+
+// Along view angle: from which angle each method raises the error against its control for
+// good, and its error face-on and at the largest angle.
+std::string angleFinding(const std::vector<const StudyRow*>& rows, json& facts) {
+    const auto normal = normalBySeries(rows);
+    std::string raised, growth;
+    for (const auto& [series, errors] : normal) {
+        const auto* none = errorsOf(normal, controlOf(series));
+        if (!none || errors.empty()) continue;
+        double from = NAN;
+        for (auto it = errors.rbegin(); it != errors.rend(); ++it) {
+            const auto n = none->find(it->first);
+            if (n == none->end() || !(1.0 - it->second / n->second <= -HELP_MARGIN)) break;
+            from = it->first;
+        }
+        const std::string name = methodName(series);
+        json& f = facts[series];
+        f["control"] = controlOf(series);
+        f["raises_from_deg"] = jsonOrNull(from);
+        f["face_on_deg"] = jsonOrNull(errors.begin()->second);
+        f["last_angle"] = errors.rbegin()->first;
+        f["last_deg"] = jsonOrNull(errors.rbegin()->second);
+        if (std::isfinite(from))
+            raised += fmt::format("{}{} from {}°", raised.empty() ? "" : ", ", name, num(from));
+        growth += fmt::format("{}{} {}° → {}°", growth.empty() ? "" : ", ", name,
+                              num(errors.begin()->second), num(errors.rbegin()->second));
+    }
+    const double last = rows.empty() ? NAN : [&] {
+        double a = -INFINITY;
+        for (const StudyRow* r : rows) a = std::max(a, r->x);
+        return a;
+    }();
+    return (raised.empty()
+                ? fmt::format("no method raises the normal error above its control's up to {}°",
+                              num(last))
+                : "the normal error rises above the control's for " + raised) +
+           fmt::format("; face-on → {}°: {}", num(last), growth);
+}
+
+compare::LineChart alongChart(const std::vector<const StudyRow*>& rows, const std::string& title,
+                              const std::string& xLabel, bool xLog) {
+    compare::LineChart c;
+    c.title = title;
+    c.xLabel = xLabel;
+    c.yLabel = "normal.mean_deg (°)";
+    c.xScale = xLog ? compare::AxisScale::Log : compare::AxisScale::Linear;
+    for (const auto& [series, errors] : normalBySeries(rows)) {
+        compare::LineSeries line{series, {}, false};
+        for (const auto& [x, e] : errors) line.points.push_back({x, e, ""});
+        c.series.push_back(std::move(line));
+    }
+    return c;
+}
+
+// Stages in the order a frame runs them (realtime/README.md); others after them by name.
+std::vector<std::string> stageOrder(const std::vector<compare::SettingMedians>& settings) {
+    std::vector<std::string> order = {"total",   "radius",  "cull",    "upload",
+                                      "shadow",  "gbuffer", "normals", "ssss",
+                                      "surface", "shade",   "post",    "readback"};
+    std::set<std::string> seen;
+    // A stage under 0.1 ms in every setting is per-particle-set work done in the warm-up frame.
+    for (const auto& s : settings)
+        for (const auto& [stage, ms] : s.timingsMs)
+            if (ms >= 0.1) seen.insert(stage);
+    std::vector<std::string> out;
+    for (const auto& st : order)
+        if (seen.erase(st)) out.push_back(st);
+    out.insert(out.end(), seen.begin(), seen.end());
+    return out;
+}
+
+double timeOf(const compare::SettingMedians& s) {
+    const auto it = s.timingsMs.find("total");
+    return it == s.timingsMs.end() ? NAN : it->second;
+}
+double normalOf(const compare::SettingMedians& s) {
+    const auto it = s.metrics.find("normal.mean_deg");
+    return it == s.metrics.end() ? NAN : it->second;
+}
+
+// The tables of the default scenes: the medians of every column and the frame time, the
+// stages, the normal error per scene.
+void suiteTables(StudyResult& s, const std::vector<compare::SettingMedians>& settings,
+                 const std::vector<std::size_t>& front, const std::vector<const StudyRow*>& rows,
+                 const std::vector<std::string>& scenes) {
+    const std::vector<std::string> labels = {"method", "parameter", "shape"};
+    compare::StudyTable summary{
+        "summary",
+        fmt::format("Per setting, the median over the {} default scenes of each metric and of the "
+                    "real-time frame time (each point's time: the fastest of its frames); front: "
+                    "on the Pareto front of time against normal.mean_deg.",
+                    scenes.size()),
+        {"method", "parameter", "shape", "front"},
+        {},
+        {}};
+    for (const auto& c : s.columns)
+        if (c != "count.unbracketed_rays") summary.columns.push_back(c);
+    summary.columns.push_back("time.total_ms");
+    compare::StudyTable stages{
+        "stages",
+        "Per setting, the median over the default scenes of each stage's time of the real-time "
+        "frame (the fastest of the point's frames), ms; stages under 0.1 ms in every setting, the "
+        "per-particle-set work that the untimed first frame does, are left out.",
+        labels,
+        stageOrder(settings),
+        {}};
+    compare::StudyTable byScene{"normal_by_scene",
+                                "normal.mean_deg (°) per setting and default scene.",
+                                labels,
+                                scenes,
+                                {}};
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        const auto& st = settings[i];
+        const auto [method, shape] = methodAndShape(st.series);
+        const std::vector<std::string> l = {method, parameterText(st.series, st.x), shape};
+        compare::StudyTable::Line line{l, {}};
+        for (const auto& c : summary.columns)
+            if (const auto it = st.metrics.find(c); it != st.metrics.end())
+                line.values[c] = it->second;
+        line.values["time.total_ms"] = timeOf(st);
+        line.labels.push_back(std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
+        summary.lines.push_back(std::move(line));
+        compare::StudyTable::Line times{l, {}};
+        for (const auto& stage : stages.columns)
+            if (const auto it = st.timingsMs.find(stage); it != st.timingsMs.end())
+                times.values[stage] = it->second;
+        stages.lines.push_back(std::move(times));
+        compare::StudyTable::Line perScene{l, {}};
+        for (const StudyRow* r : rows)
+            if (r->series == st.series && r->x == st.x && r->error.empty())
+                perScene.values[r->scene] = metricOf(*r, "normal.mean_deg");
+        byScene.lines.push_back(std::move(perScene));
+    }
+    s.tables = {std::move(summary), std::move(stages), std::move(byScene)};
+}
+
+// normal.mean_deg along a study scene's x: a line per method, a column per x.
+compare::StudyTable alongTable(const std::string& file, const std::string& caption,
+                               const std::vector<const StudyRow*>& rows,
+                               const std::function<std::string(double)>& column) {
+    compare::StudyTable t{file, caption, {"method", "shape"}, {}, {}};
+    std::set<double> xs;
+    for (const StudyRow* r : rows) xs.insert(r->x);
+    for (double x : xs) t.columns.push_back(column(x));
+    for (const auto& [series, errors] : normalBySeries(rows)) {
+        const auto [method, shape] = methodAndShape(series);
+        compare::StudyTable::Line line{{method, shape}, {}};
+        for (const auto& [x, e] : errors) line.values[column(x)] = e;
+        t.lines.push_back(std::move(line));
+    }
+    return t;
+}
+
+// The front, each step along it against the one before.
+std::string frontFinding(const std::vector<compare::SettingMedians>& settings,
+                         const std::vector<std::size_t>& front, json& facts) {
+    std::string text;
+    facts = json::array();
+    for (std::size_t k = 0; k < front.size(); ++k) {
+        const auto& st = settings[front[k]];
+        facts.push_back(settingLabel(st.series, st.x));
+        text += fmt::format("{}{} ({} ms, {}°", k ? ", " : "", settingLabel(st.series, st.x),
+                            num(timeOf(st)), num(normalOf(st)));
+        if (k) {
+            const auto& prev = settings[front[k - 1]];
+            text += fmt::format(": {:+.0f} % error for {}x the time",
+                                100.0 * (normalOf(st) / normalOf(prev) - 1.0),
+                                num(timeOf(st) / timeOf(prev)));
+        }
+        text += ")";
+    }
+    return text;
+}
+
+// Each method at its default against none of its shape: its error and time over none's, and a
+// depth filter's error over its control's.
+std::string againstNoneFinding(const std::vector<compare::SettingMedians>& settings, json& facts) {
+    auto find = [&](const std::string& series) -> const compare::SettingMedians* {
+        for (const auto& o : settings)
+            if (o.series == series) return &o;
+        return nullptr;
+    };
+    std::string none, against;
+    for (const auto& st : settings) {
+        const std::string label = settingLabel(st.series, st.x);
+        if (st.series == noneOf(st.series)) {
+            none +=
+                fmt::format("{}{}{}° at {} ms", none.empty() ? "" : ", ",
+                            label == "none" ? "" : label + " ", num(normalOf(st)), num(timeOf(st)));
+            continue;
+        }
+        const MethodSweep* m = sweepOf(methodAndShape(st.series).first);
+        const auto* n = find(noneOf(st.series));
+        if (!m || (m->key && st.x != m->defaultValue) || !n) continue;
+        const double e = normalOf(st) / normalOf(*n), t = timeOf(st) / timeOf(*n);
+        facts[label] = {{"normal_ratio", jsonOrNull(e)}, {"time_ratio", jsonOrNull(t)}};
+        std::string versus = fmt::format("{}x {}", num(e), settingLabel(n->series, n->x));
+        if (const auto* c = find(controlOf(st.series)); c && c != n) {
+            facts[label]["control_normal_ratio"] = jsonOrNull(normalOf(st) / normalOf(*c));
+            versus += fmt::format(", {}x {}", num(normalOf(st) / normalOf(*c)),
+                                  settingLabel(c->series, c->x));
+        }
+        against += fmt::format("{}{} {}° ({}) at {}x the time", against.empty() ? "" : ", ", label,
+                               num(normalOf(st)), versus, num(t));
+    }
+    return fmt::format("at their defaults against none ({}): {}", none, against);
+}
+
+// The chart of the default scenes: a point per setting, a colour per method and shape; and
+// the settings as facts.
+compare::ScatterChart frontChart(const std::vector<compare::SettingMedians>& settings,
+                                 const std::vector<std::size_t>& front, std::size_t scenes,
+                                 json& facts) {
+    compare::ScatterChart chart;
+    chart.title =
+        fmt::format("Surface methods: time against normal error, median over {} scenes", scenes);
+    chart.xLabel = "real-time frame (ms): the fastest of its frames, median over the scenes";
+    chart.yLabel = "normal.mean_deg (°), median over the scenes";
+    // Room for a label beside each of the settings that crowd near the fastest frame.
+    chart.width = 960;
+    chart.height = 640;
+    facts = json::array();
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        const auto& st = settings[i];
+        const std::string label = settingLabel(st.series, st.x);
+        chart.points.push_back({timeOf(st), normalOf(st), label});
+        chart.groups.push_back(st.series);
+        const auto [method, shape] = methodAndShape(st.series);
+        facts.push_back({{"label", label},
+                         {"series", st.series},
+                         {"method", method},
+                         {"shape", shape},
+                         {"parameter", st.x},
+                         {"scenes", st.scenes.size()},
+                         {"time_ms", jsonOrNull(timeOf(st))},
+                         {"normal_mean_deg", jsonOrNull(normalOf(st))},
+                         {"on_front", std::find(front.begin(), front.end(), i) != front.end()}});
+    }
+    return chart;
+}
+
+// The figure and the table of the methods along a study scene's x.
+void addAlong(StudyResult& s, const std::vector<const StudyRow*>& rows, const std::string& scene,
+              const std::string& along, const std::string& xLabel, bool xLog,
+              const std::function<std::string(double)>& column) {
+    if (rows.empty()) return;
+    s.figures.push_back(
+        {scene,
+         fmt::format("The normal error of each method at its defaults against {} ({} scene, the "
+                     "impostors' sphere normals).",
+                     along, scene),
+         alongChart(rows, "Surface methods: normal error against " + along, xLabel, xLog)});
+    s.tables.push_back(alongTable(
+        scene,
+        fmt::format("normal.mean_deg (°) per method at its defaults against {}, {} scene.", along,
+                    scene),
+        rows, column));
+}
+
+void methodsConclude(StudyResult& s) {
+    std::vector<const StudyRow*> suite, size, angle;
+    for (const StudyRow& r : s.rows)
+        (r.scene == SIZE_SCENE ? size : r.scene == ANGLE_SCENE ? angle : suite).push_back(&r);
+    std::vector<std::string> scenes;
+    for (const StudyRow* r : suite)
+        if (std::find(scenes.begin(), scenes.end(), r->scene) == scenes.end())
+            scenes.push_back(r->scene);
+    const auto settings = compare::mediansOverScenes(suite);
+    const auto front = compare::settingsFront(settings, "normal.mean_deg");
+    s.facts["scenes"] = scenes;
+    s.facts["shapes"] = SHAPES;
+    s.facts["aggregate"] = "median over the default scenes";
+    s.scatter = frontChart(settings, front, scenes.size(), s.facts["settings"]);
+    if (settings.empty()) {
+        s.finding = "no render of the default scenes to compare";
+        return;
+    }
+    s.finding = fmt::format(
+        "on {} default scenes (medians), the Pareto front of frame time against normal error is "
+        "{}; {}",
+        scenes.size(), frontFinding(settings, front, s.facts["front"]),
+        againstNoneFinding(settings, s.facts["against_none"]));
+    if (!size.empty())
+        s.finding +=
+            "; along particle size, where each method's normal error is at least 10 % below its "
+            "control's (none for ssss and depth_normals, depth_normals for the depth filters): " +
+            sizeFinding(size, s.facts["particle_size"]);
+    if (!angle.empty())
+        s.finding += "; along view angle, " + angleFinding(angle, s.facts["view_angle"]);
+
+    suiteTables(s, settings, front, suite, scenes);
+    addAlong(s, size, SIZE_SCENE, "particle size", "particle diameter on screen (px)", true,
+             [](double x) { return fmt::format("{:.3g} px", x); });
+    addAlong(s, angle, ANGLE_SCENE, "view angle", "view angle from the surface normal (degrees)",
+             false, [](double x) { return fmt::format("{:g}°", x); });
 }
 
 }  // namespace
@@ -560,6 +1163,7 @@ const std::vector<StudyDef>& studies() {
          false,
          true,
          false,
+         1,
          depthPoints,
          nullptr,
          depthConclude},
@@ -577,6 +1181,7 @@ const std::vector<StudyDef>& studies() {
          false,
          false,
          false,
+         1,
          shadowPoints,
          nullptr,
          shadowConclude},
@@ -585,12 +1190,12 @@ const std::vector<StudyDef>& studies() {
          "normal and uv errors and "
          "smoothness, on and off; where does the filter radius selection stop helping?",
          "particle_size.toml", "particle diameter on screen (px)", true, "normal.mean_deg",
-         smoothingColumns, false, false, false, sizePoints, particlePixels, sizeConclude},
+         smoothingColumns, false, false, false, 1, sizePoints, particlePixels, sizeConclude},
         {"view_angle", "View angle",
          "The camera turns from face-on to grazing over a flat slab: the view dependence of the "
          "screen-space smoothing.",
          "view_angle.toml", "view angle from the surface normal (degrees)", false,
-         "normal.mean_deg", smoothingColumns, false, false, false, anglePoints, nullptr,
+         "normal.mean_deg", smoothingColumns, false, false, false, 1, anglePoints, nullptr,
          angleConclude},
         {"temporal",
          "Temporal stability",
@@ -606,6 +1211,7 @@ const std::vector<StudyDef>& studies() {
          false,
          false,
          true,
+         1,
          orbitPoints,
          nullptr,
          temporalConclude},
@@ -623,9 +1229,32 @@ const std::vector<StudyDef>& studies() {
          true,
          false,
          false,
+         1,
          collisionPoints,
          nullptr,
          collisionConclude},
+        {"methods",
+         "Surface methods",
+         "Every surface method at its defaults and along its main parameter, with each particle "
+         "shape, on the default scenes and along particle size and view angle: how far each is "
+         "from the exact surface (normals, depth, coverage, outlines, uv, ꟻLIP, smoothness) and "
+         "what its frame costs (the fastest of 5 frames, rendered in rounds with the other "
+         "settings of its scene after a warm-up frame).",
+         "",
+         "the method's parameter (particle radii; steps for curvature_flow); particle_size: "
+         "px per particle; view_angle: degrees",
+         false,
+         "normal.mean_deg",
+         {"normal.mean_deg", "normal.p95_deg", "depth.rel_mean", "coverage.iou",
+          "silhouette.mean_px", "uv.mean", "beauty.flip", "smoothness.ratio",
+          "count.unbracketed_rays"},
+         false,
+         false,
+         false,
+         5,
+         methodPoints,
+         particlePixels,
+         methodsConclude},
     });
     return all;
 }

@@ -17,13 +17,16 @@ struct StudyPoint {
     std::string series;             // the chart's line this point belongs to
     double x = NAN;                 // NaN: StudyDef::xOf computes it from the loaded scene
     std::vector<std::string> sets;  // KEY=VALUE overrides, applied after the user's --set
+    // A scene of its own, relative to scenes/studies/ ("../planet.toml" is a default scene),
+    // for a study that spans several; its rows then name their scene. Empty: StudyDef::scene.
+    std::string scene;
 };
 
 struct StudyDef {
     std::string name;      // "depth_range": the CLI name, the output folder
     std::string title;     // "Depth range"
     std::string question;  // one sentence: what it measures and how
-    std::string scene;     // file name in scenes/studies/
+    std::string scene;     // file name in scenes/studies/; "" when every point names its own
     std::string xLabel;    // with its unit
     bool xLog = false;
     std::string metric;                // the chart's y
@@ -39,6 +42,12 @@ struct StudyDef {
     // its frame and the previous one of its series, for the real-time render
     // (temporal.frame_flip) and the reference (temporal.reference_frame_flip).
     bool frameToFrame = false;
+    // Real-time frames rendered per point: 1, the first frame of a renderer (the studies of
+    // stability); more, an untimed warm-up frame and then this many, in rounds with the other
+    // points of the scene, for a study that compares costs: a point's time per stage is then
+    // the fastest of its frames (app/render_job.h renderTimedRounds). Quick runs time one
+    // frame (after the warm-up).
+    int frames = 1;
     std::function<std::vector<StudyPoint>(bool quick)> points;
     std::function<double(const LoadedScene&)> xOf;  // for points without an x
     // Fills finding, facts and chart from the rows (and the fields above).

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "app/comparison.h"
@@ -44,9 +46,40 @@ struct Point {
 
 struct Planned {
     const StudyDef* def;
-    fs::path sceneFile;
+    std::vector<fs::path> sceneFiles;  // every scene its points render, in order of first use
     std::vector<Point> points;
 };
+
+// The end of the run of points from `first` whose frames are timed together: for a study that
+// compares costs, the consecutive points of one scene file (their frames in rounds: see
+// renderTimedRounds); else the point alone.
+std::size_t timedTogetherEnd(const Planned& plan, std::size_t first) {
+    std::size_t end = first + 1;
+    if (plan.def->frames > 1)
+        while (end < plan.points.size() &&
+               plan.points[end].point.scene == plan.points[first].point.scene)
+            ++end;
+    return end;
+}
+
+// Renders the real-time frames of the points [first, end) (timedTogetherEnd) and their median
+// stage times: one frame each for a stability study; for a study that compares costs, one
+// untimed warm-up frame each and then `frames` rounds (one in quick runs).
+void renderPoints(const Planned& plan, std::size_t first, std::size_t end, bool quick,
+                  Devices& devices, std::vector<std::optional<TimedFrame>>& timed) {
+    const StudyDef& d = *plan.def;
+    std::vector<const LoadedScene*> scenes;
+    for (std::size_t k = first; k < end; ++k) scenes.push_back(&plan.points[k].scene);
+    const int frames = quick ? 1 : std::max(d.frames, 1);
+    if (scenes.size() > 1) {
+        std::printf("[%s] %s: %zu settings, %d frame%s each in rounds after a warm-up frame\n",
+                    d.name.c_str(), plan.points[first].scene.scene.name.c_str(), scenes.size(),
+                    frames, frames == 1 ? "" : "s");
+        std::fflush(stdout);
+    }
+    auto frameTimes = renderTimedRounds("realtime", devices, scenes, frames, d.frames > 1);
+    for (std::size_t k = first; k < end; ++k) timed[k] = std::move(frameTimes[k - first]);
+}
 
 }  // namespace
 
@@ -71,19 +104,27 @@ ExitCode runStudies(const StudyOptions& o) {
     const fs::path scenesDir = o.scenesDir.empty() ? defaultStudyScenes() : fs::path(o.scenesDir);
     std::vector<Planned> plans;
     for (const StudyDef* d : chosen) {
-        Planned p{d, scenesDir / d->scene, {}};
-        if (!fs::is_regular_file(p.sceneFile))
-            throw core::InputError(
-                fmt::format("{}: the scene of study {} is missing", p.sceneFile.string(), d->name));
+        Planned p{d, {}, {}};
         for (StudyPoint& sp : d->points(o.quick)) {
+            const fs::path sceneFile =
+                (scenesDir / (sp.scene.empty() ? d->scene : sp.scene)).lexically_normal();
+            if (std::find(p.sceneFiles.begin(), p.sceneFiles.end(), sceneFile) ==
+                p.sceneFiles.end()) {
+                if (!fs::is_regular_file(sceneFile))
+                    throw core::InputError(fmt::format("{}: the scene of study {} is missing",
+                                                       sceneFile.string(), d->name));
+                p.sceneFiles.push_back(sceneFile);
+            }
             Point pt;
             pt.overrides = o.sets;
             pt.overrides.insert(pt.overrides.end(), sp.sets.begin(), sp.sets.end());
             try {
-                pt.scene = loadScene(p.sceneFile, pt.overrides);
+                pt.scene = loadScene(sceneFile, pt.overrides);
             } catch (const core::InputError& e) {
                 throw core::InputError(
-                    fmt::format("study {}, {} at x = {}: {}", d->name, sp.series, sp.x, e.what()));
+                    fmt::format("study {}, {}{} at x = {}: {}", d->name,
+                                sp.scene.empty() ? "" : sceneFile.stem().string() + ", ", sp.series,
+                                sp.x, e.what()));
             }
             if (std::isnan(sp.x) && d->xOf) sp.x = d->xOf(pt.scene);
             pt.point = std::move(sp);
@@ -107,7 +148,8 @@ ExitCode runStudies(const StudyOptions& o) {
         s.name = d.name;
         s.title = d.title;
         s.question = d.question;
-        s.sceneFile = plan.sceneFile.string();
+        for (const fs::path& f : plan.sceneFiles)
+            s.sceneFile += (s.sceneFile.empty() ? "" : ", ") + f.string();
         s.xLabel = d.xLabel;
         s.xLog = d.xLog;
         s.metric = d.metric;
@@ -118,9 +160,11 @@ ExitCode runStudies(const StudyOptions& o) {
         std::map<std::string, double> unbracketed;  // per distinct reference
         // Frame-to-frame: the previous frame's two display images, per series.
         std::map<std::string, std::pair<core::Image, core::Image>> previous;
+        std::vector<std::optional<TimedFrame>> timed(plan.points.size());
         for (std::size_t i = 0; i < plan.points.size(); ++i) {
             const Point& pt = plan.points[i];
             compare::StudyRow row;
+            if (!pt.point.scene.empty()) row.scene = pt.scene.scene.name;
             row.series = pt.point.series;
             row.x = pt.point.x;
             row.sets = pt.point.sets;
@@ -132,9 +176,11 @@ ExitCode runStudies(const StudyOptions& o) {
                 const auto u = ref.counters.find("unbracketed_rays");
                 row.metrics["count.unbracketed_rays"] = u == ref.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
-                const core::Frame test = render("realtime", devices, pt.scene);
-                for (const auto& [stage, ms] : test.timingsMs)
-                    if (stage != "compile") row.timingsMs[stage] = ms;
+                if (!timed[i])
+                    renderPoints(plan, i, timedTogetherEnd(plan, i), o.quick, devices, timed);
+                const core::Frame test = std::move(timed[i]->frame);
+                row.timingsMs = std::move(timed[i]->fastestMs);
+                timed[i].reset();
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
                 const compare::MetricResult m = compare::computeMetrics(ref.image, test.image, ms);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
@@ -173,8 +219,10 @@ ExitCode runStudies(const StudyOptions& o) {
                 if (!fs::exists(dir / refPng)) core::writeImage(ref.display, dir / refPng);
                 row.images["reference"] = refPng;
                 const auto y = row.metrics.find(d.metric);
-                std::printf("[%s %zu/%zu] %s, x = %g: %s %s (real-time %.1f ms)\n", d.name.c_str(),
-                            i + 1, plan.points.size(), row.series.c_str(), row.x, d.metric.c_str(),
+                std::printf("[%s %zu/%zu] %s%s%s, x = %g: %s %s (real-time %.1f ms)\n",
+                            d.name.c_str(), i + 1, plan.points.size(), row.scene.c_str(),
+                            row.scene.empty() ? "" : ": ", row.series.c_str(), row.x,
+                            d.metric.c_str(),
                             y == row.metrics.end() ? "-" : compare::formatValue(y->second).c_str(),
                             row.timingsMs.count("total") ? row.timingsMs.at("total") : NAN);
             } catch (const core::InputError&) {
@@ -183,8 +231,9 @@ ExitCode runStudies(const StudyOptions& o) {
                 // One point that cannot be rendered fails; the others still run.
                 row.error = e.what();
                 anyError = true;
-                std::printf("[%s %zu/%zu] %s, x = %g: error: %s\n", d.name.c_str(), i + 1,
-                            plan.points.size(), row.series.c_str(), row.x, e.what());
+                std::printf("[%s %zu/%zu] %s%s%s, x = %g: error: %s\n", d.name.c_str(), i + 1,
+                            plan.points.size(), row.scene.c_str(), row.scene.empty() ? "" : ": ",
+                            row.series.c_str(), row.x, e.what());
             }
             std::fflush(stdout);
             s.rows.push_back(std::move(row));

@@ -47,13 +47,6 @@ std::string keyOf(const std::string& assignment) {
     return assignment.substr(0, assignment.find('='));
 }
 
-double median(std::vector<double> v) {
-    if (v.empty()) return NAN;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // One combination, loaded and checked before anything renders.
 struct Job {
     std::size_t index = 0;
@@ -273,18 +266,10 @@ ExitCode runSweep(const SweepOptions& o) {
             row.referenceKey = key;
             const core::Frame& ref = cache.get(refScene, key, what);
             // N frames; the median of each stage and of the total. The real-time renderer
-            // first renders one frame untimed: the driver compiles shader variants on first use.
-            std::map<std::string, std::vector<double>> times;
-            const auto renderer = makeRenderer(testRenderer, devices, job.test);
-            core::Frame test;
-            if (!convergence) render(*renderer, testRenderer, job.test);
-            for (int f = 0; f < frames; ++f) {
-                test = render(*renderer, testRenderer, job.test);
-                for (const auto& [stage, ms] : test.timingsMs)
-                    if (stage != "compile")
-                        times[stage].push_back(ms);  // not part of a frame's time
-            }
-            for (const auto& [stage, v] : times) row.timingsMs[stage] = median(v);
+            // first renders one frame untimed (renderTimed).
+            TimedFrame timed = renderTimed(testRenderer, devices, job.test, frames, !convergence);
+            const core::Frame test = std::move(timed.frame);
+            row.timingsMs = std::move(timed.medianMs);
             const compare::MetricResult result = compare::computeMetrics(
                 ref.image, test.image, metricSettings(job.test, o.ppd, o.flipOver));
             row.metrics = result.values;

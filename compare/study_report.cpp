@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -42,6 +43,30 @@ std::string xText(double x) {
     return fmt::format("{:.4g}", x);
 }
 
+bool spansScenes(const StudyResult& s) {
+    for (const StudyRow& r : s.rows)
+        if (!r.scene.empty()) return true;
+    return false;
+}
+
+json tableJson(const StudyTable& t) {
+    json lines = json::array();
+    for (const auto& line : t.lines)
+        lines.push_back({{"labels", line.labels}, {"values", numbersJson(line.values)}});
+    return {{"file", t.file},
+            {"caption", t.caption},
+            {"labels", t.labels},
+            {"columns", t.columns},
+            {"lines", lines}};
+}
+
+// A number column's header: a metric with its unit, or the name as given.
+std::string columnTitle(const std::string& column) {
+    if (!findMetric(column)) return column;
+    const std::string unit = metricUnit(column);
+    return unit.empty() ? column : column + " (" + unit + ")";
+}
+
 json studySummaryJson(const StudyResult& s) {
     return {{"name", s.name},
             {"title", s.title},
@@ -74,8 +99,13 @@ json studyJson(const StudyResult& s) {
                     {"reference_ms", jsonNumber(r.referenceMs)},
                     {"reference_key", r.referenceKey},
                     {"images", r.images}};
+        if (!r.scene.empty()) row["scene"] = r.scene;
         if (!r.error.empty()) row["error"] = r.error;
         rows.push_back(std::move(row));
+    }
+    if (!s.tables.empty()) {
+        j["tables"] = json::array();
+        for (const StudyTable& t : s.tables) j["tables"].push_back(tableJson(t));
     }
     j["rows"] = std::move(rows);
     return j;
@@ -87,7 +117,8 @@ std::string studyCsv(const StudyResult& s) {
         {"total", "shadow", "gbuffer", "ssss", "shade", "post"}, false);
     const auto metrics = columnsOf(
         s, [](const StudyRow& r) -> const auto& { return r.metrics; }, s.columns, true);
-    std::string out = "series,x,sets";
+    const bool scenes = spansScenes(s);
+    std::string out = scenes ? "scene,series,x,sets" : "series,x,sets";
     auto field = [&](const std::string& text) {
         out += ',';
         out += text;
@@ -100,7 +131,12 @@ std::string studyCsv(const StudyResult& s) {
     for (const StudyRow& r : s.rows) {
         std::string sets;
         for (const auto& set : r.sets) sets += (sets.empty() ? "" : ";") + set;
-        out += csvField(r.series);
+        if (scenes) {
+            out += csvField(r.scene);
+            field(csvField(r.series));
+        } else {
+            out += csvField(r.series);
+        }
         field(exactValue(r.x));
         field(csvField(sets));
         for (const auto& st : stages) field(csvNumber(r.timingsMs, st));
@@ -112,12 +148,76 @@ std::string studyCsv(const StudyResult& s) {
     return out;
 }
 
+std::string tableCsv(const StudyTable& t) {
+    auto line = [](const std::vector<std::string>& fields) {
+        std::string out;
+        for (std::size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + fields[i];
+        return out + "\n";
+    };
+    std::vector<std::string> header;
+    for (const auto& l : t.labels) header.push_back(csvField(l));
+    for (const auto& c : t.columns) header.push_back(csvField(c));
+    std::string out = line(header);
+    for (const auto& l : t.lines) {
+        std::vector<std::string> fields;
+        for (std::size_t i = 0; i < t.labels.size(); ++i)
+            fields.push_back(csvField(i < l.labels.size() ? l.labels[i] : ""));
+        for (const auto& c : t.columns) fields.push_back(csvNumber(l.values, c));
+        out += line(fields);
+    }
+    return out;
+}
+
+std::string studyMarkdown(const StudyResult& s, int level) {
+    const std::string h(static_cast<std::size_t>(std::max(level, 1)), '#');
+    std::string md =
+        h + " " + s.title + "\n\n" + s.question + "\n\n**Finding:** " + s.finding + "\n\n";
+    md += "![" + (s.scatter ? s.scatter->title : s.chart.title) + "](study.svg)\n\n";
+    for (const StudyFigure& f : s.figures)
+        md += "![" + f.chart.title + "](" + f.file + ".svg)\n\n*" + f.caption + "*\n\n";
+    // One cell: " text |"; a bar in the text is escaped (Markdown table cells cannot hold one).
+    auto cell = [&md](std::string_view text) {
+        md += ' ';
+        for (char c : text) {
+            if (c == '|') md += '\\';
+            md += c;
+        }
+        md += " |";
+    };
+    for (const StudyTable& t : s.tables) {
+        md += "*" + t.caption + "*\n\n|";
+        for (const auto& l : t.labels) cell(l);
+        for (const auto& c : t.columns) cell(columnTitle(c));
+        md += "\n|";
+        for (std::size_t i = 0; i < t.labels.size(); ++i) md += " --- |";
+        for (std::size_t i = 0; i < t.columns.size(); ++i) md += " ---: |";
+        md += "\n";
+        for (const auto& line : t.lines) {
+            md += "|";
+            for (std::size_t i = 0; i < t.labels.size(); ++i)
+                cell(i < line.labels.size() ? line.labels[i] : "");
+            for (const auto& c : t.columns) {
+                const auto it = line.values.find(c);
+                cell(it == line.values.end() ? "—" : formatValue(it->second));
+            }
+            md += "\n";
+        }
+        md += "\n";
+    }
+    return md;
+}
+
 void writeStudy(const StudyResult& s, const fs::path& dir) {
     const fs::path d = dir / s.name;
     fs::create_directories(d);
     core::writeTextFile(d / "study.json", studyJson(s).dump(2) + "\n");
     core::writeTextFile(d / "study.csv", studyCsv(s));
-    core::writeTextFile(d / "study.svg", lineSvg(s.chart));
+    core::writeTextFile(d / "study.svg", s.scatter ? scatterSvg(*s.scatter) : lineSvg(s.chart));
+    for (const StudyFigure& f : s.figures)
+        core::writeTextFile(d / (f.file + ".svg"), lineSvg(f.chart));
+    for (const StudyTable& t : s.tables) core::writeTextFile(d / (t.file + ".csv"), tableCsv(t));
+    if (!s.figures.empty() || !s.tables.empty() || s.scatter)
+        core::writeTextFile(d / "study.md", studyMarkdown(s, 2));
 }
 
 namespace {
@@ -134,9 +234,10 @@ std::string findingsSection(const std::vector<StudyResult>& studies) {
     return h + "</tbody></table>\n</section>\n";
 }
 
-// A point's row: its two renders, series, x, the study's metrics, time and unbracketed rays;
-// its error in a row under it.
-std::string pointRow(const StudyResult& s, const StudyRow& r, const std::string& base) {
+// A point's row: its two renders, [scene,] series, x, the study's metrics, time and
+// unbracketed rays; its error in a row under it.
+std::string pointRow(const StudyResult& s, const StudyRow& r, const std::string& base,
+                     bool scenes) {
     std::string h = "<tr>";
     for (const char* which : {"realtime", "reference"}) {
         const auto it = r.images.find(which);
@@ -145,6 +246,7 @@ std::string pointRow(const StudyResult& s, const StudyRow& r, const std::string&
                  : fmt::format("<td><img class=\"thumb\" src=\"{}\" alt=\"{} {}\"></td>",
                                base + urlPath(it->second), which, htmlEscape(r.series));
     }
+    if (scenes) h += "<td>" + htmlEscape(r.scene) + "</td>";
     h += "<td>" + htmlEscape(r.series) + "</td><td class=\"num\">" + htmlEscape(xText(r.x)) +
          "</td>";
     for (const auto& m : s.columns) h += metricValueCell(r.metrics, m, m == s.metric);
@@ -155,8 +257,28 @@ std::string pointRow(const StudyResult& s, const StudyRow& r, const std::string&
          "</td><td class=\"num\">" +
          (u == r.metrics.end() ? std::string("—") : htmlEscape(formatValue(u->second))) +
          "</td></tr>\n";
-    if (!r.error.empty()) h += errorRow(4 + s.columns.size(), r.error);
+    if (!r.error.empty()) h += errorRow(4 + (scenes ? 1 : 0) + s.columns.size(), r.error);
     return h;
+}
+
+// A study's table: its caption, the label columns, the number columns with their units.
+std::string tableSection(const StudyTable& t, const std::string& base) {
+    std::string h = "<p>" + htmlEscape(t.caption) +
+                    fmt::format(" Data: <a href=\"{}{}.csv\">{}.csv</a>.</p>\n", base,
+                                urlPath(t.file), htmlEscape(t.file));
+    h += "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr>";
+    for (const auto& l : t.labels) h += "<th>" + htmlEscape(l) + "</th>";
+    for (const auto& c : t.columns)
+        h += findMetric(c) ? metricHeaderCell(c) : "<th class=\"num\">" + htmlEscape(c) + "</th>";
+    h += "</tr></thead>\n<tbody>\n";
+    for (const auto& line : t.lines) {
+        h += "<tr>";
+        for (std::size_t i = 0; i < t.labels.size(); ++i)
+            h += "<td>" + htmlEscape(i < line.labels.size() ? line.labels[i] : "") + "</td>";
+        for (const auto& c : t.columns) h += metricValueCell(line.values, c, false);
+        h += "</tr>\n";
+    }
+    return h + "</tbody></table></div>\n";
 }
 
 std::string studySection(const StudyResult& s) {
@@ -174,16 +296,23 @@ std::string studySection(const StudyResult& s) {
         s.unbracketedRays == 1.0 ? "" : "s", s.wallSeconds, base, base);
     h += "<img src=\"" + base + "study.svg\" alt=\"" + htmlEscape(s.title) +
          ": chart\" style=\"max-width:100%;height:auto\">\n";
+    for (const StudyFigure& f : s.figures)
+        h += "<img src=\"" + base + urlPath(f.file) + ".svg\" alt=\"" + htmlEscape(f.chart.title) +
+             "\" style=\"max-width:100%;height:auto\">\n<p class=\"muted\">" +
+             htmlEscape(f.caption) + "</p>\n";
+    for (const StudyTable& t : s.tables) h += tableSection(t, base);
+    const bool scenes = spansScenes(s);
     // The rows fold away: the chart and the finding are the page's reading.
     h += fmt::format("<details>\n<summary>{} point{}: renders and every metric</summary>\n",
                      s.rows.size(), s.rows.size() == 1 ? "" : "s");
     h += "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr><th>Real-time</th>"
-         "<th>Reference</th><th>Series</th><th class=\"num\">" +
-         htmlEscape(s.xLabel) + "</th>";
+         "<th>Reference</th>";
+    if (scenes) h += "<th>Scene</th>";
+    h += "<th>Series</th><th class=\"num\">" + htmlEscape(s.xLabel) + "</th>";
     for (const auto& m : s.columns) h += metricHeaderCell(m);
     h += "<th class=\"num\">Real-time <span class=\"unit\">ms</span></th><th "
          "class=\"num\">Unbracketed</th></tr></thead>\n<tbody>\n";
-    for (const StudyRow& r : s.rows) h += pointRow(s, r, base);
+    for (const StudyRow& r : s.rows) h += pointRow(s, r, base, scenes);
     return h + "</tbody></table></div>\n</details>\n</section>\n";
 }
 

@@ -12,6 +12,10 @@ namespace twinrender::compare {
 
 namespace {
 
+// Colour-blind-safe (Okabe and Ito, 2008), in a fixed order so that series keep their colour.
+constexpr const char* PALETTE[8] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                    "#e69f00", "#56b4e9", "#000000", "#f0e442"};
+
 bool drawable(const ChartPoint& p, bool logX) {
     return std::isfinite(p.x) && std::isfinite(p.y) && (!logX || p.x > 0.0);
 }
@@ -133,6 +137,48 @@ std::string chartOpening(int width, int height, const std::string& title, double
     return s;
 }
 
+// The legend of an ungrouped scatter, between the title and the plot: a setting, the front.
+std::string frontLegend(bool lowerYIsBetter, double lx, double ly) {
+    std::string s = "<g class=\"legend\">\n";
+    s += fmt::format(
+        "<circle class=\"point\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"/>"
+        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">setting</text>\n",
+        lx, ly, lx + 10, ly + 4);
+    s += fmt::format(
+        "<line class=\"pareto\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\"/>"
+        "<circle class=\"point pareto-point\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"/>"
+        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">Pareto front (nothing is both "
+        "faster and {})</text>\n",
+        lx + 70, ly, lx + 100, ly, lx + 85, ly, lx + 106, ly + 4,
+        lowerYIsBetter ? "lower" : "higher");
+    return s + "</g>\n";
+}
+
+// The legend of a grouped scatter, under the plot from `top`: one <g class="legend-entry"> per
+// group in its colour, 4 a row, then the front.
+std::string groupLegend(const std::vector<std::string>& groups, bool lowerYIsBetter, double left,
+                        double right, double top) {
+    std::string s = "<g class=\"legend\">\n";
+    const double column = (right - left) / 4.0;
+    for (std::size_t k = 0; k <= groups.size(); ++k) {
+        const double lx = left + static_cast<double>(k % 4) * column;
+        const double ly = top + 18.0 * static_cast<double>(k / 4);
+        if (k < groups.size())
+            s += fmt::format(
+                "<g class=\"legend-entry\"><circle class=\"point group-{}\" cx=\"{:.1f}\" "
+                "cy=\"{:.1f}\" r=\"5\"/><text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">{}</text>"
+                "</g>\n",
+                k % 8, lx + 6, ly, lx + 16, ly + 4, xmlText(groups[k]));
+        else
+            s += fmt::format(
+                "<g class=\"legend-entry\"><line class=\"pareto\" x1=\"{:.1f}\" y1=\"{:.1f}\" "
+                "x2=\"{:.1f}\" y2=\"{:.1f}\"/><text class=\"label\" x=\"{:.1f}\" "
+                "y=\"{:.1f}\">Pareto front (nothing is both faster and {})</text></g>\n",
+                lx, ly, lx + 24, ly, lx + 30, ly + 4, lowerYIsBetter ? "lower" : "higher");
+    }
+    return s + "</g>\n";
+}
+
 }  // namespace
 
 std::vector<std::size_t> paretoFront(const std::vector<ChartPoint>& points, bool lowerYIsBetter) {
@@ -166,9 +212,23 @@ bool usesLogX(const ScatterChart& chart) {
 std::string scatterSvg(const ScatterChart& chart) {
     const bool logX = usesLogX(chart);
     const double W = chart.width, H = chart.height;
+    // The groups in order of first appearance; none: one colour, the legend above the plot.
+    std::vector<std::string> groups;
+    for (const std::string& g : chart.groups)
+        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
+    auto groupOf = [&](std::size_t i) -> std::string {
+        return i < chart.groups.size() ? chart.groups[i] : std::string();
+    };
+    auto groupIndex = [&](std::size_t i) {
+        return static_cast<std::size_t>(std::find(groups.begin(), groups.end(), groupOf(i)) -
+                                        groups.begin());
+    };
+    // Groups: a legend under the plot, 4 entries a row, the front's entry last.
+    const int legendRows = groups.empty() ? 0 : static_cast<int>((groups.size() + 1 + 3) / 4);
     // Plot area: room on the left for y tick values, below for x ticks and the axis label,
     // above for the title, on the right for the legend and point labels.
-    const double left = 78, right = W - 24, top = 64, bottom = H - 62;
+    const double left = 78, right = W - 24, top = groups.empty() ? 64 : 44,
+                 bottom = H - 62 - 18.0 * legendRows;
 
     std::vector<std::size_t> shown;
     for (std::size_t i = 0; i < chart.points.size(); ++i)
@@ -196,7 +256,16 @@ std::string scatterSvg(const ScatterChart& chart) {
                      ".point{fill:#0969da;fill-opacity:0.75;stroke:#ffffff;stroke-width:1}"
                      ".pareto-point{fill:#cf222e}.pareto{stroke:#cf222e;stroke-width:2;"
                      "fill:none}.point-label{fill:#24292f;font-size:10px}",
-                     "");
+                     [&] {
+                         // A group's colour; its points on the front get a red ring.
+                         std::string g;
+                         for (std::size_t k = 0; k < groups.size(); ++k)
+                             g += fmt::format(".point.group-{}{{fill:{}}}", k % 8, PALETTE[k % 8]);
+                         if (!groups.empty())
+                             g += ".point.pareto-point{fill-opacity:1;stroke:#cf222e;stroke-width:"
+                                  "2.5}";
+                         return g;
+                     }());
 
     // Grid and ticks.
     const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
@@ -204,7 +273,7 @@ std::string scatterSvg(const ScatterChart& chart) {
     s += gridAndFrame(ax, ay, xt, yt);
     s += fmt::format(
         "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}{}</text>\n",
-        (left + right) / 2, H - 22, xmlText(chart.xLabel), logX ? " — log scale" : "");
+        (left + right) / 2, bottom + 40, xmlText(chart.xLabel), logX ? " — log scale" : "");
     s += fmt::format(
         "<text class=\"label\" transform=\"translate(18 {:.1f}) rotate(-90)\" "
         "text-anchor=\"middle\">{}</text>\n",
@@ -227,8 +296,9 @@ std::string scatterSvg(const ScatterChart& chart) {
         s += "\"/>\n";
     }
     s += "<g class=\"points\">\n";
-    // Labels beside their markers, moved up or down past labels already placed (estimated
-    // widths: 6 px per character at 10 px), and left of the marker near the right edge.
+    // Labels beside their markers: right of the marker (left near the right edge), else on the
+    // other side, else moved up or down past labels already placed (estimated widths: 6 px per
+    // character at 10 px).
     struct Box {
         double x0, y0, x1, y1;
     };
@@ -243,49 +313,50 @@ std::string scatterSvg(const ScatterChart& chart) {
         const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
         const double px = ax.map(p.x), py = ay.map(p.y);
         s += fmt::format(
-            "<circle class=\"point{}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"><title>{} — x {}, y "
-            "{}</title></circle>",
-            onFront ? " pareto-point" : "", px, py, xmlText(p.label), xmlText(tickText(p.x)),
-            xmlText(tickText(p.y)));
+            "<circle class=\"point{}{}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"><title>{}{} — x {}, "
+            "y {}</title></circle>",
+            onFront ? " pareto-point" : "",
+            groups.empty() ? "" : fmt::format(" group-{}", groupIndex(i) % 8), px, py,
+            groupOf(i).empty() ? "" : xmlText(groupOf(i)) + " ", xmlText(p.label),
+            xmlText(tickText(p.x)), xmlText(tickText(p.y)));
         if (!p.label.empty()) {
             const double w = 6.0 * static_cast<double>(p.label.size());
-            const bool flip = px + 8 + w > W - 4 && px - 8 - w >= 4;
-            const double x0 = flip ? px - 8 - w : px + 8;
+            const bool rightFits = px + 8 + w <= W - 4, leftFits = px - 8 - w >= 4;
+            const bool preferLeft = !rightFits && leftFits;
+            bool left = preferLeft;
             double y = py - 6;
+            bool done = false;
             for (double dy : {0.0, 14.0, -12.0, 26.0, -24.0, 38.0, -36.0}) {
-                const Box b{x0, py - 6 + dy - 9, x0 + w, py - 6 + dy + 2};
-                const bool clash = std::any_of(placed.begin(), placed.end(), [&](const Box& o) {
-                    return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1;
-                });
-                if (!clash || dy == -36.0) {
-                    y = py - 6 + dy;
-                    placed.push_back(b);
-                    break;
+                for (const bool side : {preferLeft, !preferLeft}) {
+                    if (side != preferLeft && !(side ? leftFits : rightFits)) continue;
+                    const double x0 = side ? px - 8 - w : px + 8;
+                    const Box b{x0, py - 6 + dy - 9, x0 + w, py - 6 + dy + 2};
+                    const bool clash = std::any_of(placed.begin(), placed.end(), [&](const Box& o) {
+                        return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1;
+                    });
+                    if (!clash || (dy == -36.0 && side == preferLeft)) {
+                        y = py - 6 + dy;
+                        left = side;
+                        placed.push_back(b);
+                        done = true;
+                        break;
+                    }
                 }
+                if (done) break;
             }
             s += fmt::format("<text class=\"point-label\" x=\"{:.1f}\" y=\"{:.1f}\"{}>{}</text>",
-                             flip ? px - 8 : px + 8, y, flip ? " text-anchor=\"end\"" : "",
+                             left ? px - 8 : px + 8, y, left ? " text-anchor=\"end\"" : "",
                              xmlText(p.label));
         }
         s += "\n";
     }
     s += "</g>\n";
 
-    // Legend, between the title and the plot.
-    const double lx = left + 6, ly = 44;
-    s += "<g class=\"legend\">\n";
-    s += fmt::format(
-        "<circle class=\"point\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"/>"
-        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">setting</text>\n",
-        lx, ly, lx + 10, ly + 4);
-    s += fmt::format(
-        "<line class=\"pareto\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\"/>"
-        "<circle class=\"point pareto-point\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"/>"
-        "<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">Pareto front (nothing is both "
-        "faster and {})</text>\n",
-        lx + 70, ly, lx + 100, ly, lx + 85, ly, lx + 106, ly + 4,
-        chart.lowerYIsBetter ? "lower" : "higher");
-    s += "</g>\n";
+    if (!groups.empty()) {
+        s += groupLegend(groups, chart.lowerYIsBetter, left, right, bottom + 56);
+    } else {
+        s += frontLegend(chart.lowerYIsBetter, left + 6, 44);
+    }
     if (shown.size() < chart.points.size())
         s += fmt::format(
             "<text class=\"tick\" x=\"{}\" y=\"{:.1f}\">{} of {} points not drawn (no finite "
@@ -296,10 +367,6 @@ std::string scatterSvg(const ScatterChart& chart) {
 }
 
 namespace {
-
-// Colour-blind-safe (Okabe and Ito, 2008), in a fixed order so that series keep their colour.
-constexpr const char* PALETTE[8] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
-                                    "#e69f00", "#56b4e9", "#000000", "#f0e442"};
 
 bool usesLog(AxisScale scale, const std::vector<double>& values) {
     if (scale != AxisScale::Auto) return scale == AxisScale::Log;

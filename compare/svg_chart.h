@@ -29,6 +29,9 @@ struct ScatterChart {
     std::string xLabel;  // with its unit: "time per frame (ms)"
     std::string yLabel;  // with its unit and direction: "beauty.flip (lower is better)"
     std::vector<ChartPoint> points;
+    // The group of each point, by index ("bilateral, sphere"): its colour and legend entry.
+    // Empty: one colour for every point, as a sweep draws its combinations.
+    std::vector<std::string> groups;
     bool lowerYIsBetter = true;
     // Auto: logarithmic when the positive x values span more than a decade.
     AxisScale xScale = AxisScale::Auto;
@@ -42,7 +45,10 @@ bool usesLogX(const ScatterChart& chart);
 // A complete SVG document (XML declaration, <svg> with width, height and viewBox): frame,
 // ticks with values, axis labels, a title, one <circle class="point"> per drawn point with a
 // <title> and a <text class="point-label">, the Pareto front as <polyline class="pareto">
-// (marked points get class="point pareto-point"), and a legend.
+// (marked points get class="point pareto-point"), and a legend. With groups, each marker also
+// has class="group-K" (K = the group's index in order of first appearance, mod 8; the palette
+// of lineSvg's series), a front marker a red ring instead of a red fill, and the legend under
+// the plot has one <g class="legend-entry"> per group and one for the front.
 std::string scatterSvg(const ScatterChart& chart);
 
 // ---- Line charts: a metric against a setting, one line per series ------------------------

@@ -66,6 +66,31 @@ TEST(ScatterSvg, LogAxisWhenTimesSpanDecades) {
     EXPECT_FALSE(tc::usesLogX(chart));
 }
 
+TEST(ScatterSvg, GroupsGetAColourAndALegendEntryEach) {
+    tc::ScatterChart chart;
+    chart.xLabel = "time (ms)";
+    chart.yLabel = "normal.mean_deg";
+    // Two groups; the front is a1 (fastest), b1 (better), a2 (best).
+    chart.points = {{1.0, 5.0, "a1"}, {2.0, 4.0, "b1"}, {3.0, 4.5, "b2"}, {4.0, 3.0, "a2"}};
+    chart.groups = {"ssss, sphere", "bilateral, sphere", "bilateral, sphere", "ssss, sphere"};
+    const std::string svg = tc::scatterSvg(chart);
+    const auto xml = twinrender::test::checkXml(svg);
+    ASSERT_EQ(xml.error, "") << svg;
+    // Four markers and a legend marker per group; the front's three markers carry the ring.
+    EXPECT_EQ(xml.classCounts.at("point"), 4 + 2);
+    EXPECT_EQ(xml.classCounts.at("group-0"), 2 + 1);
+    EXPECT_EQ(xml.classCounts.at("group-1"), 2 + 1);
+    EXPECT_EQ(xml.classCounts.at("pareto-point"), 3);
+    EXPECT_EQ(xml.classCounts.at("legend-entry"), 2 + 1);
+    EXPECT_NE(svg.find(">bilateral, sphere</text>"), std::string::npos);
+    EXPECT_NE(svg.find("<title>bilateral, sphere b2"), std::string::npos);
+    // Without groups the chart is a sweep's: one colour, no group classes.
+    chart.groups.clear();
+    const std::string plain = tc::scatterSvg(chart);
+    EXPECT_EQ(plain.find("group-"), std::string::npos);
+    EXPECT_EQ(twinrender::test::checkXml(plain).classCounts.count("legend-entry"), 0u);
+}
+
 TEST(ScatterSvg, NoDrawablePointsStillMakesAChart) {
     tc::ScatterChart chart;
     chart.points = {{NAN, 1.0, "a"}};

@@ -2,14 +2,17 @@
 // the rows, the chart, the page, and a finding computed from the rows (checked against them).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "compare/svg_chart.h"
 #include "compare/testdata/xml_check.h"
 #include "tests/cli_harness.h"
 
@@ -27,8 +30,8 @@ double metric(const json& row, const std::string& name) {
     return v.is_number() ? v.get<double>() : NAN;
 }
 
-// Runs one quick study into a fresh folder; checks what every study leaves and returns its
-// study.json.
+// Runs one quick study into a fresh folder; checks what every study leaves (`points` rows; 0:
+// any number, for the caller to check) and returns its study.json.
 json runStudy(const std::string& name, std::size_t points, const std::string& metricName) {
     const fs::path out = tt::freshDir("study_" + name);
     const auto r = tt::runTwinrender("study " + name + " --quick --out " + out.string());
@@ -39,7 +42,9 @@ json runStudy(const std::string& name, std::size_t points, const std::string& me
     EXPECT_EQ(s["format"], "twinrender-study");
     EXPECT_EQ(s["name"], name);
     EXPECT_EQ(s["metric"], metricName);
-    EXPECT_EQ(s["rows"].size(), points);
+    if (points) {
+        EXPECT_EQ(s["rows"].size(), points);
+    }
     const std::string finding = s["finding"];
     EXPECT_FALSE(finding.empty());
     // The finding is printed, with the reference's unbracketed rays.
@@ -60,11 +65,16 @@ json runStudy(const std::string& name, std::size_t points, const std::string& me
     std::istringstream csv(readText(out / name / "study.csv"));
     std::string line;
     std::getline(csv, line);
-    EXPECT_EQ(line.rfind("series,x,sets,time.total_ms", 0), 0u) << line;
+    // A study whose points span several scenes names each row's scene first.
+    const bool scenes = !s["rows"].empty() && s["rows"][0].contains("scene");
+    EXPECT_EQ(
+        line.rfind(scenes ? "scene,series,x,sets,time.total_ms" : "series,x,sets,time.total_ms", 0),
+        0u)
+        << line;
     EXPECT_NE(line.find(metricName), std::string::npos) << line;
     std::size_t lines = 0;
     while (std::getline(csv, line)) ++lines;
-    EXPECT_EQ(lines, points);
+    EXPECT_EQ(lines, s["rows"].size());
     // The chart: well-formed, a marker per drawn point, a legend entry per series.
     const std::string svg = readText(out / name / "study.svg");
     auto xml = tt::checkXml(svg);
@@ -224,6 +234,105 @@ TEST(Study, CollisionBleedingInTheContactBand) {
     EXPECT_NEAR(s["facts"]["contact_uv"]["ssss_on"].get<double>(), on / n, 1e-12);
 }
 
+TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
+    const json s = runStudy("methods", 0, "normal.mean_deg");
+    ASSERT_FALSE(s.is_discarded());
+    // Per particle shape (spheres, and each shape the study lists), quick: the planet and the
+    // splash sheet with 10 settings each (none, the unfiltered depth normals, and each filter at
+    // its default and twice it), and the 6 methods at 2 particle sizes and 2 view angles.
+    const std::size_t shapes = s["facts"]["shapes"].size();
+    EXPECT_EQ(s["facts"]["shapes"][0], "sphere");
+    EXPECT_EQ(s["rows"].size(), (2 * 10 + 6 * 2 + 6 * 2) * shapes);
+    std::set<std::string> scenes;
+    for (const json& r : s["rows"]) {
+        scenes.insert(r["scene"].get<std::string>());
+        // A series per method and particle shape.
+        const std::string series = r["series"];
+        const std::string shape = series.substr(series.find(", ") + 2);
+        EXPECT_NE(std::find(s["facts"]["shapes"].begin(), s["facts"]["shapes"].end(), shape),
+                  s["facts"]["shapes"].end())
+            << series;
+    }
+    EXPECT_EQ(scenes,
+              (std::set<std::string>{"planet", "splash_sheet", "particle_size", "view_angle"}));
+    // One reference per scene and camera.
+    EXPECT_EQ(s["references"], 2 + 2 + 2);
+    EXPECT_EQ(s["facts"]["scenes"], json({"planet", "splash_sheet"}));
+
+    // Each setting's point is the median over the default scenes (two: their mean) of its
+    // rows' time and normal error; the front is the settings no other beats in both.
+    const auto defaults = [&](const json& r) {
+        return r["scene"] == "planet" || r["scene"] == "splash_sheet";
+    };
+    std::vector<twinrender::compare::ChartPoint> points;
+    std::vector<std::string> labels;
+    for (const json& setting : s["facts"]["settings"]) {
+        double time = 0.0, normal = 0.0;
+        int n = 0;
+        for (const json& r : s["rows"])
+            if (defaults(r) && r["series"] == setting["series"] && r["x"] == setting["parameter"]) {
+                time += r["timings_ms"]["total"].get<double>();
+                normal += metric(r, "normal.mean_deg");
+                ++n;
+            }
+        ASSERT_EQ(n, 2) << setting;
+        EXPECT_NEAR(setting["time_ms"].get<double>(), time / n, 1e-9) << setting;
+        EXPECT_NEAR(setting["normal_mean_deg"].get<double>(), normal / n, 1e-9) << setting;
+        points.push_back({time / n, normal / n, ""});
+        labels.push_back(setting["label"]);
+    }
+    EXPECT_EQ(labels.size(), 10u * shapes);
+    json front = json::array();
+    for (std::size_t i : twinrender::compare::paretoFront(points, true)) front.push_back(labels[i]);
+    EXPECT_EQ(s["facts"]["front"], front);
+    const std::string finding = s["finding"];
+    for (const json& label : front) {
+        EXPECT_NE(finding.find(label.get<std::string>() + " ("), std::string::npos) << finding;
+    }
+
+    // Along particle size: the smallest size at which each method's normal error is at least
+    // 10 % below its control's (none for SSSS and the depth normals, the depth normals for the
+    // depth filters).
+    std::map<std::string, std::map<double, double>> size;
+    for (const json& r : s["rows"])
+        if (r["scene"] == "particle_size") size[r["series"]][r["x"]] = metric(r, "normal.mean_deg");
+    ASSERT_EQ(size.size(), 6u * shapes);
+    EXPECT_EQ(s["facts"]["particle_size"].size(), 5u * shapes);
+    EXPECT_EQ(s["facts"]["particle_size"]["bilateral, sphere"]["control"], "depth_normals, sphere");
+    EXPECT_EQ(s["facts"]["particle_size"]["ssss, sphere"]["control"], "none, sphere");
+    for (const auto& [series, errors] : size) {
+        if (series.rfind("none, ", 0) == 0) continue;
+        const std::string control = s["facts"]["particle_size"][series]["control"];
+        double smallest = NAN;
+        for (const auto& [x, e] : errors)
+            if (std::isnan(smallest) && 1.0 - e / size[control][x] >= 0.10) smallest = x;
+        const json& f = s["facts"]["particle_size"][series]["smallest_helping_px"];
+        if (std::isnan(smallest)) {
+            EXPECT_TRUE(f.is_null()) << series;
+        } else {
+            EXPECT_DOUBLE_EQ(f.get<double>(), smallest) << series;
+        }
+    }
+    EXPECT_NE(finding.find("along particle size"), std::string::npos) << finding;
+    EXPECT_NE(finding.find("along view angle"), std::string::npos) << finding;
+    // The view angle's facts: face-on and grazing errors of every method but none.
+    EXPECT_EQ(s["facts"]["view_angle"].size(), 5u * shapes) << s["facts"]["view_angle"];
+
+    // The tables and the Markdown section beside the rows.
+    const fs::path dir = fs::path(TWINRENDER_TEST_SCRATCH) / "study_methods" / "methods";
+    std::istringstream summary(readText(dir / "summary.csv"));
+    std::string line;
+    std::getline(summary, line);
+    EXPECT_EQ(line.rfind("method,parameter,shape,front,normal.mean_deg,", 0), 0u) << line;
+    std::size_t lines = 0;
+    while (std::getline(summary, line)) ++lines;
+    EXPECT_EQ(lines, 10u * shapes);
+    for (const char* f : {"stages.csv", "normal_by_scene.csv", "particle_size.csv",
+                          "view_angle.csv", "particle_size.svg", "view_angle.svg", "study.md"})
+        EXPECT_TRUE(fs::exists(dir / f)) << f;
+    EXPECT_NE(readText(dir / "study.md").find("**Finding:** " + finding), std::string::npos);
+}
+
 TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
     const fs::path out = tt::freshDir("study_run");
     // No bounds: the planet at this size is far from the suite's thresholds.
@@ -240,7 +349,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
               std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
-    ASSERT_EQ(all["studies"].size(), 6u);
+    ASSERT_EQ(all["studies"].size(), 7u);
     const std::string page = readText(out / "studies" / "index.html");
     for (const json& s : all["studies"]) {
         EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;
