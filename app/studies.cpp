@@ -596,9 +596,8 @@ std::vector<double> sweepValues(const MethodSweep& m, bool quick) {
 }
 
 // The particle shapes every method is rendered with. "sphere" is the renderer's default and is
-// not set, any other shape is (realtime.particles.shape): add "ellipsoid" here when the
-// renderer has it, and its series follow.
-const std::vector<std::string> SHAPES = {"sphere"};
+// not set, any other shape is (realtime.particles.shape); each shape is a series of its own.
+const std::vector<std::string> SHAPES = {"sphere", "ellipsoid"};
 
 // The study scenes whose own x the methods are also rendered along, at their defaults.
 const std::string SIZE_SCENE = "particle_size";

@@ -112,6 +112,15 @@ bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera,
     return true;
 }
 
+// Whether the surface pass replaces the normals by those of its depth (a depth filter, or the
+// user's shader with surface.shader_normals): the gradient pass's would be thrown away.
+bool rebuildsNormals(const Settings& s) {
+    const SurfaceMethod m = s.surface.method;
+    return m == SurfaceMethod::Bilateral || m == SurfaceMethod::NarrowRange ||
+           m == SurfaceMethod::CurvatureFlow ||
+           (m == SurfaceMethod::Shader && s.surface.shaderNormals);
+}
+
 bool sceneEmits(const core::ParticleSet& ps, const std::vector<core::Material>& materials) {
     for (const auto& m : materials)
         for (float v : m.emission.image().pixels())
@@ -272,7 +281,7 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     }
     std::optional<gl::Buffer> kernels;
     std::size_t kernelCount = 0;
-    if (settings.particles.normal == NormalModel::Gradient) {
+    if (settings.particles.normal == NormalModel::Gradient && !rebuildsNormals(settings)) {
         const auto kernelStart = Clock::now();
         const std::vector<std::uint32_t>& reaching =
             d.surfaceKernels.kernels(ps, settings.particles.surfaceLevel);
@@ -379,6 +388,8 @@ const Pass PASSES[] = {
          t.gbuffer.emplace(
              runGBufferPass(in.programs, in.scene, in.width, in.height, in.settings.depth));
      }},
+    // Not under a depth filter, whose normals are rebuilt from the filtered depth (upload
+    // leaves the kernels out then).
     {"normals", [](const PassInputs& in) { return in.kernels != nullptr && in.kernelCount > 0; },
      [](const PassInputs& in, PassTargets& t) {
          t.gradientNormalUv.emplace(runGradientNormalPass(
