@@ -132,10 +132,12 @@ struct SsssSettings {
     bool enabled = true;  // ssss.enabled: Screen-Space Surface Smoothing of uv, normal, emission
     // ssss.radius_scale: blur radius / projected particle radius, 0..16 (0 = no blur). Larger
     // hides more of the particles in uv (texture), smaller keeps the surface's real ripples in
-    // the normals. 0.6 gave the lowest mean normal error against the raymarcher on the default
-    // scenes (planet, field normal: 2.31 degrees; 2.31 at 0.4, 2.82 at 0.8, 3.50 at 1.0, 2.94
-    // with SSSS off) at the same FLIP and uv error (README).
-    double radiusScale = 0.6;
+    // the normals. With the exact gradient normals, 0.3 is on the Pareto front of frame time
+    // against normal error of `twinrender study methods` (docs/methods.md): median over the 8
+    // default scenes 1.19 degrees against 1.21 without SSSS and 1.66 at 0.6 (the default when
+    // normals were modelled per particle), FLIP 0.038 against 0.042 at 0.6, uv error 6 %
+    // below no SSSS.
+    double radiusScale = 0.3;
     // ssss.depth_limit: largest eye-depth difference between blurred pixels, in radii of the
     // centre pixel's particle, (0, 1000].
     double depthLimit = 3.0;

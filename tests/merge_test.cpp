@@ -88,13 +88,14 @@ TEST(Merge, ShardedRunEqualsTheUnshardedRun) {
 
 TEST(Merge, ShardedSweepEqualsTheUnshardedSweep) {
     const fs::path dir = tt::freshDir("merge_sweep");
-    // Held to thresholds that pass the SSSS rows only (ꟻLIP about 0.096 with SSSS, 0.107
-    // without, at 1500 particles), so the rows' verdicts must survive the merge.
+    // Held to thresholds that pass the SSSS rows only (ꟻLIP about 0.096 with SSSS at radius
+    // 0.6, 0.107 without, at 1500 particles), so the rows' verdicts must survive the merge.
     const fs::path bounds = dir / "thresholds.toml";
     tt::writeFile(bounds, "\"beauty.flip\" = { max = 0.1 }\n");
     // One reference cache for all three, as shards on a shared file system would use.
     const std::string sweep = "sweep " + SCENES + "planet.toml" + SMALL +
                               " --set bodies.planet.particles=1500"
+                              " --set realtime.ssss.radius_scale=0.6"
                               " --vary realtime.ssss.enabled=true,false --vary "
                               "realtime.shadow_map.resolution=256,512,1024"
                               " --frames 1 --thresholds " +
