@@ -1,9 +1,9 @@
 // Small droplets drawn as one ellipsoid each (realtime.particles.droplet_atoms). A cluster of
 // a few sparse particles (a pair, a triplet ... flung off a splash) has one level-set droplet
-// around all of them: a pair 1.2 h apart makes a capsule about 2.3 h long and 1.1 h wide,
+// around all of them: a pair 1.2 h apart makes a capsule about 1.7 h long and 0.8 h wide,
 // while the spheres of its particles' radii (the crossings along their normals, pointing away
-// from each other) are two balls of 0.37 h at its ends, not even touching. No sphere about a
-// particle can cover the neck without bulging far beyond the ends, so the real-time image
+// from each other, times 1.2) are two balls of 0.27 h at its ends, not even touching. No sphere
+// about a particle can cover the neck without bulging far beyond the ends, so the real-time image
 // loses such droplets' middles (on frame 40 of the LAMMPS splash, most of the coverage error
 // of the components under 100 pixels).
 //

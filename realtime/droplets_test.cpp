@@ -56,7 +56,7 @@ std::vector<glm::vec3> body(const glm::vec3& centre) {
 
 TEST(Droplets, APairIsOneEllipsoidReachingTheLevelSetAlongEachAxis) {
     // 1.2 h apart: the field at the midpoint (2 v W(0.6 h)) is above the level, so the pair's
-    // level set is one capsule; each particle's sphere reaches only about 0.37 h.
+    // level set is one capsule; each particle's sphere reaches only about 0.27 h.
     const Set s = particlesAt({{0.0f, 0.0f, 0.0f}, {1.2f * H, 0.0f, 0.0f}});
     const Droplets d = fitDroplets(s.ps, s.radii, LEVEL, 8);
     ASSERT_EQ(d.firsts, std::vector<std::uint32_t>{0});
@@ -82,7 +82,7 @@ TEST(Droplets, APairIsOneEllipsoidReachingTheLevelSetAlongEachAxis) {
     const float crossing = s.radii[0] / static_cast<float>(ParticleSettings{}.crossingScale);
     EXPECT_NEAR(longest, 0.6f * H + crossing, 1e-3f * H);
     // Its width at the midpoint is wider than the spheres' union reaches there (not at all:
-    // two spheres of 0.37 h with centres 0.6 h from it).
+    // two spheres of 0.27 h with centres 0.6 h from it).
     EXPECT_GT(glm::length(e.axes[1]), 0.3f * H);
     EXPECT_NEAR(d.radii[0],
                 std::cbrt(glm::length(e.axes[0]) * glm::length(e.axes[1]) * glm::length(e.axes[2])),

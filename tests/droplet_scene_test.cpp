@@ -33,7 +33,7 @@ nlohmann::json renderDroplets(const fs::path& dir, int dropletAtoms) {
 
 TEST(DropletScene, SmallClustersAsEllipsoidsCoverTheirDroplets) {
     // Measured: coverage IoU 0.60 with the particles' spheres (a pair's are two balls of
-    // 0.37 h at the ends of its capsule, the neck missing), 0.86 with one fitted ellipsoid per
+    // 0.27 h at the ends of its capsule, the neck missing), 0.86 with one fitted ellipsoid per
     // droplet (what is left: the waists of bent triplets and the boundary pixels of droplets
     // 10-20 pixels across); normal error 11.3 -> 2.4 degrees.
     const fs::path dir = tt::freshDir("droplet_scene");
