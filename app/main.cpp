@@ -204,13 +204,14 @@ int main(int argc, char** argv) {
     tr::app::StudyOptions studyOpts;
     CommonOptions studyCommon;
     studyCommon.out = "out/studies";
-    auto* studyCmd = app.add_subcommand("study",
-                                        "studies: depth range, particle size, view angle, "
-                                        "temporal, collision, thin casters, surface methods");
+    auto* studyCmd =
+        app.add_subcommand("study",
+                           "studies: depth range, particle size, view angle, "
+                           "temporal, flicker, collision, thin casters, surface methods");
     studyCmd->add_option(
         "NAMES", studyOpts.names,
         "studies to run (default: all): depth_range, thin_casters, particle_size, view_angle, "
-        "temporal, collision, methods");
+        "temporal, flicker, collision, methods");
     studyCmd->add_flag("--quick", studyOpts.quick,
                        "fewer points and particles (seconds per study)");
     studyCmd->add_option("--cache", studyOpts.cache,
