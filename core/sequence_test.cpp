@@ -130,28 +130,33 @@ TEST(Sequence, AMissingFrameIsNamedBeforeAnythingIsRead) {
     EXPECT_NE(none.find("no file matches the sequence"), std::string::npos) << none;
 }
 
+// A scene file of a small ball seen from (0, -5, 0), its [sequence] table `sequence`.
+fs::path cameraPathScene(const fs::path& dir, const std::string& name,
+                         const std::string& sequence) {
+    const fs::path file = dir / (name + ".toml");
+    std::ofstream(file) << "[camera]\nposition = [0.0, -5.0, 0.0]\n"
+                           "[[bodies]]\nshape = \"ball\"\nparticles = 50\n[sequence]\n"
+                        << sequence;
+    return file;
+}
+
 TEST(Sequence, TheCameraOrbitsAndFollowsKeyFrames) {
     const fs::path dir = freshDir("sequence_camera");
-    const fs::path orbit = dir / "orbit.toml";
-    std::ofstream(orbit) << "[camera]\nposition = [0.0, -5.0, 0.0]\n"
-                            "[[bodies]]\nshape = \"ball\"\nparticles = 50\n"
-                            "[sequence]\nlast = 8\ncamera = \"orbit\"\norbit.degrees = 180.0\n";
-    const Scene s = loadScene(orbit);
+    const Scene s = loadScene(
+        cameraPathScene(dir, "orbit", "last = 8\ncamera = \"orbit\"\norbit.degrees = 180.0\n"));
     // 180 degrees over frames 0 to 8 about +z (camera.up): frame 4 is a quarter turn.
     const glm::dvec3 p = cameraAtFrame(s, 4).position;
     EXPECT_NEAR(p.x, 5.0, 1e-9);
     EXPECT_NEAR(p.y, 0.0, 1e-9);
     EXPECT_NEAR(cameraAtFrame(s, 8).position.y, 5.0, 1e-9);
 
-    const fs::path keys = dir / "keys.toml";
-    std::ofstream(keys) << "[camera]\nposition = [0.0, -5.0, 0.0]\n"
-                           "[[bodies]]\nshape = \"ball\"\nparticles = 50\n"
-                           "[sequence]\nlast = 10\ncamera = \"keys\"\n"
-                           "[[sequence.keys]]\nframe = 0\nposition = [0.0, -5.0, 0.0]\n"
-                           "[[sequence.keys]]\nframe = 5\nposition = [0.0, -5.0, 2.0]\n"
-                           "fov_y_deg = 30.0\n"
-                           "[[sequence.keys]]\nframe = 10\nposition = [0.0, -5.0, 0.0]\n";
-    const Scene k = loadScene(keys);
+    const Scene k =
+        loadScene(cameraPathScene(dir, "keys",
+                                  "last = 10\ncamera = \"keys\"\n"
+                                  "[[sequence.keys]]\nframe = 0\nposition = [0.0, -5.0, 0.0]\n"
+                                  "[[sequence.keys]]\nframe = 5\nposition = [0.0, -5.0, 2.0]\n"
+                                  "fov_y_deg = 30.0\n"
+                                  "[[sequence.keys]]\nframe = 10\nposition = [0.0, -5.0, 0.0]\n"));
     EXPECT_NEAR(cameraAtFrame(k, 5).position.z, 2.0, 1e-12);  // through the keys
     EXPECT_NEAR(cameraAtFrame(k, 5).fovYDeg, 30.0, 1e-12);
     const double between = cameraAtFrame(k, 2).position.z;
@@ -160,13 +165,11 @@ TEST(Sequence, TheCameraOrbitsAndFollowsKeyFrames) {
     EXPECT_NEAR(cameraAtFrame(k, 10).position.z, 0.0, 1e-12);
 
     // A camera path that reaches its target at some frame is bad input, naming the frame.
-    const fs::path bad = dir / "bad.toml";
-    std::ofstream(bad) << "[camera]\nposition = [0.0, -5.0, 0.0]\n"
-                          "[[bodies]]\nshape = \"ball\"\nparticles = 50\n"
-                          "[sequence]\nlast = 3\ncamera = \"keys\"\n"
-                          "[[sequence.keys]]\nframe = 0\nposition = [0.0, -5.0, 0.0]\n"
-                          "[[sequence.keys]]\nframe = 2\nposition = [0.0, 0.0, 0.0]\n";
-    const std::string e = errorOf(bad);
+    const std::string e =
+        errorOf(cameraPathScene(dir, "bad",
+                                "last = 3\ncamera = \"keys\"\n"
+                                "[[sequence.keys]]\nframe = 0\nposition = [0.0, -5.0, 0.0]\n"
+                                "[[sequence.keys]]\nframe = 2\nposition = [0.0, 0.0, 0.0]\n"));
     EXPECT_NE(e.find("at frame 2"), std::string::npos) << e;
 }
 
