@@ -153,14 +153,14 @@ void VideoEncoder::add(const core::Image& frame) {
         }
         close(fds[0]);
         mPipe = fdopen(fds[1], "wb");
+        // ffmpeg leaving early closes the pipe: a write then fails instead of ending the
+        // process, and add() or finish() reports ffmpeg's message.
+        std::signal(SIGPIPE, SIG_IGN);
     }
     if (frame.width() != mWidth || frame.height() != mHeight)
         throw std::invalid_argument(fmt::format("a video frame of {}x{} after frames of {}x{}",
                                                 frame.width(), frame.height(), mWidth, mHeight));
     const std::vector<std::uint8_t> bytes = compare::rgb8(frame);
-    // ffmpeg leaving early closes the pipe: the write fails (SIGPIPE ignored) and finish()
-    // reports its message.
-    std::signal(SIGPIPE, SIG_IGN);
     if (std::fwrite(bytes.data(), 1, bytes.size(), mPipe) != bytes.size()) {
         const std::string log = readLog(mLog);
         abandon();
