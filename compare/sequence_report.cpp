@@ -90,7 +90,8 @@ std::string sequenceSection(const SceneReport& s) {
         q.shownFrame);
     if (!q.videos.empty()) {
         h += "<figure class=\"sequence-video\"><video id=\"sequence-video\" controls loop muted "
-             "playsinline preload=\"metadata\" style=\"max-width:100%\">";
+             "playsinline preload=\"metadata\" "
+             "style=\"width:100%;max-width:1200px;image-rendering:pixelated\">";
         // WebM first: every browser with VP9 takes it; the MP4 (H.264) is for the others.
         for (const char* type : {"video/webm", "video/mp4"})
             if (const auto it = q.videos.find(type); it != q.videos.end())
