@@ -24,10 +24,10 @@ std::regex globRegex(const std::string& glob) {
             re += "(.*)";
         else if (c == '?')
             re += "(.)";
-        else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
-            re += c;
+        else if (std::ispunct(static_cast<unsigned char>(c)) && c != '_')
+            re += std::string("\\") + c;  // ASCII punctuation: taken literally
         else
-            re += std::string("\\") + c;
+            re += c;  // letters, digits, spaces and the bytes of UTF-8 characters
     }
     return std::regex(re);
 }
