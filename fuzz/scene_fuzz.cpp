@@ -16,7 +16,7 @@ namespace {
 
 // Scenes asking for more particles are a user's request for work, not a reader's bug: the
 // target stops after parsing them.
-constexpr std::int64_t MOST_PARTICLES = 20'000;
+constexpr std::int64_t MOST_PARTICLES = 2'000;
 
 std::vector<std::string> overrideLines(const std::vector<std::string>& parts) {
     std::vector<std::string> lines;
