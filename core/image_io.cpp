@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <fstream>
@@ -45,8 +46,16 @@ void checkExrHeader(const fs::path& path) {
             if (name.size() < 256) name += c;
         return name;
     };
+    auto int32At = [](const std::string& v, std::size_t at) {
+        return std::int32_t(std::uint32_t(std::uint8_t(v[at])) |
+                            std::uint32_t(std::uint8_t(v[at + 1])) << 8 |
+                            std::uint32_t(std::uint8_t(v[at + 2])) << 16 |
+                            std::uint32_t(std::uint8_t(v[at + 3])) << 24);
+    };
     for (int part = 0;; ++part) {
         int attributes = 0;
+        // The data window's size and the channel count: OpenEXR sizes its buffers by them.
+        double width = 1.0, height = 1.0, channels = 1.0;
         for (;; ++attributes) {
             const std::string name = readName();
             if (!in) throw corrupt(fmt::format("the header of part {} ends early", part));
@@ -63,8 +72,33 @@ void checkExrHeader(const fs::path& path) {
                     fmt::format("header attribute '{}' ({}) claims {} bytes at byte {} "
                                 "of {}",
                                 name, type, bytes, at, size));
-            in.seekg(bytes, std::ios::cur);
+            if ((name == "dataWindow" && bytes == 16) || (name == "channels" && type == "chlist")) {
+                std::string value(static_cast<std::size_t>(bytes), '\0');
+                in.read(value.data(), bytes);
+                if (name == "dataWindow") {
+                    width = double(int32At(value, 8)) - int32At(value, 0) + 1.0;
+                    height = double(int32At(value, 12)) - int32At(value, 4) + 1.0;
+                } else {
+                    // Entries: name\0 and 16 bytes (type, linear, reserved, sampling).
+                    channels = 0.0;
+                    for (std::size_t at = 0; at < value.size() && value[at] != '\0';) {
+                        const std::size_t end = value.find('\0', at);
+                        if (end == std::string::npos) break;
+                        ++channels;
+                        at = end + 17;
+                    }
+                }
+            } else {
+                in.seekg(bytes, std::ios::cur);
+            }
         }
+        if (width < 1.0 || height < 1.0 || width > MOST_IMAGE_SIDE || height > MOST_IMAGE_SIDE ||
+            width * height * std::max(channels, 1.0) > MOST_IMAGE_VALUES)
+            throw corrupt(
+                fmt::format("part {} has a data window of {} x {} pixels with {} "
+                            "channels; images up to {} pixels a side and {:g} values "
+                            "in all are read",
+                            part, width, height, channels, MOST_IMAGE_SIDE, MOST_IMAGE_VALUES));
         if (!multipart || attributes == 0) return;
     }
 }
