@@ -43,7 +43,7 @@ std::map<std::string, ErrorMapImage> writeErrorMapImages(
         if (map.channelCount() < 1 || map.pixelCount() == 0) continue;
         const auto& styles = errorMapStyles();
         const auto st = std::find_if(styles.begin(), styles.end(),
-                                     [&](const ErrorMapStyle& s) { return s.key == key; });
+                                     [&k = key](const ErrorMapStyle& s) { return s.key == k; });
         const ErrorMapStyle style =
             st != styles.end() ? *st : ErrorMapStyle{key, key, "", 0.0, ownMaximum(map), ""};
         const std::string buffer(style.buffer);

@@ -57,6 +57,15 @@ TEST(ParticleFile, CsvNonFinitePositionThrowsWithLine) {
     expectInputError(path, {path.string() + ":3:", "position"});
 }
 
+// Volume = m / rho feeds the colour field: a negative mass or a zero density is rejected
+// naming the line, the particle and the value.
+TEST(ParticleFile, CsvNonPositiveMassOrDensityThrowsWithLine) {
+    const fs::path mass = writeFile("mass.csv", "x,y,z,h,m,rho\n0,0,0,1,1,1\n1,0,0,1,-2,1\n");
+    expectInputError(mass, {mass.string() + ":3: particle 1", "m = -2"});
+    const fs::path rho = writeFile("rho.csv", "x,y,z,h,m,rho\n0,0,0,1,1,0\n");
+    expectInputError(rho, {rho.string() + ":2: particle 0", "rho = 0"});
+}
+
 TEST(ParticleFile, CsvMissingSmoothingLengthColumnThrowsNamingH) {
     const fs::path path = writeFile("noh.csv", "# no h\nx, y, z, rho\n0,0,0,1\n");
     expectInputError(path, {path.string() + ":2:", "no column 'h'"});

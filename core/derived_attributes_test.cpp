@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/blackbody.h"
+#include "core/error.h"
 #include "core/particle_generators.h"
 #include "core/particles.h"
 #include "core/scene.h"
@@ -435,6 +436,44 @@ TEST(BuildParticles, FileBody) {
     EXPECT_EQ(p.temperature[2], 0.0f);
     EXPECT_EQ(p.glow[1], blackbodyRadiance(1500.0));
     EXPECT_EQ(p.material[0], 2u);
+    std::filesystem::remove_all(dir);
+}
+
+// Values a file's doubles hold but the float particles do not are rejected at load, naming
+// the file, the particle and the value: positions beyond 3.4e38, h that would round to 0 or
+// to a denormal (whose kernel terms 1 / h^4 overflow), and either after the body's scale.
+TEST(BuildParticles, FileValuesBeyondTheFloatRangeAreRejected) {
+    const auto dir = twinrender::testing::freshDir("beyond_float");
+    struct Case {
+        std::string rows;
+        double scale;
+        std::string message;
+    };
+    const Case cases[] = {
+        {"0,0,0,1\n-1e39,0,0,1\n", 1.0, "particle 1: position (-1e+39, 0, 0) is beyond"},
+        {"0,0,0,1\n0,0,0,1e-300\n", 1.0, "particle 1: smoothing length h = 1e-300 is outside"},
+        {"0,0,0,1e-39\n", 1.0, "particle 0: smoothing length h = 1e-39 is outside"},
+        {"0,0,0,1e39\n", 1.0, "particle 0: smoothing length h = 1e+39 is outside"},
+        {"1e30,0,0,1\n", 1e10, "particle 0: position (1e+40, 0, 0) after the body's scale"},
+        {"0,0,0,1e-30\n", 1e-10, "particle 0: smoothing length h = 1"},
+    };
+    for (const Case& c : cases) {
+        const auto path = dir / "values.csv";
+        std::ofstream(path) << "x,y,z,h\n" << c.rows;
+        BodyDesc b;
+        b.name = "cloud";
+        b.shape = Shape::File;
+        b.path = path;
+        b.scale = c.scale;
+        try {
+            buildParticles(sceneWith({b}));
+            ADD_FAILURE() << "no error for " << c.rows;
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": particle ", 0), 0u)
+                << e.what();
+            EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+        }
+    }
     std::filesystem::remove_all(dir);
 }
 

@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <string>
 
 #include "core/error.h"
 #include "core/frame.h"
@@ -70,4 +72,29 @@ TEST(ImageIo, FailedWritesLeaveNothingAndUnreadableFilesNameThemselves) {
     } catch (const tc::InputError& e) {
         EXPECT_NE(std::string(e.what()).find("missing.exr"), std::string::npos);
     }
+}
+
+// A damaged EXR header whose attribute claims 2 GB (OpenEXR would allocate it before reading)
+// and an image beyond the largest side are rejected naming the file, before any allocation.
+TEST(ImageIo, DamagedHeadersAreRejectedBeforeAllocating) {
+    const fs::path p = fs::path(::testing::TempDir()) / "damaged.exr";
+    {
+        std::string bytes("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+        bytes += std::string("comments\0string\0", 16) + std::string("\x00\x00\x00\x7f", 4);
+        bytes += "text";
+        std::ofstream(p, std::ios::binary) << bytes;
+    }
+    try {
+        tc::readImage(p);
+        ADD_FAILURE() << "no error";
+    } catch (const tc::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(p.string() + ": not a valid OpenEXR file: header "
+                                                          "attribute 'comments' (string) claims "
+                                                          "2130706432 bytes"),
+                  std::string::npos)
+            << e.what();
+    }
+    const fs::path wide = fs::path(::testing::TempDir()) / "wide.exr";
+    tc::writeImage(tc::Image(16385, 1, {"R"}), wide);
+    EXPECT_THROW(tc::readImage(wide), tc::InputError);
 }

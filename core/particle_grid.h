@@ -3,6 +3,13 @@
 // largest h), so that sets whose smoothing lengths span orders of magnitude still cost
 // O(neighbours) per query. Queries visit the particles in a fixed order, so sums over them do
 // not depend on the thread count.
+//
+// Bounded whatever the positions and smoothing lengths: a grid has at most
+// max(4 n, 4096) cells. An octave whose box is too sparse for that (a particle far from the
+// rest, bodies far apart) is split at its widest empty gap into clusters with a grid each, up
+// to MAX_CLUSTER_DEPTH times; a cluster that still does not fit gets coarser cells.
+// Non-finite positions and smoothing lengths (which the readers reject) do not widen a grid:
+// such particles sit in the first cell.
 #pragma once
 
 #include <algorithm>
@@ -16,8 +23,13 @@
 
 namespace twinrender::core {
 
-// floor(x) as an integer for |x| < 2^62 (std::floor is a library call without SSE4.1).
+// floor(x) as an integer, clamped to [-2^62, 2^62] (NaN: -2^62), so that any point, however
+// far or invalid, gives a cell coordinate that the clamps below handle (std::floor is a
+// library call without SSE4.1).
 inline std::int64_t floorToInt(double x) {
+    constexpr double LIMIT = 4611686018427387904.0;  // 2^62
+    if (!(x > -LIMIT)) return -static_cast<std::int64_t>(LIMIT);
+    if (x >= LIMIT) return static_cast<std::int64_t>(LIMIT);
     const auto i = static_cast<std::int64_t>(x);
     return static_cast<double>(i) > x ? i - 1 : i;
 }
@@ -27,8 +39,12 @@ class ParticleGrid {
     // LANES - 1 padding entries follow the last particle of each level (copies of a real
     // position, coef 0), so that vector loops of LANES may read past the end of the last row.
     static constexpr std::uint32_t LANES = 4;
+    // An octave is split into at most 2^MAX_CLUSTER_DEPTH clusters: queries test each
+    // cluster's box, so the split ends before that test costs more than a query's sums.
+    static constexpr int MAX_CLUSTER_DEPTH = 6;
 
-    // The particles of one octave of h, sorted by cell (ascending index within a cell).
+    // The particles of one octave of h (or of one cluster of it), sorted by cell (ascending
+    // index within a cell).
     struct Level {
         double hMax = 0.0;
         double cell = 0.0;
@@ -71,6 +87,9 @@ class ParticleGrid {
     }
 
   private:
+    // Adds the grids of one octave's particles (ascending indices): one, or one per cluster.
+    void addClusters(const ParticleSet& set, const std::vector<std::uint32_t>& members, int depth);
+
     // The runs of level g's cells that the ball of radius `reach` around p reaches.
     template <typename Visit>
     static void visitLevel(const Level& g, const glm::dvec3& p, double reach, Visit& visit);

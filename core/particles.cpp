@@ -77,6 +77,25 @@ void appendGenerated(const BodyDesc& desc, const Scene& scene, ParticleSet& set,
     keepUv.push_back(false);
 }
 
+// Particles are float32 in scene units (ParticleSet): a file's position or h (valid as the
+// reader's doubles) that, scaled, has no float form, or an h below the smallest normal float
+// (whose kernel terms 1 / h^4 overflow), is rejected naming the file and the particle.
+void checkFitsFloat(const BodyDesc& desc, std::size_t i, const glm::dvec3& p, double h) {
+    constexpr double MOST = std::numeric_limits<float>::max();
+    constexpr double LEAST_H = std::numeric_limits<float>::min();
+    const char* scaled = desc.scale == 1.0 ? "" : " after the body's scale";
+    if (!(std::abs(p.x) <= MOST && std::abs(p.y) <= MOST && std::abs(p.z) <= MOST))
+        throw InputError(fmt::format(
+            "{}: particle {}: position ({}, {}, {}){} is beyond the float range (|x| <= {:g}); "
+            "fix the file, or lower the body's scale in {}",
+            desc.path.string(), i, p.x, p.y, p.z, scaled, MOST, whereOf(desc)));
+    if (!(h >= LEAST_H && h <= MOST))
+        throw InputError(fmt::format(
+            "{}: particle {}: smoothing length h = {}{} is outside the float range [{:g}, {:g}]; "
+            "fix the file, or change the body's scale in {}",
+            desc.path.string(), i, h, scaled, LEAST_H, MOST, whereOf(desc)));
+}
+
 // Appends a body read from a particle file. A file with a body column holding several values
 // (OpenSPH's flag: impactor and target) becomes one BodyInfo per value, in ascending order,
 // named "<name>.<value>", each with its own centre; particles keep their file order within
@@ -128,6 +147,7 @@ void appendFile(const BodyDesc& desc, ParticleSet& set, std::vector<BodyInfo>& b
                 // m / rho in file units^3, scaled like the positions.
                 v = std::min(file.mass[i] / file.density[i] * desc.scale * desc.scale * desc.scale,
                              v);
+            checkFitsFloat(desc, i, p, h);
             set.position[next] = glm::vec3(p);
             set.h[next] = static_cast<float>(h);
             set.volume[next] = static_cast<float>(v);

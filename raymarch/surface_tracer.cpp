@@ -24,6 +24,7 @@ struct MarchRay {
     double tEnd = 0.0;             // where the ray stops
     double hRef = 0.0;             // scale of the particles near t (segment length, tolerances)
     double segmentScale = 1.0;     // the next segment's length, in units of the setting
+    int emptySegments = 0;         // segments in a row that met no support (EMPTY_RUN)
     bool needEntry = true;         // skip empty space to the next support sphere first
     bool sharedEntry = true;       // that skip may come from one query for the bundle (once)
     bool fromSharedEntry = false;  // the next segment starts at a shared entry
@@ -88,6 +89,10 @@ void sortDistinct(std::vector<std::uint32_t>& values, std::vector<std::uint32_t>
     values.swap(scratch);
 }
 
+double maxAbsCoordinate(const glm::dvec3& p) {
+    return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+}
+
 // An entry found in float may land a little after the true one: the segment starts this many
 // h before it.
 constexpr double ENTRY_BACKOFF = 1e-3;
@@ -108,6 +113,17 @@ constexpr double HINT_BACKOFF = 0.1;
 // when the ray meets that plane at an angle of at most acos(MIN_PLANE_HINT_COSINE) from the normal.
 constexpr double PLANE_HINT_BACKOFF = 0.01;
 constexpr double MIN_PLANE_HINT_COSINE = 0.2;
+// A segment is at least this fraction of the size of the coordinates along the ray (|t| plus
+// the origin's largest coordinate): one of 2 h, for an h far below the rounding of the
+// coordinates (a file's h = 1e-30 beside h = 0.5), would not move t, and the ray would enter
+// the same support forever. Float positions resolve 2^-24 of their size: every particle that
+// has a support of its own at its place has 2 h far above this.
+constexpr double MIN_SEGMENT_FRACTION = 0x1p-40;
+// After this many segments in a row that met no support (a ray inside the grown sphere of a
+// particle, whose margin of a pixel block's spread is far larger than its h), each next
+// segment is twice as long: crossing a margin of any size takes tens of segments, not
+// margin / h. In the scenes' camera rays such runs end after a few segments.
+constexpr int EMPTY_RUN = 64;
 
 }  // namespace
 
@@ -390,8 +406,12 @@ struct SurfaceTracer::Impl {
                 if (!r.active) continue;
                 const double extra = r.fromSharedEntry ? SHARED_ENTRY_EXTRA : 0.0;
                 r.fromSharedEntry = false;
-                segEnd[bundle.count] =
-                    std::min(r.t + (segmentLength * r.segmentScale + extra) * r.hRef, r.tEnd);
+                const double least =
+                    MIN_SEGMENT_FRACTION * (std::abs(r.t) + maxAbsCoordinate(r.ray.origin));
+                const int doublings = std::clamp(r.emptySegments - EMPTY_RUN, 0, 2048);
+                const double length = std::ldexp(
+                    std::max((segmentLength * r.segmentScale + extra) * r.hRef, least), doublings);
+                segEnd[bundle.count] = std::min(r.t + length, r.tEnd);
                 lane[bundle.count] = ids[k];
                 bundle.add(r.ray.origin, r.ray.direction, r.t, segEnd[bundle.count]);
             }
@@ -425,9 +445,11 @@ struct SurfaceTracer::Impl {
                 MarchRay& r = w.rays[lane[j]];
                 ++w.counters.segments;
                 double hNear = 0.0;
+                ++r.emptySegments;
                 if (!w.prims.empty()) {
                     w.field.build(r.ray.origin, r.ray.direction, r.t, segEnd[j], w.batch);
                     w.counters.candidates += w.field.candidates();
+                    if (w.field.candidates() > 0) r.emptySegments = 0;
                     // phi never exceeds the sum of the peaks (a ray grazing the outer layer),
                     // and it is 0 before the first support interval begins: a primary search
                     // without a hint starts there (with one, the bound up to the hint covers

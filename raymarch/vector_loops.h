@@ -9,7 +9,14 @@
 // The vector loops run 8 lanes wide with fused multiply-adds where the CPU has x86-64-v3
 // (AVX2, FMA; chosen at run time), 4 lanes otherwise. One machine always takes the same
 // clone, so results stay bit-identical run to run.
+// clang takes target_clones only on a function's first declaration (member functions are
+// declared in headers), and its one use here, the instrumented fuzz build (scripts/fuzz),
+// needs no clones: there the loops run 4 lanes wide.
+#if defined(__clang__)
+#define TWINRENDER_VECTOR_CLONES
+#else
 #define TWINRENDER_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
 
 namespace twinrender::raymarch {
 

@@ -1,0 +1,51 @@
+// Fuzz target scene: a scene file and its --set overrides, as `render` reads them before any
+// work (app::loadScene: the scene, both renderers' settings, [compare], the materials and,
+// for scenes of a few particles, the particles). Input: the TOML text, then optionally a line
+// "%%" and one KEY=VALUE override per line.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/render_job.h"
+#include "compare/thresholds.h"
+#include "core/scene.h"
+#include "fuzz/fuzz_support.h"
+
+namespace {
+
+// Scenes asking for more particles are a user's request for work, not a reader's bug: the
+// target stops after parsing them.
+constexpr std::int64_t MOST_PARTICLES = 2'000;
+
+std::vector<std::string> overrideLines(const std::vector<std::string>& parts) {
+    std::vector<std::string> lines;
+    for (std::size_t p = 1; p < parts.size(); ++p) {
+        std::size_t pos = 0;
+        while (pos < parts[p].size()) {
+            std::size_t end = parts[p].find('\n', pos);
+            if (end == std::string::npos) end = parts[p].size();
+            if (end > pos) lines.push_back(parts[p].substr(pos, end - pos));
+            pos = end + 1;
+        }
+    }
+    return lines;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    using namespace twinrender;
+    const std::vector<std::string> parts = fuzz::splitParts(fuzz::asText(data, size));
+    const auto file = fuzz::writeScratchFile("scene.toml", parts.front());
+    const std::vector<std::string> overrides = overrideLines(parts);
+    fuzz::expectCleanOutcome([&] {
+        core::Scene scene = core::loadScene(file, overrides);
+        std::int64_t particles = 0;
+        for (const core::BodyDesc& b : scene.bodies)
+            particles += b.shape == core::Shape::File ? MOST_PARTICLES : b.particles;
+        compare::sceneFileBounds(scene.compare);
+        if (particles <= MOST_PARTICLES) app::loadScene(file, overrides);
+    });
+    return 0;
+}
