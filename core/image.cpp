@@ -40,6 +40,19 @@ Image::Image(int width, int height, std::vector<std::string> channelNames)
     mPixels.assign(n, 0.0f);
 }
 
+Image::Image(int width, int height, std::vector<std::string> channelNames,
+             std::vector<float> pixels)
+    : mWidth(width),
+      mHeight(height),
+      mChannelNames(std::move(channelNames)),
+      mPixels(std::move(pixels)) {
+    if (width < 0 || height < 0 ||
+        mPixels.size() != static_cast<std::size_t>(width) * height * mChannelNames.size())
+        throw std::invalid_argument(
+            fmt::format("{} values do not fill a {}x{} image of {} channels", mPixels.size(), width,
+                        height, mChannelNames.size()));
+}
+
 int Image::channelIndex(std::string_view name) const {
     auto it = std::find(mChannelNames.begin(), mChannelNames.end(), name);
     return it == mChannelNames.end() ? -1 : static_cast<int>(it - mChannelNames.begin());

@@ -16,6 +16,9 @@ class Image {
     Image() = default;
     // All values start at zero.
     Image(int width, int height, std::vector<std::string> channelNames);
+    // Takes over pixels already filled (interleaved, row-major); their count must be
+    // width * height * channelNames.size() (std::invalid_argument otherwise).
+    Image(int width, int height, std::vector<std::string> channelNames, std::vector<float> pixels);
 
     int width() const { return mWidth; }
     int height() const { return mHeight; }

@@ -1,5 +1,6 @@
-// EXR and PNG reading and writing through OpenImageIO. Every write goes to a temporary
-// name beside the target and is renamed into place, so a failed run leaves no partial file.
+// Image reading and writing: PNG through libpng (png_io.h), EXR and every other format through
+// OpenImageIO, loaded on first use (oiio_module.h). Every write goes to a temporary name
+// beside the target and is renamed into place, so a failed run leaves no partial file.
 #pragma once
 
 #include <filesystem>
@@ -9,9 +10,9 @@
 
 namespace twinrender::core {
 
-// Reads any image OpenImageIO understands. EXR channels keep their names and float values;
-// 8- and 16-bit images (PNG) become R, G, B (and A) in [0, 1], as stored (no decoding of sRGB).
-// Throws InputError naming the file when it cannot be read.
+// Reads a PNG, or any image OpenImageIO understands. EXR channels keep their names and float
+// values; 8- and 16-bit images (PNG) become R, G, B (and A) in [0, 1], as stored (no decoding of
+// sRGB). Throws InputError naming the file when it cannot be read.
 Image readImage(const std::filesystem::path& path);
 
 // Writes by extension: ".exr" writes every channel as float32 (zip compression); ".png"

@@ -278,6 +278,13 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
     const double overLow =
         tt::readJson(dir / "c5" / "metrics.json")["metrics"]["beauty.flip_over"].get<double>();
     EXPECT_GT(overLow, overDefault);
+    // A PNG pair never loads OpenImageIO (core/oiio_module.h); the dynamic loader names each
+    // library it loads.
+    const auto loaded =
+        tt::runTwinrender(pngs + " --out " + (dir / "c7").string(), "LD_DEBUG=libs");
+    ASSERT_EQ(loaded.exitCode, 0) << loaded.output;
+    EXPECT_NE(loaded.output.find("libpng16"), std::string::npos) << loaded.output;
+    EXPECT_EQ(loaded.output.find("libOpenImageIO"), std::string::npos) << loaded.output;
     EXPECT_EQ(tt::runTwinrender(pngs + " --flip-over 1 --out " + (dir / "c6").string()).exitCode,
               4);
     EXPECT_FALSE(fs::exists(dir / "c6"));
