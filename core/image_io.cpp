@@ -1,10 +1,12 @@
 #include "core/image_io.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cctype>
+#include <exception>
 #include <fstream>
 
 #include "core/error.h"
@@ -55,6 +57,23 @@ Image readImage(const fs::path& path) {
     DecodedPixels decoded;
     check(path, oiio::api().read(path.string(), decoded));
     return toImage(std::move(decoded));
+}
+
+std::pair<Image, Image> readImages(const fs::path& first, const fs::path& second) {
+    std::pair<Image, Image> images;
+    std::exception_ptr errors[2];
+    auto read = [](const fs::path& path, Image& image, std::exception_ptr& error) {
+        try {
+            image = readImage(path);
+        } catch (...) {
+            error = std::current_exception();
+        }
+    };
+    tbb::parallel_invoke([&] { read(first, images.first, errors[0]); },
+                         [&] { read(second, images.second, errors[1]); });
+    for (const auto& error : errors)
+        if (error) std::rethrow_exception(error);
+    return images;
 }
 
 void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
