@@ -151,9 +151,10 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
 
     HdrFlipSettings hdrSettings;
     hdrSettings.ppd = settings.ppd;
-    const HdrFlipResult hdr = hdrFlip(reference, test, hdrSettings);
+    HdrFlipResult hdr = hdrFlip(reference, test, hdrSettings);
     result.values["beauty.hdrflip"] = hdr.mean;
     result.hdrExposures = hdr.range;
+    result.errorMaps["beauty.hdrflip"] = std::move(hdr.errorMap);
 
     const Masks masks = computeMasks(reference, test, maskSettings(settings));
 
