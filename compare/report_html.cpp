@@ -473,9 +473,9 @@ std::string mapNote(const SceneReport& s, const std::string& key) {
         const json& c = s.settings["compare"];
         if (c.is_object() && c.contains("hdrflip")) {
             const json& e = c["hdrflip"];
-            return fmt::format("exposures {} to {} stops ({}), magma",
+            return fmt::format("{} exposures, {} to {} stops", e.value("exposures", 0),
                                formatValue(e.value("start_exposure", 0.0)),
-                               formatValue(e.value("stop_exposure", 0.0)), e.value("exposures", 0));
+                               formatValue(e.value("stop_exposure", 0.0)));
         }
     }
     return "magma colour map";

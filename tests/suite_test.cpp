@@ -70,7 +70,7 @@ TEST(Suite, TheDefaultScenesPassTheirThresholds) {
     // The HDR-ꟻLIP map on the scene's page, beside the ꟻLIP map, with its exposures.
     const std::string page = tt::readText(out / "ringworld" / "index.html");
     EXPECT_NE(page.find("src=\"error.beauty.hdrflip.png\""), std::string::npos);
-    EXPECT_NE(page.find("<b>HDR-ꟻLIP error</b><span>exposures "), std::string::npos);
+    EXPECT_NE(page.find("<b>HDR-ꟻLIP error</b><span>"), std::string::npos);
     std::ifstream in(out / "summary.json");
     const auto summary = nlohmann::json::parse(in);
     EXPECT_EQ(summary["status"], "pass");
