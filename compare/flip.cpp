@@ -504,7 +504,10 @@ FlipResult flip(const core::Image& reference, const core::Image& test,
 
     // 1. Both images to YCxCz planes; per image: Y, Cx, Cz, normalised luminance.
     std::array<std::vector<float>, 8> planes;
-    for (auto& p : planes) p.resize(n);
+    for (auto& p : planes) {
+        core::reserveHugePages(p, n);
+        p.resize(n);
+    }
     const bool linear = settings.input == FlipInput::Linear;
     const EightBitSrgb eightBit;
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {

@@ -115,7 +115,9 @@ void writeImage(const Image& image, const fs::path& path) {
         for (const char* n : {"R", "G", "B"}) src.push_back(image.requireChannel(n));
         if (image.hasChannel("A")) src.push_back(image.channelIndex("A"));
         const int nc = static_cast<int>(src.size());
-        std::vector<unsigned char> bytes(image.pixelCount() * nc);
+        std::vector<unsigned char> bytes;
+        reserveHugePages(bytes, image.pixelCount() * nc);
+        bytes.resize(image.pixelCount() * nc);
         for (std::size_t p = 0; p < image.pixelCount(); ++p)
             for (int c = 0; c < nc; ++c) {
                 float v = image.at(p, src[c]);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/image.h"
 
 namespace twinrender::core {
 
@@ -72,6 +73,7 @@ bool decode(png_structp png, png_infop info, std::FILE* file, Decoded& out) {
     out.bitDepth = png_get_bit_depth(png, info);
     out.channels = png_get_channels(png, info);
     const std::size_t rowBytes = png_get_rowbytes(png, info);
+    reserveHugePages(out.bytes, rowBytes * out.height);
     out.bytes.resize(rowBytes * out.height);
     out.rows.resize(out.height);
     for (png_uint_32 y = 0; y < out.height; ++y) out.rows[y] = out.bytes.data() + y * rowBytes;
@@ -148,6 +150,7 @@ std::optional<DecodedPixels> readPng(const fs::path& path) {
     out.height = static_cast<int>(decoded.height);
     out.channelNames.assign(decoded.channels, "");
     const std::size_t pixels = static_cast<std::size_t>(decoded.width) * decoded.height;
+    reserveHugePages(out.values, pixels * decoded.channels);
     out.values.resize(pixels * decoded.channels);
     if (decoded.bitDepth == 16)
         toFloat(reinterpret_cast<const std::uint16_t*>(decoded.bytes.data()), pixels,
