@@ -27,11 +27,18 @@ compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
                                   const core::Frame& test, const compare::Bounds& bounds,
                                   const compare::Baseline* baseline, double ppd, double flipOver,
                                   const std::filesystem::path& dir) {
+    const compare::MetricResult result =
+        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd, flipOver));
+    return sceneReport(s, ref, test, result, bounds, baseline, dir);
+}
+
+compare::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
+                                 const core::Frame& test, const compare::MetricResult& result,
+                                 const compare::Bounds& bounds, const compare::Baseline* baseline,
+                                 const std::filesystem::path& dir) {
     compare::SceneReport report;
     report.name = s.scene.name;
     report.description = s.scene.description;
-    const compare::MetricResult result =
-        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd, flipOver));
     report.metrics = result.values;
     addTimeMetrics(ref, test, report.metrics);
 
@@ -39,13 +46,7 @@ compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
                        {ref.renderer, ref.settings},
                        {test.renderer, test.settings}};
     if (result.hdrExposures) report.settings["compare"] = hdrExposuresJson(*result.hdrExposures);
-    report.checks = compare::evaluate(report.metrics, bounds);
-    if (baseline) {
-        if (const auto* blessed = baseline->metrics(s.scene.name)) report.baseline = *blessed;
-        auto more =
-            compare::compareToBaseline(s.scene.name, report.metrics, *baseline, &report.settings);
-        report.checks.insert(report.checks.end(), more.begin(), more.end());
-    }
+    checkReport(report, bounds, baseline);
 
     compare::BufferVisualSettings visual;
     visual.exposure = static_cast<float>(s.scene.camera.exposure);
@@ -60,6 +61,17 @@ compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
     }
     report.errorMaps = compare::writeErrorMapImages(result.errorMaps, dir);
     return report;
+}
+
+void checkReport(compare::SceneReport& report, const compare::Bounds& bounds,
+                 const compare::Baseline* baseline) {
+    report.checks = compare::evaluate(report.metrics, bounds);
+    if (baseline) {
+        if (const auto* blessed = baseline->metrics(report.name)) report.baseline = *blessed;
+        auto more =
+            compare::compareToBaseline(report.name, report.metrics, *baseline, &report.settings);
+        report.checks.insert(report.checks.end(), more.begin(), more.end());
+    }
 }
 
 nlohmann::json hdrExposuresJson(const compare::ExposureRange& range) {

@@ -26,6 +26,19 @@ compare::SceneReport compareScene(const LoadedScene& scene, const core::Frame& r
                                   const compare::Baseline* baseline, double ppd, double flipOver,
                                   const std::filesystem::path& sceneDir);
 
+// The same for metrics already computed (compare::computeMetrics of the pair): the report,
+// its checks, and the scene folder's images.
+compare::SceneReport sceneReport(const LoadedScene& scene, const core::Frame& ref,
+                                 const core::Frame& test, const compare::MetricResult& result,
+                                 const compare::Bounds& bounds, const compare::Baseline* baseline,
+                                 const std::filesystem::path& sceneDir);
+
+// Sets the report's checks: its metrics against `bounds`, and against the baseline's metrics
+// of the scene when `baseline` is not null (also setting report.baseline). The report's name
+// and settings must be set.
+void checkReport(compare::SceneReport& report, const compare::Bounds& bounds,
+                 const compare::Baseline* baseline);
+
 // The exposures beauty.hdrflip was taken over, as a report's settings show them:
 // {"hdrflip": {"start_exposure", "stop_exposure", "exposures"}} (stops, and their count).
 nlohmann::json hdrExposuresJson(const compare::ExposureRange& range);

@@ -13,6 +13,7 @@
 
 #include "app/exit_code.h"
 #include "app/render_job.h"
+#include "app/sequence_run.h"
 #include "app/shard.h"
 #include "app/study_command.h"
 #include "app/suite_commands.h"
@@ -84,14 +85,24 @@ void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
 }
 
 ExitCode runRender(const std::string& scenePath, const std::string& renderer,
-                   const CommonOptions& o) {
-    auto loaded = tr::app::loadScene(scenePath, o.sets);
+                   const std::string& frames, const CommonOptions& o) {
+    std::vector<std::string> sets = o.sets;
+    if (!frames.empty()) {
+        const auto range = tr::app::framesOverrides(frames);
+        sets.insert(sets.end(), range.begin(), range.end());
+    }
+    auto loaded = tr::app::loadScene(scenePath, sets);
     const std::filesystem::path dir = std::filesystem::path(o.out) / loaded.scene.name;
     const std::vector<std::string> names =
         renderer == "both" ? tr::app::rendererNames() : std::vector<std::string>{renderer};
     // Every renderer first: without a GL context there is nothing to render in real time, and
     // the error should come before minutes of raymarching.
     tr::app::Devices devices(o.requireGpu);
+    if (!frames.empty()) {
+        if (std::find(names.begin(), names.end(), "realtime") != names.end()) devices.realtime();
+        tr::app::renderFrames(loaded, names, devices, dir);
+        return ExitCode::Pass;
+    }
     std::vector<std::unique_ptr<tr::core::Renderer>> renderers;
     for (const auto& name : names)
         renderers.push_back(tr::app::makeRenderer(name, devices, loaded));
@@ -116,12 +127,17 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     CommonOptions renderOpts;
-    std::string scenePath, rendererName = "both";
+    std::string scenePath, rendererName = "both", renderFrames;
     auto* render = app.add_subcommand("render", "render one scene");
     render->add_option("SCENE", scenePath, "scene file (.toml)")->required();
     render->add_option("--renderer", rendererName, "realtime | raymarch | both")
         ->check(CLI::IsMember({"realtime", "raymarch", "both"}))
         ->capture_default_str();
+    render
+        ->add_option("--frames", renderFrames,
+                     "FIRST:LAST[:STEP]: render these frames of the scene's sequence, each into "
+                     "OUT/<scene>/<frame>/")
+        ->type_name("A:B");
     addCommon(render, renderOpts);
 
     tr::app::CompareOptions compareOpts;
@@ -195,13 +211,14 @@ int main(int argc, char** argv) {
     tr::app::StudyOptions studyOpts;
     CommonOptions studyCommon;
     studyCommon.out = "out/studies";
-    auto* studyCmd = app.add_subcommand("study",
-                                        "studies: depth range, particle size, view angle, "
-                                        "temporal, collision, thin casters, surface methods");
+    auto* studyCmd =
+        app.add_subcommand("study",
+                           "studies: depth range, particle size, view angle, "
+                           "temporal, flicker, collision, thin casters, surface methods");
     studyCmd->add_option(
         "NAMES", studyOpts.names,
         "studies to run (default: all): depth_range, thin_casters, particle_size, view_angle, "
-        "temporal, collision, methods");
+        "temporal, flicker, collision, methods");
     studyCmd->add_flag("--quick", studyOpts.quick,
                        "fewer points and particles (seconds per study)");
     studyCmd->add_option("--cache", studyOpts.cache,
@@ -239,7 +256,7 @@ int main(int argc, char** argv) {
         tbb::task_arena arena(threads);
         ExitCode rc = ExitCode::Pass;
         arena.execute([&] {
-            if (*render) rc = runRender(scenePath, rendererName, renderOpts);
+            if (*render) rc = runRender(scenePath, rendererName, renderFrames, renderOpts);
             if (*compareCmd) rc = tr::app::runCompare(compareOpts);
             if (*blessCmd) rc = tr::app::runBless(blessDir, blessOut);
             if (*runCmd) {

@@ -84,6 +84,12 @@ std::pair<std::string, json> referenceKey(const LoadedScene& s,
                 files.push_back(t->path.string());
             }
     what["files"] = files;
+    // A sequence's frame: where its moving bodies and its camera are (its file bodies' files
+    // are hashed above).
+    if (s.scene.sequence) {
+        h.add(fmt::format("frame={}", s.scene.frame));
+        what["frame"] = s.scene.frame;
+    }
     const json settings = raymarch::toJson(s.raymarch);
     h.add(settings.dump());
     what["raymarch"] = settings;
@@ -124,6 +130,10 @@ const core::Frame& ReferenceCache::get(const LoadedScene& s, const std::string& 
     }
     std::fflush(stdout);
     return mLoaded.emplace(key, std::move(r)).first->second;
+}
+
+void ReferenceCache::forget(const std::string& key) {
+    mLoaded.erase(key);
 }
 
 }  // namespace twinrender::app

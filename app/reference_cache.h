@@ -29,6 +29,9 @@ class ReferenceCache {
 
     const core::Frame& get(const LoadedScene& scene, const std::string& key,
                            const nlohmann::json& what);
+    // Lets go of the render of `key` held in memory (a sequence's past frame); a later get()
+    // reads it from the folder again.
+    void forget(const std::string& key);
 
   private:
     std::filesystem::path mDir;

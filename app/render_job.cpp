@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/progress.h"
+#include "app/sequence_run.h"
 #include "compare/study_summary.h"
 #include "core/error.h"
 #include "raymarch/embree_device.h"
@@ -27,6 +28,7 @@ LoadedScene loadScene(const std::filesystem::path& file,
     s.scene.compare.checkAllRead();
     s.materials = core::loadMaterials(s.scene);
     s.particles = core::buildParticles(s.scene);
+    checkSequenceFiles(s);
     return s;
 }
 

@@ -520,6 +520,69 @@ void temporalConclude(StudyResult& s) {
         parts, num(reference), all.empty() ? 0 : all.front().second.size(), excess);
 }
 
+// ---- flicker ----------------------------------------------------------------------------------
+
+// The surface methods of the flicker study, and the particle models they smooth: the defaults
+// (field radii, exact gradient normals), and impostor spheres (fixed radii, each sphere's own
+// normal), the surface a screen-space filter was made to smooth.
+const char* const FLICKER_METHODS[] = {"none", "ssss", "bilateral", "narrow_range",
+                                       "curvature_flow"};
+const std::string IMPOSTOR_SPHERES = "impostor spheres";
+
+std::vector<StudyPoint> flickerPoints(bool quick) {
+    const int frames = quick ? 3 : 6;
+    std::vector<StudyPoint> pts;
+    for (const std::string particles : {std::string(), IMPOSTOR_SPHERES})
+        for (const char* method : FLICKER_METHODS)
+            for (int f = 0; f < frames; ++f) {
+                StudyPoint p{particles.empty() ? method : fmt::format("{} ({})", method, particles),
+                             double(f),
+                             {set("realtime.surface.method", fmt::format("\"{}\"", method)),
+                              set("sequence.first", std::to_string(f)),
+                              set("sequence.last", std::to_string(f))},
+                             ""};
+                if (!particles.empty()) {
+                    p.sets.push_back(set("realtime.particles.radius", "\"fixed\""));
+                    p.sets.push_back(set("realtime.particles.normal", "\"sphere\""));
+                }
+                pts.push_back(std::move(p));
+            }
+    return pts;
+}
+
+void flickerConclude(StudyResult& s) {
+    s.chart = seriesChart(s, "temporal.flicker");
+    // Per particle model: the method with the least and the most mean flicker.
+    std::string parts;
+    for (const std::string particles : {std::string(), IMPOSTOR_SPHERES}) {
+        std::string least, most;
+        double lo = INFINITY, hi = -INFINITY;
+        for (const auto& [name, rows] : bySeries(s)) {
+            const bool impostors = name.ends_with("(" + IMPOSTOR_SPHERES + ")");
+            if (impostors != !particles.empty()) continue;
+            const double v = meanOf(rows, "temporal.flicker");
+            const double n = meanOf(rows, "temporal.normal_flicker_deg");
+            s.facts["flicker"][name] = jsonOrNull(v);
+            s.facts["normal_flicker_deg"][name] = jsonOrNull(n);
+            if (std::isfinite(v) && v < lo) lo = v, least = name;
+            if (std::isfinite(v) && v > hi) hi = v, most = name;
+        }
+        const std::string model = particles.empty() ? "default particles" : particles;
+        s.facts["least"][model] = least;
+        s.facts["most"][model] = most;
+        const auto method = [&](const std::string& series) {
+            return particles.empty() ? series
+                                     : series.substr(0, series.size() - particles.size() - 3);
+        };
+        parts += fmt::format("{}{}: least {} ({:+.4f}), most {} ({:+.4f})",
+                             parts.empty() ? "" : "; ", model, method(least), lo, method(most), hi);
+    }
+    s.finding = fmt::format(
+        "flicker against the truth while the particles churn (mean real-time minus reference "
+        "frame-to-frame ꟻLIP; below 0 a method changes less than the truth does), {}",
+        parts);
+}
+
 // ---- methods ----------------------------------------------------------------------------------
 
 // A surface method (realtime.surface.method) and its main parameter: the one that sets the
@@ -1214,6 +1277,27 @@ const std::vector<StudyDef>& studies() {
          orbitPoints,
          nullptr,
          temporalConclude},
+        {"flicker",
+         "Flicker of the surface methods",
+         "A ball whose particles churn (a new random displacement of up to 0.6 h each frame, "
+         "the particles of an SPH fluid reordering under a still surface): which surface method "
+         "flickers least against the truth (temporal.flicker: the real-time frames' "
+         "frame-to-frame ꟻLIP minus the reference's), with the default particles and with "
+         "impostor spheres.",
+         "flicker.toml",
+         "frame",
+         false,
+         "temporal.flicker",
+         {"temporal.flicker", "temporal.frame_flip", "temporal.reference_frame_flip",
+          "temporal.normal_flicker_deg", "normal.mean_deg", "beauty.flip",
+          "count.unbracketed_rays"},
+         false,
+         false,
+         true,
+         1,
+         flickerPoints,
+         nullptr,
+         flickerConclude},
         {"collision",
          "Two bodies colliding",
          "Two bodies from apart to overlapping: bleeding of uv and emission across the contact, "

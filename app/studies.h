@@ -38,9 +38,9 @@ struct StudyDef {
     // real-time render shows another body or none (id.mismatch counts only pixels covered in
     // both, so it cannot see bodies that vanish).
     bool occlusionError = false;
-    // The points of one series are consecutive frames: each row also gets the ꟻLIP between
-    // its frame and the previous one of its series, for the real-time render
-    // (temporal.frame_flip) and the reference (temporal.reference_frame_flip).
+    // The points of one series are consecutive frames: each row also gets its change from the
+    // previous one of its series against the truth (compare/temporal_error.h: temporal.flicker,
+    // temporal.frame_flip, temporal.reference_frame_flip and the normals' change).
     bool frameToFrame = false;
     // Real-time frames rendered per point: 1, the first frame of a renderer (the studies of
     // stability); more, an untimed warm-up frame and then this many, in rounds with the other

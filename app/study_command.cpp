@@ -20,6 +20,7 @@
 #include "compare/flip.h"
 #include "compare/masks.h"
 #include "compare/metrics.h"
+#include "compare/temporal_error.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -158,8 +159,8 @@ ExitCode runStudies(const StudyOptions& o) {
         fs::create_directories(dir / "points");
         fs::create_directories(dir / "references");
         std::map<std::string, double> unbracketed;  // per distinct reference
-        // Frame-to-frame: the previous frame's two display images, per series.
-        std::map<std::string, std::pair<core::Image, core::Image>> previous;
+        // Frame-to-frame: the previous frame's renders (reference, real-time), per series.
+        std::map<std::string, std::pair<core::Frame, core::Frame>> previous;
         std::vector<std::optional<TimedFrame>> timed(plan.points.size());
         for (std::size_t i = 0; i < plan.points.size(); ++i) {
             const Point& pt = plan.points[i];
@@ -205,12 +206,14 @@ ExitCode runStudies(const StudyOptions& o) {
                     compare::FlipSettings fs;
                     fs.ppd = o.ppd;
                     if (prev != previous.end()) {
-                        row.metrics["temporal.frame_flip"] =
-                            compare::flip(prev->second.first, test.display, fs).mean;
-                        row.metrics["temporal.reference_frame_flip"] =
-                            compare::flip(prev->second.second, ref.display, fs).mean;
+                        const auto& [prevRef, prevTest] = prev->second;
+                        compare::addFrameChangeMetrics(
+                            compare::frameChange(
+                                {prevRef.image, prevRef.display}, {ref.image, ref.display},
+                                {prevTest.image, prevTest.display}, {test.image, test.display}, fs),
+                            row.metrics);
                     }
-                    previous[row.series] = {test.display, ref.display};
+                    previous[row.series] = {ref, test};
                 }
                 const std::string png = fmt::format("points/{:03}.realtime.png", i);
                 core::writeImage(test.display, dir / png);

@@ -13,7 +13,10 @@
 
 #include "app/comparison.h"
 #include "app/progress.h"
+#include "app/reference_cache.h"
+#include "app/sequence_run.h"
 #include "app/shard.h"
+#include "app/video_encoder.h"
 #include "compare/annotations.h"
 #include "compare/error_maps.h"
 #include "compare/junit.h"
@@ -160,9 +163,17 @@ ExitCode runSuite(const RunOptions& o) {
         for (std::size_t p = 0; p < byName.size(); ++p) selected[byName[p]] = shard->takes(p);
     }
 
+    // A sequence's video needs ffmpeg: bad environment, said before the first render.
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+        if (selected[i] && scenes[i].scene.sequence) {
+            requireFfmpeg();
+            break;
+        }
     // The GL context before the first render: without one, nothing can be compared.
     Devices devices(o.requireGpu);
     devices.realtime();
+    // Sequences take their references from the cache, frame by frame.
+    ReferenceCache cache(fs::path(o.out) / "reference_cache", devices);
     // Making a real-time renderer compiles a user's surface shader: one that does not compile
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
@@ -178,11 +189,17 @@ ExitCode runSuite(const RunOptions& o) {
         static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
     for (std::size_t i = 0, done = 0; i < scenes.size(); ++i) {
         if (!selected[i]) continue;
-        const LoadedScene& s = scenes[i];
+        LoadedScene& s = scenes[i];
         const fs::path dir = out / s.scene.name;
         if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", ++done, count, s.scene.name.c_str());
         compare::SceneReport report;
         try {
+            if (s.scene.sequence) {
+                const SequenceRun sequence{o.sets, bounds[i], baseline ? &*baseline : nullptr,
+                                           o.ppd, o.flipOver};
+                run.scenes.push_back(runSequence(s, devices, cache, sequence, dir));
+                continue;
+            }
             const core::Frame ref = render("raymarch", devices, s);
             writeRender(s, ref, dir);
             const core::Frame test = render("realtime", devices, s);

@@ -33,13 +33,14 @@ std::string scriptSafe(std::string text) {
 }  // namespace
 
 std::string pageHead(const std::string& title) {
-    // The policy allows inline style and script and local images only: any reference to the
-    // network is blocked (and reported by the self-test), so the report provably works offline.
+    // The policy allows inline style and script and local images and videos only: any reference to
+    // the network is blocked (and reported by the self-test), so the report provably works offline.
     return fmt::format(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
         "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
-        "img-src 'self' file: data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n"
+        "img-src 'self' file: data:; media-src 'self' file:; style-src 'unsafe-inline'; script-src "
+        "'unsafe-inline'\">\n"
         "<title>{}</title>\n<link rel=\"icon\" href=\"data:,\">\n<script>\n{}</script>\n"
         "<style>\n{}</style>\n</head>\n<body>\n",
         htmlEscape(title), scriptSafe(asset("selftest.js")), asset("report.css"));

@@ -12,9 +12,11 @@
 // and metrics.json of a scene live.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +34,25 @@ struct RendererReport {
     std::map<std::string, std::string> images;  // buffer ("beauty", "normal", ...) -> PNG path
 };
 
+// One frame of a sequence scene: every metric of its pair, its times (time.<renderer>_ms) and
+// its change from the previous frame (temporal.*, from the second frame on;
+// compare/temporal_error.h).
+struct SequenceFrame {
+    std::int64_t frame = 0;  // the frame number
+    MetricValues metrics;
+};
+
+// What a sequence scene adds to its report: the frames, the charts of every metric over them
+// and the side-by-side video. Paths are relative to the scene folder.
+struct SequenceReport {
+    double fps = 24.0;
+    std::vector<SequenceFrame> frames;
+    // The frame whose buffers and error maps the scene page shows (the worst beauty.flip).
+    std::int64_t shownFrame = 0;
+    std::map<std::string, std::string> videos;  // MIME type ("video/webm") -> file
+    std::map<std::string, std::string> charts;  // metric -> SVG over the frames
+};
+
 struct SceneReport {
     std::string name;         // scene name: the folder name DIR/<name>/
     std::string description;  // one line from the scene file; may be empty
@@ -47,6 +68,9 @@ struct SceneReport {
     nlohmann::json settings;  // the settings used, by dotted key or nested objects
     // Set when the scene could not be rendered or compared; the scene then fails.
     std::string error;
+    // Set for a sequence scene: its metrics above then summarise the frames
+    // (compare/sequence_summary.h).
+    std::optional<SequenceReport> sequence;
 
     // Fail when error is set, else the worst check.
     Status status() const;

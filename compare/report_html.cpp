@@ -12,6 +12,7 @@
 #include "compare/html_page.h"
 #include "compare/markup.h"
 #include "compare/metric_table.h"
+#include "compare/sequence_report.h"
 #include "compare/settings_keys.h"
 #include "core/image_io.h"
 
@@ -585,6 +586,7 @@ std::string scenePage(const RunReport& run, const SceneReport& s) {
                  {"buffers", json::object()},
                  {"errorFallback", ""},
                  {"errorLabel", ""}};
+    h += sequenceSection(s);
     if (!buffers.empty()) h += imagesSection(s, buffers, data);
     h += "<section>\n<h2>Metrics</h2>\n" + metricTable(s) + "</section>\n";
     h += "<section class=\"grid2\">\n<div>\n<h2>Timings</h2>\n" + timingTable(s) + "</div>\n";

@@ -29,6 +29,17 @@ json checksArray(const std::vector<Check>& checks) {
     return a;
 }
 
+json sequenceJson(const SequenceReport& q) {
+    json frames = json::array();
+    for (const SequenceFrame& f : q.frames)
+        frames.push_back({{"frame", f.frame}, {"metrics", numbersJson(f.metrics)}});
+    return {{"fps", q.fps},
+            {"frames", frames},
+            {"shown_frame", q.shownFrame},
+            {"videos", q.videos},
+            {"charts", q.charts}};
+}
+
 json timingsObject(const SceneReport& scene) {
     json t = json::object();
     for (const auto& [renderer, r] : scene.renderers) t[renderer] = numbersJson(r.timingsMs);
@@ -59,6 +70,7 @@ json metricsJson(const SceneReport& scene) {
               {"timings_ms", timingsObject(scene)},
               {"error_maps", errorMapsObject(scene)}};
     if (!scene.error.empty()) j["error"] = scene.error;
+    if (scene.sequence) j["sequence"] = sequenceJson(*scene.sequence);
     return j;
 }
 
@@ -160,6 +172,18 @@ SceneReport sceneReportFromJson(const json& j, const std::string& source) {
                                    number(m.at("hi"), "error_maps.hi"), m.value("unit", "")};
         s.settings = j.value("settings", json());
         s.error = j.value("error", "");
+        if (j.contains("sequence")) {
+            const json& q = j.at("sequence");
+            SequenceReport r;
+            r.fps = number(q.at("fps"), "sequence.fps");
+            for (const json& f : q.at("frames"))
+                r.frames.push_back({f.at("frame").get<std::int64_t>(),
+                                    numbers(f.at("metrics"), "sequence.frames[].metrics")});
+            r.shownFrame = q.value("shown_frame", std::int64_t{0});
+            r.videos = q.value("videos", std::map<std::string, std::string>{});
+            r.charts = q.value("charts", std::map<std::string, std::string>{});
+            s.sequence = std::move(r);
+        }
         return s;
     } catch (const json::exception& e) {
         throw bad(e.what());

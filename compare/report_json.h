@@ -13,7 +13,8 @@ namespace twinrender::compare {
 
 // {"scene", "description", "status", "metrics": {key: value}, "checks": [{"metric", "value",
 //  "bound", "limit", "status", "message", ["baseline", "delta"]}], "timings_ms",
-//  "error_maps": {buffer: {"path", "label", "lo", "hi", "unit"}}, ["error"]}
+//  "error_maps": {buffer: {"path", "label", "lo", "hi", "unit"}}, ["error"], ["sequence":
+//  {"fps", "frames": [{"frame", "metrics"}], "shown_frame", "videos", "charts"}]}
 nlohmann::json metricsJson(const SceneReport& scene);
 // {"status", "scenes": [{"name", "status", "metrics", "timings_ms": {renderer: {stage: ms}},
 //  "checks", "settings", ["error"]}], "thresholds", "baseline", "created"}

@@ -97,6 +97,21 @@ TEST(SceneReportJson, RoundTripsEveryField) {
     EXPECT_EQ(metricsJson(back), metricsJson(s));
     EXPECT_EQ(back.renderers.at("realtime").images.at("beauty"), "realtime.beauty.png");
     EXPECT_EQ(back.status(), Status::Fail);
+
+    // A sequence scene's frames, video and charts too.
+    SequenceReport q;
+    q.fps = 5.0;
+    q.frames = {{16, {{"beauty.flip", 0.05}}}, {17, {{"temporal.flicker", -0.01}}}};
+    q.shownFrame = 16;
+    q.videos = {{"video/webm", "sequence.webm"}};
+    q.charts = {{"beauty.flip", "charts/beauty.flip.svg"}};
+    s.sequence = q;
+    const auto js = sceneReportJson(s);
+    const SceneReport seq = sceneReportFromJson(nlohmann::json::parse(js.dump()), "x");
+    EXPECT_EQ(sceneReportJson(seq), js);
+    ASSERT_TRUE(seq.sequence);
+    EXPECT_EQ(seq.sequence->frames.at(1).frame, 17);
+    EXPECT_EQ(metricsJson(s)["sequence"]["frames"].size(), 2u);
 }
 
 }  // namespace

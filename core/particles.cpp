@@ -9,6 +9,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/body_motion.h"
 #include "core/derived_attributes.h"
 #include "core/error.h"
 #include "core/particle_file.h"
@@ -48,8 +49,8 @@ glm::dmat3 frameOf(const BodyDesc& desc) {
 }
 
 // Appends a generated body (ball, shell, ring).
-void appendGenerated(const BodyDesc& desc, ParticleSet& set, std::vector<BodyInfo>& bodies,
-                     std::vector<bool>& keepUv) {
+void appendGenerated(const BodyDesc& desc, const Scene& scene, ParticleSet& set,
+                     std::vector<BodyInfo>& bodies, std::vector<bool>& keepUv) {
     GeneratedBody gen = generateBody(desc);
     const std::size_t begin = set.size();
     const std::size_t n = gen.size();
@@ -70,6 +71,8 @@ void appendGenerated(const BodyDesc& desc, ParticleSet& set, std::vector<BodyInf
     info.begin = begin;
     info.end = begin + n;
     info.meanH = gen.h;
+    applyMotion(desc, scene.time, scene.frame, std::span<glm::vec3>(set.position).subspan(begin, n),
+                gen.h, info);
     bodies.push_back(std::move(info));
     keepUv.push_back(false);
 }
@@ -163,7 +166,7 @@ SceneParticles buildParticles(const Scene& scene) {
         if (desc.shape == Shape::File)
             appendFile(desc, out.particles, out.bodies, keepUv);
         else
-            appendGenerated(desc, out.particles, out.bodies, keepUv);
+            appendGenerated(desc, scene, out.particles, out.bodies, keepUv);
     }
     ParticleSet& set = out.particles;
     if (set.size() > std::numeric_limits<std::uint32_t>::max())

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/sequence.h"
 
 namespace twinrender::core {
 namespace fs = std::filesystem;
@@ -277,8 +278,19 @@ BodyDesc parseBody(const ParameterTable& t, const fs::path& dir,
         const auto& p = t.require("path");
         auto* s = std::get_if<std::string>(&p.value);
         if (!s) throw InputError(fmt::format("{} must be a string", t.describe("path")));
-        b.path = fs::absolute(dir / *s).lexically_normal();
-        if (!fs::is_regular_file(b.path))
+        if (t.has("velocity") || t.has("spin") || t.has("churn"))
+            throw InputError(fmt::format(
+                "{}: velocity, spin and churn move generated bodies; a file body moves by its "
+                "frames (a path such as out_%04d.ssf names a sequence)",
+                t.describe(t.has("velocity") ? "velocity"
+                           : t.has("spin")   ? "spin"
+                                             : "churn")));
+        const fs::path given = fs::absolute(dir / *s).lexically_normal();
+        if (FramePattern::parse(given, t.describe("path")))
+            b.pattern = given;  // its files are listed and checked by resolveSequence
+        else
+            b.path = given;
+        if (b.pattern.empty() && !fs::is_regular_file(b.path))
             throw InputError(
                 fmt::format("{}: particle file {} does not exist; paths are relative "
                             "to the scene file",
@@ -293,6 +305,14 @@ BodyDesc parseBody(const ParameterTable& t, const fs::path& dir,
         }();
         b.seed = static_cast<std::uint64_t>(
             t.getInt("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+        b.velocity = t.getVec3("velocity", b.velocity);
+        b.spin = t.getVec3("spin", b.spin);
+        b.churn = t.getDouble("churn", 0.0, 0.0, 1e3);
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(b.velocity[c]) || !std::isfinite(b.spin[c]))
+                throw InputError(
+                    fmt::format("{} must be finite",
+                                t.describe(std::isfinite(b.velocity[c]) ? "spin" : "velocity")));
         if (shape == "ring") {
             b.shape = Shape::Ring;
             b.innerRadius = t.getDouble("inner_radius", 0.0, 0.0, big);
@@ -358,6 +378,9 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
             continue;
         }
         if (!node.is_table()) {
+            if (key == "sequence")
+                throw InputError(fmt::format("{}: 'sequence' must be a table ([sequence])",
+                                             whereOf(fileName, node, key, located)));
             toml::table one;
             one.insert(k, node);
             flatten(one, "", "", fileName, located, top);
@@ -378,14 +401,14 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
         }
         return t;
     };
-    std::set<std::string> known = {"name",   "description", "camera",   "light",  "materials",
-                                   "bodies", "realtime",    "raymarch", "compare"};
+    std::set<std::string> known = {"name",   "description", "camera",   "light",   "materials",
+                                   "bodies", "realtime",    "raymarch", "compare", "sequence"};
     for (const auto& [k, node] : root)
         if (node.is_table() && !known.count(std::string(k.str())))
             throw InputError(
                 fmt::format("{}: unknown table '[{}]'; scene files have [camera], "
                             "[light], [[materials]], [[bodies]], [realtime], "
-                            "[raymarch] and [compare]",
+                            "[raymarch], [compare] and [sequence]",
                             whereOf(fileName, node, std::string(k.str()), located), k.str()));
 
     {
@@ -466,6 +489,32 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
     if (scene.bodies.empty())
         throw InputError(
             fmt::format("{}: the scene has no [[bodies]]; add at least one", fileName));
+    // [sequence], its [[sequence.keys]] read apart (an array of tables, not of numbers).
+    std::optional<ParameterTable> sequence;
+    std::vector<ParameterTable> keys;
+    if (const toml::node* node = root.get("sequence"); node && node->is_table()) {
+        toml::table t = *node->as_table();
+        if (const toml::node* k = t.get("keys")) {
+            const auto* a = k->as_array();
+            if (!a || !a->is_array_of_tables())
+                throw InputError(fmt::format(
+                    "{}: 'sequence.keys' must be an array of tables ([[sequence.keys]])",
+                    whereOf(fileName, *k, "sequence.keys", located)));
+            std::size_t i = 0;
+            for (const auto& entry : *a) {
+                ParameterTable kt(fmt::format("sequence.keys[{}]", i),
+                                  whereOf(fileName, entry, "sequence.keys", located));
+                flatten(*entry.as_table(), "", fmt::format("sequence.keys.{}", i), fileName,
+                        located, kt);
+                keys.push_back(std::move(kt));
+                ++i;
+            }
+            t.erase("keys");
+        }
+        sequence.emplace("sequence", whereOf(fileName, *node, "sequence", located));
+        flatten(t, "", "sequence", fileName, located, *sequence);
+    }
+    resolveSequence(scene, sequence ? &*sequence : nullptr, keys);
     scene.realtime = section("realtime");
     scene.raymarch = section("raymarch");
     scene.compare = section("compare");

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/frame_pattern.h"
 #include "core/parameters.h"
 
 namespace twinrender::core {
@@ -73,9 +74,45 @@ struct BodyDesc {
     std::uint32_t materialIndex = 0;  // resolved index into Scene::materials
     double temperature = 0.0;         // kelvin, >= 0; overridden by a file's column
     std::optional<double> smoothing;  // h in scene units; default 1.3 x lattice spacing
-    std::filesystem::path path;       // file: absolute path of the particle file
-    double scale = 1.0;               // file: multiplies positions and smoothing lengths
-    std::string where;                // "file:line" of the [[bodies]] entry, for messages
+    std::filesystem::path path;       // file: absolute path of the particle file (of the
+                                      // scene's frame when the path names a sequence)
+    // file: the sequence pattern (absolute) when the path names one (core/frame_pattern.h),
+    // and the file of every frame of the scene's range; empty otherwise.
+    std::filesystem::path pattern;
+    std::vector<FrameFile> frameFiles;
+    // Motion of a generated body over a sequence (core/body_motion.h), at time t = frame / fps:
+    glm::dvec3 velocity{0.0};  // scene units per second
+    glm::dvec3 spin{0.0};      // angular velocity about the centre: degrees per second about
+                               // the vector's direction (right-handed)
+    double churn = 0.0;        // a new random displacement each frame, up to churn x h, >= 0
+    double scale = 1.0;        // file: multiplies positions and smoothing lengths
+    std::string where;         // "file:line" of the [[bodies]] entry, for messages
+};
+
+// How the camera moves over a sequence.
+enum class CameraPath { Fixed, Orbit, Keys };
+
+struct CameraKey {
+    double frame = 0.0;  // frame number
+    glm::dvec3 position{0.0};
+    glm::dvec3 target{0.0};
+    double fovYDeg = 40.0;
+    std::string where;  // "file:line:col" of the [[sequence.keys]] entry
+};
+
+// The [sequence] table (core/sequence.h): which frames, how fast, and the camera's path.
+struct SequenceSettings {
+    std::int64_t first = 0;  // frame numbers, first <= last
+    std::int64_t last = 0;
+    std::int64_t step = 1;  // >= 1
+    double fps = 24.0;      // frames per second of sequence time and of the video, (0, 1000]
+    CameraPath camera = CameraPath::Fixed;
+    // orbit: about orbitAxis (unit, through camera.target), from [camera] at frame `first`.
+    double orbitDegreesPerFrame = 0.0;
+    glm::dvec3 orbitAxis{0.0, 0.0, 1.0};
+    std::vector<CameraKey> keys;  // keys: by ascending frame, interpolated (Catmull-Rom)
+    CameraSettings start;         // the camera as [camera] gives it
+    std::string where;            // "file:line:col" of [sequence] (or the file)
 };
 
 struct Scene {
@@ -89,6 +126,12 @@ struct Scene {
     ParameterTable realtime;  // [realtime], parsed by realtime/
     ParameterTable raymarch;  // [raymarch], parsed by raymarch/
     ParameterTable compare;   // [compare], parsed by compare/
+    // Set when the scene is a sequence: a [sequence] table or a file body naming a sequence.
+    std::optional<SequenceSettings> sequence;
+    // The frame the camera and the bodies stand at (a sequence's first frame after loading;
+    // core/sequence.h frameScene moves it) and its time in seconds, frame / fps.
+    std::int64_t frame = 0;
+    double time = 0.0;
 };
 
 // Loads a scene file. `overrides` are "KEY=VALUE" strings with the scene's dotted keys

@@ -15,6 +15,7 @@
 #include "core/camera.h"
 #include "core/error.h"
 #include "realtime/anisotropy.h"
+#include "realtime/droplets.h"
 #include "realtime/field_normal.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/gl/context.h"
@@ -40,6 +41,7 @@ struct DeviceState {
     ImpostorRadiusCache radii;          // and for the impostor radii
     SurfaceKernelCache surfaceKernels;  // and for the kernels the gradient pass adds
     AnisotropyCache anisotropy;         // and for the ellipsoids (shape = "ellipsoid")
+    DropletCache droplets;              // and for the small droplets' ellipsoids
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
@@ -159,14 +161,25 @@ void checkLimits(const core::RenderInput& in, const Settings& settings, const De
 
 // ---- Compile ----
 
+// Whether small droplets may be drawn as ellipsoids (realtime/droplets.h).
+bool mayHaveDroplets(const ParticleSettings& p) {
+    return p.radius == RadiusModel::Field && p.dropletAtoms >= 2;
+}
+
 // Compiles (once per device) the programs the settings use that are not built on first use
 // inside the passes.
 void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
-    const bool ellipsoids = settings.particles.shape == ParticleShape::Ellipsoid;
-    if (usesShadowMap(settings.shadows))
-        programs.get("impostor.vert", "shadow.frag", impostorDefines(ellipsoids, {"SHADOW_PASS"}));
-    programs.get("impostor.vert", "gbuffer.frag",
-                 impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
+    // Spheres switch to the ellipsoid programs for a particle set with droplets.
+    const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
+    for (const bool ellipsoids : {false, true}) {
+        if (ellipsoids != anisotropic && !(ellipsoids && mayHaveDroplets(settings.particles)))
+            continue;
+        if (usesShadowMap(settings.shadows))
+            programs.get("impostor.vert", "shadow.frag",
+                         impostorDefines(ellipsoids, {"SHADOW_PASS"}));
+        programs.get("impostor.vert", "gbuffer.frag",
+                     impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
+    }
     if (usesSsss(settings)) {
         std::vector<std::string> defines;
         if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
@@ -236,33 +249,72 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
                 const Settings& settings, core::Frame& frame) {
     const auto start = Clock::now();
     const core::ParticleSet& ps = in.particles.particles;
-    const std::vector<float>& radii = d.radii.radii(ps, settings.particles);
+    std::span<const float> radii = d.radii.radii(ps, settings.particles);
     frame.timingsMs["radius"] = msSince(start);
+    // Small droplets, one ellipsoid each: their members' spheres are replaced.
+    const Droplets* droplets = nullptr;
+    if (mayHaveDroplets(settings.particles)) {
+        const auto dropletStart = Clock::now();
+        droplets = &d.droplets.droplets(ps, radii, settings.particles.surfaceLevel,
+                                        settings.particles.dropletAtoms);
+        frame.timingsMs["droplets"] = msSince(dropletStart);
+        if (droplets->firsts.empty()) droplets = nullptr;
+    }
+    frame.counters["droplets"] = droplets ? static_cast<double>(droplets->firsts.size()) : 0.0;
+    if (droplets) radii = droplets->radii;
     const LightFrustum light =
         fitLightFrustum(in.particles.boundsMin, in.particles.boundsMax, in.scene.camera.position,
                         in.scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(in.scene, camera, in.particles, settings, light);
-    const std::vector<Ellipsoid>* ellipsoids = nullptr;
-    if (settings.particles.shape == ParticleShape::Ellipsoid) {
+    const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
+    const std::vector<Ellipsoid>* ellipsoids = droplets ? &droplets->ellipsoids : nullptr;
+    std::vector<Ellipsoid> anisotropicWithDroplets;
+    if (anisotropic) {
         const auto anisotropyStart = Clock::now();
         ellipsoids = &d.anisotropy.ellipsoids(ps, radii, settings.particles.anisotropy);
+        if (droplets) {
+            anisotropicWithDroplets = *ellipsoids;
+            for (std::uint32_t first : droplets->firsts)
+                anisotropicWithDroplets[first] = droplets->ellipsoids[first];
+            ellipsoids = &anisotropicWithDroplets;
+        }
         frame.timingsMs["anisotropy"] = msSince(anisotropyStart);
     }
     // The culling test is exact for spheres only: an ellipsoid inside the union of its
-    // neighbours' bounding spheres may still show between their ellipsoids.
+    // neighbours' bounding spheres may still show between their ellipsoids. Droplets are
+    // culled as nothing and drawn whatever the spheres hide.
+    std::span<const float> cullRadii = droplets ? droplets->cullRadii : radii;
     std::span<const std::uint32_t> culled;
-    if (settings.particles.cullHidden && !ellipsoids && cullingIsExact(ps, camera, radii)) {
+    if (settings.particles.cullHidden && !anisotropic && cullingIsExact(ps, camera, cullRadii)) {
         const auto cullStart = Clock::now();
-        culled = d.culler.unoccluded(ps, radii);
+        culled = d.culler.unoccluded(ps, cullRadii);
         frame.timingsMs["cull"] = msSince(cullStart);
     }
     bool nothingDrawn = false;
-    const std::vector<std::uint32_t> drawn = withSurface(culled, radii, nothingDrawn);
+    std::vector<std::uint32_t> drawn = withSurface(culled, cullRadii, nothingDrawn);
+    if (droplets) {
+        // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly.
+        std::vector<std::uint32_t> merged;
+        std::merge(drawn.begin(), drawn.end(), droplets->firsts.begin(), droplets->firsts.end(),
+                   std::back_inserter(merged));
+        drawn = std::move(merged);
+        nothingDrawn = false;
+    }
     frame.counters["particles_drawn"] =
         nothingDrawn ? 0.0 : static_cast<double>(drawn.empty() ? ps.size() : drawn.size());
     std::span<const FieldNormal> fieldNormalModels;
-    if (settings.particles.normal == NormalModel::Field)
+    std::vector<FieldNormal> withDropletNormals;
+    if (settings.particles.normal == NormalModel::Field) {
         fieldNormalModels = d.fieldNormals.normals(ps, radii, drawn);
+        if (droplets) {
+            // A droplet's normal is its ellipsoid's, not a model about its first particle.
+            withDropletNormals.assign(fieldNormalModels.begin(), fieldNormalModels.end());
+            for (std::size_t k = 0; k < drawn.size(); ++k)
+                if (std::binary_search(droplets->firsts.begin(), droplets->firsts.end(), drawn[k]))
+                    withDropletNormals[k] = dropletNormalModel(droplets->ellipsoids[drawn[k]]);
+            fieldNormalModels = withDropletNormals;
+        }
+    }
     const std::vector<GpuParticle> gpuParticles =
         nothingDrawn ? std::vector<GpuParticle>{}
                      : packParticles(ps, in.scene.camera.position, radii, drawn, fieldNormalModels);
@@ -297,7 +349,8 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     gl::checkErrors("upload");
     gl::finish();
     frame.timingsMs["upload"] = msSince(start) - frame.timingsMs["cull"] -
-                                frame.timingsMs["radius"] - frame.timingsMs["anisotropy"];
+                                frame.timingsMs["radius"] - frame.timingsMs["droplets"] -
+                                frame.timingsMs["anisotropy"];
     return {std::move(buffers), std::move(kernels), kernelCount};
 }
 
@@ -512,7 +565,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     frame.device = d.context.renderer();
     frame.settings = toJson(mSettings);
     frame.particleCount = in.particles.particles.size();
-    for (const char* stage : {"radius", "anisotropy", "cull", "upload", "readback"})
+    for (const char* stage : {"radius", "droplets", "anisotropy", "cull", "upload", "readback"})
         frame.timingsMs[stage] = 0.0;
     for (const Pass& pass : PASSES) frame.timingsMs[pass.name] = 0.0;
 

@@ -74,7 +74,13 @@ TEST(Suite, TheDefaultScenesPassTheirThresholds) {
     std::ifstream in(out / "summary.json");
     const auto summary = nlohmann::json::parse(in);
     EXPECT_EQ(summary["status"], "pass");
-    EXPECT_EQ(summary["scenes"].size(), 8u);
+    EXPECT_EQ(summary["scenes"].size(), 10u);
+    // The sequence scenes: every frame compared, flicker measured, the video written.
+    for (const char* f :
+         {"splash_sequence/sequence.mp4", "splash_sequence/sequence.webm",
+          "splash_sequence/frames/0020/realtime.exr", "splash_sequence/charts/temporal.flicker.svg",
+          "collision_sequence/frames/0014/realtime.exr"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
     // HDR-ꟻLIP on every scene, particles on black included, with the exposures it took.
     for (const auto& s : summary["scenes"]) {
         EXPECT_TRUE(s["metrics"]["beauty.hdrflip"].is_number()) << s["name"];

@@ -1,6 +1,7 @@
 /* Page self-test, run first in <head>: records script errors, console.error calls, rejected
    promises and resources (images) that fail to load, then, once the page has loaded, checks
-   that every <img> decoded and that the page script ran to its end (it sets data-ready on
+   that every <img> decoded, that every <video> loaded its metadata (its duration is shown) and
+   that the page script ran to its end (it sets data-ready on
    <html>). The verdict goes into the element with id "selftest": "selftest: ok (N images)", or
    "selftest: FAIL" and one line per problem. tests/report_browser_test.cpp reads it from
    Chromium's --dump-dom; a person sees it in the footer. */
@@ -19,10 +20,20 @@
       if (im.complete && im.naturalWidth > 0) good++;
       else lines.push("image did not load: " + im.getAttribute("src"));
     }
+    // Videos (a sequence's): each must have loaded its metadata, and says its duration.
+    var videos = document.getElementsByTagName("video"), durations = [];
+    for (var v = 0; v < videos.length; v++) {
+      var vid = videos[v];
+      if (vid.readyState >= 1 && isFinite(vid.duration) && vid.duration > 0)
+        durations.push(vid.duration.toFixed(3) + " s");
+      else
+        lines.push("video did not load: " + (vid.currentSrc || vid.getAttribute("id") || "video"));
+    }
     if (!document.documentElement.hasAttribute("data-ready"))
       lines.push("the page script did not run to its end");
     el.textContent = lines.length ? "selftest: FAIL\n" + lines.join("\n")
-                                  : "selftest: ok (" + good + " images)";
+                                  : "selftest: ok (" + good + " images" +
+                                    (durations.length ? "; videos: " + durations.join(", ") : "") + ")";
     el.setAttribute("data-status", lines.length ? "fail" : "ok");
   }
   window.addEventListener("error", function (e) {
@@ -51,4 +62,6 @@
     return consoleError.apply(console, arguments);
   };
   window.addEventListener("load", function () { loaded = true; show(); });
+  // Media events do not bubble: listen in the capture phase for any video's metadata.
+  document.addEventListener("loadedmetadata", show, true);
 })();

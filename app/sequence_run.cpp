@@ -1,0 +1,186 @@
+#include "app/sequence_run.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "app/comparison.h"
+#include "app/video_encoder.h"
+#include "compare/flip.h"
+#include "compare/metrics.h"
+#include "compare/sequence_report.h"
+#include "compare/sequence_summary.h"
+#include "compare/sequence_video.h"
+#include "compare/temporal_error.h"
+#include "core/error.h"
+#include "core/particle_file.h"
+#include "core/sequence.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::optional<std::int64_t> integer(const std::string& text) {
+    std::int64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
+    return v;
+}
+
+// A frame's images prefixed with its folder, so that the scene page (one folder up) finds them.
+void prefixImages(compare::SceneReport& report, const std::string& prefix) {
+    for (auto& [name, r] : report.renderers)
+        for (auto& [buffer, path] : r.images) path = prefix + path;
+    for (auto& [buffer, m] : report.errorMaps) m.path = prefix + m.path;
+}
+
+nlohmann::json sequenceSettings(const core::SequenceSettings& q, std::size_t frames) {
+    const char* camera = q.camera == core::CameraPath::Orbit  ? "orbit"
+                         : q.camera == core::CameraPath::Keys ? "keys"
+                                                              : "fixed";
+    return {{"first", q.first}, {"last", q.last},   {"step", q.step},
+            {"fps", q.fps},     {"camera", camera}, {"frames", frames}};
+}
+
+}  // namespace
+
+std::vector<std::string> framesOverrides(const std::string& frames) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (;;) {
+        const auto colon = frames.find(':', start);
+        parts.push_back(frames.substr(start, colon - start));
+        if (colon == std::string::npos) break;
+        start = colon + 1;
+    }
+    std::vector<std::int64_t> v;
+    for (const std::string& p : parts)
+        if (auto n = integer(p)) v.push_back(*n);
+    if (v.size() != parts.size() || v.empty() || v.size() > 3 || (v.size() == 3 && v[2] < 1) ||
+        (v.size() >= 2 && v[1] < v[0]))
+        throw core::InputError(fmt::format(
+            "--frames {}: expected FIRST:LAST (or FIRST:LAST:STEP, or one FRAME) with integer "
+            "frame numbers, FIRST <= LAST and STEP >= 1, e.g. --frames 0:40",
+            frames));
+    std::vector<std::string> sets = {fmt::format("sequence.first={}", v[0]),
+                                     fmt::format("sequence.last={}", v.size() > 1 ? v[1] : v[0])};
+    if (v.size() == 3) sets.push_back(fmt::format("sequence.step={}", v[2]));
+    return sets;
+}
+
+std::string frameFolder(std::int64_t frame) {
+    return frame < 0 ? fmt::format("-{:04d}", -frame) : fmt::format("{:04d}", frame);
+}
+
+void setFrame(LoadedScene& s, std::int64_t frame) {
+    if (s.scene.frame == frame && !s.particles.particles.position.empty()) return;
+    s.scene = core::frameScene(s.scene, frame);
+    s.particles = core::buildParticles(s.scene);
+}
+
+void checkSequenceFiles(const LoadedScene& s) {
+    if (!s.scene.sequence) return;
+    for (const core::BodyDesc& b : s.scene.bodies)
+        for (const core::FrameFile& f : b.frameFiles) {
+            if (f.number == s.scene.frame) continue;
+            try {
+                core::readParticleFile(f.path);
+            } catch (const core::InputError& e) {
+                throw core::InputError(fmt::format(
+                    "{}: body '{}': frame {} of the sequence {} cannot be read: {}", b.where,
+                    b.name, f.number, b.pattern.filename().string(), e.what()));
+            }
+        }
+}
+
+void renderFrames(LoadedScene& s, const std::vector<std::string>& names, Devices& devices,
+                  const fs::path& dir) {
+    std::vector<std::unique_ptr<core::Renderer>> renderers;
+    for (const auto& name : names) renderers.push_back(makeRenderer(name, devices, s));
+    for (std::int64_t n : core::sequenceFrames(s.scene)) {
+        setFrame(s, n);
+        const fs::path frameDir = dir / frameFolder(n);
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            const core::Frame frame = render(*renderers[i], names[i], s);
+            writeRender(s, frame, frameDir);
+            std::printf("%s: frame %lld: %s %dx%d, %zu particles, %.1f ms -> %s\n",
+                        s.scene.name.c_str(), static_cast<long long>(n), frame.renderer.c_str(),
+                        frame.image.width(), frame.image.height(), frame.particleCount,
+                        frame.timingsMs.at("total"),
+                        (frameDir / (frame.renderer + ".exr")).c_str());
+            std::fflush(stdout);
+        }
+    }
+}
+
+compare::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache& cache,
+                                 const SequenceRun& run, const fs::path& dir) {
+    const std::vector<std::int64_t> frames = core::sequenceFrames(s.scene);
+    const double fps = s.scene.sequence->fps;
+    auto realtime = makeRenderer("realtime", devices, s);
+    VideoEncoder video(dir / "sequence.mp4", dir / "sequence.webm", fps);
+    compare::SequenceReport sequence;
+    sequence.fps = fps;
+    std::vector<compare::SceneReport> frameReports;
+    std::optional<std::pair<core::Frame, core::Frame>> previous;  // reference, real-time
+    compare::FlipSettings flip;
+    flip.ppd = run.ppd;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        const std::int64_t n = frames[k];
+        setFrame(s, n);
+        const std::string folder = "frames/" + frameFolder(n) + "/";
+        const auto [key, what] = referenceKey(s, run.overrides);
+        core::Frame ref = cache.get(s, key, what);
+        cache.forget(key);
+        core::Frame test = render(*realtime, "realtime", s);
+        writeRender(s, ref, dir / folder);
+        writeRender(s, test, dir / folder);
+        const compare::MetricResult result = compare::computeMetrics(
+            ref.image, test.image, metricSettings(s, run.ppd, run.flipOver));
+        compare::SceneReport report =
+            sceneReport(s, ref, test, result, run.bounds, nullptr, dir / folder);
+        std::string flicker = "-";
+        if (previous) {
+            const compare::FrameChange change = compare::frameChange(
+                {previous->first.image, previous->first.display}, {ref.image, ref.display},
+                {previous->second.image, previous->second.display}, {test.image, test.display},
+                flip);
+            compare::addFrameChangeMetrics(change, report.metrics);
+            flicker = fmt::format("{:+.4f}", change.flicker());
+        }
+        const double flipMean = result.values.at("beauty.flip");
+        video.add(compare::sideBySideFrame(
+            test.display, ref.display, result.errorMaps.at("beauty.flip"),
+            fmt::format("FRAME {}  FLIP {:.4f}  FLICKER {}", n, flipMean, flicker)));
+        std::printf(
+            "%s: frame %lld (%zu/%zu): real-time %.1f ms, reference %.1f ms, ꟻLIP %.4f, "
+            "flicker %s\n",
+            s.scene.name.c_str(), static_cast<long long>(n), k + 1, frames.size(),
+            test.timingsMs.at("total"), ref.timingsMs.at("total"), flipMean, flicker.c_str());
+        std::fflush(stdout);
+        sequence.frames.push_back({n, report.metrics});
+        prefixImages(report, folder);
+        frameReports.push_back(std::move(report));
+        previous.emplace(std::move(ref), std::move(test));
+    }
+    video.finish();
+    sequence.videos = {{"video/webm", "sequence.webm"}, {"video/mp4", "sequence.mp4"}};
+    sequence.charts = compare::writeSequenceCharts(sequence, dir);
+    sequence.shownFrame = compare::worstFrame(sequence.frames);
+    const std::size_t shown = static_cast<std::size_t>(
+        std::find(frames.begin(), frames.end(), sequence.shownFrame) - frames.begin());
+    compare::SceneReport report = std::move(frameReports.at(shown));
+    report.metrics = compare::summariseSequence(sequence.frames);
+    report.settings["sequence"] = sequenceSettings(*s.scene.sequence, frames.size());
+    checkReport(report, run.bounds, run.baseline);
+    report.sequence = std::move(sequence);
+    return report;
+}
+
+}  // namespace twinrender::app
