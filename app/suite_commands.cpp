@@ -88,8 +88,7 @@ fs::path defaultScenesDir() {
 }  // namespace
 
 ExitCode runCompare(const CompareOptions& o) {
-    const core::Image ref = core::readImage(o.reference);
-    const core::Image test = core::readImage(o.test);
+    const auto [ref, test] = core::readImages(o.reference, o.test);
     compare::MetricSettings settings;
     settings.ppd = o.ppd;
     settings.flipOver = o.flipOver;

@@ -2,7 +2,9 @@
 // decoding both PNGs, every beauty metric, the ꟻLIP error map's PNG and metrics.json. Beside
 // it, when TWINRENDER_NVLABS_FLIP names NVlabs' flip tool (github.com/NVlabs/flip, built as
 // compare/testdata/reference_values.py builds it), that tool on the same pair in the same run
-// (it computes ꟻLIP alone). Run:
+// (it computes ꟻLIP alone); and when TWINRENDER_COMPARE_BEFORE names another twinrender
+// binary (a copy built from an earlier commit), that one too, for a before and after in one
+// run. Run:
 //   TWINRENDER_NVLABS_FLIP=/path/to/flip build/bench/compare_process_bench
 //       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true   (one line)
 // and read the medians (wall time).
@@ -40,21 +42,38 @@ void runProcess(benchmark::State& state, const std::string& command) {
             state.SkipWithError(("failed: " + command).c_str());
 }
 
-void BM_TwinrenderCompare(benchmark::State& state) {
+void runCompare(benchmark::State& state, const std::string& twinrender) {
     const fs::path& d = pairFolder();
-    runProcess(state, std::string(TWINRENDER_BIN) + " compare " + (d / "ref.png").string() + " " +
+    runProcess(state, twinrender + " compare " + (d / "ref.png").string() + " " +
                           (d / "test.png").string() + " --out " + (d / "out").string());
+}
+
+// The tool the variable names, or nullptr after marking the benchmark skipped.
+const char* toolFrom(benchmark::State& state, const char* variable, const char* what) {
+    const char* tool = std::getenv(variable);
+    if (!tool) {
+        state.SkipWithError(
+            (std::string("set ") + variable + " to " + what + " to time it").c_str());
+        for (auto _ : state) {
+        }
+    }
+    return tool;
+}
+
+void BM_TwinrenderCompare(benchmark::State& state) {
+    runCompare(state, TWINRENDER_BIN);
 }
 BENCHMARK(BM_TwinrenderCompare)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
+void BM_TwinrenderCompareBefore(benchmark::State& state) {
+    if (const char* before = toolFrom(state, "TWINRENDER_COMPARE_BEFORE", "another twinrender"))
+        runCompare(state, before);
+}
+BENCHMARK(BM_TwinrenderCompareBefore)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
 void BM_NvlabsFlip(benchmark::State& state) {
-    const char* tool = std::getenv("TWINRENDER_NVLABS_FLIP");
-    if (!tool) {
-        state.SkipWithError("set TWINRENDER_NVLABS_FLIP to NVlabs' flip tool to time it");
-        for (auto _ : state) {
-        }
-        return;
-    }
+    const char* tool = toolFrom(state, "TWINRENDER_NVLABS_FLIP", "NVlabs' flip tool");
+    if (!tool) return;
     const fs::path& d = pairFolder();
     // -v 1: the mean only; the error map written as its PNG, as ours is.
     runProcess(state, std::string(tool) + " -r " + (d / "ref.png").string() + " -t " +

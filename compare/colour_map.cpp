@@ -1,6 +1,8 @@
 #include "compare/colour_map.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -59,12 +61,15 @@ core::Image colourMapped(const core::Image& map, int channel, double lo, double 
         throw std::invalid_argument(fmt::format("colourMapped: no channel {}", channel));
     core::Image out(map.width(), map.height(), {"R", "G", "B"});
     const double span = hi > lo ? hi - lo : 1.0;
-    for (std::size_t p = 0; p < map.pixelCount(); ++p) {
-        const float v = map.at(p, channel);
-        float rgb[3] = {0.0f, 0.0f, 0.0f};
-        if (!std::isnan(v)) magma((v - lo) / span, rgb);
-        for (int c = 0; c < 3; ++c) out.at(p, c) = rgb[c];
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, map.pixelCount(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& pixels) {
+                          for (std::size_t p = pixels.begin(); p != pixels.end(); ++p) {
+                              const float v = map.at(p, channel);
+                              float rgb[3] = {0.0f, 0.0f, 0.0f};
+                              if (!std::isnan(v)) magma((v - lo) / span, rgb);
+                              for (int c = 0; c < 3; ++c) out.at(p, c) = rgb[c];
+                          }
+                      });
     return out;
 }
 

@@ -13,6 +13,7 @@ const std::vector<ErrorMapStyle>& errorMapStyles() {
     // and 0.05 of uv are far beyond smoothing noise; shadow codes are 1 (false) and 2 (missed).
     static const std::vector<ErrorMapStyle> styles = {
         {"beauty.flip", "beauty", "ꟻLIP error", 0.0, 1.0, ""},
+        {"beauty.hdrflip", "beauty.hdrflip", "HDR-ꟻLIP error", 0.0, 1.0, ""},
         {"normal", "normal", "normal error", 0.0, 30.0, "°"},
         {"uv", "uv", "uv error", 0.0, 0.05, ""},
         {"depth", "depth", "relative depth error", 0.0, 0.05, ""},

@@ -24,8 +24,10 @@ struct ErrorMapImage {
 // How one error map is shown: under which buffer of the page, and over which fixed range, so
 // that colours mean the same in every scene and run.
 struct ErrorMapStyle {
-    std::string_view key;     // MetricResult::errorMaps key: "beauty.flip", "normal", ...
-    std::string_view buffer;  // the page's buffer: "beauty", "normal", ...
+    std::string_view key;  // MetricResult::errorMaps key: "beauty.flip", "normal", ...
+    // The page's buffer it is shown under: "beauty", "normal", ...; BUFFER.NAME for a second
+    // map of BUFFER, shown beside its first ("beauty.hdrflip" beside the ꟻLIP map).
+    std::string_view buffer;
     std::string_view label;
     double lo = 0.0, hi = 1.0;
     std::string_view unit;
@@ -36,7 +38,8 @@ const std::vector<ErrorMapStyle>& errorMapStyles();
 
 // Writes every map as DIR/<stem>.<buffer>.png through magma (colour_map.h) over its style's
 // range; a map without a style under its own key, over 0..its maximum. Returns buffer ->
-// ErrorMapImage ("beauty.flip" becomes "beauty"), ready for SceneReport::errorMaps.
+// ErrorMapImage ("beauty.flip" becomes "beauty", "beauty.hdrflip" stays), ready for
+// SceneReport::errorMaps.
 std::map<std::string, ErrorMapImage> writeErrorMapImages(
     const std::map<std::string, core::Image>& errorMaps, const std::filesystem::path& dir,
     const std::string& stem = "error");

@@ -31,7 +31,9 @@ FlipPooled poolFlip(const core::Image& errorMap, const FlipPoolingSettings& sett
         const double nan = std::numeric_limits<double>::quiet_NaN();
         return {nan, nan, nan};
     }
-    std::vector<double> values(pixels.begin(), pixels.end());
+    std::vector<double> values;
+    core::reserveHugePages(values, pixels.size());
+    values.assign(pixels.begin(), pixels.end());
     std::size_t over = 0;
     for (double v : values) over += v > settings.overLevel;
     pooled.over = static_cast<double>(over) / static_cast<double>(values.size());

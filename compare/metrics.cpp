@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -131,17 +132,30 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
         }
         const core::Image& r = refAov ? refDisplay : reference;
         const core::Image& t = refAov ? testDisplay : test;
-        result.values["beauty.psnr"] = psnr(r, t).psnr;
-        SsimSettings ssimSettings;
-        ssimSettings.ssimMap = false;
-        result.values["beauty.ssim"] = ssim(r, t, ssimSettings).ssim;
-        FlipSettings flipSettings;
-        flipSettings.ppd = settings.ppd;
-        FlipResult f = flip(r, t, flipSettings);
+        // PSNR and SSIM beside ꟻLIP and its pooling: each is parallel over rows, but ꟻLIP's
+        // pooling is not, and the other's rows fill the second core meanwhile. Each result is
+        // its own, so the same whatever runs where.
+        double psnrValue = 0.0, ssimValue = 0.0;
+        FlipResult f;
+        FlipPooled pooled;
+        tbb::parallel_invoke(
+            [&] {
+                psnrValue = psnr(r, t).psnr;
+                SsimSettings ssimSettings;
+                ssimSettings.ssimMap = false;
+                ssimValue = ssim(r, t, ssimSettings).ssim;
+            },
+            [&] {
+                FlipSettings flipSettings;
+                flipSettings.ppd = settings.ppd;
+                f = flip(r, t, flipSettings);
+                FlipPoolingSettings pooling;
+                pooling.overLevel = settings.flipOver;
+                pooled = poolFlip(f.errorMap, pooling);
+            });
+        result.values["beauty.psnr"] = psnrValue;
+        result.values["beauty.ssim"] = ssimValue;
         result.values["beauty.flip"] = f.mean;
-        FlipPoolingSettings pooling;
-        pooling.overLevel = settings.flipOver;
-        const FlipPooled pooled = poolFlip(f.errorMap, pooling);
         result.values["beauty.flip_p95"] = pooled.p95;
         result.values["beauty.flip_p99"] = pooled.p99;
         result.values["beauty.flip_over"] = pooled.over;
@@ -151,9 +165,10 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
 
     HdrFlipSettings hdrSettings;
     hdrSettings.ppd = settings.ppd;
-    const HdrFlipResult hdr = hdrFlip(reference, test, hdrSettings);
+    HdrFlipResult hdr = hdrFlip(reference, test, hdrSettings);
     result.values["beauty.hdrflip"] = hdr.mean;
     result.hdrExposures = hdr.range;
+    result.errorMaps["beauty.hdrflip"] = std::move(hdr.errorMap);
 
     const Masks masks = computeMasks(reference, test, maskSettings(settings));
 

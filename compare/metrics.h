@@ -46,9 +46,10 @@ struct MetricResult {
     // outline): a JSON writer must map both.
     std::map<std::string, double> values;
     // One-channel float images of the pair's size: "beauty.flip" always; for AOV images also
-    // "normal" (angle, degrees), "depth" (relative error), "uv" (seam-aware uv distance), "id"
-    // (1 where the visible body differs), "shadow" (1 false, 2 missed shadow) and "emission"
-    // (per-pixel RMS over R, G, B), each 0 where its mask does not reach.
+    // "beauty.hdrflip" (HDR-ꟻLIP's largest error over the exposures), "normal" (angle, degrees),
+    // "depth" (relative error), "uv" (seam-aware uv distance), "id" (1 where the visible body
+    // differs), "shadow" (1 false, 2 missed shadow) and "emission" (per-pixel RMS over R, G, B),
+    // each 0 where its mask does not reach.
     std::map<std::string, core::Image> errorMaps;
     // AOV images: the exposures beauty.hdrflip was taken over (hdr_flip.h), to report beside it.
     std::optional<ExposureRange> hdrExposures;

@@ -32,8 +32,8 @@ const std::set<std::string> ALL_KEYS = {
     "normal.p95_deg",      "uv.mean",         "emission.rmse",
     "smoothness.ratio",    "shadow.iou",      "shadow.false_shadow",
     "shadow.missed_shadow"};
-const std::set<std::string> MAP_KEYS = {"beauty.flip", "normal", "depth",   "uv",
-                                        "id",          "shadow", "emission"};
+const std::set<std::string> MAP_KEYS = {"beauty.flip", "beauty.hdrflip", "normal",  "depth", "uv",
+                                        "id",          "shadow",         "emission"};
 
 template <typename Map>
 std::set<std::string> keys(const Map& m) {

@@ -462,31 +462,65 @@ std::string rendererPanel(const SceneReport& s, const std::string& r,
                            htmlEscape(rendererLabel(r)), t ? htmlEscape(formatMs(*t)) : "");
 }
 
-// The error panel: the map of the current buffer, else the beauty (ꟻLIP) map, with its
-// colour bar. Sets the fallback in the page's data.
+// A map keyed BUFFER.NAME is a second map of BUFFER (error_maps.h), shown beside its first.
+bool isSecondMap(const std::string& key) {
+    return key.find('.') != std::string::npos;
+}
+
+// What a map's caption says beside its label: the exposures of HDR-ꟻLIP (the scene's
+// compare.hdrflip settings), else the colour map.
+std::string mapNote(const SceneReport& s, const std::string& key) {
+    if (key == "beauty.hdrflip" && s.settings.is_object() && s.settings.contains("compare")) {
+        const json& c = s.settings["compare"];
+        if (c.is_object() && c.contains("hdrflip")) {
+            const json& e = c["hdrflip"];
+            return fmt::format("{} exposures, {} to {} stops", e.value("exposures", 0),
+                               formatValue(e.value("start_exposure", 0.0)),
+                               formatValue(e.value("stop_exposure", 0.0)));
+        }
+    }
+    return "magma colour map";
+}
+
+// One error map with its caption and colour bar.
+std::string errorMapFigure(const ErrorMapImage& m, const std::string& note) {
+    const std::string unit = m.unit.empty() ? "" : " " + m.unit;
+    return fmt::format(
+        "<div class=\"frame\"><img src=\"{}\" alt=\"{}\"></div>"
+        "<figcaption><b>{}</b><span>{}</span></figcaption>"
+        "<div class=\"colourbar\" style=\"background:{}\"></div>"
+        "<div class=\"colourbar-labels\"><span>{}{}</span><span>{}{}</span></div>",
+        urlPath(m.path), htmlEscape(m.label), htmlEscape(m.label), htmlEscape(note),
+        magmaCssGradient(), htmlEscape(formatValue(m.lo)), htmlEscape(unit),
+        htmlEscape(formatValue(m.hi)), htmlEscape(unit));
+}
+
+// The error panel: the map of the current buffer (and its second maps, as HDR-ꟻLIP's beside
+// ꟻLIP's), else the beauty (ꟻLIP) map, with their colour bars. Sets the fallback in the page's
+// data.
 std::string errorPanel(const SceneReport& s, const std::string& initial, json& data) {
     std::string fallback;
     if (s.errorMaps.count("beauty"))
         fallback = "beauty";
-    else if (!s.errorMaps.empty())
-        fallback = s.errorMaps.begin()->first;
+    else
+        for (const auto& [b, m] : s.errorMaps)
+            if (!isSecondMap(b) && fallback.empty()) fallback = b;
     data["errorFallback"] = fallback;
     data["errorLabel"] = fallback.empty() ? "" : s.errorMaps.at(fallback).label;
     const std::string shownMap = s.errorMaps.count(initial) ? initial : fallback;
-    const std::string bar = magmaCssGradient();
     std::string h = "<figure data-panel=\"error\">";
-    if (s.errorMaps.empty())
+    if (fallback.empty())
         h += "<div class=\"frame\">" + panelNote("", "", "No error map was written.") + "</div>";
     for (const auto& [b, m] : s.errorMaps) {
-        const std::string unit = m.unit.empty() ? "" : " " + m.unit;
-        h += fmt::format(
-            "<div data-buffer=\"{}\"{}><div class=\"frame\"><img src=\"{}\" alt=\"{}\"></div>"
-            "<figcaption><b>{}</b><span>magma colour map</span></figcaption>"
-            "<div class=\"colourbar\" style=\"background:{}\"></div>"
-            "<div class=\"colourbar-labels\"><span>{}{}</span><span>{}{}</span></div></div>",
-            htmlEscape(b), b == shownMap ? "" : " hidden", urlPath(m.path), htmlEscape(m.label),
-            htmlEscape(m.label), bar, htmlEscape(formatValue(m.lo)), htmlEscape(unit),
-            htmlEscape(formatValue(m.hi)), htmlEscape(unit));
+        if (isSecondMap(b)) continue;
+        h += fmt::format("<div data-buffer=\"{}\"{}>", htmlEscape(b),
+                         b == shownMap ? "" : " hidden");
+        h += errorMapFigure(m, mapNote(s, b));
+        for (const auto& [k, second] : s.errorMaps)
+            if (k.starts_with(b + "."))
+                h +=
+                    "<div class=\"second-map\">" + errorMapFigure(second, mapNote(s, k)) + "</div>";
+        h += "</div>";
     }
     return h + "</figure>\n";
 }

@@ -84,6 +84,16 @@ TEST(ReportHtml, EveryImageExistsAndNothingComesFromTheNetwork) {
     EXPECT_NE(scene.find("realtime.ssss.enabled: true -&gt; false"), std::string::npos);
     EXPECT_NE(scene.find("id=\"swap-range\""), std::string::npos);
     EXPECT_NE(scene.find("ꟻLIP error"), std::string::npos);
+    // HDR-ꟻLIP's map beside ꟻLIP's, under the beauty buffer, its exposures in the caption.
+    const std::size_t beautyMaps = scene.find("<div data-buffer=\"beauty\"><div class=\"frame\">");
+    ASSERT_NE(beautyMaps, std::string::npos);
+    const std::size_t hdrMap = scene.find("src=\"hdrflip.png\"");
+    ASSERT_NE(hdrMap, std::string::npos);
+    EXPECT_LT(scene.find("src=\"flip.png\""), hdrMap);
+    EXPECT_GT(hdrMap, beautyMaps);
+    EXPECT_LT(hdrMap, scene.find("</figure>", beautyMaps));
+    EXPECT_NE(scene.find("<b>HDR-ꟻLIP error</b><span>2 exposures, "), std::string::npos);
+    EXPECT_NE(scene.find(" stops</span>"), std::string::npos);
     const std::string index = readText(dir / "index.html");
     EXPECT_NE(index.find("href=\"sphere/index.html\""), std::string::npos);
     EXPECT_NE(index.find("href=\"sphere_shifted/index.html\""), std::string::npos);

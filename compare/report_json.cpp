@@ -46,6 +46,19 @@ json timingsObject(const SceneReport& scene) {
     return t;
 }
 
+// The error-map images by buffer (a second map of a buffer as BUFFER.NAME): path relative to
+// the scene folder, label and colour range.
+json errorMapsObject(const SceneReport& scene) {
+    json maps = json::object();
+    for (const auto& [buffer, m] : scene.errorMaps)
+        maps[buffer] = {{"path", m.path},
+                        {"label", m.label},
+                        {"lo", jsonNumber(m.lo)},
+                        {"hi", jsonNumber(m.hi)},
+                        {"unit", m.unit}};
+    return maps;
+}
+
 }  // namespace
 
 json metricsJson(const SceneReport& scene) {
@@ -54,7 +67,8 @@ json metricsJson(const SceneReport& scene) {
               {"status", toString(scene.status())},
               {"metrics", numbersJson(scene.metrics)},
               {"checks", checksArray(scene.checks)},
-              {"timings_ms", timingsObject(scene)}};
+              {"timings_ms", timingsObject(scene)},
+              {"error_maps", errorMapsObject(scene)}};
     if (!scene.error.empty()) j["error"] = scene.error;
     if (scene.sequence) j["sequence"] = sequenceJson(*scene.sequence);
     return j;
@@ -100,14 +114,6 @@ json sceneReportJson(const SceneReport& scene) {
                            {"images", r.images}};
     }
     j["renderers"] = renderers;
-    json maps = json::object();
-    for (const auto& [buffer, m] : scene.errorMaps)
-        maps[buffer] = {{"path", m.path},
-                        {"label", m.label},
-                        {"lo", jsonNumber(m.lo)},
-                        {"hi", jsonNumber(m.hi)},
-                        {"unit", m.unit}};
-    j["error_maps"] = maps;
     j["settings"] = scene.settings;
     return j;
 }

@@ -12,7 +12,8 @@
 namespace twinrender::compare {
 
 // {"scene", "description", "status", "metrics": {key: value}, "checks": [{"metric", "value",
-//  "bound", "limit", "status", "message", ["baseline", "delta"]}], ["error"], ["sequence":
+//  "bound", "limit", "status", "message", ["baseline", "delta"]}], "timings_ms",
+//  "error_maps": {buffer: {"path", "label", "lo", "hi", "unit"}}, ["error"], ["sequence":
 //  {"fps", "frames": [{"frame", "metrics"}], "shown_frame", "videos", "charts"}]}
 nlohmann::json metricsJson(const SceneReport& scene);
 // {"status", "scenes": [{"name", "status", "metrics", "timings_ms": {renderer: {stage: ms}},
@@ -24,7 +25,7 @@ void writeMetricsJson(const SceneReport& scene, const std::filesystem::path& fil
 void writeSummaryJson(const RunReport& run, const std::filesystem::path& file);
 
 // Every field of a scene's report as JSON (metricsJson's keys plus "baseline", "renderers"
-// with timings, device, counters and images, "error_maps" and "settings"), and back:
+// with timings, device, counters and images, and "settings"), and back:
 // sceneReportFromJson(sceneReportJson(s)) reproduces s, so shards of a run can be merged into
 // the report one run writes. Throws core::InputError naming `source` for malformed JSON.
 nlohmann::json sceneReportJson(const SceneReport& scene);

@@ -37,6 +37,7 @@ TEST(ReportJson, MetricsJsonHasTheDesignedShape) {
     EXPECT_EQ(j["checks"][4]["baseline"], 0.1);
     EXPECT_NEAR(j["checks"][4]["delta"].get<double>(), 0.1, 1e-12);
     EXPECT_EQ(j["timings_ms"]["realtime"]["ssss"], 1.5);
+    EXPECT_TRUE(j["error_maps"].is_object());
     EXPECT_EQ(numberFromJson(j["metrics"]["beauty.psnr"]), std::numeric_limits<double>::infinity());
     EXPECT_TRUE(std::isnan(*numberFromJson(j["checks"][1]["value"])));
     EXPECT_FALSE(numberFromJson(json("text")));

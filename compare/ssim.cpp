@@ -85,6 +85,34 @@ void convolveRgbRow(const double* __restrict padded, const double* __restrict ke
     }
 }
 
+// SSIM of each of n values from the filtered moments (Wang et al. 2004, eq. 13, with the
+// variances and covariance as E[x^2] - E[x]^2 and E[xy] - E[x] E[y]).
+TWINRENDER_ROW_KERNEL
+void ssimRow(const double* __restrict ux, const double* __restrict uy, const double* __restrict uxx,
+             const double* __restrict uyy, const double* __restrict uxy, double C1, double C2,
+             std::size_t n, double* __restrict out) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const double vx = uxx[i] - ux[i] * ux[i];
+        const double vy = uyy[i] - uy[i] * uy[i];
+        const double vxy = uxy[i] - ux[i] * uy[i];
+        const double A1 = 2.0 * ux[i] * uy[i] + C1;
+        const double A2 = 2.0 * vxy + C2;
+        const double B1 = ux[i] * ux[i] + uy[i] * uy[i] + C1;
+        const double B2 = vx + vy + C2;
+        out[i] = (A1 * A2) / (B1 * B2);
+    }
+}
+
+// One moment's row (3 values a pixel) padded by `radius` pixels on each side, mirrored as
+// reflectIndex mirrors.
+void padRow(const double* row, int w, int radius, double* padded) {
+    std::copy(row, row + 3 * static_cast<std::size_t>(w), padded + 3 * radius);
+    for (int x = -radius; x < 0; ++x)
+        for (int c = 0; c < 3; ++c) padded[3 * (x + radius) + c] = row[3 * reflectIndex(x, w) + c];
+    for (int x = w; x < w + radius; ++x)
+        for (int c = 0; c < 3; ++c) padded[3 * (x + radius) + c] = row[3 * reflectIndex(x, w) + c];
+}
+
 }  // namespace
 
 SsimResult ssim(const core::Image& reference, const core::Image& test,
@@ -128,7 +156,7 @@ SsimResult ssim(const core::Image& reference, const core::Image& test,
     // 2-D Gaussian scikit-image applies; nothing larger than a few rows is ever stored.
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         std::vector<double> vertical(MOMENTS * rowValues), filtered(MOMENTS * rowValues);
-        std::vector<double> padded(paddedValues);
+        std::vector<double> padded(paddedValues), values(rowValues);
         for (int y = rows.begin(); y != rows.end(); ++y) {
             std::fill(vertical.begin(), vertical.end(), 0.0);
             double* v[MOMENTS];
@@ -139,38 +167,26 @@ SsimResult ssim(const core::Image& reference, const core::Image& test,
                                   rowValues, v[0], v[1], v[2], v[3], v[4]);
             }
             for (int m = 0; m < MOMENTS; ++m) {
-                for (int x = -radius; x < w + radius; ++x) {
-                    const std::size_t src = 3 * static_cast<std::size_t>(reflectIndex(x, w));
-                    const std::size_t dst = 3 * static_cast<std::size_t>(x + radius);
-                    for (int c = 0; c < 3; ++c) padded[dst + c] = v[m][src + c];
-                }
+                padRow(v[m], w, radius, padded.data());
                 convolveRgbRow(padded.data(), window.data(), winSize, rowValues,
                                &filtered[m * rowValues]);
             }
-            const double* ux = &filtered[0 * rowValues];
-            const double* uy = &filtered[1 * rowValues];
-            const double* uxx = &filtered[2 * rowValues];
-            const double* uyy = &filtered[3 * rowValues];
-            const double* uxy = &filtered[4 * rowValues];
-            const bool insideY = y >= pad && y < h - pad;
+            ssimRow(&filtered[0 * rowValues], &filtered[1 * rowValues], &filtered[2 * rowValues],
+                    &filtered[3 * rowValues], &filtered[4 * rowValues], C1, C2, rowValues,
+                    values.data());
+            // Summed in x order, per channel, inside the cropped border.
             std::array<double, 3> sums{};
-            for (int x = 0; x < w; ++x) {
-                double pixel = 0.0;
-                for (int c = 0; c < 3; ++c) {
-                    const std::size_t i = 3 * static_cast<std::size_t>(x) + c;
-                    const double vx = uxx[i] - ux[i] * ux[i];
-                    const double vy = uyy[i] - uy[i] * uy[i];
-                    const double vxy = uxy[i] - ux[i] * uy[i];
-                    const double A1 = 2.0 * ux[i] * uy[i] + C1;
-                    const double A2 = 2.0 * vxy + C2;
-                    const double B1 = ux[i] * ux[i] + uy[i] * uy[i] + C1;
-                    const double B2 = vx + vy + C2;
-                    const double S = (A1 * A2) / (B1 * B2);
-                    pixel += S;
-                    if (insideY && x >= pad && x < w - pad) sums[c] += S;
+            if (y >= pad && y < h - pad)
+                for (int x = pad; x < w - pad; ++x)
+                    for (int c = 0; c < 3; ++c)
+                        sums[c] += values[3 * static_cast<std::size_t>(x) + c];
+            if (map)
+                for (int x = 0; x < w; ++x) {
+                    double pixel = 0.0;
+                    for (int c = 0; c < 3; ++c)
+                        pixel += values[3 * static_cast<std::size_t>(x) + c];
+                    map->at(x, y, 0) = static_cast<float>(pixel / 3.0);
                 }
-                if (map) map->at(x, y, 0) = static_cast<float>(pixel / 3.0);
-            }
             rowSums[static_cast<std::size_t>(y)] = sums;
         }
     });

@@ -12,13 +12,9 @@
 
 namespace twinrender::core {
 
-namespace {
-
-// Asks the kernel to back the whole 2 MiB pages inside [data, data + bytes) with huge pages
-// (transparent huge pages in "madvise" mode): an AOV frame is tens of MB, and faulting it in
-// 4 KiB at a time while zeroing it costs more than the zeroing. Only a hint.
 void adviseHugePages([[maybe_unused]] void* data, [[maybe_unused]] std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (bytes < (std::size_t(4) << 20)) return;
     constexpr std::uintptr_t HUGE_PAGE = std::uintptr_t(1) << 21;
     const auto begin = (reinterpret_cast<std::uintptr_t>(data) + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
     const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(HUGE_PAGE - 1);
@@ -26,18 +22,27 @@ void adviseHugePages([[maybe_unused]] void* data, [[maybe_unused]] std::size_t b
 #endif
 }
 
-}  // namespace
-
 Image::Image(int width, int height, std::vector<std::string> channelNames)
     : mWidth(width), mHeight(height), mChannelNames(std::move(channelNames)) {
     if (width < 0 || height < 0)
         throw std::invalid_argument(fmt::format("image size {}x{} is negative", width, height));
     const std::size_t n = static_cast<std::size_t>(width) * height * mChannelNames.size();
     // Allocated untouched first, so that the advice comes before the pages are faulted in.
-    mPixels.reserve(n);
-    if (n * sizeof(float) >= (std::size_t(4) << 20))
-        adviseHugePages(mPixels.data(), n * sizeof(float));
+    reserveHugePages(mPixels, n);
     mPixels.assign(n, 0.0f);
+}
+
+Image::Image(int width, int height, std::vector<std::string> channelNames,
+             std::vector<float> pixels)
+    : mWidth(width),
+      mHeight(height),
+      mChannelNames(std::move(channelNames)),
+      mPixels(std::move(pixels)) {
+    if (width < 0 || height < 0 ||
+        mPixels.size() != static_cast<std::size_t>(width) * height * mChannelNames.size())
+        throw std::invalid_argument(
+            fmt::format("{} values do not fill a {}x{} image of {} channels", mPixels.size(), width,
+                        height, mChannelNames.size()));
 }
 
 int Image::channelIndex(std::string_view name) const {

@@ -1,27 +1,24 @@
 #include "core/image_io.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstdint>
+#include <exception>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/oiio_module.h"
+#include "core/png_io.h"
 
 namespace twinrender::core {
 namespace fs = std::filesystem;
-namespace OIIO = OIIO_NAMESPACE;
 
 namespace {
-
-// The largest image read: the camera's largest width and height (scene.h), and at most 2^28
-// values (1 GiB of floats), so that a damaged header cannot ask for more memory than any
-// image the suite writes.
-constexpr int MOST_IMAGE_SIDE = 16384;
-constexpr double MOST_IMAGE_VALUES = 268435456.0;
 
 // OpenEXR allocates what a header attribute's size field says before it reads the value, so a
 // few flipped bytes of a header ask for gigabytes: check every attribute's size against the
@@ -92,8 +89,7 @@ void checkExrHeader(const fs::path& path) {
                 in.seekg(bytes, std::ios::cur);
             }
         }
-        if (width < 1.0 || height < 1.0 || width > MOST_IMAGE_SIDE || height > MOST_IMAGE_SIDE ||
-            width * height * std::max(channels, 1.0) > MOST_IMAGE_VALUES)
+        if (!imageSizeError(width, height, 1.0, std::max(channels, 1.0)).empty())
             throw corrupt(
                 fmt::format("part {} has a data window of {} x {} pixels with {} "
                             "channels; images up to {} pixels a side and {:g} values "
@@ -103,55 +99,64 @@ void checkExrHeader(const fs::path& path) {
     }
 }
 
-}  // namespace
-
-Image readImage(const fs::path& path) {
-    std::error_code ec;
-    if (fs::is_regular_file(path, ec)) checkExrHeader(path);
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in)
-        throw InputError(fmt::format("{}: cannot read the image ({}); check the path and format",
-                                     path.string(), OIIO::geterror()));
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width < 1 || spec.height < 1 || spec.width > MOST_IMAGE_SIDE ||
-        spec.height > MOST_IMAGE_SIDE || spec.depth > 1 || spec.nchannels < 1 ||
-        double(spec.width) * spec.height * spec.nchannels > MOST_IMAGE_VALUES)
-        throw InputError(fmt::format(
-            "{}: the image is {} x {} x {} pixels with {} channels; flat images up to {} pixels "
-            "a side and {:g} values in all are read (the header may be damaged)",
-            path.string(), spec.width, spec.height, spec.depth, spec.nchannels, MOST_IMAGE_SIDE,
-            MOST_IMAGE_VALUES));
-    std::vector<std::string> names;
-    const bool isFloat = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
-                         spec.format.basetype == OIIO::TypeDesc::HALF;
-    for (int c = 0; c < spec.nchannels; ++c) {
-        std::string name = c < static_cast<int>(spec.channelnames.size())
-                               ? spec.channelnames[c]
-                               : fmt::format("channel{}", c);
-        names.push_back(std::move(name));
-    }
-    if (!isFloat) {
-        // Plain images: name the channels by position, whatever the file says.
+// Names the channels (a plain image's by position, whatever the file says) and makes a grey
+// image R = G = B.
+Image toImage(DecodedPixels d) {
+    std::vector<std::string> names = d.channelNames;
+    for (std::size_t c = 0; c < names.size(); ++c)
+        if (names[c].empty()) names[c] = fmt::format("channel{}", c);
+    if (!d.isFloat) {
         static const char* kRgba[] = {"R", "G", "B", "A"};
-        if (spec.nchannels == 1)
+        if (names.size() == 1)
             names = {"Y"};
         else
-            for (int c = 0; c < spec.nchannels && c < 4; ++c) names[c] = kRgba[c];
+            for (std::size_t c = 0; c < names.size() && c < 4; ++c) names[c] = kRgba[c];
     }
-    Image image(spec.width, spec.height, names);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels().data()))
-        throw InputError(
-            fmt::format("{}: the image data cannot be read ({}); the file may be "
-                        "truncated",
-                        path.string(), in->geterror()));
+    const int channels = static_cast<int>(names.size());
+    Image image(d.width, d.height, std::move(names), std::move(d.values));
     // A grey image stands for R = G = B.
-    if (!isFloat && spec.nchannels <= 2) {
-        Image rgb(spec.width, spec.height, {"R", "G", "B"});
+    if (!d.isFloat && channels <= 2) {
+        Image rgb(d.width, d.height, {"R", "G", "B"});
         for (std::size_t p = 0; p < image.pixelCount(); ++p)
             for (int c = 0; c < 3; ++c) rgb.at(p, c) = image.at(p, 0);
         return rgb;
     }
     return image;
+}
+
+// Throws InputError naming the file when an OpenImageIO call said what went wrong.
+void check(const fs::path& path, const std::string& error) {
+    if (!error.empty()) throw InputError(fmt::format("{}: {}", path.string(), error));
+}
+
+}  // namespace
+
+Image readImage(const fs::path& path) {
+    // PNGs through libpng (png_io.h): such a process never loads OpenImageIO.
+    if (isPngFile(path))
+        if (std::optional<DecodedPixels> png = readPng(path)) return toImage(std::move(*png));
+    std::error_code ec;
+    if (fs::is_regular_file(path, ec)) checkExrHeader(path);
+    DecodedPixels decoded;
+    check(path, oiio::api().read(path.string(), decoded));
+    return toImage(std::move(decoded));
+}
+
+std::pair<Image, Image> readImages(const fs::path& first, const fs::path& second) {
+    std::pair<Image, Image> images;
+    std::exception_ptr errors[2];
+    auto read = [](const fs::path& path, Image& image, std::exception_ptr& error) {
+        try {
+            image = readImage(path);
+        } catch (...) {
+            error = std::current_exception();
+        }
+    };
+    tbb::parallel_invoke([&] { read(first, images.first, errors[0]); },
+                         [&] { read(second, images.second, errors[1]); });
+    for (const auto& error : errors)
+        if (error) std::rethrow_exception(error);
+    return images;
 }
 
 void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
@@ -178,32 +183,14 @@ void writeTextFile(const fs::path& path, std::string_view text) {
     });
 }
 
-namespace {
-
-void writeWithOiio(const fs::path& path, const OIIO::ImageSpec& spec, const void* data,
-                   OIIO::TypeDesc dataType) {
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out || !out->open(path.string(), spec) || !out->write_image(dataType, data) ||
-        !out->close())
-        throw InputError(
-            fmt::format("{}: cannot write the image ({}); check that the folder is "
-                        "writable",
-                        path.string(), out ? out->geterror() : OIIO::geterror()));
-}
-
-}  // namespace
-
 void writeImage(const Image& image, const fs::path& path) {
-    const std::string ext = path.extension().string();
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     writeFileAtomically(path, [&](const fs::path& tmp) {
         if (ext == ".exr") {
-            OIIO::ImageSpec spec(image.width(), image.height(), image.channelCount(),
-                                 OIIO::TypeDesc::FLOAT);
-            spec.channelnames = image.channelNames();
-            spec.alpha_channel = image.channelIndex("A");
-            spec.z_channel = image.channelIndex("Z");
-            spec.attribute("compression", "zip");
-            writeWithOiio(tmp, spec, image.pixels().data(), OIIO::TypeDesc::FLOAT);
+            check(path, oiio::api().writeFloat(tmp.string(), image.width(), image.height(),
+                                               image.channelNames(), image.channelIndex("A"),
+                                               image.channelIndex("Z"), image.pixels().data()));
             return;
         }
         // 8-bit formats: R, G, B (and A) only.
@@ -211,20 +198,20 @@ void writeImage(const Image& image, const fs::path& path) {
         for (const char* n : {"R", "G", "B"}) src.push_back(image.requireChannel(n));
         if (image.hasChannel("A")) src.push_back(image.channelIndex("A"));
         const int nc = static_cast<int>(src.size());
-        std::vector<unsigned char> bytes(image.pixelCount() * nc);
+        std::vector<unsigned char> bytes;
+        reserveHugePages(bytes, image.pixelCount() * nc);
+        bytes.resize(image.pixelCount() * nc);
         for (std::size_t p = 0; p < image.pixelCount(); ++p)
             for (int c = 0; c < nc; ++c) {
                 float v = image.at(p, src[c]);
                 v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;  // NaN -> 0
                 bytes[p * nc + c] = static_cast<unsigned char>(v * 255.0f + 0.5f);
             }
-        OIIO::ImageSpec spec(image.width(), image.height(), nc, OIIO::TypeDesc::UINT8);
-        if (nc == 4) spec.alpha_channel = 3;
-        // zlib level 1: on a 1920x1080 error map (noisy, 2 MB) level 6, the default, takes
-        // 0.45 s to level 1's 0.04 s, for a file 17 % smaller; these images are written once
-        // per render or comparison and read by a browser.
-        spec.attribute("png:compressionLevel", 1);
-        writeWithOiio(tmp, spec, bytes.data(), OIIO::TypeDesc::UINT8);
+        if (ext == ".png")
+            writePng(tmp, image.width(), image.height(), nc, bytes.data());
+        else
+            check(path, oiio::api().writeBytes(tmp.string(), image.width(), image.height(), nc,
+                                               bytes.data()));
     });
 }
 

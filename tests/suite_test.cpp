@@ -65,8 +65,12 @@ TEST(Suite, TheDefaultScenesPassTheirThresholds) {
     for (const char* f :
          {"index.html", "summary.json", "summary.md", "junit.xml", "ringworld/index.html",
           "ringworld/metrics.json", "ringworld/realtime.exr", "ringworld/raymarch.exr",
-          "ringworld/error.beauty.png"})
+          "ringworld/error.beauty.png", "ringworld/error.beauty.hdrflip.png"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
+    // The HDR-ꟻLIP map on the scene's page, beside the ꟻLIP map, with its exposures.
+    const std::string page = tt::readText(out / "ringworld" / "index.html");
+    EXPECT_NE(page.find("src=\"error.beauty.hdrflip.png\""), std::string::npos);
+    EXPECT_NE(page.find("<b>HDR-ꟻLIP error</b><span>"), std::string::npos);
     std::ifstream in(out / "summary.json");
     const auto summary = nlohmann::json::parse(in);
     EXPECT_EQ(summary["status"], "pass");
@@ -260,6 +264,9 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
     EXPECT_NE(all.output.find("beauty.hdrflip over "), std::string::npos) << all.output;
     EXPECT_TRUE(fs::exists(dir / "c1" / "metrics.json"));
     EXPECT_TRUE(fs::exists(dir / "c1" / "error.beauty.png"));
+    EXPECT_TRUE(fs::exists(dir / "c1" / "error.beauty.hdrflip.png"));
+    EXPECT_EQ(tt::readJson(dir / "c1" / "metrics.json")["error_maps"]["beauty.hdrflip"]["path"],
+              "error.beauty.hdrflip.png");
     // Plain images: the beauty metrics only, and a bound that fails.
     tt::writeFile(dir / "strict.toml",
                   "\"beauty.flip\" = { max = 0.001 }\n\"normal.mean_deg\" = { max = 1.0 }\n");
@@ -284,6 +291,13 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
     const double overLow =
         tt::readJson(dir / "c5" / "metrics.json")["metrics"]["beauty.flip_over"].get<double>();
     EXPECT_GT(overLow, overDefault);
+    // A PNG pair never loads OpenImageIO (core/oiio_module.h); the dynamic loader names each
+    // library it loads.
+    const auto loaded =
+        tt::runTwinrender(pngs + " --out " + (dir / "c7").string(), "LD_DEBUG=libs");
+    ASSERT_EQ(loaded.exitCode, 0) << loaded.output;
+    EXPECT_NE(loaded.output.find("libpng16"), std::string::npos) << loaded.output;
+    EXPECT_EQ(loaded.output.find("libOpenImageIO"), std::string::npos) << loaded.output;
     EXPECT_EQ(tt::runTwinrender(pngs + " --flip-over 1 --out " + (dir / "c6").string()).exitCode,
               4);
     EXPECT_FALSE(fs::exists(dir / "c6"));

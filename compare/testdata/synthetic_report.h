@@ -1,8 +1,8 @@
 // A small report made without any renderer, for the report tests (compare/report_test.cpp)
 // and the browser test (tests/report_browser_test.cpp): two scenes of tiny AOV images (a lit
 // sphere of two bodies; the "real-time" one slightly larger and shifted), their buffer PNGs
-// and ꟻLIP map written into the report folder, metrics, checks against thresholds and a
-// baseline, timings and settings.
+// and ꟻLIP and HDR-ꟻLIP maps written into the report folder, metrics, checks against thresholds and
+// a baseline, timings and settings.
 #pragma once
 
 #include <fmt/format.h>
@@ -15,6 +15,7 @@
 #include "compare/buffer_display.h"
 #include "compare/colour_map.h"
 #include "compare/flip.h"
+#include "compare/hdr_flip.h"
 #include "compare/report.h"
 #include "compare/thresholds.h"
 #include "core/frame.h"
@@ -77,6 +78,9 @@ inline SceneReport syntheticScene(const std::filesystem::path& dir, const std::s
         flip(core::tonemappedBeauty(ref, 1.0f), core::tonemappedBeauty(test, 1.0f));
     writeErrorMapPng(f.errorMap, 0, 0.0, 1.0, sceneDir / "flip.png");
     s.errorMaps["beauty"] = {"flip.png", "ꟻLIP error", 0.0, 1.0, ""};
+    const HdrFlipResult hdr = hdrFlip(ref, test);
+    writeErrorMapPng(hdr.errorMap, 0, 0.0, 1.0, sceneDir / "hdrflip.png");
+    s.errorMaps["beauty.hdrflip"] = {"hdrflip.png", "HDR-ꟻLIP error", 0.0, 1.0, ""};
 
     s.metrics = {{"beauty.psnr", 30.0 - 4.0 * shift},
                  {"beauty.ssim", 0.98 - 0.02 * shift},
@@ -102,7 +106,12 @@ inline SceneReport syntheticScene(const std::filesystem::path& dir, const std::s
     s.settings = {
         {"realtime", {{"ssss", {{"enabled", shift < 1.0}, {"separable", true}}}, {"depth", "log"}}},
         {"raymarch", {{"level", 0.13}}},
-        {"camera", {{"width", w}, {"height", h}}}};
+        {"camera", {{"width", w}, {"height", h}}},
+        {"compare",
+         {{"hdrflip",
+           {{"start_exposure", hdr.range.start},
+            {"stop_exposure", hdr.range.stop},
+            {"exposures", hdr.range.count}}}}}};
     return s;
 }
 

@@ -1,0 +1,40 @@
+#include "core/oiio_module.h"
+
+#include <dlfcn.h>
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace twinrender::core::oiio {
+
+namespace {
+
+const Api& load() {
+    // The module as this build made it (core/CMakeLists.txt).
+    const char* path = TWINRENDER_OIIO_MODULE;
+    // RTLD_LOCAL: OpenImageIO's symbols stay out of the program's way; the module is never
+    // unloaded.
+    void* handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!handle)
+        throw InputError(fmt::format(
+            "cannot load the OpenImageIO module {} ({}), which reads and writes every image "
+            "other than PNG; rebuild twinrender (cmake --build) and check that OpenImageIO is "
+            "installed (scripts/setup)",
+            path, dlerror()));
+    auto entry = reinterpret_cast<EntryPoint>(dlsym(handle, ENTRY_POINT));
+    if (!entry)
+        throw InputError(
+            fmt::format("{}: the OpenImageIO module has no entry point {}; rebuild "
+                        "twinrender (cmake --build)",
+                        path, ENTRY_POINT));
+    return *entry();
+}
+
+}  // namespace
+
+const Api& api() {
+    static const Api& loaded = load();
+    return loaded;
+}
+
+}  // namespace twinrender::core::oiio
