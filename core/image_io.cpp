@@ -1,17 +1,29 @@
 #include "core/image_io.h"
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <atomic>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
 
 #include "core/error.h"
 
 namespace twinrender::core {
 namespace fs = std::filesystem;
 namespace OIIO = OIIO_NAMESPACE;
+
+namespace {
+
+OutputError cannotWrite(const fs::path& path, const std::string& why) {
+    return OutputError(fmt::format(
+        "{}: cannot write the file ({}); check that its folder is writable and its disk not full",
+        path.string(), why));
+}
+
+}  // namespace
 
 Image readImage(const fs::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
@@ -54,38 +66,57 @@ Image readImage(const fs::path& path) {
 
 void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     static std::atomic<unsigned> counter{0};
-    if (path.has_parent_path()) fs::create_directories(path.parent_path());
     fs::path tmp = path;
     tmp.replace_filename(fmt::format(".{}.tmp{}-{}{}", path.stem().string(), getpid(), counter++,
                                      path.extension().string()));
-    try {
-        write(tmp);
-        fs::rename(tmp, path);
-    } catch (...) {
+    const auto removeTmp = [&] {
         std::error_code ec;
         fs::remove(tmp, ec);
+    };
+    try {
+        if (path.has_parent_path()) fs::create_directories(path.parent_path());
+        write(tmp);
+        fs::rename(tmp, path);
+    } catch (const fs::filesystem_error& e) {
+        removeTmp();
+        throw cannotWrite(path, e.code().message());
+    } catch (...) {
+        removeTmp();
         throw;
     }
 }
 
 void writeTextFile(const fs::path& path, std::string_view text) {
     writeFileAtomically(path, [&](const fs::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        if (!out) throw InputError(fmt::format("{}: cannot write the file", path.string()));
+        // POSIX calls, not a stream: a full disk or a file size limit shows in write's and
+        // close's result with its errno, where a stream only sets a flag.
+        const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+        if (fd < 0) throw cannotWrite(path, std::strerror(errno));
+        for (std::size_t done = 0; done < text.size();) {
+            const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) {
+                const int error = errno;
+                ::close(fd);
+                throw cannotWrite(path, std::strerror(error));
+            }
+            done += static_cast<std::size_t>(n);
+        }
+        if (::close(fd) != 0) throw cannotWrite(path, std::strerror(errno));
     });
 }
 
 namespace {
 
-void writeWithOiio(const fs::path& path, const OIIO::ImageSpec& spec, const void* data,
-                   OIIO::TypeDesc dataType) {
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out || !out->open(path.string(), spec) || !out->write_image(dataType, data) ||
+// Writes `tmp`; errors name `path`, the file the user asked for.
+void writeWithOiio(const fs::path& tmp, const fs::path& path, const OIIO::ImageSpec& spec,
+                   const void* data, OIIO::TypeDesc dataType) {
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    if (!out || !out->open(tmp.string(), spec) || !out->write_image(dataType, data) ||
         !out->close())
-        throw InputError(
-            fmt::format("{}: cannot write the image ({}); check that the folder is "
-                        "writable",
+        throw OutputError(
+            fmt::format("{}: cannot write the image ({}); check that its folder is writable and "
+                        "its disk not full",
                         path.string(), out ? out->geterror() : OIIO::geterror()));
 }
 
@@ -101,7 +132,7 @@ void writeImage(const Image& image, const fs::path& path) {
             spec.alpha_channel = image.channelIndex("A");
             spec.z_channel = image.channelIndex("Z");
             spec.attribute("compression", "zip");
-            writeWithOiio(tmp, spec, image.pixels().data(), OIIO::TypeDesc::FLOAT);
+            writeWithOiio(tmp, path, spec, image.pixels().data(), OIIO::TypeDesc::FLOAT);
             return;
         }
         // 8-bit formats: R, G, B (and A) only.
@@ -122,7 +153,7 @@ void writeImage(const Image& image, const fs::path& path) {
         // 0.45 s to level 1's 0.04 s, for a file 17 % smaller; these images are written once
         // per render or comparison and read by a browser.
         spec.attribute("png:compressionLevel", 1);
-        writeWithOiio(tmp, spec, bytes.data(), OIIO::TypeDesc::UINT8);
+        writeWithOiio(tmp, path, spec, bytes.data(), OIIO::TypeDesc::UINT8);
     });
 }
 
