@@ -19,8 +19,8 @@ namespace {
 
 core::OutputError cannotWriteIn(const fs::path& dir, const std::string& why) {
     return core::OutputError(
-        fmt::format("{}: cannot write in the output folder ({}); give another --out or make it "
-                    "writable (and check that its disk is not full)",
+        fmt::format("{}: cannot write in the output folder ({}); give another --out, or check "
+                    "that it is writable and its disk not full",
                     dir.string(), why));
 }
 

@@ -52,9 +52,10 @@ struct Scene {
 
 Scene smallPlanet() {
     Scene s;
-    s.scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/planet.toml",
-                                  {"bodies.0.particles=2000", "camera.width=64", "camera.height=48",
-                                   "realtime.shadow_map.resolution=256"});
+    const std::vector<std::string> overrides = {"bodies.0.particles=2000", "camera.width=64",
+                                                "camera.height=48",
+                                                "realtime.shadow_map.resolution=256"};
+    s.scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/planet.toml", overrides);
     s.particles = tr::core::buildParticles(s.scene);
     s.materials = tr::core::loadMaterials(s.scene);
     return s;

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 #include <thread>
@@ -211,6 +212,22 @@ int wait(const Child& c) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// Waits (up to a minute) until process `pid` catches `signal` (SigCgt in /proc/PID/status).
+bool waitForHandler(pid_t pid, int signal) {
+    const auto until = Clock::now() + std::chrono::minutes(1);
+    while (Clock::now() < until) {
+        std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+        std::string line;
+        while (std::getline(in, line))
+            if (line.rfind("SigCgt:", 0) == 0 &&
+                (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1)
+                return true;
+        if (waitpid(pid, nullptr, WNOHANG) != 0) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+}
+
 std::vector<std::string> split(const std::string& args) {
     std::vector<std::string> out;
     std::size_t at = 0;
@@ -247,8 +264,11 @@ TEST_P(InterruptTest, StopsPromptlyWith128PlusTheSignalAndLeavesNoReport) {
                                        " --vary realtime.ssss.enabled=true,false --out " +
                                        out.string();
     const Child c = start(split(args), dir / "log.txt");
-    // Until the raymarcher is under way: its render is what the signal must cut short.
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    // Until the handlers are installed (a signal before main would end the process by its
+    // default action), then a second more: the raymarcher is under way, and its render is
+    // what the signal must cut short.
+    ASSERT_TRUE(waitForHandler(c.pid, p.signal)) << tt::readText(c.log);
+    std::this_thread::sleep_for(std::chrono::seconds(1));
     ASSERT_EQ(waitpid(c.pid, nullptr, WNOHANG), 0)
         << "ended before the signal: " << tt::readText(c.log);
     const auto sent = Clock::now();
