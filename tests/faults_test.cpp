@@ -244,6 +244,11 @@ struct Interruption {
     int signal;
 };
 
+// How the test's parameter shows in its CTest name.
+void PrintTo(const Interruption& p, std::ostream* os) {
+    *os << p.command << " SIG" << sigabbrev_np(p.signal);
+}
+
 class InterruptTest : public ::testing::TestWithParam<Interruption> {};
 
 }  // namespace
