@@ -8,16 +8,20 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
 #include "app/exit_code.h"
+#include "app/interruption.h"
+#include "app/output_folder.h"
 #include "app/render_job.h"
 #include "app/sequence_run.h"
 #include "app/shard.h"
 #include "app/study_command.h"
 #include "app/suite_commands.h"
 #include "app/sweep_command.h"
+#include "core/cancellation.h"
 #include "core/error.h"
 
 namespace tr = twinrender;
@@ -106,6 +110,7 @@ ExitCode runRender(const std::string& scenePath, const std::string& renderer,
     std::vector<std::unique_ptr<tr::core::Renderer>> renderers;
     for (const auto& name : names)
         renderers.push_back(tr::app::makeRenderer(name, devices, loaded));
+    tr::app::prepareOutputFolder(dir);
     for (std::size_t i = 0; i < names.size(); ++i) {
         const tr::core::Frame frame = tr::app::render(*renderers[i], names[i], loaded);
         tr::app::writeRender(loaded, frame, dir);
@@ -245,6 +250,7 @@ int main(int argc, char** argv) {
         return exitStatus(rc == 0 ? ExitCode::Pass : ExitCode::BadInput);
     }
 
+    tr::app::installInterruptHandlers();
     try {
         const int requested = *runCmd     ? runCommon.threads
                               : *sweepCmd ? sweepCommon.threads
@@ -302,6 +308,12 @@ int main(int argc, char** argv) {
             }
         });
         return exitStatus(rc);
+    } catch (const tr::core::Cancelled&) {
+        const int signal = tr::app::interruptSignal();
+        const char* name = sigabbrev_np(signal);
+        std::fprintf(stderr, "\nstopped by SIG%s: no report written, no temporary file left\n",
+                     name ? name : "?");
+        return 128 + signal;
     } catch (const tr::core::InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return exitStatus(ExitCode::BadInput);

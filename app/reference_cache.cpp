@@ -1,14 +1,19 @@
 #include "app/reference_cache.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include "app/build_identity.h"
 #include "core/error.h"
+#include "core/frame.h"
 #include "core/image_io.h"
 
 namespace twinrender::app {
@@ -97,34 +102,108 @@ std::pair<std::string, json> referenceKey(const LoadedScene& s,
     return {h.hex(), what};
 }
 
+namespace {
+
+// The cached render in `dir`, or nothing when the entry is not a whole, readable render of
+// this scene's size (a folder left by an older version, a file damaged on disk): the caller
+// renders it anew.
+std::optional<core::Frame> readEntry(const LoadedScene& s, const fs::path& dir, std::string& why) {
+    const fs::path exr = dir / "raymarch.exr", meta = dir / "raymarch.json";
+    if (!fs::is_regular_file(exr) || !fs::is_regular_file(meta) ||
+        !fs::is_regular_file(dir / "key.json")) {
+        why = "incomplete";
+        return std::nullopt;
+    }
+    core::Frame r;
+    try {
+        r.image = core::readImage(exr);
+    } catch (const core::InputError& e) {
+        why = e.what();
+        return std::nullopt;
+    }
+    // EXR keeps channels in its own order: compare them as sets.
+    auto names = r.image.channelNames(), expected = core::aov::channelNames();
+    std::sort(names.begin(), names.end());
+    std::sort(expected.begin(), expected.end());
+    if (r.image.width() != s.scene.camera.width || r.image.height() != s.scene.camera.height ||
+        names != expected) {
+        why = fmt::format("{}: {}x{} with other channels than a reference render of {}x{}",
+                          exr.string(), r.image.width(), r.image.height(), s.scene.camera.width,
+                          s.scene.camera.height);
+        return std::nullopt;
+    }
+    std::ifstream in(meta);
+    const json j = json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) {
+        why = meta.string() + ": not JSON";
+        return std::nullopt;
+    }
+    r.renderer = "raymarch";
+    r.device = j.value("device", "");
+    r.settings = j.value("settings", json());
+    const json timings = j.value("timings_ms", json::object());
+    const json counters = j.value("counters", json::object());
+    for (const auto& [k, v] : timings.items())
+        if (v.is_number()) r.timingsMs[k] = v.get<double>();
+    for (const auto& [k, v] : counters.items())
+        if (v.is_number()) r.counters[k] = v.get<double>();
+    r.particleCount = j.value("particle_count", std::size_t{0});
+    r.display = core::tonemappedBeauty(r.image, static_cast<float>(s.scene.camera.exposure));
+    return r;
+}
+
+// A name in the cache folder that no other process and no other call of this one uses.
+fs::path uniqueName(const fs::path& dir, const std::string& stem) {
+    static std::atomic<unsigned> counter{0};
+    return dir / fmt::format(".{}.tmp{}-{}", stem, getpid(), counter++);
+}
+
+// Puts the entry written in `staged` at `dir` by one rename of the folder: a process that
+// shares the cache sees no entry or a whole one. When another process has put its entry
+// there first (rename fails: the folder exists and is not empty), that one stays (the same
+// render: the key says everything it depends on) and `staged` goes. A `stale` entry (one
+// readEntry refused) is moved aside first.
+void publish(const fs::path& staged, const fs::path& dir, bool stale) {
+    std::error_code ec;
+    if (stale) {
+        const fs::path aside = uniqueName(dir.parent_path(), dir.filename().string() + ".stale");
+        fs::rename(dir, aside, ec);
+        fs::remove_all(aside, ec);
+    }
+    fs::rename(staged, dir, ec);
+    if (ec) fs::remove_all(staged, ec);
+}
+
+}  // namespace
+
 const core::Frame& ReferenceCache::get(const LoadedScene& s, const std::string& key,
                                        const json& what) {
     if (auto it = mLoaded.find(key); it != mLoaded.end()) return it->second;
     const fs::path dir = mDir / key;
+    std::string why;
+    std::optional<core::Frame> cached;
+    const bool exists = fs::exists(dir);
+    if (exists) cached = readEntry(s, dir, why);
     core::Frame r;
-    if (fs::is_regular_file(dir / "raymarch.exr") && fs::is_regular_file(dir / "raymarch.json")) {
-        r.image = core::readImage(dir / "raymarch.exr");
-        std::ifstream in(dir / "raymarch.json");
-        const json j = json::parse(in, nullptr, false);
-        if (j.is_discarded())
-            throw core::InputError(
-                fmt::format("{}: not JSON; delete the folder", (dir / "raymarch.json").string()));
-        r.renderer = "raymarch";
-        r.device = j.value("device", "");
-        r.settings = j.value("settings", json());
-        const json timings = j.value("timings_ms", json::object());
-        const json counters = j.value("counters", json::object());
-        for (const auto& [k, v] : timings.items())
-            if (v.is_number()) r.timingsMs[k] = v.get<double>();
-        for (const auto& [k, v] : counters.items())
-            if (v.is_number()) r.counters[k] = v.get<double>();
-        r.particleCount = j.value("particle_count", std::size_t{0});
-        r.display = core::tonemappedBeauty(r.image, static_cast<float>(s.scene.camera.exposure));
+    if (cached) {
+        r = std::move(*cached);
         std::printf("reference %s: cache hit %s\n", key.c_str(), dir.c_str());
     } else {
+        if (exists)
+            std::printf("reference %s: cached render unusable (%s), rendering anew\n", key.c_str(),
+                        why.c_str());
         r = render("raymarch", mDevices, s);
-        writeRender(s, r, dir);
-        core::writeTextFile(dir / "key.json", what.dump(2) + "\n");
+        // Written whole under a name of this process's own, then put in place (publish).
+        const fs::path staged = uniqueName(mDir, key);
+        try {
+            writeRender(s, r, staged);
+            core::writeTextFile(staged / "key.json", what.dump(2) + "\n");
+        } catch (...) {
+            std::error_code ec;
+            fs::remove_all(staged, ec);
+            throw;
+        }
+        publish(staged, dir, exists);
         std::printf("reference %s: rendered in %.1f ms, cached in %s\n", key.c_str(),
                     r.timingsMs.at("total"), dir.c_str());
     }

@@ -4,8 +4,10 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <vector>
 
+#include "app/interruption.h"
 #include "app/progress.h"
 #include "app/sequence_run.h"
 #include "compare/study_summary.h"
@@ -43,8 +45,11 @@ const raymarch::EmbreeDevice& Devices::embree() {
 
 realtime::Device& Devices::realtime() {
     if (!mRealtime) {
-        mContext =
-            std::make_unique<realtime::gl::Context>(realtime::gl::ContextOptions{mRequireGpu});
+        // TWINRENDER_GL_DEBUG=1: a debug context, on which any GL error the driver logs fails
+        // the frame (the tests run the tool so).
+        const char* debug = std::getenv("TWINRENDER_GL_DEBUG");
+        mContext = std::make_unique<realtime::gl::Context>(realtime::gl::ContextOptions{
+            .requireGpu = mRequireGpu, .debug = debug && std::string_view(debug) == "1"});
         mRealtime = std::make_unique<realtime::Device>(*mContext);
     }
     return *mRealtime;
@@ -66,10 +71,12 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
 }
 
 core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& s) {
+    throwIfInterrupted();
     Progress progress(fmt::format("{}: {}", s.scene.name, name));
-    core::Frame frame =
-        renderer.render({s.scene, s.particles, s.materials, [&](double f) { progress.update(f); }});
+    core::Frame frame = renderer.render({s.scene, s.particles, s.materials,
+                                         [&](double f) { progress.update(f); }, interruptFlag()});
     progress.finish();
+    throwIfInterrupted();
     return frame;
 }
 

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "app/comparison.h"
+#include "app/output_folder.h"
 #include "app/suite_commands.h"
 #include "app/sweep_command.h"
 #include "compare/junit.h"
@@ -73,18 +74,27 @@ json readShardManifest(const fs::path& dir) {
 }
 
 void copyTree(const fs::path& from, const fs::path& to) {
-    fs::create_directories(to);
-    for (const auto& e : fs::recursive_directory_iterator(from)) {
-        const fs::path target = to / fs::relative(e.path(), from);
-        if (e.is_directory()) {
-            fs::create_directories(target);
-            continue;
+    try {
+        fs::create_directories(to);
+        for (const auto& e : fs::recursive_directory_iterator(from)) {
+            const fs::path target = to / fs::relative(e.path(), from);
+            if (e.is_directory()) {
+                fs::create_directories(target);
+                continue;
+            }
+            if (!e.is_regular_file()) continue;
+            fs::remove(target);
+            std::error_code ec;
+            fs::create_hard_link(e.path(), target, ec);
+            // A copy under a temporary name, renamed: a full disk leaves no half file.
+            if (ec)
+                core::writeFileAtomically(target, [&](const fs::path& tmp) {
+                    fs::copy_file(e.path(), tmp, fs::copy_options::overwrite_existing);
+                });
         }
-        if (!e.is_regular_file()) continue;
-        fs::remove(target);
-        std::error_code ec;
-        fs::create_hard_link(e.path(), target, ec);
-        if (ec) fs::copy_file(e.path(), target, fs::copy_options::overwrite_existing);
+    } catch (const fs::filesystem_error& e) {
+        throw core::OutputError(fmt::format("{}: cannot copy {} there ({})", to.string(),
+                                            e.path1().string(), e.code().message()));
     }
 }
 
@@ -117,7 +127,6 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
         if (it == reports.end())
             throw core::InputError(
                 fmt::format("scene '{}' is in none of the shards; was a shard cut short?", name));
-        if (fs::is_directory(from[name] / name)) copyTree(from[name] / name, out / name);
         run.scenes.push_back(std::move(it->second));
         reports.erase(it);
     }
@@ -125,8 +134,13 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
         throw core::InputError(fmt::format("scene '{}' of {} is not in the run's list",
                                            reports.begin()->first,
                                            from[reports.begin()->first].string()));
-    compare::writeReport(run, out);
-    if (first.value("junit", false)) compare::writeJunit(run, out / "junit.xml");
+    // The scenes' folders and the report appear together or not at all.
+    writeTogether(out, [&](const fs::path& staging) {
+        for (const std::string& name : order)
+            if (fs::is_directory(from[name] / name)) copyTree(from[name] / name, staging / name);
+        compare::writeReport(run, staging);
+        if (first.value("junit", false)) compare::writeJunit(run, staging / "junit.xml");
+    });
     std::printf("merged %zu shards, %zu scenes: %s -> %s\n", dirs.size(), run.scenes.size(),
                 std::string(compare::toString(run.status())).c_str(), (out / "index.html").c_str());
     printAnnotations(run, o.annotations);
@@ -156,10 +170,7 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
                                 row.index >= total ? "is beyond the sweep"
                                                    : "is also in " + seen[row.index].string()));
             seen[row.index] = dirs[i];
-            if (fs::is_directory(dirs[i] / row.dir)) copyTree(dirs[i] / row.dir, out / row.dir);
         }
-        if (fs::is_directory(dirs[i] / "reference_cache"))
-            copyTree(dirs[i] / "reference_cache", out / "reference_cache");
         if (!merged) {
             merged = std::move(part);
         } else {
@@ -175,7 +186,17 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
               [](const auto& a, const auto& b) { return a.index < b.index; });
     merged->createdAt = nowUtc();
     merged->commandLine = commandLine;
-    compare::writeSweepReport(*merged, out);
+    // The combinations' folders, the references and the report appear together or not at all.
+    writeTogether(out, [&](const fs::path& staging) {
+        for (const auto& row : merged->rows) {
+            const fs::path& dir = seen.at(row.index);
+            if (fs::is_directory(dir / row.dir)) copyTree(dir / row.dir, staging / row.dir);
+        }
+        for (const fs::path& dir : dirs)
+            if (fs::is_directory(dir / "reference_cache"))
+                copyTree(dir / "reference_cache", staging / "reference_cache");
+        compare::writeSweepReport(*merged, staging);
+    });
     std::printf("merged %zu shards, %zu combinations -> %s, %s\n", dirs.size(), merged->rows.size(),
                 (out / "sweep.csv").c_str(), (out / "index.html").c_str());
     return finishSweep(*merged);
@@ -232,7 +253,7 @@ ExitCode runMerge(const MergeOptions& o) {
         if (!shards.count(k))
             throw core::InputError(
                 fmt::format("shard {}/{} is missing; give all {} shard folders", k, n, n));
-    fs::create_directories(out);
+    prepareOutputFolder(out);
     const std::string command = first.at("command").get<std::string>();
     if (command == "run") return mergeRun(dirs, manifests, out, o);
     if (command == "sweep") return mergeSweep(dirs, manifests, out, o.commandLine);

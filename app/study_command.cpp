@@ -14,6 +14,8 @@
 #include <set>
 
 #include "app/comparison.h"
+#include "app/interruption.h"
+#include "app/output_folder.h"
 #include "app/reference_cache.h"
 #include "app/studies.h"
 #include "compare/contact_band.h"
@@ -138,6 +140,8 @@ ExitCode runStudies(const StudyOptions& o) {
     const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
     Devices devices(o.requireGpu);
     devices.realtime();  // no GL context: fail before the first render
+    prepareOutputFolder(out);
+    prepareOutputFolder(cacheDir);
     ReferenceCache cache(cacheDir, devices);
 
     std::vector<compare::StudyResult> results;
@@ -246,14 +250,19 @@ ExitCode runStudies(const StudyOptions& o) {
         d.conclude(s);
         s.wallSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        compare::writeStudy(s, out);
+        // A signal during the renders leaves no report of this study; one from here on lets
+        // it finish.
+        throwIfInterrupted();
+        writeTogether(out, [&](const fs::path& staging) { compare::writeStudy(s, staging); });
         std::printf("%s: %s [reference: %s unbracketed rays in %zu renders; %.1f s]\n",
                     d.name.c_str(), s.finding.c_str(),
                     compare::formatValue(s.unbracketedRays).c_str(), s.references, s.wallSeconds);
         std::fflush(stdout);
         results.push_back(std::move(s));
     }
-    compare::writeStudiesIndex(results, out, nowUtc(), o.commandLine);
+    writeTogether(out, [&](const fs::path& staging) {
+        compare::writeStudiesIndex(results, staging, nowUtc(), o.commandLine);
+    });
     std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies",
                 (out / "index.html").c_str());
     return anyError ? ExitCode::Fail : ExitCode::Pass;

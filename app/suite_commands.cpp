@@ -12,6 +12,8 @@
 #include <filesystem>
 
 #include "app/comparison.h"
+#include "app/interruption.h"
+#include "app/output_folder.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
 #include "app/sequence_run.h"
@@ -105,8 +107,10 @@ ExitCode runCompare(const CompareOptions& o) {
         report.checks = compare::evaluate(report.metrics, bounds);
     }
     const fs::path out(o.out);
-    report.errorMaps = compare::writeErrorMapImages(result.errorMaps, out);
-    compare::writeMetricsJson(report, out / "metrics.json");
+    writeTogether(out, [&](const fs::path& staging) {
+        report.errorMaps = compare::writeErrorMapImages(result.errorMaps, staging);
+        compare::writeMetricsJson(report, staging / "metrics.json");
+    });
     printMetricTable(report.metrics, report.checks);
     if (result.hdrExposures)
         std::printf("beauty.hdrflip over %d exposures from %.3f to %.3f stops\n",
@@ -178,13 +182,14 @@ ExitCode runSuite(const RunOptions& o) {
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
         if (selected[i]) makeRenderer("realtime", devices, scenes[i]);
+    const fs::path out(o.out);
+    prepareOutputFolder(out);
 
     compare::RunReport run;
     run.createdAt = nowUtc();
     run.commandLine = o.commandLine;
     run.thresholdsFile = thresholdsFile;
     run.baselineFile = o.baseline;
-    const fs::path out(o.out);
     const std::size_t count =
         static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
     for (std::size_t i = 0, done = 0; i < scenes.size(); ++i) {
@@ -206,6 +211,8 @@ ExitCode runSuite(const RunOptions& o) {
             writeRender(s, test, dir);
             report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd,
                                   o.flipOver, dir);
+        } catch (const core::OutputError&) {
+            throw;  // every later write would fail alike
         } catch (const std::exception& e) {
             // One scene that cannot be rendered or compared fails; the others still run.
             report = compare::SceneReport{};
@@ -217,8 +224,9 @@ ExitCode runSuite(const RunOptions& o) {
         run.scenes.push_back(std::move(report));
     }
     if (o.linkStudies) run.links.push_back({"stability studies", "studies/index.html"});
-    compare::writeReport(run, out);
-    if (!o.junit.empty()) compare::writeJunit(run, o.junit);
+    // A signal during the renders leaves no report; one from here on lets it finish.
+    throwIfInterrupted();
+    nlohmann::json manifest;
     if (shard) {
         // What merge needs to rebuild the whole run's report, and what must be equal across
         // the shards of one run.
@@ -233,16 +241,19 @@ ExitCode runSuite(const RunOptions& o) {
             {"scenes", files},          {"sets", o.sets}, {"thresholds", thresholdsFile},
             {"baseline", o.baseline},   {"ppd", o.ppd},   {"flip_over", o.flipOver},
             {"junit", !o.junit.empty()}};
-        writeShardManifest(*shard,
-                           {{"command", "run"},
-                            {"settings", settings},
-                            {"scenes", names},
-                            {"reports", reports},
-                            {"junit", !o.junit.empty()},
-                            {"created", run.createdAt},
-                            {"command_line", o.commandLine}},
-                           out);
+        manifest = {{"command", "run"},
+                    {"settings", settings},
+                    {"scenes", names},
+                    {"reports", reports},
+                    {"junit", !o.junit.empty()},
+                    {"created", run.createdAt},
+                    {"command_line", o.commandLine}};
     }
+    writeTogether(out, [&](const fs::path& staging) {
+        compare::writeReport(run, staging);
+        if (shard) writeShardManifest(*shard, manifest, staging);
+    });
+    if (!o.junit.empty()) compare::writeJunit(run, o.junit);
 
     // One screen: a row per scene. printf pads bytes, not columns: the widths of the two
     // headers with multi-byte characters are widened by their extra bytes (ꟻ 3, ° 2).

@@ -17,6 +17,8 @@
 #include <set>
 
 #include "app/comparison.h"
+#include "app/interruption.h"
+#include "app/output_folder.h"
 #include "app/reference_cache.h"
 #include "app/render_job.h"
 #include "app/shard.h"
@@ -230,6 +232,8 @@ ExitCode runSweep(const SweepOptions& o) {
     const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
     Devices devices(o.requireGpu);
     if (!convergence) devices.realtime();  // no GL context: fail before the first render
+    prepareOutputFolder(out);
+    prepareOutputFolder(cacheDir);
     ReferenceCache cache(cacheDir, devices);
 
     compare::SweepReport report;
@@ -325,7 +329,9 @@ ExitCode runSweep(const SweepOptions& o) {
         std::fflush(stdout);
         report.rows.push_back(std::move(row));
     }
-    compare::writeSweepReport(report, out);
+    // A signal during the renders leaves no report; one from here on lets it finish.
+    throwIfInterrupted();
+    json manifest;
     if (shard) {
         json indices = json::array();
         for (const auto& r : report.rows) indices.push_back(r.index);
@@ -337,15 +343,14 @@ ExitCode runSweep(const SweepOptions& o) {
                          {"frames", frames},
                          {"ppd", o.ppd},
                          {"flip_over", o.flipOver}};
-        writeShardManifest(*shard,
-                           {{"command", "sweep"},
-                            {"settings", settings},
-                            {"combinations", total},
-                            {"indices", indices},
-                            {"created", report.createdAt},
-                            {"command_line", o.commandLine}},
-                           out);
+        manifest = {{"command", "sweep"},          {"settings", settings},
+                    {"combinations", total},       {"indices", indices},
+                    {"created", report.createdAt}, {"command_line", o.commandLine}};
     }
+    writeTogether(out, [&](const fs::path& staging) {
+        compare::writeSweepReport(report, staging);
+        if (shard) writeShardManifest(*shard, manifest, staging);
+    });
     std::printf("%zu combinations -> %s, %s\n", report.rows.size(), (out / "sweep.csv").c_str(),
                 (out / "index.html").c_str());
     if (!shard) return finishSweep(report);

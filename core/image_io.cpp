@@ -1,5 +1,6 @@
 #include "core/image_io.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
 #include <unistd.h>
@@ -7,7 +8,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <fstream>
 
@@ -129,6 +132,18 @@ void check(const fs::path& path, const std::string& error) {
     if (!error.empty()) throw InputError(fmt::format("{}: {}", path.string(), error));
 }
 
+OutputError cannotWrite(const fs::path& path, const std::string& why) {
+    return OutputError(fmt::format(
+        "{}: cannot write the file ({}); check that its folder is writable and its disk not full",
+        path.string(), why));
+}
+
+// Throws OutputError naming `path` (the file the user asked for, not the temporary one
+// written) when an OpenImageIO write said what went wrong.
+void checkWrite(const fs::path& path, const std::string& error) {
+    if (!error.empty()) throw cannotWrite(path, error);
+}
+
 }  // namespace
 
 Image readImage(const fs::path& path) {
@@ -161,25 +176,43 @@ std::pair<Image, Image> readImages(const fs::path& first, const fs::path& second
 
 void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     static std::atomic<unsigned> counter{0};
-    if (path.has_parent_path()) fs::create_directories(path.parent_path());
     fs::path tmp = path;
     tmp.replace_filename(fmt::format(".{}.tmp{}-{}{}", path.stem().string(), getpid(), counter++,
                                      path.extension().string()));
-    try {
-        write(tmp);
-        fs::rename(tmp, path);
-    } catch (...) {
+    const auto removeTmp = [&] {
         std::error_code ec;
         fs::remove(tmp, ec);
+    };
+    try {
+        if (path.has_parent_path()) fs::create_directories(path.parent_path());
+        write(tmp);
+        fs::rename(tmp, path);
+    } catch (const fs::filesystem_error& e) {
+        removeTmp();
+        throw cannotWrite(path, e.code().message());
+    } catch (...) {
+        removeTmp();
         throw;
     }
 }
 
 void writeTextFile(const fs::path& path, std::string_view text) {
     writeFileAtomically(path, [&](const fs::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        if (!out) throw InputError(fmt::format("{}: cannot write the file", path.string()));
+        // POSIX calls, not a stream: a full disk or a file size limit shows in write's and
+        // close's result with its errno, where a stream only sets a flag.
+        const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+        if (fd < 0) throw cannotWrite(path, std::strerror(errno));
+        for (std::size_t done = 0; done < text.size();) {
+            const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) {
+                const int error = errno;
+                ::close(fd);
+                throw cannotWrite(path, std::strerror(error));
+            }
+            done += static_cast<std::size_t>(n);
+        }
+        if (::close(fd) != 0) throw cannotWrite(path, std::strerror(errno));
     });
 }
 
@@ -188,9 +221,10 @@ void writeImage(const Image& image, const fs::path& path) {
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     writeFileAtomically(path, [&](const fs::path& tmp) {
         if (ext == ".exr") {
-            check(path, oiio::api().writeFloat(tmp.string(), image.width(), image.height(),
-                                               image.channelNames(), image.channelIndex("A"),
-                                               image.channelIndex("Z"), image.pixels().data()));
+            checkWrite(path,
+                       oiio::api().writeFloat(tmp.string(), image.width(), image.height(),
+                                              image.channelNames(), image.channelIndex("A"),
+                                              image.channelIndex("Z"), image.pixels().data()));
             return;
         }
         // 8-bit formats: R, G, B (and A) only.
@@ -208,10 +242,10 @@ void writeImage(const Image& image, const fs::path& path) {
                 bytes[p * nc + c] = static_cast<unsigned char>(v * 255.0f + 0.5f);
             }
         if (ext == ".png")
-            writePng(tmp, image.width(), image.height(), nc, bytes.data());
+            writePng(tmp, image.width(), image.height(), nc, bytes.data(), path);
         else
-            check(path, oiio::api().writeBytes(tmp.string(), image.width(), image.height(), nc,
-                                               bytes.data()));
+            checkWrite(path, oiio::api().writeBytes(tmp.string(), image.width(), image.height(), nc,
+                                                    bytes.data()));
     });
 }
 

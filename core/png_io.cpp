@@ -171,13 +171,14 @@ std::optional<DecodedPixels> readPng(const fs::path& path) {
 }
 
 void writePng(const fs::path& path, int width, int height, int channels,
-              const unsigned char* values) {
+              const unsigned char* values, const fs::path& shownPath) {
+    const std::string shown = (shownPath.empty() ? path : shownPath).string();
     File file(std::fopen(path.c_str(), "wb"));
     if (!file)
-        throw InputError(
-            fmt::format("{}: cannot write the image ({}); check that the folder is "
-                        "writable",
-                        path.string(), std::strerror(errno)));
+        throw OutputError(
+            fmt::format("{}: cannot write the image ({}); check that its folder is writable and "
+                        "its disk not full",
+                        shown, std::strerror(errno)));
     std::vector<png_bytep> rows(static_cast<std::size_t>(height));
     for (int y = 0; y < height; ++y)
         rows[y] = const_cast<png_bytep>(values) + static_cast<std::size_t>(y) * width * channels;
@@ -188,10 +189,10 @@ void writePng(const fs::path& path, int width, int height, int channels,
     png_destroy_write_struct(&png, &info);
     const bool closed = std::fclose(file.release()) == 0;
     if (!ok || !closed)
-        throw InputError(
-            fmt::format("{}: cannot write the image ({}); check that the folder is "
-                        "writable and the disk not full",
-                        path.string(), ok ? std::strerror(errno) : ctx.error));
+        throw OutputError(
+            fmt::format("{}: cannot write the image ({}); check that its folder is writable and "
+                        "its disk not full",
+                        shown, ok ? std::strerror(errno) : ctx.error));
 }
 
 }  // namespace twinrender::core

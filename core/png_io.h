@@ -24,8 +24,9 @@ std::optional<DecodedPixels> readPng(const std::filesystem::path& path);
 // Writes 8-bit RGB (channels 3) or RGBA (channels 4), interleaved, row 0 at the top, at zlib
 // level 1 without row filters (a 1920x1080 error map: level 6 took 0.45 s to level 1's
 // 0.04 s, for a file 17 % smaller; these images are written once and read by a browser). Throws
-// InputError naming the file when it cannot be written. Not atomic: writeImage (image_io.h) is.
+// OutputError naming `shownPath` (the file the user asked for; `path` when empty) when it
+// cannot be written. Not atomic: writeImage (image_io.h) is.
 void writePng(const std::filesystem::path& path, int width, int height, int channels,
-              const unsigned char* values);
+              const unsigned char* values, const std::filesystem::path& shownPath = {});
 
 }  // namespace twinrender::core

@@ -4,6 +4,7 @@
 // settings; everything a render reads about the scene comes in through RenderInput.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct RenderInput {
     const std::vector<Material>& materials;  // in Scene::materials order (loadMaterials)
     // Optional: called with the finished fraction in [0, 1], possibly from worker threads.
     std::function<void(double)> progress = {};
+    // Optional: when it becomes true, the render stops at its next tile or pass and throws
+    // core::Cancelled (core/cancellation.h).
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 class Renderer {

@@ -15,6 +15,7 @@
 #include <fstream>
 
 #include "core/camera.h"
+#include "core/cancellation.h"
 #include "raymarch/pixel_samples.h"
 #include "raymarch/surface_tracer.h"
 
@@ -196,7 +197,7 @@ class FrameTrace {
 // The tiles in parallel on the caller's arena, on one workspace per thread; the thread time
 // of each part summed over the tiles.
 StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
-                      const std::function<void(double)>& progress) {
+                      const core::RenderInput& input) {
     const int tiles = trace.tileCount();
     std::atomic<int> done{0};
     std::atomic<std::int64_t> traceTicks{0}, shadeTicks{0};
@@ -206,12 +207,15 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
         Workspace& w = *workspaces.local();
         for (int t = r.begin(); t != r.end(); ++t) {
+            // A tile takes milliseconds: a cancelled frame stops within one tile per thread
+            // (TBB cancels the tiles not yet started and rethrows in the caller).
+            core::throwIfCancelled(input.cancel);
             StageTicks ticks;
             trace.traceTile(t, w, ticks);
             traceTicks += ticks.trace;
             shadeTicks += ticks.shade;
             const int finished = ++done;
-            if (progress) progress(double(finished) / tiles);
+            if (input.progress) input.progress(double(finished) / tiles);
         }
     });
     return {traceTicks.load(), shadeTicks.load()};
@@ -242,6 +246,7 @@ Renderer::Renderer(const EmbreeDevice& device, const Settings& settings)
     : mDevice(device), mSettings(settings) {}
 
 core::Frame Renderer::render(const core::RenderInput& input) {
+    core::throwIfCancelled(input.cancel);
     const core::Camera camera(input.scene.camera);
     const SurfaceTracer tracer(mDevice, camera, input.particles, mSettings);  // "build"
     core::Frame frame;
@@ -256,7 +261,7 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     const FrameTrace trace(tracer, camera, input, mSettings, frame);
     Workspaces workspaces([&] { return tracer.makeWorkspace(); });
     const auto start = Clock::now();
-    const StageTicks ticks = traceTiles(trace, workspaces, input.progress);
+    const StageTicks ticks = traceTiles(trace, workspaces, input);
     const double traceMs = msSince(start);
     // Split the parallel wall time by the thread time of each part.
     const double sum = std::max(double(ticks.trace) + double(ticks.shade), 1.0);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "core/cancellation.h"
 #include "core/error.h"
 #include "realtime/anisotropy.h"
 #include "realtime/droplets.h"
@@ -556,6 +557,7 @@ void Renderer::recycle(core::Frame&& old) {
 }
 
 core::Frame Renderer::render(const core::RenderInput& in) {
+    core::throwIfCancelled(in.cancel);
     DeviceState& d = mDevice;
     d.context.makeCurrent();
     checkLimits(in, mSettings, d);
@@ -592,6 +594,8 @@ core::Frame Renderer::render(const core::RenderInput& in) {
         for (auto& s : passInputs.spheres) s.centre -= in.scene.camera.position;
         frame.counters["occlusion_spheres"] = static_cast<double>(passInputs.spheres.size());
     }
+    // The per-particle-set work (radii, anisotropy, culling) can take seconds on a large set.
+    core::throwIfCancelled(in.cancel);
     const PassTargets targets = runPasses(passInputs);
     readBack(d, targets, emits, camera.width(), camera.height(), frame);
     for (const auto& [name, query] : targets.timers) frame.timingsMs[name] = query.milliseconds();

@@ -21,9 +21,11 @@ struct CommandResult {
     std::string output;  // standard output and standard error together
 };
 
-// `environment`: "NAME=VALUE ..." set for this command only.
-inline CommandResult runTwinrender(const std::string& args, const std::string& environment = "") {
-    const std::string cmd = (environment.empty() ? "" : "env " + environment + " ") +
+// `environment`: "NAME=VALUE ..." set for this command only; `prefix`: a command that runs
+// twinrender (with its arguments after it), e.g. one that limits what the process may do.
+inline CommandResult runTwinrender(const std::string& args, const std::string& environment = "",
+                                   const std::string& prefix = "") {
+    const std::string cmd = (environment.empty() ? "" : "env " + environment + " ") + prefix +
                             std::string(TWINRENDER_BIN) + " " + args + " 2>&1";
     CommandResult r;
     FILE* pipe = popen(cmd.c_str(), "r");

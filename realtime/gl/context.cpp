@@ -77,6 +77,22 @@ std::string glString(GLenum name) {
     return s ? s : "";
 }
 
+// On a debug context: the driver logs the errors (and undefined behaviour) it sees, with their
+// cause, synchronously in the call that made them, for checkErrors to read; nothing else, so
+// performance notes and the like never fill the log. No callback: the log is the context's
+// own, where a callback would need state outside it. False when the context is no debug one.
+bool enableDebugLog() {
+    GLint flags = 0;
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    if (!(flags & GL_CONTEXT_FLAG_DEBUG_BIT)) return false;
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_FALSE);
+    for (GLenum type : {GL_DEBUG_TYPE_ERROR, GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR})
+        glDebugMessageControl(GL_DONT_CARE, type, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+    return true;
+}
+
 struct Candidate {
     std::string name;
     EGLenum platform = 0;
@@ -92,6 +108,7 @@ struct Context::Impl {
     GLuint vertexArray = 0;
     std::string renderer, vendor, version, platform;
     bool software = false;
+    bool debug = false;
     std::vector<std::string> skipped;
 };
 
@@ -209,10 +226,13 @@ Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()
                                             5,
                                             EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                             EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                            EGL_CONTEXT_FLAGS_KHR,
+                                            options.debug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
                                             EGL_NONE};
         EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
         if (context == EGL_NO_CONTEXT) {
-            fail(eglFailure("eglCreateContext(OpenGL 4.5 core)"));
+            fail(eglFailure(options.debug ? "eglCreateContext(OpenGL 4.5 core, debug)"
+                                          : "eglCreateContext(OpenGL 4.5 core)"));
             continue;
         }
         if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
@@ -236,6 +256,7 @@ Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()
         mImpl->platform = c.name;
         mImpl->software = software;
         mImpl->skipped = failures;
+        if (options.debug) mImpl->debug = enableDebugLog();
         // The core profile draws only with a vertex array bound; every draw here pulls its
         // data from buffers, so one empty array serves all.
         glCreateVertexArrays(1, &mImpl->vertexArray);
@@ -283,13 +304,16 @@ const std::string& Context::platform() const {
 bool Context::isSoftware() const {
     return mImpl->software;
 }
+bool Context::isDebug() const {
+    return mImpl->debug;
+}
 const std::vector<std::string>& Context::skipped() const {
     return mImpl->skipped;
 }
 
 std::string Context::description() const {
-    return fmt::format("{} (OpenGL {}, {}{})", mImpl->renderer, mImpl->version, mImpl->platform,
-                       mImpl->software ? ", software" : "");
+    return fmt::format("{} (OpenGL {}, {}{}{})", mImpl->renderer, mImpl->version, mImpl->platform,
+                       mImpl->software ? ", software" : "", mImpl->debug ? ", debug context" : "");
 }
 
 void Context::makeCurrent() const {

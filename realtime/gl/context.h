@@ -16,6 +16,10 @@ namespace twinrender::realtime::gl {
 
 struct ContextOptions {
     bool requireGpu = false;  // refuse llvmpipe / softpipe / Mesa's software EGL device
+    // A KHR_debug debug context whose driver logs every GL error with what caused it:
+    // checkErrors (gl/error.h) then throws on any error message the driver logged as well as
+    // on glGetError's codes. The tests run with it (twinrender: TWINRENDER_GL_DEBUG=1).
+    bool debug = false;
 };
 
 class Context {
@@ -32,6 +36,7 @@ class Context {
     const std::string& version() const;   // GL_VERSION
     const std::string& platform() const;  // the EGL candidate that worked, e.g. "EGL device 1"
     bool isSoftware() const;              // a CPU rasteriser (llvmpipe, softpipe, swrast)
+    bool isDebug() const;                 // a debug context that logs GL errors (ContextOptions)
     // One line for logs: renderer, GL version and EGL platform.
     std::string description() const;
     // The candidates tried before the one that worked, with why each failed (for logs).

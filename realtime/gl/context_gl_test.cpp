@@ -1,3 +1,4 @@
+#include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -23,7 +24,7 @@ TEST(Context, CreatesOpenGL45CoreAndNamesTheRenderer) {
 }
 
 TEST(Context, ClearsAnRgba32fFramebufferAndReadsItBack) {
-    Context context;
+    Context context(ContextOptions{.debug = true});
     Texture colour(7, 5, Format::RGBA32F);
     Framebuffer fb("test", {{&colour}});
     fb.bind();
@@ -43,7 +44,7 @@ TEST(Context, ClearsAnRgba32fFramebufferAndReadsItBack) {
 TEST(Context, HandlesAreMoveOnlyAndMovingEmptiesTheSource) {
     static_assert(!std::is_copy_constructible_v<Texture>);
     static_assert(std::is_nothrow_move_constructible_v<Handle>);
-    Context context;
+    Context context(ContextOptions{.debug = true});
     Texture a(4, 4, Format::R32F);
     const unsigned id = a.id();
     ASSERT_NE(id, 0u);
@@ -58,6 +59,27 @@ TEST(Context, HandlesAreMoveOnlyAndMovingEmptiesTheSource) {
     query.end();
     EXPECT_GE(query.milliseconds(), 0.0);
     checkErrors("test");
+}
+
+// A debug context: a call GL refuses fails the next check with the driver's own account of
+// it, and the check leaves the log empty for the next pass.
+TEST(Context, DebugContextFailsOnAnyGlErrorWithTheDriversMessage) {
+    Context context(ContextOptions{.debug = true});
+    ASSERT_TRUE(context.isDebug()) << context.description();
+    EXPECT_NE(context.description().find("debug"), std::string::npos);
+    checkErrors("clean");
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS + 0x1000);  // no such capability: GL_INVALID_ENUM
+    try {
+        checkErrors("refused");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("'refused'"), std::string::npos) << what;
+        EXPECT_NE(what.find("GL_INVALID_ENUM"), std::string::npos) << what;
+        EXPECT_NE(what.find("the driver's log: error:"), std::string::npos) << what;
+        EXPECT_NE(what.find("glEnable"), std::string::npos) << what;
+    }
+    EXPECT_NO_THROW(checkErrors("after"));
 }
 
 TEST(Context, IncompleteFramebufferIsAnErrorNamingIt) {

@@ -13,8 +13,9 @@ class Error : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// Drains the GL error queue; throws Error "GL_INVALID_OPERATION (0x0502) in pass 'gbuffer'"
-// when it held any error.
+// Drains the GL error queue and, on a debug context (ContextOptions::debug), the driver's log
+// of error messages; throws Error "OpenGL error in pass 'gbuffer': GL_INVALID_OPERATION
+// (0x0502)" (with the driver's messages on a debug context) when either held any.
 void checkErrors(std::string_view pass);
 
 }  // namespace twinrender::realtime::gl

@@ -116,7 +116,7 @@ struct Channels {
 
 class RendererTest : public ::testing::Test {
   protected:
-    gl::Context context;
+    gl::Context context{gl::ContextOptions{.debug = true}};  // any GL error fails the test
     Device device{context};  // every render of a test shares its programs and caches
 
     core::Frame render(TestScene& t, const Settings& settings) {
