@@ -15,13 +15,7 @@ namespace twinrender::realtime {
 
 namespace {
 
-// Directions at the vertices of an icosahedron subdivided twice (162 points), and the largest
-// angle from any direction to its nearest vertex (the largest angular circumradius of the
-// grid's triangles).
-struct DirectionGrid {
-    std::vector<glm::dvec3> directions;
-    double coveringAngle = 0.0;  // radians
-};
+using DirectionGrid = CullingDirections;
 
 DirectionGrid makeDirectionGrid() {
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
@@ -85,7 +79,7 @@ void cullGroup(const core::ParticleSet& ps, const std::vector<std::uint32_t>& me
     const std::size_t n = members.size();
     if (n < 2) return;
 
-    static const DirectionGrid grid = makeDirectionGrid();
+    const DirectionGrid& grid = cullingDirections();
     const double cosMargin = std::cos(grid.coveringAngle), sinMargin = std::sin(grid.coveringAngle);
 
     std::vector<double> radii(n);
@@ -301,6 +295,11 @@ void cullGroup(const core::ParticleSet& ps, const std::vector<std::uint32_t>& me
 }
 
 }  // namespace
+
+const CullingDirections& cullingDirections() {
+    static const CullingDirections grid = makeDirectionGrid();
+    return grid;
+}
 
 std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps,
                                                std::span<const float> radii) {
