@@ -2,13 +2,13 @@
 // real-time renderer does it: the particles' raw attributes are uploaded as they are, a neighbour
 // grid is built from them by counting sort (atomic counts, a prefix sum, a scatter, each cell
 // sorted by index), and compute passes over the grid give what the CPU path computes with
-// core::ColourField: the impostor radii (impostor_radius.h), the kernels that reach the surface
-// (surface_kernels.h), the exact occlusion culling (occlusion_culling.h), the field normal
-// models (field_normal.h) and the ellipsoids (anisotropy.h). Per frame, compute passes pack the
-// drawn particles and kernels (camera-relative, subtracted in double) into the storage buffers
-// the draw passes read, and write the draw counts into indirect draw commands: nothing is read
-// back. Sums over the grid run in a fixed order, so the results do not depend on scheduling.
-// shaders/per_set.comp, per_set.glsl, scan.comp.
+// core::ColourField: the impostor radii (impostor_radius.h), the exact occlusion culling
+// (occlusion_culling.h), the field normal models (field_normal.h) and the ellipsoids
+// (anisotropy.h). Per frame, compute passes mark the drawn particles and the kernels whose
+// support reaches one of them (the gradient pass's), pack both (camera-relative, subtracted in
+// double) into the storage buffers the draw passes read, and write the draw counts into
+// indirect draw commands: nothing is read back. Sums over the grid run in a fixed order, so the
+// results do not depend on scheduling. shaders/per_set.comp, per_set.glsl, scan.comp.
 #pragma once
 
 #include <cstdint>
