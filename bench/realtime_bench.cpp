@@ -12,8 +12,8 @@
 // BM_Planet*NewSet/<gpu|cpu>: every frame a new particle set (the particles move by a few
 // float ulps between frames, so the per-set work is redone: counters.per_set_builds = 1), with
 // realtime.per_set = gpu or cpu; per_set_ms is the sum of the per-set stages (grid, radius,
-// kernels, cull, field_normals, anisotropy, upload, pack) and per_set_share its share of the
-// frame. BM_Planet1M1080pNewSet/gpu is the GPU target (a frame of a new 1M-particle set
+// droplets, kernels, cull, field_normals, anisotropy, upload, pack) and per_set_share its share of
+// the frame. BM_Planet1M1080pNewSet/gpu is the GPU target (a frame of a new 1M-particle set
 // at 1920 x 1080 under 16 ms): it runs as it is on an NVIDIA EGL device.
 // Run: build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
 #include <benchmark/benchmark.h>
@@ -167,8 +167,8 @@ void newSetFrames(benchmark::State& state, int particles, int width, int height,
     for (auto _ : state) {
         tr::core::Frame r = renderer.render({s.scene, sets[frame++ % 2], s.materials});
         for (const auto& [stage, ms] : r.timingsMs) sums[stage] += ms;
-        for (const char* stage :
-             {"grid", "radius", "kernels", "cull", "field_normals", "anisotropy", "upload", "pack"})
+        for (const char* stage : {"grid", "radius", "droplets", "kernels", "cull", "field_normals",
+                                  "anisotropy", "upload", "pack"})
             perSet += r.timingsMs[stage];
         builds += r.counters["per_set_builds"];
         benchmark::DoNotOptimize(r.image.pixels().data());

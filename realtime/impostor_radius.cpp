@@ -11,8 +11,6 @@
 
 namespace twinrender::realtime {
 
-namespace {
-
 // Samples along the normal before the bisection: a crossing between two samples is found
 // unless the field dips below the level and back within one step (maxRadius / 8), or, for a
 // particle whose field is above the level at the cap and halfway there, within half the cap.
@@ -20,10 +18,8 @@ constexpr int SCAN_STEPS = 8;
 // Bisection steps: the crossing to (maxRadius / 8) / 2^10, about 1e-4 h.
 constexpr int BISECTION_STEPS = 10;
 
-// The distance from `centre` along `normal` (unit) to where the field first falls to `level`,
-// at most maxRadius; 0 where the field at the centre is not above the level.
-double crossingDistance(const core::ColourField& field, const glm::dvec3& centre,
-                        const glm::dvec3& normal, double maxRadius, double level) {
+double fieldCrossing(const core::ColourField& field, const glm::dvec3& centre,
+                     const glm::dvec3& normal, double maxRadius, double level) {
     auto above = [&](double t) { return field.value(centre + t * normal) > level; };
     if (!above(0.0)) return 0.0;
     // Particles inside a body (most of them) are settled by two samples.
@@ -40,8 +36,6 @@ double crossingDistance(const core::ColourField& field, const glm::dvec3& centre
     }
     return 0.5 * (inside + outside);
 }
-
-}  // namespace
 
 std::vector<float> fixedRadii(const core::ParticleSet& ps, double radiusScale) {
     std::vector<float> radii(ps.size());
@@ -61,8 +55,8 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
                 const double maxRadius = settings.radiusScale * ps.h[i];
                 const glm::dvec3 centre(ps.position[i]);
                 const double crossing =
-                    crossingDistance(field, centre, glm::normalize(glm::dvec3(ps.normal[i])),
-                                     maxRadius, settings.surfaceLevel);
+                    fieldCrossing(field, centre, glm::normalize(glm::dvec3(ps.normal[i])),
+                                  maxRadius, settings.surfaceLevel);
                 // A particle alone in its support has a spherical droplet: the crossing is its
                 // radius exactly. crossing_scale is for the level set bulging between
                 // neighbours.

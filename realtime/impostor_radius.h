@@ -11,11 +11,18 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "core/colour_field.h"
 #include "core/particles.h"
 #include "realtime/particle_set_key.h"
 #include "realtime/settings.h"
 
 namespace twinrender::realtime {
+
+// The distance from `centre` along `direction` (unit) to where the field first falls to
+// `level`, at most maxDistance (found to about maxDistance * 1e-4); 0 where the field at the
+// centre is not above the level.
+double fieldCrossing(const core::ColourField& field, const glm::dvec3& centre,
+                     const glm::dvec3& direction, double maxDistance, double level);
 
 // radiusScale * h for each particle of the set.
 std::vector<float> fixedRadii(const core::ParticleSet& particles, double radiusScale);

@@ -7,6 +7,8 @@
 #include <span>
 #include <utility>
 
+#include "realtime/droplets.h"
+#include "realtime/field_normal.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gpu_scene.h"
 #include "realtime/occlusion_culling.h"
@@ -45,7 +47,14 @@ enum Binding : unsigned {
     MODELS = 13,
     DRAW_LISTS = 14,
     DIRECTIONS = 15,
+    DROPLETS = 16,
 };
+
+// shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
+// bits from DROPLET_SHIFT up.
+constexpr unsigned DROPLET_SHIFT = 8;
+// The Header block's count of sparse particles (uint index).
+constexpr std::size_t SPARSE_COUNT = 3;
 
 template <typename T>
 void writeAttribute(gl::Buffer& buffer, std::size_t offset, std::size_t n,
@@ -55,7 +64,8 @@ void writeAttribute(gl::Buffer& buffer, std::size_t offset, std::size_t n,
 
 bool sameRadiusSettings(const ParticleSettings& a, const ParticleSettings& b) {
     return a.radius == b.radius && a.radiusScale == b.radiusScale &&
-           a.surfaceLevel == b.surfaceLevel && a.crossingScale == b.crossingScale;
+           a.surfaceLevel == b.surfaceLevel && a.crossingScale == b.crossingScale &&
+           a.dropletAtoms == b.dropletAtoms;
 }
 
 bool sameAnisotropy(const AnisotropySettings& a, const AnisotropySettings& b) {
@@ -106,6 +116,7 @@ void GpuPerSet::bindStorage() const {
     if (mModelBuffer) mModelBuffer->bindStorage(MODELS);
     if (mDrawLists) mDrawLists->bindStorage(DRAW_LISTS);
     mDirections.bindStorage(DIRECTIONS);
+    if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
 }
 
 void GpuPerSet::upload(const core::ParticleSet& ps) {
@@ -140,6 +151,8 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
         mDirections = gl::Buffer::of(std::span<const glm::vec4>(directions));
     }
     mModelBuffer.reset();
+    mDroplets = gl::Buffer();
+    mDropletCount = 0;
     mDrawLists.emplace(gl::Buffer::zeros(2 * (n + 1) * sizeof(std::uint32_t)));
     mParticles.emplace(gl::Buffer::zeros(n * sizeof(GpuParticle)));
     mKernels.emplace(gl::Buffer::zeros(n * sizeof(GpuKernel)));
@@ -204,21 +217,31 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     if (mCount == 0) return built;
     bindStorage();
     const ParticleSettings& s = request.particles;
+    // The radii depend on droplet_atoms where droplets are drawn (their members' are 0).
+    ParticleSettings radiusSettings = s;
+    radiusSettings.dropletAtoms = request.droplets ? s.dropletAtoms : 0;
     auto stage = [&](const char* name) -> const gl::Program& {
         const gl::Program& p = programs.compute("per_set.comp", {name});
         p.set("uCount", static_cast<unsigned>(mCount));
         return p;
     };
-    if (!mRadiusSettings || !sameRadiusSettings(*mRadiusSettings, s)) {
+    if (!mRadiusSettings || !sameRadiusSettings(*mRadiusSettings, radiusSettings)) {
         timed("radius", [&] {
+            mFlags.clear();  // no droplet slots
+            const std::uint32_t zero = 0;
+            mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
             const gl::Program& p = stage("RADIUS");
+            p.set("uDropletAtoms", radiusSettings.dropletAtoms);
             p.set("uRadiusScale", static_cast<float>(s.radiusScale));
             p.set("uCrossingScale", static_cast<float>(s.crossingScale));
             p.set("uLevel", static_cast<float>(s.surfaceLevel));
             p.set("uFixed", s.radius == RadiusModel::Fixed ? 1 : 0);
             p.dispatch(groups(mCount));
         });
-        mRadiusSettings = s;
+        mDropletCount = 0;
+        if (radiusSettings.dropletAtoms >= 2)
+            timed("droplets", [&] { applyDroplets(ps, radiusSettings); });
+        mRadiusSettings = radiusSettings;
         mCulled = false;
         mModelSettings.reset();
         built = true;
@@ -264,6 +287,30 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     return built;
 }
 
+void GpuPerSet::applyDroplets(const core::ParticleSet& ps, const ParticleSettings& s) {
+    if (mHeader.read<std::uint32_t>(SPARSE_COUNT, 1)[0] == 0) return;  // no sparse particle
+    const Droplets found = fitDroplets(ps, radii(), s.surfaceLevel, s.dropletAtoms);
+    if (found.firsts.empty()) return;
+    std::vector<std::uint32_t> flags(mCount, 0);
+    std::vector<glm::vec4> records;
+    records.reserve(6 * found.firsts.size());
+    for (std::size_t k = 0; k < found.firsts.size(); ++k) {
+        const std::uint32_t first = found.firsts[k];
+        flags[first] = static_cast<std::uint32_t>(k + 1) << DROPLET_SHIFT;
+        const Ellipsoid& e = found.ellipsoids[first];
+        for (int a = 0; a < 3; ++a) records.emplace_back(e.axes[a], e.shift[a]);
+        const FieldNormal model = dropletNormalModel(e);
+        records.emplace_back(model.outward, 0.0f);
+        records.emplace_back(model.diagonal, 0.0f);
+        records.emplace_back(model.offDiagonal, 0.0f);
+    }
+    mRadii.write(0, std::span<const float>(found.radii));
+    mFlags.write(0, std::span<const std::uint32_t>(flags));
+    mDroplets = gl::Buffer::of(std::span<const glm::vec4>(records));
+    mDroplets.bindStorage(DROPLETS);
+    mDropletCount = found.firsts.size();
+}
+
 void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     if (mCount == 0) return;
     auto stage = [&](const char* name) -> const gl::Program& {
@@ -271,7 +318,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         p.set("uCount", static_cast<unsigned>(mCount));
         return p;
     };
-    if (mModels == 2 && !mEllipsoids)
+    if (ellipsoidsDrawn() && !mEllipsoids)
         mEllipsoids.emplace(gl::Buffer::zeros(mCount * sizeof(GpuEllipsoid)));
     timed("pack", [&] {
         bindStorage();
@@ -311,6 +358,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         const gl::Program& p = stage("PACK");
         p.set("uCamera", frame.camera);
         p.set("uModels", mModels);
+        p.set("uEllipsoidsOut", ellipsoidsDrawn() ? 1 : 0);
         p.dispatch(groups(mCount));
         gl::computeBarrier();
         stage("FINISH").dispatch(1);

@@ -29,8 +29,9 @@ namespace twinrender::realtime {
 // What a frame needs of the per-set work.
 struct PerSetRequest {
     ParticleSettings particles;
-    bool kernels = false;  // the gradient pass's kernels
-    bool cull = false;     // occlusion culling (spheres)
+    bool kernels = false;   // the gradient pass's kernels
+    bool cull = false;      // occlusion culling (spheres)
+    bool droplets = false;  // small droplets drawn as ellipsoids (particles.droplet_atoms)
 };
 
 // What a frame asks of the packed draw lists.
@@ -58,7 +59,12 @@ class GpuPerSet {
 
     const gl::Buffer& particles() const { return *mParticles; }
     const gl::Buffer& kernels() const { return *mKernels; }
+    // One GpuEllipsoid per drawn particle where ellipsoidsDrawn(): shape = "ellipsoid", or a
+    // set with droplets (spheres as round ellipsoids).
     const gl::Buffer& ellipsoids() const { return *mEllipsoids; }
+    bool ellipsoidsDrawn() const { return mModels == 2 || mDropletCount > 0; }
+    // The droplets of the set (0 without droplets).
+    std::size_t dropletCount() const { return mDropletCount; }
     // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the kernels' at
     // kernelDrawOffset() (bytes).
     const gl::Buffer& drawCommands() const { return mHeader; }
@@ -87,6 +93,7 @@ class GpuPerSet {
 
   private:
     void upload(const core::ParticleSet& particles);
+    void applyDroplets(const core::ParticleSet& particles, const ParticleSettings& settings);
     void buildGrid(ProgramCache& programs);
     void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
               std::size_t count);
@@ -98,7 +105,8 @@ class GpuPerSet {
     ParticleSetKey mKey;
     bool mBuilt = false;
     // What has been built for the current set (std::nullopt: not yet).
-    std::optional<ParticleSettings> mRadiusSettings;
+    std::optional<ParticleSettings> mRadiusSettings;  // droplet_atoms 0 when not requested
+    std::size_t mDropletCount = 0;
     bool mCulled = false;
     PerSetRequest mRequest;                          // the last update's, for pack()
     std::optional<ParticleSettings> mModelSettings;  // normal model and shape they were for
@@ -106,6 +114,7 @@ class GpuPerSet {
     gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
+    gl::Buffer mDroplets;  // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
     std::map<std::string, double> mTimings;  // since the last takeTimings()
 };
 

@@ -16,6 +16,7 @@
 #include "core/camera.h"
 #include "core/error.h"
 #include "realtime/anisotropy.h"
+#include "realtime/droplets.h"
 #include "realtime/field_normal.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/gl/context.h"
@@ -42,6 +43,7 @@ struct DeviceState {
     ImpostorRadiusCache radii;          // and for the impostor radii
     SurfaceKernelCache surfaceKernels;  // and for the kernels the gradient pass adds
     AnisotropyCache anisotropy;         // and for the ellipsoids (shape = "ellipsoid")
+    DropletCache droplets;              // and for the small droplets' ellipsoids
     GpuPerSet perSetGpu;                // per_set = "gpu": all of the above on the GPU
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
@@ -62,8 +64,8 @@ using Clock = std::chrono::steady_clock;
 
 // The stages of the work done once per particle set (timings_ms; 0 when they do not run or
 // an unchanged set reuses them). "upload" and, with per_set = "gpu", "pack" are per frame.
-constexpr const char* PER_SET_STAGES[] = {"grid", "radius",        "kernels",
-                                          "cull", "field_normals", "anisotropy"};
+constexpr const char* PER_SET_STAGES[] = {"grid",          "radius",     "droplets", "kernels",
+                                          "field_normals", "anisotropy", "cull"};
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -171,6 +173,11 @@ void checkLimits(const core::RenderInput& in, const Settings& settings, const De
 
 // ---- Compile ----
 
+// Whether small droplets may be drawn as ellipsoids (realtime/droplets.h).
+bool mayHaveDroplets(const ParticleSettings& p) {
+    return p.radius == RadiusModel::Field && p.dropletAtoms >= 2;
+}
+
 // Whether the gradient pass runs (and needs the kernels that reach the surface).
 bool usesKernels(const Settings& s) {
     return s.particles.normal == NormalModel::Gradient && !rebuildsNormals(s);
@@ -184,17 +191,24 @@ PerSetRequest perSetRequest(const Settings& settings) {
     // The culling test is exact for spheres only (see uploadCpu).
     request.cull =
         settings.particles.cullHidden && settings.particles.shape == ParticleShape::Sphere;
+    request.droplets = mayHaveDroplets(settings.particles);
     return request;
 }
 
 // Compiles (once per device) the programs the settings use that are not built on first use
 // inside the passes.
 void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
-    const bool ellipsoids = settings.particles.shape == ParticleShape::Ellipsoid;
-    if (usesShadowMap(settings.shadows))
-        programs.get("impostor.vert", "shadow.frag", impostorDefines(ellipsoids, {"SHADOW_PASS"}));
-    programs.get("impostor.vert", "gbuffer.frag",
-                 impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
+    // Spheres switch to the ellipsoid programs for a particle set with droplets.
+    const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
+    for (const bool ellipsoids : {false, true}) {
+        if (ellipsoids != anisotropic && !(ellipsoids && mayHaveDroplets(settings.particles)))
+            continue;
+        if (usesShadowMap(settings.shadows))
+            programs.get("impostor.vert", "shadow.frag",
+                         impostorDefines(ellipsoids, {"SHADOW_PASS"}));
+        programs.get("impostor.vert", "gbuffer.frag",
+                     impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
+    }
     if (usesSsss(settings)) {
         std::vector<std::string> defines;
         if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
@@ -292,34 +306,74 @@ Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Came
         return result;
     };
     bool built = false;
-    const std::vector<float>& radii = timed(
+    std::span<const float> radii = timed(
         "radius", [&]() -> auto& { return d.radii.radii(ps, settings.particles); });
     built |= !d.radii.reused();
-    const std::vector<Ellipsoid>* ellipsoids = nullptr;
-    if (settings.particles.shape == ParticleShape::Ellipsoid) {
+    // Small droplets, one ellipsoid each: their members' spheres are replaced.
+    const Droplets* droplets = nullptr;
+    if (mayHaveDroplets(settings.particles)) {
+        droplets = &timed(
+            "droplets", [&]() -> auto& {
+                return d.droplets.droplets(ps, radii, settings.particles.surfaceLevel,
+                                           settings.particles.dropletAtoms);
+            });
+        built |= !d.droplets.reused();
+        if (droplets->firsts.empty()) droplets = nullptr;
+    }
+    frame.counters["droplets"] = droplets ? static_cast<double>(droplets->firsts.size()) : 0.0;
+    if (droplets) radii = droplets->radii;
+    const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
+    const std::vector<Ellipsoid>* ellipsoids = droplets ? &droplets->ellipsoids : nullptr;
+    std::vector<Ellipsoid> anisotropicWithDroplets;
+    if (anisotropic) {
         ellipsoids = &timed(
             "anisotropy", [&]() -> auto& {
                 return d.anisotropy.ellipsoids(ps, radii, settings.particles.anisotropy);
             });
         built |= !d.anisotropy.reused();
+        if (droplets) {
+            anisotropicWithDroplets = *ellipsoids;
+            for (std::uint32_t first : droplets->firsts)
+                anisotropicWithDroplets[first] = droplets->ellipsoids[first];
+            ellipsoids = &anisotropicWithDroplets;
+        }
     }
     // The culling test is exact for spheres only: an ellipsoid inside the union of its
-    // neighbours' bounding spheres may still show between their ellipsoids.
+    // neighbours' bounding spheres may still show between their ellipsoids. Droplets are
+    // culled as nothing and drawn whatever the spheres hide.
+    std::span<const float> cullRadii = droplets ? droplets->cullRadii : radii;
     std::span<const std::uint32_t> culled;
-    if (settings.particles.cullHidden && !ellipsoids && cullingIsExact(ps, camera, radii)) {
+    if (settings.particles.cullHidden && !anisotropic && cullingIsExact(ps, camera, cullRadii)) {
         culled = timed(
-            "cull", [&]() -> auto& { return d.culler.unoccluded(ps, radii); });
+            "cull", [&]() -> auto& { return d.culler.unoccluded(ps, cullRadii); });
         built |= !d.culler.reused();
     }
     bool nothingDrawn = false;
-    const std::vector<std::uint32_t> drawn = withSurface(culled, radii, nothingDrawn);
+    std::vector<std::uint32_t> drawn = withSurface(culled, cullRadii, nothingDrawn);
+    if (droplets) {
+        // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly.
+        std::vector<std::uint32_t> merged;
+        std::merge(drawn.begin(), drawn.end(), droplets->firsts.begin(), droplets->firsts.end(),
+                   std::back_inserter(merged));
+        drawn = std::move(merged);
+        nothingDrawn = false;
+    }
     frame.counters["particles_drawn"] =
         nothingDrawn ? 0.0 : static_cast<double>(drawn.empty() ? ps.size() : drawn.size());
     std::span<const FieldNormal> fieldNormalModels;
+    std::vector<FieldNormal> withDropletNormals;
     if (settings.particles.normal == NormalModel::Field) {
         fieldNormalModels = timed(
             "field_normals", [&]() -> auto& { return d.fieldNormals.normals(ps, radii, drawn); });
         built |= !d.fieldNormals.reused();
+        if (droplets) {
+            // A droplet's normal is its ellipsoid's, not a model about its first particle.
+            withDropletNormals.assign(fieldNormalModels.begin(), fieldNormalModels.end());
+            for (std::size_t k = 0; k < drawn.size(); ++k)
+                if (std::binary_search(droplets->firsts.begin(), droplets->firsts.end(), drawn[k]))
+                    withDropletNormals[k] = dropletNormalModel(droplets->ellipsoids[drawn[k]]);
+            fieldNormalModels = withDropletNormals;
+        }
     }
     const std::vector<GpuParticle> gpuParticles =
         nothingDrawn ? std::vector<GpuParticle>{}
@@ -373,6 +427,7 @@ Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Came
     GpuPerSet& g = d.perSetGpu;
     const bool built = g.update(d.programs, ps, request);
     frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
+    frame.counters["droplets"] = static_cast<double>(g.dropletCount());
     frame.timingsMs["upload"] = g.uploadMs();
     g.pack(d.programs, {in.scene.camera.position, nearReach(camera)});
     gl::checkErrors("per-set compute passes");
@@ -383,8 +438,7 @@ Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Came
     }
     out.scene.particles = &g.particles();
     out.scene.draw = {0, &g.drawCommands(), GpuPerSet::particleDrawOffset()};
-    if (settings.particles.shape == ParticleShape::Ellipsoid)
-        out.scene.ellipsoids = &g.ellipsoids();
+    if (g.ellipsoidsDrawn()) out.scene.ellipsoids = &g.ellipsoids();
     if (request.kernels) {
         out.kernelBuffer = &g.kernels();
         out.kernelDraw = {0, &g.drawCommands(), GpuPerSet::kernelDrawOffset()};

@@ -196,6 +196,8 @@ Settings parseSettings(const core::ParameterTable& t) {
                              : RadiusModel::Field;
     s.particles.crossingScale =
         t.getDouble("particles.crossing_scale", d.particles.crossingScale, 1.0, 4.0);
+    s.particles.dropletAtoms =
+        static_cast<int>(t.getInt("particles.droplet_atoms", d.particles.dropletAtoms, 0, 64));
     s.particles.surfaceLevel =
         t.getDouble("particles.surface_level", d.particles.surfaceLevel, 1e-6, 1e6);
     const std::string normal =
@@ -254,6 +256,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.radius", toString(s.particles.radius)},
         {"realtime.particles.surface_level", s.particles.surfaceLevel},
         {"realtime.particles.crossing_scale", s.particles.crossingScale},
+        {"realtime.particles.droplet_atoms", s.particles.dropletAtoms},
         {"realtime.particles.normal", toString(s.particles.normal)},
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},

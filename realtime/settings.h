@@ -97,6 +97,11 @@ struct ParticleSettings {
     // frames 0/12/20/40 at 320 x 240: 0.979/0.939/0.938/0.928 at 1.2, -/0.931/0.929/0.924 at
     // 1.1, 0.974/0.943/0.938/0.922 at 1.3, 0.968/0.939/0.930/0.911 at 1.4 (docs/methods.md).
     double crossingScale = 1.2;
+    // particles.droplet_atoms ("field" only): clusters of 2 to this many sparse particles are
+    // drawn as one ellipsoid fitted to their level-set droplet (realtime/droplets.h), 0..64
+    // (below 2: none). A pair's droplet is a capsule whose neck no sphere about a particle
+    // covers.
+    int dropletAtoms = 8;
     // particles.normal: "gradient" | "field" | "blend" | "sphere". The particle normal (the
     // colour-field gradient at the centre) is one direction per particle, while the rendered
     // surface turns across a particle; "field" follows the field's gradient over the impostor to

@@ -37,6 +37,7 @@ TEST(Settings, ReadsEveryKey) {
                                             {"particles.cull_hidden", false},
                                             {"particles.normal", std::string("blend")},
                                             {"particles.sphere_normal_weight", 0.5},
+                                            {"particles.droplet_atoms", std::int64_t(5)},
                                             {"shadow_map.resolution", std::int64_t(512)},
                                             {"shadow_map.bias", 0.25},
                                             {"shadow_map.slope_bias", 3.0},
@@ -57,6 +58,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_FALSE(s.particles.cullHidden);
     EXPECT_EQ(s.particles.normal, NormalModel::Blend);
     EXPECT_DOUBLE_EQ(s.particles.sphereNormalWeight, 0.5);
+    EXPECT_EQ(s.particles.dropletAtoms, 5);
     EXPECT_EQ(s.shadowMap.resolution, 512);
     EXPECT_DOUBLE_EQ(s.shadowMap.bias, 0.25);
     EXPECT_DOUBLE_EQ(s.shadowMap.slopeBias, 3.0);
@@ -76,7 +78,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
     EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
     EXPECT_EQ(j.at("realtime.per_set"), "cpu");
-    EXPECT_EQ(j.size(), 46u);
+    EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
+    EXPECT_EQ(j.size(), 47u);
 }
 
 TEST(Settings, ReadsTheParticleShapeKeys) {

@@ -37,9 +37,20 @@ layout(std430, binding = 11) buffer Radii {
 
 // flags: bit 1: hidden (occlusion_culling.h).
 const uint HIDDEN = 2u;
-#if defined(CULL) || defined(MARK)
+#if defined(CULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || defined(PACK)
 layout(std430, binding = 12) buffer Flags {
-    uint flags[];
+    uint flags[];  // CULL writes bit 1 of its own particle's flags only
+};
+#endif
+
+// A droplet's first particle: its slot + 1 in the flags from bit 8 (0: not a droplet's), and
+// per droplet its ellipsoid (GpuEllipsoid) and field normal model (FieldNormal), 3 vec4 each.
+#if defined(CULL) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+uint dropletSlot(uint i) { return flags[i] >> 8; }
+#endif
+#if defined(KERNELS) || defined(PACK)
+layout(std430, binding = 16) readonly buffer Droplets {
+    vec4 droplets[];
 };
 #endif
 
@@ -203,6 +214,11 @@ mat3 normalFrame(vec3 n) {
 // bisection steps; "fixed" (uFixed): radius_scale h.
 uniform float uRadiusScale, uCrossingScale, uLevel;
 uniform int uFixed;
+// droplets.h's sparse test where > 0: a particle with a surface and fewer than this many
+// neighbours within 2 h counts in sparseCount.
+uniform int uDropletAtoms;
+float countReach_;
+float centreReach(float hMax) { return max(supportReach(hMax), countReach_); }
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
@@ -214,7 +230,22 @@ void main() {
     }
     vec3 centre = particlePosition(i);
     vec3 n = normalize(attribute3(ATTR_NORMAL, i));
-    float atCentre = fieldValue(i, centre, vec3(0.0));
+    // The field at the centre (fieldValue's sum, in its order) and the neighbours within 2 h.
+    float atCentre = 0.0;
+    int neighbours = 0;
+    countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
+    float countReach2 = countReach_ * countReach_;
+#define ADD_VALUE_COUNT(k)                                                         \
+    {                                                                              \
+        vec4 e = entries[k].positionInvH;                                          \
+        vec3 d = e.xyz - centre;                                                   \
+        float q = length(d) * e.w;                                                 \
+        if (q < 2.0) atCentre += entries[k].coefficients.x / e.w * m4Shape(q);     \
+        if (dot(d, d) < countReach2 && floatBitsToUint(entries[k].coefficients.z) != i) \
+            ++neighbours;                                                          \
+    }
+    FOR_EACH_NEAR(centre, centreReach, ADD_VALUE_COUNT)
+#undef ADD_VALUE_COUNT
     float crossing = 0.0;
     if (atCentre > uLevel) {
 #define ABOVE(t) (fieldValue(i, centre, (t) * n) > uLevel)
@@ -241,7 +272,9 @@ void main() {
     const float PI = 3.14159265358979;
     float own = attribute1(ATTR_VOLUME, i) / (PI * h * h * h);
     bool alone = atCentre <= own * (1.0 + 1e-4);
-    radii[i] = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
+    float radius = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
+    radii[i] = radius;
+    if (radius > 0.0 && neighbours < uDropletAtoms) atomicAdd(sparseCount, 1u);
 }
 #endif
 
@@ -263,7 +296,8 @@ void main() {
     uint i = invocation();
     if (i >= uCount) return;
     float ri = radii[i];
-    if (!(ri > 0.0)) return;
+    // Droplets are culled as nothing: neither hidden nor hiding (renderer.cpp's cullRadii).
+    if (!(ri > 0.0) || dropletSlot(i) != 0u) return;
     vec3 xi = particlePosition(i);
     uint body = attributeBits(ATTR_BODY, i);
     vec4 caps[MAX_CAPS];  // unit axis, the least cosine of a covered direction
@@ -278,7 +312,8 @@ void main() {
         vec3 d = entries[k].positionInvH.xyz - xi;                                          \
         float dist2 = dot(d, d);                                                            \
         float reach = ri + rj;                                                              \
-        if (j != i && rj > 0.0 && floatBitsToUint(entries[k].coefficients.w) == body &&     \
+        if (j != i && rj > 0.0 && dropletSlot(j) == 0u &&                                  \
+            floatBitsToUint(entries[k].coefficients.w) == body &&                           \
             dist2 < reach * reach) {                                                        \
             float dist = sqrt(dist2);                                                       \
             if (rj >= ri && dist + ri <= rj) {                                              \
@@ -497,7 +532,7 @@ uniform dvec3 uCamera;
 uniform double uNearReach;
 void main() {
     uint i = invocation();
-    if (i >= uCount || !(radii[i] > 0.0)) return;
+    if (i >= uCount || !(radii[i] > 0.0) || dropletSlot(i) != 0u) return;
     if (length(dvec3(particlePosition(i)) - uCamera) - double(radii[i]) <= uNearReach)
         atomicOr(nearHit, 1u);
 }
@@ -527,11 +562,14 @@ void main() {
     if (i >= uCount || drawnPrefix[i] == 0u) return;
     float r = radii[i];
     vec3 centre = particlePosition(i);
-    if (uEllipsoids != 0) {
+    uint slot = dropletSlot(i);
+    if (slot != 0u || uEllipsoids != 0) {
         // The ellipsoid lies within |shift| + its longest semi-axis of the particle.
-        vec3 shift = vec3(models[3u * i].w, models[3u * i + 1u].w, models[3u * i + 2u].w);
-        r = length(shift) + max(length(models[3u * i].xyz),
-                                max(length(models[3u * i + 1u].xyz), length(models[3u * i + 2u].xyz)));
+        vec4 a0 = slot != 0u ? droplets[6u * (slot - 1u)] : models[3u * i];
+        vec4 a1 = slot != 0u ? droplets[6u * (slot - 1u) + 1u] : models[3u * i + 1u];
+        vec4 a2 = slot != 0u ? droplets[6u * (slot - 1u) + 2u] : models[3u * i + 2u];
+        r = length(vec3(a0.w, a1.w, a2.w)) +
+            max(length(a0.xyz), max(length(a1.xyz), length(a2.xyz)));
     }
     kernelReach_r = r;
 #define MARK_KERNEL(k)                                                   \
@@ -573,7 +611,8 @@ layout(std430, binding = 4) writeonly buffer Ellipsoids {
     vec4 ellipsoids[];
 };
 uniform dvec3 uCamera;
-uniform int uModels;  // 0: none, 1: field normals, 2: ellipsoids
+uniform int uModels;         // 0: none, 1: field normals, 2: ellipsoids
+uniform int uEllipsoidsOut;  // ellipsoid records (uModels 2, or droplets: spheres as round ones)
 
 void main() {
     uint i = invocation();
@@ -591,12 +630,23 @@ void main() {
         p.glowMaterial = vec4(attribute3(ATTR_GLOW, i), float(attributeBits(ATTR_MATERIAL, i)));
         p.hessianDiagonal = vec4(0.0);
         p.hessianOffDiagonal = vec4(0.0);
+        uint slot = dropletSlot(i);
         if (uModels == 1) {
-            p.normalU.xyz = models[3u * i].xyz;
-            p.hessianDiagonal = models[3u * i + 1u];
-            p.hessianOffDiagonal = models[3u * i + 2u];
-        } else if (uModels == 2) {
-            for (uint a = 0u; a < 3u; ++a) ellipsoids[3u * k + a] = models[3u * i + a];
+            // A droplet's normal is its ellipsoid's.
+            uint m = slot != 0u ? 6u * (slot - 1u) + 3u : 3u * i;
+            p.normalU.xyz = slot != 0u ? droplets[m].xyz : models[m].xyz;
+            p.hessianDiagonal = slot != 0u ? droplets[m + 1u] : models[m + 1u];
+            p.hessianOffDiagonal = slot != 0u ? droplets[m + 2u] : models[m + 2u];
+        }
+        if (uEllipsoidsOut != 0) {
+            float r = radii[i];
+            for (uint a = 0u; a < 3u; ++a) {
+                vec4 round = vec4(0.0);
+                round[a] = r;
+                ellipsoids[3u * k + a] = slot != 0u  ? droplets[6u * (slot - 1u) + a]
+                                         : uModels == 2 ? models[3u * i + a]
+                                                        : round;
+            }
         }
         particles[k] = p;
     }

@@ -50,7 +50,7 @@ layout(std430, binding = 6) coherent buffer Header {
     uint hMinBits;           // the smallest h (float bits: positive floats order as uints)
     uint nearHit;            // a drawn sphere reaches into the near plane's ball (this frame)
     uint totalCells;         // cells of all levels
-    uint headerPad;
+    uint sparseCount;        // RADIUS: particles with a surface and few neighbours (droplets)
     uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 0, 0
     uvec4 drawKernels;       // the same for the kernels the gradient pass adds
     Level levels[MAX_LEVELS];
