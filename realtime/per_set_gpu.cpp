@@ -249,9 +249,12 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     if (request.cull && !mCulled) {
         timed("cull", [&] {
             const gl::Program& p = stage("CULL");
-            const double margin = cullingDirections().coveringAngle;
-            p.set("uCosMargin", static_cast<float>(std::cos(margin)));
-            p.set("uSinMargin", static_cast<float>(std::sin(margin)));
+            const CullingDirections& grid = cullingDirections();
+            p.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
+            p.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
+            p.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
+            p.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
+            p.set("uCoarseDirections", static_cast<int>(grid.coarseCount));
             p.set("uRadiusScale", static_cast<float>(s.radiusScale));
             p.dispatch(groups(mCount));
         });

@@ -212,13 +212,22 @@ mat3 normalFrame(vec3 n) {
 #ifdef RADIUS
 // impostor_radius.cpp: the distance along the normal to the level set, by 8 samples and 10
 // bisection steps; "fixed" (uFixed): radius_scale h.
+//
+// Most particles lie inside a body: the field is above the level at the centre and at both
+// early-exit samples (radius_scale h and half of it), so the radius is radius_scale h (times
+// crossing_scale, capped), whatever the sums' exact values. Kernels are never negative, so a
+// sum over some of the neighbours is a lower bound of the field, in float too (adding a
+// non-negative float never lowers a sum): the 2 x 2 x 2 cells of the particle's own level
+// around the samples' midpoint usually settle such a particle. The others take the full sums,
+// each over the whole neighbourhood in the grid's fixed order, the three samples in one walk.
 uniform float uRadiusScale, uCrossingScale, uLevel;
 uniform int uFixed;
 // droplets.h's sparse test where > 0: a particle with a surface and fewer than this many
 // neighbours within 2 h counts in sparseCount.
 uniform int uDropletAtoms;
-float countReach_;
-float centreReach(float hMax) { return max(supportReach(hMax), countReach_); }
+float countReach_, halfCap_;
+// About the samples' midpoint: every kernel that reaches a sample, every neighbour within 2 h.
+float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + halfCap_; }
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
@@ -230,32 +239,63 @@ void main() {
     }
     vec3 centre = particlePosition(i);
     vec3 n = normalize(attribute3(ATTR_NORMAL, i));
-    // The field at the centre (fieldValue's sum, in its order) and the neighbours within 2 h.
-    float atCentre = 0.0;
+    const float PI = 3.14159265358979;
+    float own = attribute1(ATTR_VOLUME, i) / (PI * h * h * h);
+    float ownBound = own * (1.0 + 1e-4);  // at or below: alone in its support
+    // The field at the centre, half-way and at the cap, and the neighbours within 2 h.
+    vec3 halfway = (0.5 * maxRadius) * n, cap = maxRadius * n;
+    float countReach2 = uDropletAtoms > 0 ? 4.0 * h * h : 0.0;
+    float atCentre = 0.0, atHalf = 0.0, atCap = 0.0;
     int neighbours = 0;
-    countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
-    float countReach2 = countReach_ * countReach_;
-#define ADD_VALUE_COUNT(k)                                                         \
-    {                                                                              \
-        vec4 e = entries[k].positionInvH;                                          \
-        vec3 d = e.xyz - centre;                                                   \
-        float q = length(d) * e.w;                                                 \
-        if (q < 2.0) atCentre += entries[k].coefficients.x / e.w * m4Shape(q);     \
+#define ADD_SAMPLES(k)                                                                  \
+    {                                                                                   \
+        vec4 e = entries[k].positionInvH;                                               \
+        vec3 d = e.xyz - centre;                                                        \
+        float c = entries[k].coefficients.x / e.w;                                      \
+        atCentre += c * m4Shape(length(d) * e.w);                                       \
+        atHalf += c * m4Shape(length(d - halfway) * e.w);                                 \
+        atCap += c * m4Shape(length(d - cap) * e.w);                                    \
         if (dot(d, d) < countReach2 && floatBitsToUint(entries[k].coefficients.z) != i) \
-            ++neighbours;                                                          \
+            ++neighbours;                                                               \
     }
-    FOR_EACH_NEAR(centre, centreReach, ADD_VALUE_COUNT)
-#undef ADD_VALUE_COUNT
+    {
+        Level g = levels[levelOf(h)];
+        float inv = levelInvCell(g);
+        ivec3 base = ivec3(floor((centre + 0.5 * cap - g.originCell.xyz) * inv - 0.5));
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dx = 0; dx < 2; ++dx) {
+                    ivec3 c = base + ivec3(dx, dy, dz);
+                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, g.dims.xyz))) continue;
+                    int cell = g.dims.w + (c.z * g.dims.y + c.y) * g.dims.x + c.x;
+                    uint end = cellStart[cell + 1];
+                    for (uint k = cellStart[cell]; k < end; ++k) ADD_SAMPLES(k)
+                }
+    }
+    if (atCentre > max(uLevel, ownBound) && atHalf > uLevel && atCap > uLevel &&
+        neighbours >= uDropletAtoms) {
+        radii[i] = min(maxRadius, uCrossingScale * maxRadius);
+        return;
+    }
+    atCentre = atHalf = atCap = 0.0;
+    neighbours = 0;
+    countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
+    halfCap_ = 0.5 * maxRadius;
+    vec3 middle = centre + 0.5 * cap;
+    FOR_EACH_NEAR(middle, walkReach, ADD_SAMPLES)
+#undef ADD_SAMPLES
     float crossing = 0.0;
     if (atCentre > uLevel) {
 #define ABOVE(t) (fieldValue(i, centre, (t) * n) > uLevel)
-        if (ABOVE(maxRadius) && ABOVE(0.5 * maxRadius)) {
+        if (atCap > uLevel && atHalf > uLevel) {
             crossing = maxRadius;
         } else {
+            // The samples at k = 4 and 8 are atHalf and atCap.
             float inside = 0.0, outside = -1.0;
             for (int k = 1; k <= 8 && outside < 0.0; ++k) {
                 float t = maxRadius * float(k) / 8.0;
-                if (ABOVE(t)) inside = t; else outside = t;
+                bool above = k == 4 ? atHalf > uLevel : k == 8 ? atCap > uLevel : ABOVE(t);
+                if (above) inside = t; else outside = t;
             }
             if (outside < 0.0) {
                 crossing = maxRadius;
@@ -269,9 +309,7 @@ void main() {
         }
 #undef ABOVE
     }
-    const float PI = 3.14159265358979;
-    float own = attribute1(ATTR_VOLUME, i) / (PI * h * h * h);
-    bool alone = atCentre <= own * (1.0 + 1e-4);
+    bool alone = atCentre <= ownBound;
     float radius = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
     radii[i] = radius;
     if (radius > 0.0 && neighbours < uDropletAtoms) atomicAdd(sparseCount, 1u);
@@ -285,11 +323,20 @@ void main() {
 // stays). The caps of the nearest neighbours (within 1.4 radii, the widest) are tried first.
 // Caps beyond MAX_CAPS are left out, which can only keep a sphere. The answer does not depend
 // on the neighbours' order.
+//
+// Most spheres lie inside a body, buried under the wide caps of their nearest neighbours.
+// Before that test, a cheaper one: the near shell alone (a third of the neighbourhood's
+// volume) on the coarse grid's 42 directions with its wider margin, a sufficient condition of
+// its own (a sphere it hides is hidden: exact as well, though it may hide a few borderline
+// spheres the fine grid keeps).
 layout(std430, binding = 15) readonly buffer Directions {
-    vec4 directions[];  // 162 unit directions
+    vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
 };
 uniform float uCosMargin, uSinMargin, uRadiusScale;
+uniform float uCoarseCosMargin, uCoarseSinMargin;
+uniform int uCoarseDirections;
 const int DIRECTIONS = 162, MAX_CAPS = 96;
+const float NEAR_SHELL = 1.4;  // radii
 float cullReach_ri;
 float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
 void main() {
@@ -304,26 +351,28 @@ void main() {
     int nearCaps = 0, farCaps = 0;
     bool hidden = false;
     cullReach_ri = ri;
-    float nearLimit2 = 1.4 * 1.4 * ri * ri;
-#define COVER(k)                                                                            \
+    float nearLimit2 = NEAR_SHELL * NEAR_SHELL * ri * ri;
+    // Sphere j (overlapping, of the same body, not a droplet) as a cap of directions covered
+    // with margin (COS_MARGIN, SIN_MARGIN), or i inside j; NEAR_ONLY: the near shell only.
+#define ADD_CAP(k, COS_MARGIN, SIN_MARGIN, NEAR_ONLY)                                       \
     if (!hidden) {                                                                          \
         uint j = floatBitsToUint(entries[k].coefficients.z);                                \
         float rj = radii[j];                                                                \
         vec3 d = entries[k].positionInvH.xyz - xi;                                          \
         float dist2 = dot(d, d);                                                            \
         float reach = ri + rj;                                                              \
-        if (j != i && rj > 0.0 && dropletSlot(j) == 0u &&                                  \
-            floatBitsToUint(entries[k].coefficients.w) == body &&                           \
-            dist2 < reach * reach) {                                                        \
+        if (j != i && rj > 0.0 && dropletSlot(j) == 0u &&                                   \
+            floatBitsToUint(entries[k].coefficients.w) == body && dist2 < reach * reach &&  \
+            (!NEAR_ONLY || dist2 <= nearLimit2)) {                                          \
             float dist = sqrt(dist2);                                                       \
             if (rj >= ri && dist + ri <= rj) {                                              \
                 if (dist2 > 0.0 || rj > ri || j < i) hidden = true;                         \
             } else if (dist2 > 0.0 && nearCaps + farCaps < MAX_CAPS) {                      \
                 float cosG =                                                                \
                     clamp((dist2 + ri * ri - rj * rj) / (2.0 * dist * ri), -1.0, 1.0);      \
-                if (cosG < uCosMargin) {                                                    \
+                if (cosG < COS_MARGIN) {                                                    \
                     float sinG = sqrt(1.0 - cosG * cosG);                                   \
-                    vec4 cap = vec4(d / dist, cosG * uCosMargin + sinG * uSinMargin + 2e-4); \
+                    vec4 cap = vec4(d / dist, cosG * COS_MARGIN + sinG * SIN_MARGIN + 2e-4); \
                     if (dist2 <= nearLimit2)                                                \
                         caps[nearCaps++] = cap;                                             \
                     else                                                                    \
@@ -332,20 +381,49 @@ void main() {
             }                                                                               \
         }                                                                                   \
     }
+    // Whether every direction in [FIRST, END) is covered by a cap.
+#define COVERED(FIRST, END, RESULT)                                                         \
+    {                                                                                       \
+        RESULT = true;                                                                      \
+        for (int dir = FIRST; dir < END && RESULT; ++dir) {                                 \
+            vec3 u = directions[dir].xyz;                                                   \
+            bool covered = false;                                                           \
+            for (int c = 0; c < nearCaps && !covered; ++c)                                  \
+                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
+            for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)                 \
+                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
+            RESULT = covered;                                                               \
+        }                                                                                   \
+    }
+    // The near shell's caps from the 3 x 3 x 3 cells of the particle's own level around its
+    // cell (cells are at least the level's largest h: they hold the nearest neighbours).
+    {
+        Level g = levels[levelOf(particleH(i))];
+        float inv = levelInvCell(g);
+        ivec3 home = ivec3(floor((xi - g.originCell.xyz) * inv));
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec3 c = home + ivec3(dx, dy, dz);
+                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, g.dims.xyz))) continue;
+                    int cell = g.dims.w + (c.z * g.dims.y + c.y) * g.dims.x + c.x;
+                    uint end = cellStart[cell + 1];
+                    for (uint k = cellStart[cell]; k < end; ++k)
+                        ADD_CAP(k, uCoarseCosMargin, uCoarseSinMargin, true)
+                }
+    }
+    if (!hidden && nearCaps > 0) COVERED(0, uCoarseDirections, hidden)
+    if (hidden) {
+        flags[i] |= HIDDEN;
+        return;
+    }
+    nearCaps = 0;
+#define COVER(k) ADD_CAP(k, uCosMargin, uSinMargin, false)
     FOR_EACH_NEAR(xi, cullReach, COVER)
 #undef COVER
-    if (!hidden && nearCaps + farCaps > 0) {
-        hidden = true;
-        for (int dir = 0; dir < DIRECTIONS && hidden; ++dir) {
-            vec3 u = directions[dir].xyz;
-            bool covered = false;
-            for (int c = 0; c < nearCaps && !covered; ++c)
-                covered = dot(u, caps[c].xyz) >= caps[c].w;
-            for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)
-                covered = dot(u, caps[c].xyz) >= caps[c].w;
-            hidden = covered;
-        }
-    }
+    if (!hidden && nearCaps + farCaps > 0) COVERED(0, DIRECTIONS, hidden)
+#undef ADD_CAP
+#undef COVERED
     flags[i] = (flags[i] & ~HIDDEN) | (hidden ? HIDDEN : 0u);
 }
 #endif
