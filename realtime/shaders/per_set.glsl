@@ -156,18 +156,4 @@ float m4ShapeSecondDerivative(float q) {
 
 float supportReach(float hMax) { return 2.0 * hMax; }
 
-// The colour field at position(i) + offset (core::ColourField::value).
-float fieldValue(uint i, vec3 centre, vec3 offset) {
-    vec3 point = centre + offset;
-    float sum = 0.0;
-#define ADD_VALUE(k)                                                   \
-    {                                                                  \
-        vec4 e = entries[k].positionInvH;                              \
-        float q = length((e.xyz - centre) - offset) * e.w;             \
-        if (q < 2.0) sum += entries[k].coefficients.x / e.w * m4Shape(q); \
-    }
-    FOR_EACH_NEAR(point, supportReach, ADD_VALUE)
-#undef ADD_VALUE
-    return sum;
-}
 #endif
