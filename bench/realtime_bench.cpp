@@ -9,10 +9,19 @@
 // frame is handed back (Renderer::recycle). BM_Planet100k720pFirstFrame is a new device and
 // renderer per frame: culling and field normals included, compile excluded.
 // BM_Planet100k720pSurface/<method>: each surface method at its defaults.
+// BM_Planet*NewSet/<gpu|cpu>: every frame a new particle set (the particles move by a few
+// float ulps between frames, so the per-set work is redone: counters.per_set_builds = 1), with
+// realtime.per_set = gpu or cpu; per_set_ms is the sum of the per-set stages (grid, radius,
+// droplets, kernels, cull, field_normals, anisotropy, upload, pack) and per_set_share its share of
+// the frame. BM_Planet1M1080pNewSet/gpu is the GPU target (a frame of a new 1M-particle set
+// at 1920 x 1080 under 16 ms): it runs as it is on an NVIDIA EGL device.
 // Run: build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+#include <glm/vec3.hpp>
 #include <map>
 #include <memory>
 #include <string>
@@ -138,6 +147,51 @@ void BM_Planet1M1080p(benchmark::State& state) {
     frame(state, 1000000, 1920, 1080, nullptr);
 }
 
+// Every frame a new particle set: the per-set work redone each frame (per_set = gpu or cpu).
+void newSetFrames(benchmark::State& state, int particles, int width, int height,
+                  tr::realtime::PerSetDevice where) {
+    const LoadedScene& s = planet(particles, width, height);
+    tr::realtime::Settings settings = s.settings;
+    settings.perSet = where;
+    tr::realtime::Device device(context());
+    tr::realtime::Renderer renderer(device, settings);
+    // Two sets that differ in every position by one float ulp: alternating them, each frame's
+    // set differs from the last, and the images are the same.
+    tr::core::SceneParticles sets[2] = {s.particles, s.particles};
+    for (glm::vec3& p : sets[1].particles.position)
+        p = glm::vec3(std::nextafter(p.x, 1e30f), p.y, p.z);
+    renderer.recycle(renderer.render({s.scene, sets[1], s.materials}));  // compiles
+    std::map<std::string, double> sums;
+    double builds = 0.0, perSet = 0.0;
+    int frame = 0;
+    for (auto _ : state) {
+        tr::core::Frame r = renderer.render({s.scene, sets[frame++ % 2], s.materials});
+        for (const auto& [stage, ms] : r.timingsMs) sums[stage] += ms;
+        for (const char* stage : {"grid", "radius", "droplets", "kernels", "cull", "field_normals",
+                                  "anisotropy", "upload", "pack"})
+            perSet += r.timingsMs[stage];
+        builds += r.counters["per_set_builds"];
+        benchmark::DoNotOptimize(r.image.pixels().data());
+        renderer.recycle(std::move(r));
+    }
+    for (const auto& [stage, ms] : sums)
+        if (stage != "compile")
+            state.counters[fmt::format("{}_ms", stage)] =
+                benchmark::Counter(ms, benchmark::Counter::kAvgIterations);
+    state.counters["per_set_ms"] = benchmark::Counter(perSet, benchmark::Counter::kAvgIterations);
+    state.counters["per_set_share"] = perSet / std::max(sums["total"], 1e-9);
+    state.counters["per_set_builds"] =
+        benchmark::Counter(builds, benchmark::Counter::kAvgIterations);
+    state.SetLabel(context().renderer());
+}
+
+void BM_Planet100k720pNewSet(benchmark::State& state, tr::realtime::PerSetDevice where) {
+    newSetFrames(state, 100000, 1280, 720, where);
+}
+void BM_Planet1M1080pNewSet(benchmark::State& state, tr::realtime::PerSetDevice where) {
+    newSetFrames(state, 1000000, 1920, 1080, where);
+}
+
 // Occlusion culling alone (CPU, part of "upload").
 void BM_Cull100k(benchmark::State& state) {
     const LoadedScene& s = planet(100000, 1280, 720);
@@ -179,5 +233,17 @@ BENCHMARK(BM_Planet100k720pEllipsoids)->Unit(benchmark::kMillisecond)->Iteration
 BENCHMARK(BM_Planet100k720pNoCulling)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_Cull100k)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet1M1080p)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(BM_Planet100k720pNewSet, gpu, tr::realtime::PerSetDevice::Gpu)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet100k720pNewSet, cpu, tr::realtime::PerSetDevice::Cpu)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet1M1080pNewSet, gpu, tr::realtime::PerSetDevice::Gpu)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_Planet1M1080pNewSet, cpu, tr::realtime::PerSetDevice::Cpu)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 BENCHMARK_MAIN();

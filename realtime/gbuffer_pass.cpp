@@ -31,10 +31,10 @@ GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int wi
          .clipDepth = reversed ? gl::ClipDepth::ZeroToOne : gl::ClipDepth::MinusOneToOne});
     programs
         .get("impostor.vert", "gbuffer.frag",
-             impostorDefines(scene.ellipsoids.has_value(), {depthDefine(mode)}))
+             impostorDefines(scene.ellipsoids != nullptr, {depthDefine(mode)}))
         .use();
     scene.bind();
-    gl::drawTriangles(static_cast<int>(6 * scene.particleCount));
+    scene.draw.draw();
     gl::setPipelineState({});
     return g;
 }

@@ -7,7 +7,7 @@
 namespace twinrender::realtime {
 
 gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& scene,
-                                  const gl::Buffer& kernels, std::size_t kernelCount,
+                                  const gl::Buffer& kernels, const DrawList& kernelDraw,
                                   const GBuffer& gbuffer, DepthMode mode) {
     const int w = gbuffer.surface.width(), h = gbuffer.surface.height();
     gl::Texture gradient(w, h, gl::Format::RGBA32F);
@@ -28,7 +28,7 @@ gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& sc
         scene.bind();
         kernels.bindStorage(3);
         gbuffer.surface.bind(0);
-        gl::drawTriangles(static_cast<int>(6 * kernelCount));
+        kernelDraw.draw();
     }
     gl::Texture normalUv(w, h, gl::Format::RGBA32F);
     gl::Framebuffer target("gradient resolve", {{&normalUv}}, gl::Attachment{&gbuffer.depth});

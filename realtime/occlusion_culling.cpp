@@ -15,13 +15,7 @@ namespace twinrender::realtime {
 
 namespace {
 
-// Directions at the vertices of an icosahedron subdivided twice (162 points), and the largest
-// angle from any direction to its nearest vertex (the largest angular circumradius of the
-// grid's triangles).
-struct DirectionGrid {
-    std::vector<glm::dvec3> directions;
-    double coveringAngle = 0.0;  // radians
-};
+using DirectionGrid = CullingDirections;
 
 DirectionGrid makeDirectionGrid() {
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
@@ -33,7 +27,24 @@ DirectionGrid makeDirectionGrid() {
         {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
         {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
         {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    // The largest angular circumradius of the triangles, rounded up.
+    auto coveringAngle = [&] {
+        double largest = 0.0;
+        for (const auto& f : faces) {
+            // The circumcentre of a spherical triangle is the normalised normal of its plane.
+            glm::dvec3 centre = glm::normalize(glm::cross(v[f[1]] - v[f[0]], v[f[2]] - v[f[0]]));
+            if (glm::dot(centre, v[f[0]]) < 0.0) centre = -centre;
+            largest =
+                std::max(largest, std::acos(std::clamp(glm::dot(centre, v[f[0]]), -1.0, 1.0)));
+        }
+        return largest * (1.0 + 1e-6);  // rounding margin
+    };
+    DirectionGrid grid;
     for (int level = 0; level < 2; ++level) {
+        if (level == 1) {
+            grid.coarseCount = v.size();
+            grid.coarseCoveringAngle = coveringAngle();
+        }
         std::map<std::pair<int, int>, int> midpoints;
         auto midpoint = [&](int a, int b) {
             const auto key = std::minmax(a, b);
@@ -52,16 +63,8 @@ DirectionGrid makeDirectionGrid() {
         }
         faces = std::move(next);
     }
-    DirectionGrid grid;
     grid.directions = v;
-    for (const auto& f : faces) {
-        // The circumcentre of a spherical triangle is the normalised normal of its plane.
-        glm::dvec3 centre = glm::normalize(glm::cross(v[f[1]] - v[f[0]], v[f[2]] - v[f[0]]));
-        if (glm::dot(centre, v[f[0]]) < 0.0) centre = -centre;
-        const double angle = std::acos(std::clamp(glm::dot(centre, v[f[0]]), -1.0, 1.0));
-        grid.coveringAngle = std::max(grid.coveringAngle, angle);
-    }
-    grid.coveringAngle *= 1.0 + 1e-6;  // rounding margin
+    grid.coveringAngle = coveringAngle();
     return grid;
 }
 
@@ -85,7 +88,7 @@ void cullGroup(const core::ParticleSet& ps, const std::vector<std::uint32_t>& me
     const std::size_t n = members.size();
     if (n < 2) return;
 
-    static const DirectionGrid grid = makeDirectionGrid();
+    const DirectionGrid& grid = cullingDirections();
     const double cosMargin = std::cos(grid.coveringAngle), sinMargin = std::sin(grid.coveringAngle);
 
     std::vector<double> radii(n);
@@ -301,6 +304,11 @@ void cullGroup(const core::ParticleSet& ps, const std::vector<std::uint32_t>& me
 }
 
 }  // namespace
+
+const CullingDirections& cullingDirections() {
+    static const CullingDirections grid = makeDirectionGrid();
+    return grid;
+}
 
 std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps,
                                                std::span<const float> radii) {

@@ -26,6 +26,19 @@
 
 namespace twinrender::realtime {
 
+// Directions at the vertices of an icosahedron subdivided twice (162 points), and the largest
+// angle from any direction to its nearest vertex (the largest angular circumradius of the
+// grid's triangles): a direction covered with that margin covers every direction near it.
+// The first coarseCount directions are the icosahedron subdivided once (42 points), a grid of
+// its own with the wider coarseCoveringAngle.
+struct CullingDirections {
+    std::vector<glm::dvec3> directions;
+    double coveringAngle = 0.0;  // radians
+    std::size_t coarseCount = 0;
+    double coarseCoveringAngle = 0.0;  // radians
+};
+const CullingDirections& cullingDirections();
+
 // Indices (ascending) of the particles whose sphere, of radius radii[i], may be visible.
 std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& particles,
                                                std::span<const float> radii);

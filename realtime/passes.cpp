@@ -5,10 +5,17 @@ namespace twinrender::realtime {
 
 void SceneBuffers::bind() const {
     uniforms.bindUniform(0);
-    particles.bindStorage(0);
+    particles->bindStorage(0);
     texels.bind(7);
     materials.bindStorage(2);
     if (ellipsoids) ellipsoids->bindStorage(4);
+}
+
+void DrawList::draw() const {
+    if (commands)
+        gl::drawTrianglesIndirect(commands->id(), offset);
+    else
+        gl::drawTriangles(static_cast<int>(6 * count));
 }
 
 std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::string> defines) {

@@ -22,16 +22,26 @@
 
 namespace twinrender::realtime {
 
-// Buffers uploaded once per render.
+// How many items (6 vertices each) a draw takes: `count`, or, when `commands` is set, the
+// indirect draw command a compute pass wrote there at byte `offset` (realtime/per_set_gpu.h).
+struct DrawList {
+    std::size_t count = 0;
+    const gl::Buffer* commands = nullptr;
+    std::size_t offset = 0;
+
+    void draw() const;
+};
+
+// Buffers uploaded (or, with realtime.per_set = "gpu", packed by compute passes) per render.
 struct SceneBuffers {
-    gl::Buffer uniforms;       // FrameUniforms
-    gl::Buffer particles;      // GpuParticle[]
-    gl::BufferTexture texels;  // GpuMaterials::texels (RGB32F), texture unit 7
-    gl::Buffer materials;      // GpuMaterial[]
-    std::size_t particleCount = 0;
+    gl::Buffer uniforms;          // FrameUniforms
+    const gl::Buffer* particles;  // GpuParticle[]
+    gl::BufferTexture texels;     // GpuMaterials::texels (RGB32F), texture unit 7
+    gl::Buffer materials;         // GpuMaterial[]
+    DrawList draw;                // the particles drawn
     // realtime.particles.shape = "ellipsoid": GpuEllipsoid[], one per particle, storage
     // binding 4; the impostor programs then take the ELLIPSOID variant (impostorDefines).
-    std::optional<gl::Buffer> ellipsoids = std::nullopt;
+    const gl::Buffer* ellipsoids = nullptr;
 
     void bind() const;
 };
@@ -62,7 +72,7 @@ GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int wi
 // replaced by the colour field's exact gradient direction at each covered pixel's surface point,
 // summed over `kernels` (GpuKernel[], every particle of the set).
 gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& scene,
-                                  const gl::Buffer& kernels, std::size_t kernelCount,
+                                  const gl::Buffer& kernels, const DrawList& kernelDraw,
                                   const GBuffer& gbuffer, DepthMode mode);
 
 // Full-screen passes that only need covered pixels (ssss, shade) draw with this state and put

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -28,6 +29,7 @@
 #include "realtime/light_frustum.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/passes.h"
+#include "realtime/per_set_gpu.h"
 #include "realtime/surface_kernels.h"
 
 namespace twinrender::realtime {
@@ -43,6 +45,7 @@ struct DeviceState {
     SurfaceKernelCache surfaceKernels;  // and for the kernels the gradient pass adds
     AnisotropyCache anisotropy;         // and for the ellipsoids (shape = "ellipsoid")
     DropletCache droplets;              // and for the small droplets' ellipsoids
+    GpuPerSet perSetGpu;                // per_set = "gpu": all of the above on the GPU
     // Read-back buffers, RGBA floats, kept between frames.
     std::vector<float> normalUv, emission, surface, beautyShadow, display;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
@@ -59,6 +62,11 @@ Device::~Device() = default;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The stages of the work done once per particle set (timings_ms; 0 when they do not run or
+// an unchanged set reuses them). "upload" and, with per_set = "gpu", "pack" are per frame.
+constexpr const char* PER_SET_STAGES[] = {"grid",          "radius",     "droplets", "kernels",
+                                          "field_normals", "anisotropy", "cull"};
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -104,13 +112,17 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
 // Occlusion culling assumes that every ray starts outside all spheres. Rays start at the near
 // plane; every point of the frustum in front of it lies within nearReach of the eye, so no
 // sphere reaching into that ball means the near plane cannot cut a body open.
+double nearReach(const core::Camera& camera) {
+    const double t = camera.tanHalfFovY();
+    return camera.settings().near *
+           std::sqrt(1.0 + t * t * (1.0 + camera.aspect() * camera.aspect()));
+}
+
 bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera,
                     std::span<const float> radii) {
-    const double t = camera.tanHalfFovY();
-    const double nearReach =
-        camera.settings().near * std::sqrt(1.0 + t * t * (1.0 + camera.aspect() * camera.aspect()));
+    const double reach = nearReach(camera);
     for (std::size_t i = 0; i < ps.size(); ++i)
-        if (glm::length(glm::dvec3(ps.position[i]) - camera.position()) - radii[i] <= nearReach)
+        if (glm::length(glm::dvec3(ps.position[i]) - camera.position()) - radii[i] <= reach)
             return false;
     return true;
 }
@@ -167,6 +179,23 @@ bool mayHaveDroplets(const ParticleSettings& p) {
     return p.radius == RadiusModel::Field && p.dropletAtoms >= 2;
 }
 
+// Whether the gradient pass runs (and needs the kernels that reach the surface).
+bool usesKernels(const Settings& s) {
+    return s.particles.normal == NormalModel::Gradient && !rebuildsNormals(s);
+}
+
+// What per_set = "gpu" computes for these settings.
+PerSetRequest perSetRequest(const Settings& settings) {
+    PerSetRequest request;
+    request.particles = settings.particles;
+    request.kernels = usesKernels(settings);
+    // The culling test is exact for spheres only (see uploadCpu).
+    request.cull =
+        settings.particles.cullHidden && settings.particles.shape == ParticleShape::Sphere;
+    request.droplets = mayHaveDroplets(settings.particles);
+    return request;
+}
+
 // Compiles (once per device) the programs the settings use that are not built on first use
 // inside the passes.
 void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
@@ -192,6 +221,8 @@ void compilePrograms(ProgramCache& programs, const Settings& settings, bool emit
         programs.get("fullscreen.vert", "gradient_resolve.frag");
     }
     compileSurfacePrograms(programs, settings.surface);
+    if (settings.perSet == PerSetDevice::Gpu)
+        compilePerSetPrograms(programs, perSetRequest(settings));
     gl::finish();
 }
 
@@ -216,11 +247,12 @@ void checkBufferLimits(const core::RenderInput& in, const DeviceState& d, std::s
 }
 
 // What upload() puts on the device: the scene's buffers, and the particles' kernels when the
-// normals come from the colour field's gradient.
+// normals come from the colour field's gradient (the CPU path's own buffers, or the GPU path's).
 struct Uploaded {
     SceneBuffers scene;
-    std::optional<gl::Buffer> kernels;  // those that reach the surface (surface_kernels.h)
-    std::size_t kernelCount = 0;
+    std::unique_ptr<gl::Buffer> particles, ellipsoids, kernels;  // per_set = "cpu"
+    const gl::Buffer* kernelBuffer = nullptr;  // those that reach the surface (surface_kernels.h)
+    DrawList kernelDraw;
 };
 
 // The drawn particles: those that may be seen (`culled`, hidden ones removed; empty = all)
@@ -242,44 +274,70 @@ std::vector<std::uint32_t> withSurface(std::span<const std::uint32_t> culled,
     return drawn;
 }
 
-// The particles that may be seen (hidden ones culled where that is exact, those without a
-// surface left out) with their impostor radii, ellipsoids and field normal models, the
-// materials and the frame uniforms, uploaded. Times "radius", "anisotropy" and "cull" (kept
-// per particle set by the device) and "upload" (the rest), counts "particles_drawn".
-Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
-                const Settings& settings, core::Frame& frame) {
-    const auto start = Clock::now();
-    const core::ParticleSet& ps = in.particles.particles;
-    std::span<const float> radii = d.radii.radii(ps, settings.particles);
-    frame.timingsMs["radius"] = msSince(start);
-    // Small droplets, one ellipsoid each: their members' spheres are replaced.
-    const Droplets* droplets = nullptr;
-    if (mayHaveDroplets(settings.particles)) {
-        const auto dropletStart = Clock::now();
-        droplets = &d.droplets.droplets(ps, radii, settings.particles.surfaceLevel,
-                                        settings.particles.dropletAtoms);
-        frame.timingsMs["droplets"] = msSince(dropletStart);
-        if (droplets->firsts.empty()) droplets = nullptr;
-    }
-    frame.counters["droplets"] = droplets ? static_cast<double>(droplets->firsts.size()) : 0.0;
-    if (droplets) radii = droplets->radii;
+// The frame uniforms and the materials, uploaded; the particle buffers are left to the caller.
+SceneBuffers sceneBuffers(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
+                          const Settings& settings, std::size_t particles) {
     const LightFrustum light =
         fitLightFrustum(in.particles.boundsMin, in.particles.boundsMax, in.scene.camera.position,
                         in.scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(in.scene, camera, in.particles, settings, light);
+    const GpuMaterials gpuMaterials = packMaterials(in.materials);
+    checkBufferLimits(in, d, particles, gpuMaterials.texels.size() / 3);
+    return {gl::Buffer::of(std::span<const FrameUniforms>(&uniforms, 1)),
+            nullptr,
+            gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
+                                  gl::BufferFormat::RGB32F),
+            gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
+            {}};
+}
+
+// per_set = "cpu": the particles that may be seen (hidden ones culled where that is exact,
+// those without a surface left out) with their impostor radii, ellipsoids and field normal
+// models, packed on the CPU and uploaded with the materials and the frame uniforms. Times
+// "radius", "kernels", "anisotropy", "field_normals" and "cull" (kept per particle set by the
+// device) and "upload" (the rest), counts "particles_drawn" and "per_set_builds".
+Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
+                   const Settings& settings, core::Frame& frame) {
+    const auto start = Clock::now();
+    const core::ParticleSet& ps = in.particles.particles;
+    auto timed = [&](const char* stage, const auto& work) -> decltype(auto) {
+        const auto stageStart = Clock::now();
+        decltype(auto) result = work();
+        frame.timingsMs[stage] = msSince(stageStart);
+        return result;
+    };
+    bool built = false;
+    std::span<const float> radii = timed(
+        "radius", [&]() -> auto& { return d.radii.radii(ps, settings.particles); });
+    built |= !d.radii.reused();
+    // Small droplets, one ellipsoid each: their members' spheres are replaced.
+    const Droplets* droplets = nullptr;
+    if (mayHaveDroplets(settings.particles)) {
+        droplets = &timed(
+            "droplets", [&]() -> auto& {
+                return d.droplets.droplets(ps, radii, settings.particles.surfaceLevel,
+                                           settings.particles.dropletAtoms);
+            });
+        built |= !d.droplets.reused();
+        if (droplets->firsts.empty()) droplets = nullptr;
+    }
+    frame.counters["droplets"] = droplets ? static_cast<double>(droplets->firsts.size()) : 0.0;
+    if (droplets) radii = droplets->radii;
     const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
     const std::vector<Ellipsoid>* ellipsoids = droplets ? &droplets->ellipsoids : nullptr;
     std::vector<Ellipsoid> anisotropicWithDroplets;
     if (anisotropic) {
-        const auto anisotropyStart = Clock::now();
-        ellipsoids = &d.anisotropy.ellipsoids(ps, radii, settings.particles.anisotropy);
+        ellipsoids = &timed(
+            "anisotropy", [&]() -> auto& {
+                return d.anisotropy.ellipsoids(ps, radii, settings.particles.anisotropy);
+            });
+        built |= !d.anisotropy.reused();
         if (droplets) {
             anisotropicWithDroplets = *ellipsoids;
             for (std::uint32_t first : droplets->firsts)
                 anisotropicWithDroplets[first] = droplets->ellipsoids[first];
             ellipsoids = &anisotropicWithDroplets;
         }
-        frame.timingsMs["anisotropy"] = msSince(anisotropyStart);
     }
     // The culling test is exact for spheres only: an ellipsoid inside the union of its
     // neighbours' bounding spheres may still show between their ellipsoids. Droplets are
@@ -287,9 +345,9 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     std::span<const float> cullRadii = droplets ? droplets->cullRadii : radii;
     std::span<const std::uint32_t> culled;
     if (settings.particles.cullHidden && !anisotropic && cullingIsExact(ps, camera, cullRadii)) {
-        const auto cullStart = Clock::now();
-        culled = d.culler.unoccluded(ps, cullRadii);
-        frame.timingsMs["cull"] = msSince(cullStart);
+        culled = timed(
+            "cull", [&]() -> auto& { return d.culler.unoccluded(ps, cullRadii); });
+        built |= !d.culler.reused();
     }
     bool nothingDrawn = false;
     std::vector<std::uint32_t> drawn = withSurface(culled, cullRadii, nothingDrawn);
@@ -306,7 +364,9 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     std::span<const FieldNormal> fieldNormalModels;
     std::vector<FieldNormal> withDropletNormals;
     if (settings.particles.normal == NormalModel::Field) {
-        fieldNormalModels = d.fieldNormals.normals(ps, radii, drawn);
+        fieldNormalModels = timed(
+            "field_normals", [&]() -> auto& { return d.fieldNormals.normals(ps, radii, drawn); });
+        built |= !d.fieldNormals.reused();
         if (droplets) {
             // A droplet's normal is its ellipsoid's, not a model about its first particle.
             withDropletNormals.assign(fieldNormalModels.begin(), fieldNormalModels.end());
@@ -319,40 +379,86 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     const std::vector<GpuParticle> gpuParticles =
         nothingDrawn ? std::vector<GpuParticle>{}
                      : packParticles(ps, in.scene.camera.position, radii, drawn, fieldNormalModels);
-    const GpuMaterials gpuMaterials = packMaterials(in.materials);
-    checkBufferLimits(in, d, gpuParticles.size(), gpuMaterials.texels.size() / 3);
-    SceneBuffers buffers{gl::Buffer::of(std::span<const FrameUniforms>(&uniforms, 1)),
-                         gl::Buffer::of(std::span<const GpuParticle>(gpuParticles)),
-                         gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
-                                               gl::BufferFormat::RGB32F),
-                         gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
-                         gpuParticles.size()};
+    Uploaded out{sceneBuffers(d, in, camera, settings, gpuParticles.size()), {}, {}, {}};
+    out.particles =
+        std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuParticle>(gpuParticles)));
+    out.scene.particles = out.particles.get();
+    out.scene.draw.count = gpuParticles.size();
     if (ellipsoids) {
         const std::vector<GpuEllipsoid> packed =
             nothingDrawn ? std::vector<GpuEllipsoid>{} : packEllipsoids(*ellipsoids, drawn);
-        buffers.ellipsoids.emplace(gl::Buffer::of(std::span<const GpuEllipsoid>(packed)));
+        out.ellipsoids =
+            std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuEllipsoid>(packed)));
+        out.scene.ellipsoids = out.ellipsoids.get();
     }
-    std::optional<gl::Buffer> kernels;
-    std::size_t kernelCount = 0;
-    if (settings.particles.normal == NormalModel::Gradient && !rebuildsNormals(settings)) {
-        const auto kernelStart = Clock::now();
-        const std::vector<std::uint32_t>& reaching =
-            d.surfaceKernels.kernels(ps, settings.particles.surfaceLevel);
-        frame.timingsMs["radius"] += msSince(kernelStart);
+    if (usesKernels(settings)) {
+        const std::vector<std::uint32_t>& reaching = timed(
+            "kernels", [&]() -> auto& {
+                return d.surfaceKernels.kernels(ps, settings.particles.surfaceLevel);
+            });
+        built |= !d.surfaceKernels.reused();
         frame.counters["kernels_splatted"] = static_cast<double>(reaching.size());
         if (!reaching.empty()) {
             const std::vector<GpuKernel> packed =
                 packKernels(ps, in.scene.camera.position, reaching);
-            kernels.emplace(gl::Buffer::of(std::span<const GpuKernel>(packed)));
-            kernelCount = packed.size();
+            out.kernels =
+                std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuKernel>(packed)));
+            out.kernelBuffer = out.kernels.get();
+            out.kernelDraw.count = packed.size();
         }
     }
+    frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
     gl::checkErrors("upload");
     gl::finish();
-    frame.timingsMs["upload"] = msSince(start) - frame.timingsMs["cull"] -
-                                frame.timingsMs["radius"] - frame.timingsMs["droplets"] -
-                                frame.timingsMs["anisotropy"];
-    return {std::move(buffers), std::move(kernels), kernelCount};
+    double perSet = 0.0;
+    for (const char* stage : PER_SET_STAGES) perSet += frame.timingsMs[stage];
+    frame.timingsMs["upload"] = msSince(start) - perSet;
+    return out;
+}
+
+// per_set = "gpu" (per_set_gpu.h): the particles' attributes uploaded once per set, the per-set
+// answers computed and the draw lists packed by compute passes; the draws take their counts
+// from indirect commands. Times "upload" (wall clock) and the GPU stages (timer queries, read
+// after the frame by readGpuTimings), counts "per_set_builds".
+Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
+                   const Settings& settings, core::Frame& frame) {
+    const core::ParticleSet& ps = in.particles.particles;
+    Uploaded out{sceneBuffers(d, in, camera, settings, ps.size()), {}, {}, {}};
+    const PerSetRequest request = perSetRequest(settings);
+    GpuPerSet& g = d.perSetGpu;
+    const bool built = g.update(d.programs, ps, request);
+    frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
+    frame.counters["droplets"] = static_cast<double>(g.dropletCount());
+    frame.timingsMs["upload"] = g.uploadMs();
+    g.pack(d.programs, {in.scene.camera.position, nearReach(camera)});
+    gl::checkErrors("per-set compute passes");
+    if (ps.size() == 0) {
+        out.particles = std::make_unique<gl::Buffer>(gl::Buffer::zeros(16));
+        out.scene.particles = out.particles.get();
+        return out;
+    }
+    out.scene.particles = &g.particles();
+    out.scene.draw = {0, &g.drawCommands(), GpuPerSet::particleDrawOffset()};
+    if (g.ellipsoidsDrawn()) out.scene.ellipsoids = &g.ellipsoids();
+    if (request.kernels) {
+        out.kernelBuffer = &g.kernels();
+        out.kernelDraw = {0, &g.drawCommands(), GpuPerSet::kernelDrawOffset()};
+    }
+    return out;
+}
+
+Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
+                const Settings& settings, core::Frame& frame) {
+    return settings.perSet == PerSetDevice::Gpu ? uploadGpu(d, in, camera, settings, frame)
+                                                : uploadCpu(d, in, camera, settings, frame);
+}
+
+// per_set = "gpu": the compute stages' GPU times and the draw counts, once the frame is done.
+void readGpuPerSet(DeviceState& d, const Settings& settings, core::Frame& frame) {
+    if (settings.perSet != PerSetDevice::Gpu) return;
+    for (const auto& [stage, ms] : d.perSetGpu.takeTimings()) frame.timingsMs[stage] = ms;
+    frame.counters["particles_drawn"] = d.perSetGpu.drawnCount();
+    if (usesKernels(settings)) frame.counters["kernels_splatted"] = d.perSetGpu.kernelCount();
 }
 
 // ---- Passes ----
@@ -362,8 +468,8 @@ struct PassInputs {
     ProgramCache& programs;
     const SceneBuffers& scene;
     const Settings& settings;
-    const gl::Buffer* kernels = nullptr;  // normal = "gradient": every particle's kernel
-    std::size_t kernelCount = 0;
+    const gl::Buffer* kernels = nullptr;  // normal = "gradient": the kernels that reach the surface
+    DrawList kernelDraw;
     int width = 0, height = 0;
     bool emits = false;  // whether anything emits: else the emission buffer is zero
     float exposure = 1.0f;
@@ -444,10 +550,13 @@ const Pass PASSES[] = {
      }},
     // Not under a depth filter, whose normals are rebuilt from the filtered depth (upload
     // leaves the kernels out then).
-    {"normals", [](const PassInputs& in) { return in.kernels != nullptr && in.kernelCount > 0; },
+    {"normals",
+     [](const PassInputs& in) {
+         return in.kernels != nullptr && (in.kernelDraw.commands || in.kernelDraw.count > 0);
+     },
      [](const PassInputs& in, PassTargets& t) {
          t.gradientNormalUv.emplace(runGradientNormalPass(
-             in.programs, in.scene, *in.kernels, in.kernelCount, *t.gbuffer, in.settings.depth));
+             in.programs, in.scene, *in.kernels, in.kernelDraw, *t.gbuffer, in.settings.depth));
      }},
     {"ssss", [](const PassInputs& in) { return usesSsss(in.settings); },
      [](const PassInputs& in, PassTargets& t) {
@@ -567,8 +676,8 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     frame.device = d.context.renderer();
     frame.settings = toJson(mSettings);
     frame.particleCount = in.particles.particles.size();
-    for (const char* stage : {"radius", "droplets", "anisotropy", "cull", "upload", "readback"})
-        frame.timingsMs[stage] = 0.0;
+    for (const char* stage : PER_SET_STAGES) frame.timingsMs[stage] = 0.0;
+    for (const char* stage : {"upload", "pack", "readback"}) frame.timingsMs[stage] = 0.0;
     for (const Pass& pass : PASSES) frame.timingsMs[pass.name] = 0.0;
 
     // Whether anything emits: otherwise the emission buffer is zero and SSSS leaves it alone.
@@ -581,10 +690,8 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     const auto totalStart = Clock::now();
     const Uploaded uploaded = upload(d, in, camera, mSettings, frame);
     PassInputs passInputs{d.programs, uploaded.scene, mSettings};
-    if (uploaded.kernels) {
-        passInputs.kernels = &*uploaded.kernels;
-        passInputs.kernelCount = uploaded.kernelCount;
-    }
+    passInputs.kernels = uploaded.kernelBuffer;
+    passInputs.kernelDraw = uploaded.kernelDraw;
     passInputs.width = camera.width();
     passInputs.height = camera.height();
     passInputs.emits = emits;
@@ -598,6 +705,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     core::throwIfCancelled(in.cancel);
     const PassTargets targets = runPasses(passInputs);
     readBack(d, targets, emits, camera.width(), camera.height(), frame);
+    readGpuPerSet(d, mSettings, frame);
     for (const auto& [name, query] : targets.timers) frame.timingsMs[name] = query.milliseconds();
     frame.timingsMs["total"] = msSince(totalStart);
     return frame;

@@ -81,6 +81,10 @@ std::string_view toString(EllipsoidAnchor anchor) {
     return anchor == EllipsoidAnchor::Centre ? "centre" : "surface";
 }
 
+std::string_view toString(PerSetDevice device) {
+    return device == PerSetDevice::Cpu ? "cpu" : "gpu";
+}
+
 namespace {
 
 constexpr std::pair<SurfaceMethod, std::string_view> SURFACE_METHODS[] = {
@@ -179,6 +183,9 @@ Settings parseSettings(const core::ParameterTable& t) {
     Settings s;
     s.depth = parseDepthMode(
         t.getEnum("depth", std::string(toString(d.depth)), {"log", "standard", "reversed"}));
+    s.perSet = t.getEnum("per_set", std::string(toString(d.perSet)), {"gpu", "cpu"}) == "cpu"
+                   ? PerSetDevice::Cpu
+                   : PerSetDevice::Gpu;
     s.shadows = parseShadowMode(
         t.getEnum("shadows", std::string(toString(d.shadows)), {"map", "pcf", "spheres", "none"}));
     s.particles.radiusScale =
@@ -244,6 +251,7 @@ nlohmann::json toJson(const Settings& s) {
     return {
         {"realtime.depth", toString(s.depth)},
         {"realtime.shadows", toString(s.shadows)},
+        {"realtime.per_set", toString(s.perSet)},
         {"realtime.particles.radius_scale", s.particles.radiusScale},
         {"realtime.particles.radius", toString(s.particles.radius)},
         {"realtime.particles.surface_level", s.particles.surfaceLevel},

@@ -231,9 +231,17 @@ struct BloomSettings {
     double threshold = 1.0;  // bloom.threshold: linear radiance above which pixels bloom, >= 0
 };
 
+// Where the work done once per particle set runs (per_set): impostor radii, the kernels that
+// reach the surface, occlusion culling, field normal models, ellipsoids (realtime/README.md).
+enum class PerSetDevice {
+    Gpu,  // "gpu": compute shaders over a uniform grid built on the GPU (per_set_gpu.h)
+    Cpu,  // "cpu": oneTBB over core::ColourField's grids, packed and uploaded
+};
+
 struct Settings {
-    DepthMode depth = DepthMode::Log;      // depth: "log" | "standard" | "reversed"
-    ShadowMode shadows = ShadowMode::Map;  // shadows: "map" | "pcf" | "spheres" | "none"
+    DepthMode depth = DepthMode::Log;         // depth: "log" | "standard" | "reversed"
+    PerSetDevice perSet = PerSetDevice::Gpu;  // per_set: "gpu" | "cpu"
+    ShadowMode shadows = ShadowMode::Map;     // shadows: "map" | "pcf" | "spheres" | "none"
     ParticleSettings particles;
     ShadowMapSettings shadowMap;
     SurfaceSettings surface;
@@ -261,5 +269,6 @@ std::string_view toString(RadiusModel model);
 std::string_view toString(SurfaceMethod method);
 std::string_view toString(ParticleShape shape);
 std::string_view toString(EllipsoidAnchor anchor);
+std::string_view toString(PerSetDevice device);
 
 }  // namespace twinrender::realtime

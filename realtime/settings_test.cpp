@@ -31,6 +31,7 @@ TEST(Settings, DefaultsFollowScenesMd) {
 
 TEST(Settings, ReadsEveryKey) {
     const Settings s = parseSettings(table({{"depth", std::string("reversed")},
+                                            {"per_set", std::string("cpu")},
                                             {"shadows", std::string("pcf")},
                                             {"particles.radius_scale", 1.1},
                                             {"particles.cull_hidden", false},
@@ -51,6 +52,7 @@ TEST(Settings, ReadsEveryKey) {
                                             {"bloom.strength", 0.2},
                                             {"bloom.threshold", 2.0}}));
     EXPECT_EQ(s.depth, DepthMode::Reversed);
+    EXPECT_EQ(s.perSet, PerSetDevice::Cpu);
     EXPECT_EQ(s.shadows, ShadowMode::Pcf);
     EXPECT_DOUBLE_EQ(s.particles.radiusScale, 1.1);
     EXPECT_FALSE(s.particles.cullHidden);
@@ -75,8 +77,9 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.depth"), "reversed");
     EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
     EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
+    EXPECT_EQ(j.at("realtime.per_set"), "cpu");
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
-    EXPECT_EQ(j.size(), 46u);
+    EXPECT_EQ(j.size(), 47u);
 }
 
 TEST(Settings, ReadsTheParticleShapeKeys) {

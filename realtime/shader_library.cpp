@@ -94,4 +94,14 @@ const gl::Program& ProgramCache::get(std::string_view vertexFile, std::string_vi
     return it->second;
 }
 
+const gl::Program& ProgramCache::compute(std::string_view file,
+                                         const std::vector<std::string>& defines) {
+    std::string key(file);
+    for (const auto& d : defines) key += " -D" + d;
+    auto it = mPrograms.find(key);
+    if (it == mPrograms.end())
+        it = mPrograms.emplace(key, gl::Program(key, composeShader(file, defines))).first;
+    return it->second;
+}
+
 }  // namespace twinrender::realtime

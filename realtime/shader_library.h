@@ -42,6 +42,9 @@ class ProgramCache {
                            const std::vector<std::string>& defines = {},
                            const IncludedFile* user = nullptr);
 
+    // A compute program (a .comp file), compiled on first use.
+    const gl::Program& compute(std::string_view file, const std::vector<std::string>& defines = {});
+
     std::size_t size() const { return mPrograms.size(); }
 
   private:

@@ -14,10 +14,10 @@ gl::Texture runShadowPass(ProgramCache& programs, const SceneBuffers& scene, int
         {.depthTest = gl::DepthTest::Less, .depthWrite = true, .depthClamp = true});
     programs
         .get("impostor.vert", "shadow.frag",
-             impostorDefines(scene.ellipsoids.has_value(), {"SHADOW_PASS"}))
+             impostorDefines(scene.ellipsoids != nullptr, {"SHADOW_PASS"}))
         .use();
     scene.bind();
-    gl::drawTriangles(static_cast<int>(6 * scene.particleCount));
+    scene.draw.draw();
     gl::setPipelineState({});
     return map;
 }

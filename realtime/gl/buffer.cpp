@@ -25,6 +25,34 @@ Buffer::Buffer(std::span<const std::byte> data) : mSize(data.size()) {
     }
 }
 
+Buffer Buffer::zeros(std::size_t bytes) {
+    Buffer b;
+    b.mSize = std::max<std::size_t>(bytes, 16);
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    b.mHandle = Handle(id, deleteBuffer);
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(b.mSize), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    b.clear();
+    return b;
+}
+
+void Buffer::write(std::size_t offset, std::span<const std::byte> data) {
+    if (!data.empty())
+        glNamedBufferSubData(mHandle.id(), static_cast<GLintptr>(offset),
+                             static_cast<GLsizeiptr>(data.size()), data.data());
+}
+
+void Buffer::clear() {
+    glClearNamedBufferData(mHandle.id(), GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, nullptr);
+}
+
+void Buffer::read(std::size_t offset, std::span<std::byte> out) const {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (!out.empty())
+        glGetNamedBufferSubData(mHandle.id(), static_cast<GLintptr>(offset),
+                                static_cast<GLsizeiptr>(out.size()), out.data());
+}
+
 void Buffer::bindStorage(unsigned binding) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, mHandle.id());
 }

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "realtime/gl/handle.h"
 
@@ -18,6 +19,26 @@ class Buffer {
     template <typename T>
     static Buffer of(std::span<const T> items) {
         return Buffer(std::as_bytes(items));
+    }
+
+    // A buffer of `bytes` zero bytes (at least 16) that shaders fill; write() and clear() may
+    // change it later.
+    static Buffer zeros(std::size_t bytes);
+    // Sets bytes [offset, offset + data.size()) (a buffer made by zeros() only).
+    void write(std::size_t offset, std::span<const std::byte> data);
+    template <typename T>
+    void write(std::size_t offset, std::span<const T> items) {
+        write(offset, std::as_bytes(items));
+    }
+    // Sets every byte to 0.
+    void clear();
+    // Copies bytes [offset, offset + out.size()) back (waits for the writes before it).
+    void read(std::size_t offset, std::span<std::byte> out) const;
+    template <typename T>
+    std::vector<T> read(std::size_t first, std::size_t count) const {
+        std::vector<T> out(count);
+        read(first * sizeof(T), std::as_writable_bytes(std::span<T>(out)));
+        return out;
     }
 
     // glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding): layout(std430, binding = N).

@@ -34,12 +34,23 @@ void drawTriangles(int vertexCount) {
     if (vertexCount > 0) glDrawArrays(GL_TRIANGLES, 0, vertexCount);
 }
 
+void drawTrianglesIndirect(unsigned commands, std::size_t offset) {
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands);
+    glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(offset));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
 void drawFullscreenTriangle() {
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
 void memoryBarrierAll() {
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+void computeBarrier() {
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
 }
 
 void finish() {

@@ -2,6 +2,8 @@
 // and draw through these and never touch GL enums.
 #pragma once
 
+#include <cstddef>
+
 namespace twinrender::realtime::gl {
 
 enum class DepthTest {
@@ -28,12 +30,17 @@ void setPipelineState(const PipelineState& state);
 
 // Attribute-less draws: vertex shaders fetch their data from storage buffers by gl_VertexID.
 void drawTriangles(int vertexCount);
+// The same with the vertex count in a buffer a compute shader wrote: `commands` holds
+// glDrawArraysIndirect's {count, 1, 0, 0} at byte `offset` (4-byte aligned).
+void drawTrianglesIndirect(unsigned commands, std::size_t offset);
 // One triangle covering the viewport (vertex shader fullscreen.vert).
 void drawFullscreenTriangle();
 
 // Makes later texture reads see the writes of earlier draws to storage images or buffers
 // (not needed between a draw into a framebuffer and sampling its textures).
 void memoryBarrierAll();
+// Makes later shaders, indirect draws and read-backs see a compute shader's storage writes.
+void computeBarrier();
 void finish();
 
 struct Limits {

@@ -59,7 +59,9 @@ GLuint compile(const std::string& program, GLenum stage, const ShaderSource& sou
         glGetShaderInfoLog(shader, length, nullptr, log.data());
         glDeleteShader(shader);
         throw Error(fmt::format("program '{}': the {} shader does not compile:\n{}", program,
-                                stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
+                                stage == GL_VERTEX_SHADER    ? "vertex"
+                                : stage == GL_COMPUTE_SHADER ? "compute"
+                                                             : "fragment",
                                 namedLog(log.c_str(), source)));
     }
     return shader;
@@ -103,8 +105,18 @@ Program::Program(std::string name, const ShaderSource& vertex, const ShaderSourc
     checkErrors("program " + mName);
 }
 
+Program::Program(std::string name, const ShaderSource& compute) : mName(std::move(name)) {
+    mHandle = Handle(link(mName, {compile(mName, GL_COMPUTE_SHADER, compute)}), deleteProgram);
+    checkErrors("program " + mName);
+}
+
 void Program::use() const {
     glUseProgram(mHandle.id());
+}
+
+void Program::dispatch(unsigned groups) const {
+    use();
+    if (groups > 0) glDispatchCompute(groups, 1, 1);
 }
 
 int Program::location(std::string_view uniform) const {
@@ -121,6 +133,15 @@ void Program::set(std::string_view u, float v) const {
 }
 void Program::set(std::string_view u, int v) const {
     glProgramUniform1i(id(), location(u), v);
+}
+void Program::set(std::string_view u, unsigned v) const {
+    glProgramUniform1ui(id(), location(u), v);
+}
+void Program::set(std::string_view u, double v) const {
+    glProgramUniform1d(id(), location(u), v);
+}
+void Program::set(std::string_view u, const glm::dvec3& v) const {
+    glProgramUniform3dv(id(), location(u), 1, glm::value_ptr(v));
 }
 void Program::set(std::string_view u, const glm::vec2& v) const {
     glProgramUniform2fv(id(), location(u), 1, glm::value_ptr(v));

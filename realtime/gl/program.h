@@ -36,14 +36,21 @@ class Program {
     // Compiles and links; throws Error with the program name and the driver's log, its lines
     // named by file and line, when either step fails.
     Program(std::string name, const ShaderSource& vertex, const ShaderSource& fragment);
+    // A compute program (GL 4.3): the same, with one compute shader.
+    Program(std::string name, const ShaderSource& compute);
 
     void use() const;
+    // use(), then glDispatchCompute(groups, 1, 1) (nothing when groups is 0).
+    void dispatch(unsigned groups) const;
     const std::string& name() const { return mName; }
     unsigned id() const { return mHandle.id(); }
 
     // Uniform setters (glProgramUniform*); a name the linker optimised away is ignored.
     void set(std::string_view uniform, float value) const;
     void set(std::string_view uniform, int value) const;
+    void set(std::string_view uniform, unsigned value) const;
+    void set(std::string_view uniform, double value) const;
+    void set(std::string_view uniform, const glm::dvec3& value) const;
     void set(std::string_view uniform, const glm::vec2& value) const;
     void set(std::string_view uniform, const glm::vec3& value) const;
     void set(std::string_view uniform, const glm::vec4& value) const;

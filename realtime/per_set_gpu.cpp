@@ -1,0 +1,412 @@
+#include "realtime/per_set_gpu.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <glm/vec4.hpp>
+#include <span>
+#include <utility>
+
+#include "realtime/droplets.h"
+#include "realtime/field_normal.h"
+#include "realtime/gl/pipeline.h"
+#include "realtime/gpu_scene.h"
+#include "realtime/occlusion_culling.h"
+
+namespace twinrender::realtime {
+
+namespace {
+
+// shaders/per_set.glsl: floats per particle in the Attributes buffer, and the offsets (in
+// units of n floats) of each attribute.
+constexpr std::size_t ATTRIBUTE_FLOATS = 21;
+constexpr int MAX_LEVELS = 32;
+// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes.
+constexpr std::size_t HEADER_BYTES = 16 + 32 + MAX_LEVELS * 64;
+constexpr std::size_t GRID_ENTRY_BYTES = 32;
+constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
+constexpr std::size_t BLOCK = 1024;  // values per work group of scan.comp
+
+unsigned groups(std::size_t count, std::size_t per = GROUP) {
+    return static_cast<unsigned>((count + per - 1) / per);
+}
+
+// Binding points of shaders/per_set.comp.
+enum Binding : unsigned {
+    PARTICLES = 0,
+    KERNELS = 3,
+    ELLIPSOIDS = 4,
+    ATTRIBUTES = 5,
+    HEADER = 6,
+    CELLS = 7,
+    CELL_OF = 8,
+    ENTRIES = 9,
+    SORTED = 10,
+    RADII = 11,
+    FLAGS = 12,
+    MODELS = 13,
+    DRAW_LISTS = 14,
+    DIRECTIONS = 15,
+    DROPLETS = 16,
+};
+
+// shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
+// bits from DROPLET_SHIFT up.
+constexpr unsigned DROPLET_SHIFT = 8;
+// The Header block's count of sparse particles (uint index).
+constexpr std::size_t SPARSE_COUNT = 3;
+
+template <typename T>
+void writeAttribute(gl::Buffer& buffer, std::size_t offset, std::size_t n,
+                    const std::vector<T>& values) {
+    if (values.size() == n) buffer.write(offset * n * sizeof(float), std::span<const T>(values));
+}
+
+bool sameRadiusSettings(const ParticleSettings& a, const ParticleSettings& b) {
+    return a.radius == b.radius && a.radiusScale == b.radiusScale &&
+           a.surfaceLevel == b.surfaceLevel && a.crossingScale == b.crossingScale &&
+           a.dropletAtoms == b.dropletAtoms;
+}
+
+bool sameAnisotropy(const AnisotropySettings& a, const AnisotropySettings& b) {
+    return a.smoothing == b.smoothing && a.maxAxisRatio == b.maxAxisRatio &&
+           a.minNeighbours == b.minNeighbours && a.anchor == b.anchor;
+}
+
+// 0: no per-particle models, 1: field normals, 2: ellipsoids (shaders/per_set.comp, PACK).
+int modelKind(const ParticleSettings& p) {
+    if (p.shape == ParticleShape::Ellipsoid) return 2;
+    return p.normal == NormalModel::Field ? 1 : 0;
+}
+
+}  // namespace
+
+void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
+    for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
+    std::vector<const char*> stages = {"INIT", "H_MIN",  "LEVELS", "LAYOUT", "COUNT", "SCATTER",
+                                       "SORT", "GATHER", "RADIUS", "MARK",   "PACK",  "FINISH"};
+    if (request.kernels) stages.push_back("KERNELS");
+    if (request.cull) stages.insert(stages.end(), {"CULL", "NEAR"});
+    const int kind = modelKind(request.particles);
+    if (kind == 1) stages.push_back("FIELD_NORMAL");
+    if (kind == 2) stages.push_back("ANISOTROPY");
+    for (const char* stage : stages) programs.compute("per_set.comp", {stage});
+}
+
+void GpuPerSet::timed(const char* stage, const auto& work) {
+    // Wall clock to the end of the stage's commands: llvmpipe's timer queries do not see
+    // compute dispatches (they read 0), and the next stage waits for this one anyway.
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    gl::computeBarrier();
+    gl::finish();
+    mTimings[stage] +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void GpuPerSet::bindStorage() const {
+    mAttributes.bindStorage(ATTRIBUTES);
+    mHeader.bindStorage(HEADER);
+    mCells.bindStorage(CELLS);
+    mCellOf.bindStorage(CELL_OF);
+    mEntries.bindStorage(ENTRIES);
+    mSorted.bindStorage(SORTED);
+    mRadii.bindStorage(RADII);
+    mFlags.bindStorage(FLAGS);
+    if (mModelBuffer) mModelBuffer->bindStorage(MODELS);
+    if (mDrawLists) mDrawLists->bindStorage(DRAW_LISTS);
+    mDirections.bindStorage(DIRECTIONS);
+    if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
+}
+
+void GpuPerSet::upload(const core::ParticleSet& ps) {
+    const std::size_t n = ps.size();
+    mCount = n;
+    // Every level has at most max(4 x its particles, 4096) cells.
+    mMaxCells = 4 * n + 4096 * MAX_LEVELS;
+    mAttributes = gl::Buffer::zeros(ATTRIBUTE_FLOATS * n * sizeof(float));
+    writeAttribute(mAttributes, 0, n, ps.position);
+    writeAttribute(mAttributes, 3, n, ps.h);
+    writeAttribute(mAttributes, 4, n, ps.volume);
+    writeAttribute(mAttributes, 5, n, ps.normal);
+    writeAttribute(mAttributes, 8, n, ps.body);
+    writeAttribute(mAttributes, 9, n, ps.uv);
+    writeAttribute(mAttributes, 11, n, ps.dudx);
+    writeAttribute(mAttributes, 14, n, ps.dvdx);
+    writeAttribute(mAttributes, 17, n, ps.glow);
+    writeAttribute(mAttributes, 20, n, ps.material);
+    mHeader = gl::Buffer::zeros(HEADER_BYTES);
+    mCells = gl::Buffer::zeros((mMaxCells + 1) * sizeof(std::uint32_t));
+    mCellOf = gl::Buffer::zeros((n + mMaxCells) * sizeof(std::uint32_t));
+    mSorted = gl::Buffer::zeros(n * sizeof(std::uint32_t));
+    mEntries = gl::Buffer::zeros(n * GRID_ENTRY_BYTES);
+    mRadii = gl::Buffer::zeros(n * sizeof(float));
+    mFlags = gl::Buffer::zeros(n * sizeof(std::uint32_t));
+    mBlockSums = gl::Buffer::zeros((groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) *
+                                   sizeof(std::uint32_t));
+    if (mDirections.size() == 0) {
+        std::vector<glm::vec4> directions;
+        for (const glm::dvec3& d : cullingDirections().directions)
+            directions.emplace_back(glm::vec3(d), 0.0f);
+        mDirections = gl::Buffer::of(std::span<const glm::vec4>(directions));
+    }
+    mModelBuffer.reset();
+    mDroplets = gl::Buffer();
+    mDropletCount = 0;
+    mDrawLists.emplace(gl::Buffer::zeros(2 * (n + 1) * sizeof(std::uint32_t)));
+    mParticles.emplace(gl::Buffer::zeros(n * sizeof(GpuParticle)));
+    mKernels.emplace(gl::Buffer::zeros(n * sizeof(GpuKernel)));
+    mEllipsoids.reset();
+}
+
+void GpuPerSet::scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
+                     std::size_t count) {
+    const unsigned blocks = groups(count, BLOCK);
+    data.bindStorage(ATTRIBUTES);
+    mBlockSums.bindStorage(HEADER);
+    for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) {
+        const gl::Program& p = programs.compute("scan.comp", {stage});
+        p.set("uCount", static_cast<unsigned>(count));
+        p.set("uOffset", static_cast<unsigned>(offset));
+        p.set("uBlocks", blocks);
+        p.dispatch(std::string_view(stage) == "SUMS" ? 1u : std::max(blocks, 1u));
+        gl::computeBarrier();
+    }
+    bindStorage();
+}
+
+void GpuPerSet::buildGrid(ProgramCache& programs) {
+    auto run = [&](const char* stage, unsigned count) {
+        const gl::Program& p = programs.compute("per_set.comp", {stage});
+        p.set("uCount", static_cast<unsigned>(mCount));
+        p.dispatch(count);
+        gl::computeBarrier();
+    };
+    bindStorage();
+    run("INIT", 1);
+    run("H_MIN", groups(mCount));
+    run("LEVELS", groups(mCount));
+    run("LAYOUT", 1);
+    run("COUNT", groups(mCount));
+    scan(programs, mCells, 0, mMaxCells);
+    run("SCATTER", groups(mCount));
+    run("SORT", groups(mMaxCells));
+    run("GATHER", groups(mCount));
+}
+
+bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
+                       const PerSetRequest& request) {
+    bool built = false;
+    mRequest = request;
+    const auto start = std::chrono::steady_clock::now();
+    if (!mBuilt || !mKey.matches(ps)) {
+        mKey.clear();
+        mBuilt = false;
+        mRadiusSettings.reset();
+        mCulled = false;
+        mModelSettings.reset();
+        upload(ps);
+        mKey.assign(ps);
+        gl::finish();
+        mBuilt = true;
+        built = true;
+    }
+    mUploadMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (built && mCount > 0) timed("grid", [&] { buildGrid(programs); });
+    if (mCount == 0) return built;
+    bindStorage();
+    const ParticleSettings& s = request.particles;
+    // The radii depend on droplet_atoms where droplets are drawn (their members' are 0).
+    ParticleSettings radiusSettings = s;
+    radiusSettings.dropletAtoms = request.droplets ? s.dropletAtoms : 0;
+    auto stage = [&](const char* name) -> const gl::Program& {
+        const gl::Program& p = programs.compute("per_set.comp", {name});
+        p.set("uCount", static_cast<unsigned>(mCount));
+        return p;
+    };
+    if (!mRadiusSettings || !sameRadiusSettings(*mRadiusSettings, radiusSettings)) {
+        timed("radius", [&] {
+            mFlags.clear();  // no droplet slots
+            const std::uint32_t zero = 0;
+            mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
+            const gl::Program& p = stage("RADIUS");
+            p.set("uDropletAtoms", radiusSettings.dropletAtoms);
+            p.set("uRadiusScale", static_cast<float>(s.radiusScale));
+            p.set("uCrossingScale", static_cast<float>(s.crossingScale));
+            p.set("uLevel", static_cast<float>(s.surfaceLevel));
+            p.set("uFixed", s.radius == RadiusModel::Fixed ? 1 : 0);
+            p.dispatch(groups(mCount));
+        });
+        mDropletCount = 0;
+        if (radiusSettings.dropletAtoms >= 2)
+            timed("droplets", [&] { applyDroplets(ps, radiusSettings); });
+        mRadiusSettings = radiusSettings;
+        mCulled = false;
+        mModelSettings.reset();
+        built = true;
+    }
+    if (request.cull && !mCulled) {
+        timed("cull", [&] {
+            const gl::Program& p = stage("CULL");
+            const CullingDirections& grid = cullingDirections();
+            p.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
+            p.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
+            p.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
+            p.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
+            p.set("uCoarseDirections", static_cast<int>(grid.coarseCount));
+            p.set("uRadiusScale", static_cast<float>(s.radiusScale));
+            p.dispatch(groups(mCount));
+        });
+        mCulled = true;
+        built = true;
+    }
+    const int kind = modelKind(s);
+    const bool sameModels = mModelSettings && mModels == kind &&
+                            (kind != 2 || sameAnisotropy(mModelSettings->anisotropy, s.anisotropy));
+    if (kind != 0 && !sameModels) {
+        if (!mModelBuffer) {
+            mModelBuffer.emplace(gl::Buffer::zeros(3 * mCount * sizeof(glm::vec4)));
+            mModelBuffer->bindStorage(MODELS);
+        }
+        if (kind == 1) {
+            timed("field_normals", [&] { stage("FIELD_NORMAL").dispatch(groups(mCount)); });
+        } else {
+            timed("anisotropy", [&] {
+                const gl::Program& p = stage("ANISOTROPY");
+                const AnisotropySettings& a = s.anisotropy;
+                p.set("uSmoothing", static_cast<float>(a.smoothing));
+                p.set("uMaxAxisRatio", static_cast<float>(a.maxAxisRatio));
+                p.set("uMinNeighbours", a.minNeighbours);
+                p.set("uAnchorSurface", a.anchor == EllipsoidAnchor::Surface ? 1 : 0);
+                p.dispatch(groups(mCount));
+            });
+        }
+        mModelSettings = s;
+        mModels = kind;
+        built = true;
+    }
+    if (kind == 0) mModels = 0;
+    return built;
+}
+
+void GpuPerSet::applyDroplets(const core::ParticleSet& ps, const ParticleSettings& s) {
+    if (mHeader.read<std::uint32_t>(SPARSE_COUNT, 1)[0] == 0) return;  // no sparse particle
+    const Droplets found = fitDroplets(ps, radii(), s.surfaceLevel, s.dropletAtoms);
+    if (found.firsts.empty()) return;
+    std::vector<std::uint32_t> flags(mCount, 0);
+    std::vector<glm::vec4> records;
+    records.reserve(6 * found.firsts.size());
+    for (std::size_t k = 0; k < found.firsts.size(); ++k) {
+        const std::uint32_t first = found.firsts[k];
+        flags[first] = static_cast<std::uint32_t>(k + 1) << DROPLET_SHIFT;
+        const Ellipsoid& e = found.ellipsoids[first];
+        for (int a = 0; a < 3; ++a) records.emplace_back(e.axes[a], e.shift[a]);
+        const FieldNormal model = dropletNormalModel(e);
+        records.emplace_back(model.outward, 0.0f);
+        records.emplace_back(model.diagonal, 0.0f);
+        records.emplace_back(model.offDiagonal, 0.0f);
+    }
+    mRadii.write(0, std::span<const float>(found.radii));
+    mFlags.write(0, std::span<const std::uint32_t>(flags));
+    mDroplets = gl::Buffer::of(std::span<const glm::vec4>(records));
+    mDroplets.bindStorage(DROPLETS);
+    mDropletCount = found.firsts.size();
+}
+
+void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
+    if (mCount == 0) return;
+    auto stage = [&](const char* name) -> const gl::Program& {
+        const gl::Program& p = programs.compute("per_set.comp", {name});
+        p.set("uCount", static_cast<unsigned>(mCount));
+        return p;
+    };
+    if (ellipsoidsDrawn() && !mEllipsoids)
+        mEllipsoids.emplace(gl::Buffer::zeros(mCount * sizeof(GpuEllipsoid)));
+    timed("pack", [&] {
+        bindStorage();
+        mParticles->bindStorage(PARTICLES);
+        mKernels->bindStorage(KERNELS);
+        if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
+        const std::uint32_t zero = 0;
+        mHeader.write(4, std::span<const std::uint32_t>(&zero, 1));  // nearHit
+        const bool cull = mRequest.cull && mCulled;
+        if (cull) {
+            const gl::Program& p = stage("NEAR");
+            p.set("uCamera", frame.camera);
+            p.set("uNearReach", frame.nearReach);
+            p.dispatch(groups(mCount));
+            gl::computeBarrier();
+        }
+        {
+            const gl::Program& p = stage("MARK");
+            p.set("uCull", cull ? 1 : 0);
+            p.dispatch(groups(mCount));
+            gl::computeBarrier();
+        }
+    });
+    if (mRequest.kernels)
+        timed("kernels", [&] {
+            const gl::Program& p = programs.compute("per_set.comp", {"KERNELS"});
+            p.set("uCount", static_cast<unsigned>(mCount));
+            p.set("uEllipsoids", mModels == 2 ? 1 : 0);
+            p.dispatch(groups(mCount));
+        });
+    timed("pack", [&] {
+        scan(programs, *mDrawLists, 0, mCount);
+        scan(programs, *mDrawLists, mCount + 1, mCount);
+        mParticles->bindStorage(PARTICLES);
+        mKernels->bindStorage(KERNELS);
+        if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
+        const gl::Program& p = stage("PACK");
+        p.set("uCamera", frame.camera);
+        p.set("uModels", mModels);
+        p.set("uEllipsoidsOut", ellipsoidsDrawn() ? 1 : 0);
+        p.dispatch(groups(mCount));
+        gl::computeBarrier();
+        stage("FINISH").dispatch(1);
+    });
+}
+
+std::map<std::string, double> GpuPerSet::takeTimings() {
+    return std::exchange(mTimings, {});
+}
+
+std::uint32_t GpuPerSet::drawnCount() const {
+    if (mCount == 0) return 0;
+    return mHeader.read<std::uint32_t>(particleDrawOffset() / 4, 1)[0] / 6;
+}
+
+std::uint32_t GpuPerSet::kernelCount() const {
+    if (mCount == 0) return 0;
+    return mHeader.read<std::uint32_t>(kernelDrawOffset() / 4, 1)[0] / 6;
+}
+
+std::vector<float> GpuPerSet::radii() const {
+    return mRadii.read<float>(0, mCount);
+}
+
+std::vector<std::uint32_t> GpuPerSet::kernelParticles() const {
+    if (!mDrawLists || mCount == 0) return {};
+    const std::vector<std::uint32_t> prefix =
+        mDrawLists->read<std::uint32_t>(mCount + 1, mCount + 1);
+    std::vector<std::uint32_t> out;
+    for (std::size_t i = 0; i < mCount; ++i)
+        if (prefix[i + 1] > prefix[i]) out.push_back(static_cast<std::uint32_t>(i));
+    return out;
+}
+
+std::vector<std::uint32_t> GpuPerSet::visibleParticles() const {
+    const std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
+    std::vector<std::uint32_t> out;
+    for (std::size_t i = 0; i < flags.size(); ++i)
+        if (!(flags[i] & 2u)) out.push_back(static_cast<std::uint32_t>(i));
+    return out;
+}
+
+std::vector<glm::vec4> GpuPerSet::models() const {
+    if (!mModelBuffer) return {};
+    return mModelBuffer->read<glm::vec4>(0, 3 * mCount);
+}
+
+}  // namespace twinrender::realtime

@@ -1,0 +1,121 @@
+// The real-time renderer's per-particle-set work on the GPU (realtime.per_set = "gpu"), where a
+// real-time renderer does it: the particles' raw attributes are uploaded as they are, a neighbour
+// grid is built from them by counting sort (atomic counts, a prefix sum, a scatter, each cell
+// sorted by index), and compute passes over the grid give what the CPU path computes with
+// core::ColourField: the impostor radii (impostor_radius.h), the exact occlusion culling
+// (occlusion_culling.h), the field normal models (field_normal.h) and the ellipsoids
+// (anisotropy.h). Per frame, compute passes mark the drawn particles and the kernels whose
+// support reaches one of them (the gradient pass's), pack both (camera-relative, subtracted in
+// double) into the storage buffers the draw passes read, and write the draw counts into
+// indirect draw commands: nothing is read back. Sums over the grid run in a fixed order, so the
+// results do not depend on scheduling. shaders/per_set.comp, per_set.glsl, scan.comp.
+#pragma once
+
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/particles.h"
+#include "realtime/gl/buffer.h"
+#include "realtime/particle_set_key.h"
+#include "realtime/settings.h"
+#include "realtime/shader_library.h"
+
+namespace twinrender::realtime {
+
+// What a frame needs of the per-set work.
+struct PerSetRequest {
+    ParticleSettings particles;
+    bool kernels = false;   // the gradient pass's kernels
+    bool cull = false;      // occlusion culling (spheres)
+    bool droplets = false;  // small droplets drawn as ellipsoids (particles.droplet_atoms)
+};
+
+// What a frame asks of the packed draw lists.
+struct FrameRequest {
+    glm::dvec3 camera{0.0};
+    double nearReach = 0.0;  // renderer.cpp's cullingIsExact: the near plane's ball
+};
+
+// Compiles the compute programs GpuPerSet will use for `request` (set-up, like the passes').
+void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request);
+
+class GpuPerSet {
+  public:
+    // Builds what `request` needs (and remembers it for pack()) for `particles` that the last
+    // sets did not (all of it for a new set, inputs compared exactly as ParticleSetKey), each
+    // stage timed; returns
+    // whether anything was built. Programs are compiled through `programs` on first use.
+    bool update(ProgramCache& programs, const core::ParticleSet& particles,
+                const PerSetRequest& request);
+
+    // The frame's draw lists: the drawn particles (radius > 0, not hidden unless a sphere
+    // reaches into the near plane's ball) as GpuParticle[] (and GpuEllipsoid[] with ellipsoids),
+    // the kernels as GpuKernel[], and their indirect draw commands. Timed as "pack".
+    void pack(ProgramCache& programs, const FrameRequest& frame);
+
+    const gl::Buffer& particles() const { return *mParticles; }
+    const gl::Buffer& kernels() const { return *mKernels; }
+    // One GpuEllipsoid per drawn particle where ellipsoidsDrawn(): shape = "ellipsoid", or a
+    // set with droplets (spheres as round ellipsoids).
+    const gl::Buffer& ellipsoids() const { return *mEllipsoids; }
+    bool ellipsoidsDrawn() const { return mModels == 2 || mDropletCount > 0; }
+    // The droplets of the set (0 without droplets).
+    std::size_t dropletCount() const { return mDropletCount; }
+    // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the kernels' at
+    // kernelDrawOffset() (bytes).
+    const gl::Buffer& drawCommands() const { return mHeader; }
+    static std::size_t particleDrawOffset() { return 16; }
+    static std::size_t kernelDrawOffset() { return 32; }
+    std::size_t capacity() const { return mCount; }
+    // Wall-clock milliseconds of the last update's upload (0 when the set was kept): the
+    // attributes copied to the device, the set's key compared and kept.
+    double uploadMs() const { return mUploadMs; }
+
+    // The stages run since the last call, milliseconds each ("grid", "radius", "kernels",
+    // "cull", "field_normals", "anisotropy", "pack"): wall clock from the stage's first command
+    // to the end of its last (glFinish).
+    std::map<std::string, double> takeTimings();
+    // Read back after the frame (waits): the drawn particles and kernels.
+    std::uint32_t drawnCount() const;
+    std::uint32_t kernelCount() const;
+
+    // Read back, for tests: per particle of the last set.
+    std::vector<float> radii() const;
+    // The kernels of the last frame (ascending): those whose support reaches a drawn impostor
+    // (a superset of what surfaceKernels() keeps where it matters).
+    std::vector<std::uint32_t> kernelParticles() const;
+    std::vector<std::uint32_t> visibleParticles() const;  // not hidden, as unoccludedParticles()
+    std::vector<glm::vec4> models() const;                // 3 per particle
+
+  private:
+    void upload(const core::ParticleSet& particles);
+    void applyDroplets(const core::ParticleSet& particles, const ParticleSettings& settings);
+    void buildGrid(ProgramCache& programs);
+    void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
+              std::size_t count);
+    void bindStorage() const;
+    void timed(const char* stage, const auto& work);
+
+    std::size_t mCount = 0, mMaxCells = 0;
+    double mUploadMs = 0.0;
+    ParticleSetKey mKey;
+    bool mBuilt = false;
+    // What has been built for the current set (std::nullopt: not yet).
+    std::optional<ParticleSettings> mRadiusSettings;  // droplet_atoms 0 when not requested
+    std::size_t mDropletCount = 0;
+    bool mCulled = false;
+    PerSetRequest mRequest;                          // the last update's, for pack()
+    std::optional<ParticleSettings> mModelSettings;  // normal model and shape they were for
+    int mModels = 0;                                 // 0 none, 1 field normals, 2 ellipsoids
+    gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
+        mDirections;
+    std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
+    gl::Buffer mDroplets;  // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
+    std::map<std::string, double> mTimings;  // since the last takeTimings()
+};
+
+}  // namespace twinrender::realtime

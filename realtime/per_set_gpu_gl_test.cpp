@@ -1,0 +1,249 @@
+// realtime.per_set = "gpu" against the CPU path: the same answers per particle within float
+// tolerances, the same frames, and the per-set work redone exactly when the set changes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "core/particles.h"
+#include "core/scene.h"
+#include "realtime/anisotropy.h"
+#include "realtime/field_normal.h"
+#include "realtime/gl/context.h"
+#include "realtime/impostor_radius.h"
+#include "realtime/occlusion_culling.h"
+#include "realtime/per_set_gpu.h"
+#include "realtime/renderer.h"
+
+namespace twinrender::realtime {
+namespace {
+
+// Two bodies in contact whose h differ by more than 2x (two levels of the grid), 2100
+// particles: the contact scene made small.
+struct Loaded {
+    core::Scene scene;
+    core::SceneParticles particles;
+    std::vector<core::Material> materials;
+};
+
+const Loaded& contact() {
+    static const Loaded loaded = [] {
+        Loaded l;
+        const std::vector<std::string> overrides = {"bodies.left.particles=2000",
+                                                    "bodies.right.particles=100",
+                                                    "camera.width=160", "camera.height=120"};
+        l.scene = core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/contact.toml", overrides);
+        l.particles = core::buildParticles(l.scene);
+        l.materials = core::loadMaterials(l.scene);
+        return l;
+    }();
+    return loaded;
+}
+
+class PerSetGpu : public ::testing::Test {
+  protected:
+    gl::Context context;
+    ProgramCache programs;
+
+    GpuPerSet built(const core::ParticleSet& ps, const PerSetRequest& request) {
+        context.makeCurrent();
+        GpuPerSet g;
+        g.update(programs, ps, request);
+        g.pack(programs, {glm::dvec3(0.0, -50.0, 0.0), 1e-3});
+        return g;
+    }
+};
+
+TEST_F(PerSetGpu, RadiiCullingAndFieldNormalsMatchTheCpu) {
+    const core::ParticleSet& ps = contact().particles.particles;
+    ASSERT_GT(ps.h.back() / ps.h.front(), 2.0f);  // two levels of the grid
+    PerSetRequest request;
+    request.particles.normal = NormalModel::Field;
+    request.cull = true;
+    GpuPerSet g = built(ps, request);
+
+    // Radii: the bisection stops within maxRadius / 8 / 2^10 = 1.1e-4 h of the crossing, and
+    // float sums (relative error ~1e-6) move the crossing far less; 3e-4 h allows both paths'
+    // brackets to end on either side.
+    const std::vector<float> cpuRadii = impostorRadii(ps, request.particles);
+    const std::vector<float> gpuRadii = g.radii();
+    ASSERT_EQ(gpuRadii.size(), ps.size());
+    int drawnWithSurface = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        EXPECT_NEAR(gpuRadii[i], cpuRadii[i], 3e-4 * ps.h[i]) << i;
+        drawnWithSurface += cpuRadii[i] > 0.0f;
+    }
+    EXPECT_GT(drawnWithSurface, 2000);
+
+    // Culling: both tests are exact with a margin, so they may differ only where a sphere is
+    // covered within that margin; the GPU's hidden spheres must be hidden on the CPU too, up to
+    // a few borderline ones, and it must cull about as many.
+    const std::vector<std::uint32_t> cpuVisible = unoccludedParticles(ps, cpuRadii);
+    const std::vector<std::uint32_t> gpuVisible = g.visibleParticles();
+    std::vector<std::uint32_t> onlyCpu, onlyGpu;
+    std::set_difference(cpuVisible.begin(), cpuVisible.end(), gpuVisible.begin(), gpuVisible.end(),
+                        std::back_inserter(onlyCpu));
+    std::set_difference(gpuVisible.begin(), gpuVisible.end(), cpuVisible.begin(), cpuVisible.end(),
+                        std::back_inserter(onlyGpu));
+    EXPECT_LT(cpuVisible.size(), ps.size() * 3 / 4);  // something is culled
+    EXPECT_LE(onlyCpu.size(), ps.size() / 200) << "hidden on the GPU only";
+    EXPECT_LE(onlyGpu.size(), ps.size() / 100) << "hidden on the CPU only";
+
+    // Field normal models, all particles: the direction of the modelled normal at the
+    // impostor's outward point and at a point beside it. Float sums of ~100 kernels: 1e-3 rad.
+    const std::vector<FieldNormal> cpu = fieldNormals(ps, cpuRadii);
+    const std::vector<glm::vec4> gpu = g.models();
+    ASSERT_EQ(gpu.size(), 3 * ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        if (!(cpuRadii[i] > 0.0f)) continue;
+        auto normalAt = [&](glm::vec3 outward, glm::vec3 d, glm::vec3 o, glm::vec3 x) {
+            const glm::mat3 h(d.x, o.x, o.y, o.x, d.y, o.z, o.y, o.z, d.z);
+            return glm::normalize(outward + h * x);
+        };
+        const glm::vec3 top = cpuRadii[i] * ps.normal[i];
+        const glm::vec3 side =
+            0.5f * cpuRadii[i] * glm::normalize(glm::cross(ps.normal[i], {0.3f, 0.5f, 0.8f}));
+        for (const glm::vec3& x : {top, top + side}) {
+            const glm::vec3 a = normalAt(cpu[i].outward, cpu[i].diagonal, cpu[i].offDiagonal, x);
+            const glm::vec3 b = normalAt(glm::vec3(gpu[3 * i]), glm::vec3(gpu[3 * i + 1]),
+                                         glm::vec3(gpu[3 * i + 2]), x);
+            EXPECT_GT(glm::dot(a, b), std::cos(1e-3f)) << i;
+        }
+    }
+}
+
+TEST_F(PerSetGpu, EllipsoidsMatchTheCpu) {
+    const core::ParticleSet& ps = contact().particles.particles;
+    PerSetRequest request;
+    request.particles.shape = ParticleShape::Ellipsoid;
+    GpuPerSet g = built(ps, request);
+    const std::vector<float> radii = impostorRadii(ps, request.particles);
+    const std::vector<Ellipsoid> cpu =
+        anisotropicEllipsoids(ps, radii, request.particles.anisotropy);
+    const std::vector<glm::vec4> gpu = g.models();
+    ASSERT_EQ(gpu.size(), 3 * ps.size());
+    int stretched = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        // A A^T (the ellipsoid's quadric, whatever the order or sign of the eigenvectors) and
+        // the shift, relative to the radius: float covariance and Jacobi rotations, 2e-3 r
+        // (eigenvalues within rounding of each other have ill-defined eigenvectors but the same
+        // quadric).
+        glm::mat3 a, b;
+        glm::vec3 shiftA, shiftB;
+        for (int k = 0; k < 3; ++k) {
+            a[k] = cpu[i].axes[k];
+            b[k] = glm::vec3(gpu[3 * i + k]);
+            shiftA[k] = cpu[i].shift[k];
+            shiftB[k] = gpu[3 * i + k].w;
+        }
+        const glm::mat3 qa = a * glm::transpose(a), qb = b * glm::transpose(b);
+        const float r = std::max(radii[i], 1e-6f);
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(qa[c][k], qb[c][k], 2e-3f * r * r) << i;
+        EXPECT_LT(glm::length(shiftA - shiftB), 2e-3f * r) << i;
+        stretched += !cpu[i].isSphere();
+    }
+    EXPECT_GT(stretched, 1000);
+}
+
+// The frame of a new particle set redoes the per-set work (counters.per_set_builds = 1); a
+// frame of the same set reuses it (0), on both paths, and the two paths' frames agree.
+TEST_F(PerSetGpu, PerSetWorkIsRedoneExactlyWhenTheSetChanges) {
+    Loaded l = contact();
+    Device device(context);
+    core::Frame frames[2];
+    for (PerSetDevice where : {PerSetDevice::Gpu, PerSetDevice::Cpu}) {
+        Settings s;
+        s.perSet = where;
+        s.bloom.enabled = false;
+        Renderer renderer(device, s);
+        const core::Frame first = renderer.render({l.scene, l.particles, l.materials});
+        EXPECT_EQ(first.counters.at("per_set_builds"), 1.0) << toString(where);
+        EXPECT_GT(first.timingsMs.at("radius"), 0.0);
+        const core::Frame again = renderer.render({l.scene, l.particles, l.materials});
+        EXPECT_EQ(again.counters.at("per_set_builds"), 0.0) << toString(where);
+        if (where == PerSetDevice::Gpu) EXPECT_EQ(again.timingsMs.at("radius"), 0.0);
+        EXPECT_EQ(again.counters.at("particles_drawn"), first.counters.at("particles_drawn"));
+        core::SceneParticles moved = l.particles;
+        moved.particles.position[7].x += 1e-3f;  // one particle moves: a new set
+        const core::Frame next = renderer.render({l.scene, moved, l.materials});
+        EXPECT_EQ(next.counters.at("per_set_builds"), 1.0) << toString(where);
+        frames[where == PerSetDevice::Gpu ? 0 : 1] =
+            renderer.render({l.scene, l.particles, l.materials});
+    }
+    // The same frame from either path: coverage and id identical but for a few outline pixels
+    // (radii within 3e-4 h), and so is the beauty (within 1e-2) but for a few pixels whose
+    // front particle changed.
+    const core::Image& g = frames[0].image;
+    const core::Image& c = frames[1].image;
+    const int alpha = g.requireChannel("A"), id = g.requireChannel("id"),
+              red = g.requireChannel("R");
+    int differ = 0, covered = 0, shadedApart = 0;
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x) {
+            covered += c.at(x, y, alpha) > 0.5f;
+            if (g.at(x, y, alpha) != c.at(x, y, alpha) || g.at(x, y, id) != c.at(x, y, id)) {
+                ++differ;
+                continue;
+            }
+            if (c.at(x, y, alpha) > 0.5f)
+                shadedApart += std::abs(g.at(x, y, red) - c.at(x, y, red)) > 1e-2f;
+        }
+    EXPECT_GT(covered, 2000);
+    EXPECT_LE(differ, covered / 200);
+    EXPECT_LE(shadedApart, covered / 200);
+}
+
+// Frame 40 of the LAMMPS splash (scenes/splash_droplets.toml): a sheet broken into droplets,
+// 174 of them small clusters drawn as one ellipsoid each, beside bodies that cull their
+// hidden particles.
+TEST_F(PerSetGpu, DropletFramesMatchTheCpu) {
+    Loaded l;
+    l.scene = core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/splash_droplets.toml", {});
+    l.particles = core::buildParticles(l.scene);
+    l.materials = core::loadMaterials(l.scene);
+    Device device(context);
+    for (NormalModel normal : {NormalModel::Gradient, NormalModel::Field}) {
+        core::Frame frames[2];
+        for (PerSetDevice where : {PerSetDevice::Gpu, PerSetDevice::Cpu}) {
+            Settings s;
+            s.perSet = where;
+            s.particles.normal = normal;
+            s.bloom.enabled = false;
+            Renderer renderer(device, s);
+            frames[where == PerSetDevice::Gpu ? 0 : 1] =
+                renderer.render({l.scene, l.particles, l.materials});
+        }
+        const core::Frame& g = frames[0];
+        const core::Frame& c = frames[1];
+        EXPECT_EQ(c.counters.at("droplets"), 174.0);
+        EXPECT_EQ(g.counters.at("droplets"), c.counters.at("droplets"));
+        // Radii within 3e-4 h: a particle or two may change sides of the culling test.
+        EXPECT_NEAR(g.counters.at("particles_drawn"), c.counters.at("particles_drawn"), 3.0);
+        // The same image but for a few outline pixels (the radii) and pixels whose front
+        // particle changed; a droplet's field normal model is its ellipsoid's on both paths,
+        // so the shading agrees within 1e-2.
+        const int alpha = g.image.requireChannel("A"), id = g.image.requireChannel("id"),
+                  red = g.image.requireChannel("R");
+        int differ = 0, covered = 0, shadedApart = 0;
+        for (int y = 0; y < g.image.height(); ++y)
+            for (int x = 0; x < g.image.width(); ++x) {
+                covered += c.image.at(x, y, alpha) > 0.5f;
+                if (g.image.at(x, y, alpha) != c.image.at(x, y, alpha) ||
+                    g.image.at(x, y, id) != c.image.at(x, y, id)) {
+                    ++differ;
+                    continue;
+                }
+                if (c.image.at(x, y, alpha) > 0.5f)
+                    shadedApart += std::abs(g.image.at(x, y, red) - c.image.at(x, y, red)) > 1e-2f;
+            }
+        EXPECT_GT(covered, 5000);
+        EXPECT_LE(differ, covered / 200) << toString(normal);
+        EXPECT_LE(shadedApart, covered / 200) << toString(normal);
+    }
+}
+
+}  // namespace
+}  // namespace twinrender::realtime

@@ -1,0 +1,788 @@
+// The per-particle-set work on the GPU (realtime/per_set_gpu.h), one stage per #define: the
+// grid (INIT, H_MIN, LEVELS, LAYOUT, COUNT, SCATTER, SORT, GATHER), the answers per particle
+// (RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR, MARK,
+// PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or cell).
+#if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
+    defined(ANISOTROPY)
+#define GRID_READ
+#endif
+#include "per_set.glsl"
+
+#if defined(LAYOUT) || defined(FINISH) || defined(INIT)
+layout(local_size_x = 32) in;
+#else
+layout(local_size_x = 64) in;
+#endif
+
+uint invocation() { return gl_GlobalInvocationID.x; }
+
+#if defined(COUNT) || defined(SCATTER) || defined(SORT) || defined(GATHER)
+layout(std430, binding = 7) buffer Cells {
+    uint cellStart[];  // COUNT: counts; after the scan: offsets (totalCells + 1)
+};
+layout(std430, binding = 8) buffer CellOf {
+    uint cellOf[];  // per particle: its cell; SCATTER: then the fill count per cell after n
+};
+layout(std430, binding = 10) buffer Sorted {
+    uint sorted[];  // particle indices by cell
+};
+#endif
+
+#if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
+    defined(ANISOTROPY) || defined(NEAR) || defined(MARK) || defined(PACK)
+layout(std430, binding = 11) buffer Radii {
+    float radii[];
+};
+#endif
+
+// flags: bit 1: hidden (occlusion_culling.h).
+const uint HIDDEN = 2u;
+#if defined(CULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+layout(std430, binding = 12) buffer Flags {
+    uint flags[];  // CULL writes bit 1 of its own particle's flags only
+};
+#endif
+
+// A droplet's first particle: its slot + 1 in the flags from bit 8 (0: not a droplet's), and
+// per droplet its ellipsoid (GpuEllipsoid) and field normal model (FieldNormal), 3 vec4 each.
+#if defined(CULL) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+uint dropletSlot(uint i) { return flags[i] >> 8; }
+#endif
+#if defined(KERNELS) || defined(PACK)
+layout(std430, binding = 16) readonly buffer Droplets {
+    vec4 droplets[];
+};
+#endif
+
+#if defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(PACK) || defined(KERNELS)
+// Three vec4 per particle: FieldNormal (outward, -H diagonal, -H off-diagonal) or the ellipsoid
+// (GpuEllipsoid: axes in xyz, the centre's shift in w).
+layout(std430, binding = 13) buffer Models {
+    vec4 models[];
+};
+#endif
+
+// ---- The grid ----
+
+#ifdef INIT
+void main() {
+    uint L = invocation();
+    if (L == 0u) {
+        hMinBits = 0x7F800000u;  // +inf
+        totalCells = 0u;
+        nearHit = 0u;
+    }
+    if (L < uint(MAX_LEVELS)) {
+        levels[L].minKey = uvec4(0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu, 0u);
+        levels[L].maxKey = uvec4(0u);
+    }
+}
+#endif
+
+#ifdef H_MIN
+void main() {
+    uint i = invocation();
+    if (i < uCount) atomicMin(hMinBits, floatBitsToUint(particleH(i)));
+}
+#endif
+
+#ifdef LEVELS
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    float h = particleH(i);
+    int L = levelOf(h);
+    vec3 p = particlePosition(i);
+    atomicMin(levels[L].minKey.x, orderedKey(p.x));
+    atomicMin(levels[L].minKey.y, orderedKey(p.y));
+    atomicMin(levels[L].minKey.z, orderedKey(p.z));
+    atomicAdd(levels[L].minKey.w, 1u);
+    atomicMax(levels[L].maxKey.x, orderedKey(p.x));
+    atomicMax(levels[L].maxKey.y, orderedKey(p.y));
+    atomicMax(levels[L].maxKey.z, orderedKey(p.z));
+    atomicMax(levels[L].maxKey.w, floatBitsToUint(h));
+}
+#endif
+
+#ifdef LAYOUT
+// One invocation: each level's cells (core::ParticleGrid's sizes), one level after another.
+void main() {
+    if (invocation() != 0u) return;
+    int first = 0;
+    for (int L = 0; L < MAX_LEVELS; ++L) {
+        Level g = levels[L];
+        if (g.minKey.w == 0u) {
+            levels[L].dims = ivec4(1, 1, 1, first);
+            continue;
+        }
+        vec3 lo = vec3(fromOrderedKey(g.minKey.x), fromOrderedKey(g.minKey.y),
+                       fromOrderedKey(g.minKey.z));
+        vec3 hi = vec3(fromOrderedKey(g.maxKey.x), fromOrderedKey(g.maxKey.y),
+                       fromOrderedKey(g.maxKey.z));
+        vec3 extent = hi - lo;
+        float maxCells = max(4.0 * float(g.minKey.w), 4096.0);
+        float cell = uintBitsToFloat(g.maxKey.w);
+        vec3 n;
+        for (int k = 0; k < 200; ++k) {
+            n = floor(extent / cell) + 1.0;
+            float total = n.x * n.y * n.z;
+            if (total <= maxCells) break;
+            cell *= max(1.01, pow(total / maxCells, 1.0 / 3.0));
+        }
+        levels[L].originCell = vec4(lo, cell);
+        levels[L].dims = ivec4(ivec3(n), first);
+        first += int(n.x * n.y * n.z);
+    }
+    totalCells = uint(first);
+}
+#endif
+
+#ifdef COUNT
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    uint c = uint(cellIndex(levels[levelOf(particleH(i))], particlePosition(i)));
+    cellOf[i] = c;
+    atomicAdd(cellStart[c], 1u);
+}
+#endif
+
+#ifdef SCATTER
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    uint c = cellOf[i];
+    uint slot = atomicAdd(cellOf[uCount + c], 1u);
+    sorted[cellStart[c] + slot] = i;
+}
+#endif
+
+#ifdef SORT
+// The scatter's order within a cell depends on scheduling: sort each cell by index (Shell sort
+// with Ciura's gaps: insertion sort for the usual few particles, no quadratic cost for a
+// crowded cell of a sparse level).
+const uint GAPS[8] = uint[](701u, 301u, 132u, 57u, 23u, 10u, 4u, 1u);
+void main() {
+    uint c = invocation();
+    if (c >= totalCells) return;
+    uint begin = cellStart[c], end = cellStart[c + 1u];
+    for (int g = 0; g < 8; ++g) {
+        uint gap = GAPS[g];
+        for (uint k = begin + gap; k < end; ++k) {
+            uint v = sorted[k];
+            uint j = k;
+            for (; j >= begin + gap && sorted[j - gap] > v; j -= gap) sorted[j] = sorted[j - gap];
+            sorted[j] = v;
+        }
+    }
+}
+#endif
+
+#ifdef GATHER
+struct GridEntry {
+    vec4 positionInvH;
+    vec4 coefficients;
+};
+layout(std430, binding = 9) writeonly buffer Entries {
+    GridEntry entries[];
+};
+void main() {
+    uint k = invocation();
+    if (k >= uCount) return;
+    uint i = sorted[k];
+    double h = double(particleH(i));
+    double v = double(attribute1(ATTR_VOLUME, i));
+    const double PI = 3.14159265358979323846LF;
+    entries[k].positionInvH = vec4(particlePosition(i), float(1.0LF / h));
+    entries[k].coefficients = vec4(float(v / (PI * h * h * h * h)), float(v / (PI * h * h * h)),
+                                   uintBitsToFloat(i), attributes[ATTR_BODY * uCount + i]);
+}
+#endif
+
+// ---- Answers per particle ----
+
+// A unit normal and two tangents (surface_kernels.cpp's frame).
+mat3 normalFrame(vec3 n) {
+    n = length(n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
+    vec3 helper = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+    vec3 t1 = normalize(cross(n, helper));
+    return mat3(t1, cross(n, t1), n);
+}
+
+#ifdef RADIUS
+// impostor_radius.cpp: the distance along the normal to the level set (0 where the field at
+// the centre is not above it), at most radius_scale h; "fixed" (uFixed): radius_scale h.
+//
+// Most particles lie inside a body: the field is above the level at the centre and at both
+// early-exit samples (radius_scale h and half of it), so the radius is radius_scale h (times
+// crossing_scale, capped), whatever the sums' exact values. Kernels are never negative, so a
+// sum over some of the neighbours is a lower bound of the field, in float too (adding a
+// non-negative float never lowers a sum): the 2 x 2 x 2 cells of the particle's own level
+// around the samples' midpoint usually settle such a particle. The others take the full sums,
+// each over the whole neighbourhood in the grid's fixed order, the three samples in one walk,
+// then, where the early exit fails, walks of eight samples each (below).
+float samplesReach_;
+float samplesReach(float hMax) { return supportReach(hMax) + samplesReach_; }
+// The field at centre + (t0 + k step) n, k = 1..8, in one walk about their middle (each sum
+// in the grid's fixed order).
+void fieldSamples(vec3 centre, vec3 n, float t0, float step, out float values[8]) {
+    vec3 offsets[8];
+    for (int k = 0; k < 8; ++k) {
+        values[k] = 0.0;
+        offsets[k] = (t0 + float(k + 1) * step) * n;
+    }
+    samplesReach_ = 4.0 * step;
+    vec3 middle = centre + (t0 + 4.5 * step) * n;
+#define ADD_EIGHT(k)                                                                \
+    {                                                                               \
+        vec4 e = entries[k].positionInvH;                                           \
+        vec3 d = e.xyz - centre;                                                    \
+        float c = entries[k].coefficients.x / e.w;                                  \
+        for (int s = 0; s < 8; ++s) values[s] += c * m4Shape(length(d - offsets[s]) * e.w); \
+    }
+    FOR_EACH_NEAR(middle, samplesReach, ADD_EIGHT)
+#undef ADD_EIGHT
+}
+
+uniform float uRadiusScale, uCrossingScale, uLevel;
+uniform int uFixed;
+// droplets.h's sparse test where > 0: a particle with a surface and fewer than this many
+// neighbours within 2 h counts in sparseCount.
+uniform int uDropletAtoms;
+float countReach_, halfCap_;
+// About the samples' midpoint: every kernel that reaches a sample, every neighbour within 2 h.
+float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + halfCap_; }
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    float h = particleH(i);
+    float maxRadius = uRadiusScale * h;
+    if (uFixed != 0) {
+        radii[i] = maxRadius;
+        return;
+    }
+    vec3 centre = particlePosition(i);
+    vec3 n = normalize(attribute3(ATTR_NORMAL, i));
+    const float PI = 3.14159265358979;
+    float own = attribute1(ATTR_VOLUME, i) / (PI * h * h * h);
+    float ownBound = own * (1.0 + 1e-4);  // at or below: alone in its support
+    // The field at the centre, half-way and at the cap, and the neighbours within 2 h.
+    vec3 halfway = (0.5 * maxRadius) * n, cap = maxRadius * n;
+    float countReach2 = uDropletAtoms > 0 ? 4.0 * h * h : 0.0;
+    float atCentre = 0.0, atHalf = 0.0, atCap = 0.0;
+    int neighbours = 0;
+#define ADD_SAMPLES(k)                                                                  \
+    {                                                                                   \
+        vec4 e = entries[k].positionInvH;                                               \
+        vec3 d = e.xyz - centre;                                                        \
+        float c = entries[k].coefficients.x / e.w;                                      \
+        atCentre += c * m4Shape(length(d) * e.w);                                       \
+        atHalf += c * m4Shape(length(d - halfway) * e.w);                                 \
+        atCap += c * m4Shape(length(d - cap) * e.w);                                    \
+        if (dot(d, d) < countReach2 && floatBitsToUint(entries[k].coefficients.z) != i) \
+            ++neighbours;                                                               \
+    }
+    {
+        Level g = levels[levelOf(h)];
+        float inv = levelInvCell(g);
+        ivec3 base = ivec3(floor((centre + 0.5 * cap - g.originCell.xyz) * inv - 0.5));
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dx = 0; dx < 2; ++dx) {
+                    ivec3 c = base + ivec3(dx, dy, dz);
+                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, g.dims.xyz))) continue;
+                    int cell = g.dims.w + (c.z * g.dims.y + c.y) * g.dims.x + c.x;
+                    uint end = cellStart[cell + 1];
+                    for (uint k = cellStart[cell]; k < end; ++k) ADD_SAMPLES(k)
+                }
+    }
+    if (atCentre > max(uLevel, ownBound) && atHalf > uLevel && atCap > uLevel &&
+        neighbours >= uDropletAtoms) {
+        radii[i] = min(maxRadius, uCrossingScale * maxRadius);
+        return;
+    }
+    atCentre = atHalf = atCap = 0.0;
+    neighbours = 0;
+    countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
+    halfCap_ = 0.5 * maxRadius;
+    vec3 middle = centre + 0.5 * cap;
+    FOR_EACH_NEAR(middle, walkReach, ADD_SAMPLES)
+#undef ADD_SAMPLES
+    float crossing = 0.0;
+    if (atCentre > uLevel) {
+        if (atCap > uLevel && atHalf > uLevel) {
+            crossing = maxRadius;
+        } else {
+            // The first of the 8 samples not above the level brackets the crossing; two more
+            // walks of 8 samples each narrow the bracket 9-fold, to maxRadius / 648, and the
+            // crossing is interpolated linearly within it (the CPU path bisects to
+            // maxRadius / 8192; the two agree within 1e-4 h).
+            float inside = 0.0, outside = -1.0, atInside = atCentre, atOutside = 0.0;
+            float step = maxRadius / 8.0;
+            float values[8];
+            for (int pass = 0; pass < 3 && !(pass > 0 && outside < 0.0); ++pass) {
+                fieldSamples(centre, n, inside, step, values);
+                int first = 8;
+                for (int k = 7; k >= 0; --k)
+                    if (!(values[k] > uLevel)) first = k;
+                if (first == 8) {
+                    if (pass == 0) break;  // above at every sample: the cap
+                    // Between the last sample and the bracket's outer end.
+                    inside += 8.0 * step;
+                    atInside = values[7];
+                } else {
+                    if (first > 0) {
+                        inside += float(first) * step;
+                        atInside = values[first - 1];
+                    }
+                    outside = inside + step;
+                    atOutside = values[first];
+                }
+                step = (outside - inside) / 9.0;
+            }
+            if (outside < 0.0)
+                crossing = maxRadius;
+            else
+                crossing = inside + (outside - inside) * clamp((atInside - uLevel) /
+                                                                   max(atInside - atOutside, 1e-30),
+                                                               0.0, 1.0);
+        }
+    }
+    bool alone = atCentre <= ownBound;
+    float radius = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
+    radii[i] = radius;
+    if (radius > 0.0 && neighbours < uDropletAtoms) atomicAdd(sparseCount, 1u);
+}
+#endif
+
+#ifdef CULL
+// occlusion_culling.cpp's exact test: hidden when every direction of the 162-point grid is
+// covered, with the grid's covering margin, by the cap of an overlapping sphere of the same
+// body, or when the sphere lies inside another (of equal coincident spheres the lower index
+// stays). The caps of the nearest neighbours (within 1.4 radii, the widest) are tried first.
+// Caps beyond MAX_CAPS are left out, which can only keep a sphere. The answer does not depend
+// on the neighbours' order.
+//
+// Most spheres lie inside a body, buried under the wide caps of their nearest neighbours.
+// Before that test, a cheaper one: the near shell alone (a third of the neighbourhood's
+// volume) on the coarse grid's 42 directions with its wider margin, a sufficient condition of
+// its own (a sphere it hides is hidden: exact as well, though it may hide a few borderline
+// spheres the fine grid keeps).
+layout(std430, binding = 15) readonly buffer Directions {
+    vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
+};
+uniform float uCosMargin, uSinMargin, uRadiusScale;
+uniform float uCoarseCosMargin, uCoarseSinMargin;
+uniform int uCoarseDirections;
+const int DIRECTIONS = 162, MAX_CAPS = 96;
+const float NEAR_SHELL = 1.4;  // radii
+float cullReach_ri;
+float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    float ri = radii[i];
+    // Droplets are culled as nothing: neither hidden nor hiding (renderer.cpp's cullRadii).
+    if (!(ri > 0.0) || dropletSlot(i) != 0u) return;
+    vec3 xi = particlePosition(i);
+    uint body = attributeBits(ATTR_BODY, i);
+    vec4 caps[MAX_CAPS];  // unit axis, the least cosine of a covered direction
+    int nearCaps = 0, farCaps = 0;
+    bool hidden = false;
+    cullReach_ri = ri;
+    float nearLimit2 = NEAR_SHELL * NEAR_SHELL * ri * ri;
+    // Sphere j (overlapping, of the same body, not a droplet) as a cap of directions covered
+    // with margin (COS_MARGIN, SIN_MARGIN), or i inside j; NEAR_ONLY: the near shell only.
+#define ADD_CAP(k, COS_MARGIN, SIN_MARGIN, NEAR_ONLY)                                       \
+    if (!hidden) {                                                                          \
+        uint j = floatBitsToUint(entries[k].coefficients.z);                                \
+        float rj = radii[j];                                                                \
+        vec3 d = entries[k].positionInvH.xyz - xi;                                          \
+        float dist2 = dot(d, d);                                                            \
+        float reach = ri + rj;                                                              \
+        if (j != i && rj > 0.0 && dropletSlot(j) == 0u &&                                   \
+            floatBitsToUint(entries[k].coefficients.w) == body && dist2 < reach * reach &&  \
+            (!NEAR_ONLY || dist2 <= nearLimit2)) {                                          \
+            float dist = sqrt(dist2);                                                       \
+            if (rj >= ri && dist + ri <= rj) {                                              \
+                if (dist2 > 0.0 || rj > ri || j < i) hidden = true;                         \
+            } else if (dist2 > 0.0 && nearCaps + farCaps < MAX_CAPS) {                      \
+                float cosG =                                                                \
+                    clamp((dist2 + ri * ri - rj * rj) / (2.0 * dist * ri), -1.0, 1.0);      \
+                if (cosG < COS_MARGIN) {                                                    \
+                    float sinG = sqrt(1.0 - cosG * cosG);                                   \
+                    vec4 cap = vec4(d / dist, cosG * COS_MARGIN + sinG * SIN_MARGIN + 2e-4); \
+                    if (dist2 <= nearLimit2)                                                \
+                        caps[nearCaps++] = cap;                                             \
+                    else                                                                    \
+                        caps[MAX_CAPS - 1 - farCaps++] = cap;                               \
+                }                                                                           \
+            }                                                                               \
+        }                                                                                   \
+    }
+    // Whether every direction in [FIRST, END) is covered by a cap.
+#define COVERED(FIRST, END, RESULT)                                                         \
+    {                                                                                       \
+        RESULT = true;                                                                      \
+        for (int dir = FIRST; dir < END && RESULT; ++dir) {                                 \
+            vec3 u = directions[dir].xyz;                                                   \
+            bool covered = false;                                                           \
+            for (int c = 0; c < nearCaps && !covered; ++c)                                  \
+                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
+            for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)                 \
+                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
+            RESULT = covered;                                                               \
+        }                                                                                   \
+    }
+    // The near shell's caps from the 3 x 3 x 3 cells of the particle's own level around its
+    // cell (cells are at least the level's largest h: they hold the nearest neighbours).
+    {
+        Level g = levels[levelOf(particleH(i))];
+        float inv = levelInvCell(g);
+        ivec3 home = ivec3(floor((xi - g.originCell.xyz) * inv));
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec3 c = home + ivec3(dx, dy, dz);
+                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, g.dims.xyz))) continue;
+                    int cell = g.dims.w + (c.z * g.dims.y + c.y) * g.dims.x + c.x;
+                    uint end = cellStart[cell + 1];
+                    for (uint k = cellStart[cell]; k < end; ++k)
+                        ADD_CAP(k, uCoarseCosMargin, uCoarseSinMargin, true)
+                }
+    }
+    if (!hidden && nearCaps > 0) COVERED(0, uCoarseDirections, hidden)
+    if (hidden) {
+        flags[i] |= HIDDEN;
+        return;
+    }
+    nearCaps = 0;
+#define COVER(k) ADD_CAP(k, uCosMargin, uSinMargin, false)
+    FOR_EACH_NEAR(xi, cullReach, COVER)
+#undef COVER
+    if (!hidden && nearCaps + farCaps > 0) COVERED(0, DIRECTIONS, hidden)
+#undef ADD_CAP
+#undef COVERED
+    flags[i] = (flags[i] & ~HIDDEN) | (hidden ? HIDDEN : 0u);
+}
+#endif
+
+#ifdef FIELD_NORMAL
+// field_normal.cpp: the gradient and Hessian of the field at x_top = x_i + r_i n_i, as the
+// first-order model of -grad c over the impostor, scaled by 1 / |grad c(x_top)|.
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    float r = radii[i];
+    vec3 normal = attribute3(ATTR_NORMAL, i);
+    vec3 centre = particlePosition(i);
+    vec3 offset = r * normal;
+    vec3 point = centre + offset;
+    vec3 gradient = vec3(0.0);
+    mat3 hessian = mat3(0.0);
+#define ADD_DERIVATIVES(k)                                                        \
+    {                                                                             \
+        vec4 e = entries[k].positionInvH;                                         \
+        vec3 delta = offset - (e.xyz - centre);                                   \
+        float dist = length(delta);                                               \
+        float q = dist * e.w;                                                     \
+        if (q < 2.0 && dist > 0.0) {                                              \
+            float coef = entries[k].coefficients.x;                               \
+            float dWdr = coef * m4ShapeDerivative(q);                             \
+            float d2Wdr2 = coef * e.w * m4ShapeSecondDerivative(q);               \
+            vec3 u = delta / dist;                                                \
+            gradient += dWdr * u;                                                 \
+            hessian += (d2Wdr2 - dWdr / dist) * outerProduct(u, u) + mat3(dWdr / dist); \
+        }                                                                         \
+    }
+    FOR_EACH_NEAR(point, supportReach, ADD_DERIVATIVES)
+#undef ADD_DERIVATIVES
+    float length_ = length(gradient);
+    if (!(length_ > 0.0)) {
+        models[3u * i] = vec4(normal, 0.0);
+        models[3u * i + 1u] = vec4(0.0);
+        models[3u * i + 2u] = vec4(0.0);
+        return;
+    }
+    mat3 m = -hessian / length_;
+    models[3u * i] = vec4(-gradient / length_ - m * offset, 0.0);
+    models[3u * i + 1u] = vec4(m[0][0], m[1][1], m[2][2], 0.0);
+    models[3u * i + 2u] = vec4(m[0][1], m[0][2], m[1][2], 0.0);
+}
+#endif
+
+#ifdef ANISOTROPY
+// anisotropy.cpp (Yu & Turk 2013): the weighted covariance of the neighbours within 2 h, its
+// eigen-decomposition (core::symmetricEigen's cyclic Jacobi rotations), the clamped spread
+// scaled to the impostor sphere's volume, the smoothed and anchored centre. Offsets are in
+// units of h (the covariance of order 1 at any scale).
+uniform float uSmoothing, uMaxAxisRatio;
+uniform int uMinNeighbours, uAnchorSurface;
+float ballReach_h;
+float ballReach(float hMax) { return ballReach_h; }
+
+void writeSphere(uint i, float r) {
+    models[3u * i] = vec4(r, 0.0, 0.0, 0.0);
+    models[3u * i + 1u] = vec4(0.0, r, 0.0, 0.0);
+    models[3u * i + 2u] = vec4(0.0, 0.0, r, 0.0);
+}
+
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    float r = radii[i];
+    if (!(r > 0.0)) {
+        writeSphere(i, r);
+        return;
+    }
+    float h = particleH(i);
+    vec3 centre = particlePosition(i);
+    float radius = 2.0 * h;
+    ballReach_h = radius;
+    float inverse = 1.0 / radius;
+    float weight = 0.0;
+    vec3 first = vec3(0.0);
+    mat3 second = mat3(0.0);
+    int neighbours = 0;
+#define GATHER_MOMENTS(k)                                                  \
+    {                                                                      \
+        vec3 d = entries[k].positionInvH.xyz - centre;                     \
+        float q = length(d) * inverse;                                     \
+        if (q < 1.0) {                                                     \
+            float w = 1.0 - q * q * q;                                     \
+            vec3 s = d / h;                                                \
+            weight += w;                                                   \
+            first += w * s;                                                \
+            second += w * outerProduct(s, s);                              \
+            neighbours += floatBitsToUint(entries[k].coefficients.z) != i ? 1 : 0; \
+        }                                                                  \
+    }
+    FOR_EACH_NEAR(centre, ballReach, GATHER_MOMENTS)
+#undef GATHER_MOMENTS
+    if (neighbours < uMinNeighbours || !(weight > 0.0)) {
+        writeSphere(i, r);
+        return;
+    }
+    vec3 mean = first / weight;
+    mat3 c = second / weight - outerProduct(mean, mean);
+    // Cyclic Jacobi: a[row][col] as mat3 a[col][row]; v accumulates the rotations.
+    float a[3][3];
+    float v[3][3];
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) {
+            a[row][col] = row <= col ? c[col][row] : c[row][col];
+            v[row][col] = row == col ? 1.0 : 0.0;
+        }
+    const ivec2 PAIRS[3] = ivec2[](ivec2(0, 1), ivec2(0, 2), ivec2(1, 2));
+    for (int sweep = 0; sweep < 16; ++sweep) {
+        float off = abs(a[0][1]) + abs(a[0][2]) + abs(a[1][2]);
+        float scale = abs(a[0][0]) + abs(a[1][1]) + abs(a[2][2]);
+        if (!(off > 1e-30) || off <= 1e-9 * scale) break;
+        for (int pq = 0; pq < 3; ++pq) {
+            int p = PAIRS[pq].x, q = PAIRS[pq].y;
+            if (a[p][q] == 0.0) continue;
+            float theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            float t = (theta >= 0.0 ? 1.0 : -1.0) / (abs(theta) + sqrt(theta * theta + 1.0));
+            float cs = 1.0 / sqrt(t * t + 1.0), sn = t * cs;
+            for (int k = 0; k < 3; ++k) {
+                float akp = a[k][p], akq = a[k][q];
+                a[k][p] = cs * akp - sn * akq;
+                a[k][q] = sn * akp + cs * akq;
+            }
+            for (int k = 0; k < 3; ++k) {
+                float apk = a[p][k], aqk = a[q][k];
+                a[p][k] = cs * apk - sn * aqk;
+                a[q][k] = sn * apk + cs * aqk;
+            }
+            a[p][q] = 0.0;
+            a[q][p] = 0.0;
+            for (int k = 0; k < 3; ++k) {
+                float vkp = v[k][p], vkq = v[k][q];
+                v[k][p] = cs * vkp - sn * vkq;
+                v[k][q] = sn * vkp + cs * vkq;
+            }
+        }
+    }
+    // Descending, stable (std::stable_sort's order for equal values).
+    ivec3 order = ivec3(0, 1, 2);
+    if (a[order.y][order.y] > a[order.x][order.x]) order.xy = order.yx;
+    if (a[order.z][order.z] > a[order.y][order.y]) order.yz = order.zy;
+    if (a[order.y][order.y] > a[order.x][order.x]) order.xy = order.yx;
+    vec3 values;
+    mat3 vectors;
+    for (int k = 0; k < 3; ++k) {
+        values[k] = a[order[k]][order[k]];
+        vectors[k] = vec3(v[0][order[k]], v[1][order[k]], v[2][order[k]]);
+    }
+    if (dot(cross(vectors[0], vectors[1]), vectors[2]) < 0.0) vectors[2] = -vectors[2];
+    float largest = values[0];
+    if (!(largest > 0.0)) {
+        writeSphere(i, r);
+        return;
+    }
+    vec3 spread = max(values, vec3(largest / uMaxAxisRatio));
+    float scale = r / pow(spread.x * spread.y * spread.z, 1.0 / 3.0);
+    mat3 axes = mat3(scale * spread[0] * vectors[0], scale * spread[1] * vectors[1],
+                     scale * spread[2] * vectors[2]);
+    vec3 shift = uSmoothing * mean * h;
+    vec3 normal = attribute3(ATTR_NORMAL, i);
+    if (uAnchorSurface != 0 && length(normal) > 0.0) {
+        vec3 n = normalize(normal);
+        float reach = dot(shift, n) + length(n * axes);
+        shift += (r - reach) * n;
+    }
+    for (int k = 0; k < 3; ++k) models[3u * i + uint(k)] = vec4(axes[k], shift[k]);
+}
+#endif
+
+// ---- The frame's draw lists ----
+
+#if defined(MARK) || defined(PACK) || defined(FINISH) || defined(KERNELS)
+layout(std430, binding = 14) buffer DrawLists {
+    uint drawnPrefix[];  // n + 1: exclusive prefix of the drawn particles; then n + 1 of kernels
+};
+#endif
+
+#ifdef NEAR
+// renderer.cpp's cullingIsExact: whether a drawn sphere reaches into the near plane's ball.
+uniform dvec3 uCamera;
+uniform double uNearReach;
+void main() {
+    uint i = invocation();
+    if (i >= uCount || !(radii[i] > 0.0) || dropletSlot(i) != 0u) return;
+    if (length(dvec3(particlePosition(i)) - uCamera) - double(radii[i]) <= uNearReach)
+        atomicOr(nearHit, 1u);
+}
+#endif
+
+#ifdef MARK
+uniform int uCull;
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    bool hidden = uCull != 0 && nearHit == 0u && (flags[i] & HIDDEN) != 0u;
+    drawnPrefix[i] = radii[i] > 0.0 && !hidden ? 1u : 0u;
+    drawnPrefix[uCount + 1u + i] = 0u;
+}
+#endif
+
+#ifdef KERNELS
+// The kernels the gradient pass adds: those whose support (2 h) reaches a drawn impostor, where
+// every surface point of the G-buffer lies. Exact: a G-buffer pixel's gradient sums every kernel
+// whose support covers it (surface_kernels.h's probes, on the CPU, leave out a few whose share
+// is small). Each drawn particle marks its neighbours; the marks do not depend on the order.
+uniform int uEllipsoids;
+float kernelReach_r;
+float kernelReach(float hMax) { return kernelReach_r + 2.0 * hMax; }
+void main() {
+    uint i = invocation();
+    if (i >= uCount || drawnPrefix[i] == 0u) return;
+    float r = radii[i];
+    vec3 centre = particlePosition(i);
+    uint slot = dropletSlot(i);
+    if (slot != 0u || uEllipsoids != 0) {
+        // The ellipsoid lies within |shift| + its longest semi-axis of the particle.
+        vec4 a0 = slot != 0u ? droplets[6u * (slot - 1u)] : models[3u * i];
+        vec4 a1 = slot != 0u ? droplets[6u * (slot - 1u) + 1u] : models[3u * i + 1u];
+        vec4 a2 = slot != 0u ? droplets[6u * (slot - 1u) + 2u] : models[3u * i + 2u];
+        r = length(vec3(a0.w, a1.w, a2.w)) +
+            max(length(a0.xyz), max(length(a1.xyz), length(a2.xyz)));
+    }
+    kernelReach_r = r;
+#define MARK_KERNEL(k)                                                   \
+    {                                                                    \
+        vec4 e = entries[k].positionInvH;                                \
+        float reach = r + 2.0 / e.w;                                     \
+        vec3 d = e.xyz - centre;                                         \
+        if (dot(d, d) < reach * reach)                                   \
+            drawnPrefix[uCount + 1u + floatBitsToUint(entries[k].coefficients.z)] = 1u; \
+    }
+    FOR_EACH_NEAR(centre, kernelReach, MARK_KERNEL)
+#undef MARK_KERNEL
+}
+#endif
+
+#ifdef PACK
+// gpu_scene.cpp's packParticles, packEllipsoids and packKernels: positions relative to the
+// camera, subtracted in double.
+struct Particle {
+    vec4 positionRadius;
+    vec4 normalU;
+    vec4 dudxV;
+    vec4 dvdxBody;
+    vec4 glowMaterial;
+    vec4 hessianDiagonal;
+    vec4 hessianOffDiagonal;
+};
+layout(std430, binding = 0) writeonly buffer Particles {
+    Particle particles[];
+};
+struct Kernel {
+    vec4 positionSupport;
+    vec4 coefficients;
+};
+layout(std430, binding = 3) writeonly buffer Kernels {
+    Kernel kernels[];
+};
+layout(std430, binding = 4) writeonly buffer Ellipsoids {
+    vec4 ellipsoids[];
+};
+uniform dvec3 uCamera;
+uniform int uModels;         // 0: none, 1: field normals, 2: ellipsoids
+uniform int uEllipsoidsOut;  // ellipsoid records (uModels 2, or droplets: spheres as round ones)
+
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    vec3 relative = vec3(dvec3(particlePosition(i)) - uCamera);
+    uint k = drawnPrefix[i];
+    if (drawnPrefix[i + 1u] > k) {
+        vec2 uv = vec2(attributes[ATTR_UV * uCount + 2u * i],
+                       attributes[ATTR_UV * uCount + 2u * i + 1u]);
+        Particle p;
+        p.positionRadius = vec4(relative, radii[i]);
+        p.normalU = vec4(attribute3(ATTR_NORMAL, i), uv.x);
+        p.dudxV = vec4(attribute3(ATTR_DUDX, i), uv.y);
+        p.dvdxBody = vec4(attribute3(ATTR_DVDX, i), float(attributeBits(ATTR_BODY, i)));
+        p.glowMaterial = vec4(attribute3(ATTR_GLOW, i), float(attributeBits(ATTR_MATERIAL, i)));
+        p.hessianDiagonal = vec4(0.0);
+        p.hessianOffDiagonal = vec4(0.0);
+        uint slot = dropletSlot(i);
+        if (uModels == 1) {
+            // A droplet's normal is its ellipsoid's.
+            uint m = slot != 0u ? 6u * (slot - 1u) + 3u : 3u * i;
+            p.normalU.xyz = slot != 0u ? droplets[m].xyz : models[m].xyz;
+            p.hessianDiagonal = slot != 0u ? droplets[m + 1u] : models[m + 1u];
+            p.hessianOffDiagonal = slot != 0u ? droplets[m + 2u] : models[m + 2u];
+        }
+        if (uEllipsoidsOut != 0) {
+            float r = radii[i];
+            for (uint a = 0u; a < 3u; ++a) {
+                vec4 round = vec4(0.0);
+                round[a] = r;
+                ellipsoids[3u * k + a] = slot != 0u  ? droplets[6u * (slot - 1u) + a]
+                                         : uModels == 2 ? models[3u * i + a]
+                                                        : round;
+            }
+        }
+        particles[k] = p;
+    }
+    uint kernelBase = uCount + 1u;
+    uint kk = drawnPrefix[kernelBase + i];
+    if (drawnPrefix[kernelBase + i + 1u] > kk) {
+        double h = double(particleH(i));
+        double v = double(attribute1(ATTR_VOLUME, i));
+        const double PI = 3.14159265358979323846LF;
+        kernels[kk].positionSupport = vec4(relative, float(2.0LF * h));
+        kernels[kk].coefficients = vec4(float(v / (PI * h * h * h * h)), float(1.0LF / h), 0.0, 0.0);
+    }
+}
+#endif
+
+#ifdef FINISH
+void main() {
+    if (invocation() != 0u) return;
+    drawParticles = uvec4(6u * drawnPrefix[uCount], 1u, 0u, 0u);
+    drawKernels = uvec4(6u * drawnPrefix[2u * uCount + 1u], 1u, 0u, 0u);
+}
+#endif

@@ -1,0 +1,159 @@
+// The per-particle-set work on the GPU (realtime/per_set_gpu.h): the particles' raw attributes,
+// the neighbour grid built from them by counting sort, and the colour field summed over it.
+//
+// The grid mirrors core::ParticleGrid: one uniform grid per octave of h (level
+// floor(log2(h / h_min))), cells of the level's largest h, coarser where the level's box is
+// sparse (at most max(4 x its particles, 4096) cells), laid out one level after another in one
+// cell array. Within a cell the particles are sorted by index, so every sum over the grid runs
+// in a fixed order and the results do not depend on how the driver schedules invocations.
+// Distances are taken between float positions of nearby particles (exact differences), and a
+// query point is an offset from its particle, so scenes far from the origin keep precision.
+
+const int MAX_LEVELS = 32;
+
+// Offsets, in floats, of the attributes in the Attributes buffer (n = uCount particles).
+#define ATTR_POSITION 0u   // 3n: x, y, z
+#define ATTR_H 3u          // n
+#define ATTR_VOLUME 4u     // n
+#define ATTR_NORMAL 5u     // 3n
+#define ATTR_BODY 8u       // n, uint bits
+#define ATTR_UV 9u         // 2n
+#define ATTR_DUDX 11u      // 3n
+#define ATTR_DVDX 14u      // 3n
+#define ATTR_GLOW 17u      // 3n
+#define ATTR_MATERIAL 20u  // n, uint bits
+
+uniform uint uCount;  // particles in the set
+
+layout(std430, binding = 5) readonly buffer Attributes {
+    float attributes[];
+};
+
+vec3 attribute3(uint offset, uint i) {
+    uint k = offset * uCount + 3u * i;
+    return vec3(attributes[k], attributes[k + 1u], attributes[k + 2u]);
+}
+float attribute1(uint offset, uint i) { return attributes[offset * uCount + i]; }
+uint attributeBits(uint offset, uint i) { return floatBitsToUint(attributes[offset * uCount + i]); }
+
+vec3 particlePosition(uint i) { return attribute3(ATTR_POSITION, i); }
+float particleH(uint i) { return attribute1(ATTR_H, i); }
+
+struct Level {
+    uvec4 minKey;     // ordered keys of the smallest x, y, z; w: particles
+    uvec4 maxKey;     // ordered keys of the largest x, y, z; w: bits of the largest h
+    vec4 originCell;  // the grid's corner; cell size
+    ivec4 dims;       // cells along x, y, z; the level's first cell in the cell array
+};
+
+layout(std430, binding = 6) coherent buffer Header {
+    uint hMinBits;           // the smallest h (float bits: positive floats order as uints)
+    uint nearHit;            // a drawn sphere reaches into the near plane's ball (this frame)
+    uint totalCells;         // cells of all levels
+    uint sparseCount;        // RADIUS: particles with a surface and few neighbours (droplets)
+    uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 0, 0
+    uvec4 drawKernels;       // the same for the kernels the gradient pass adds
+    Level levels[MAX_LEVELS];
+};
+
+// A float as a uint whose order is the float's (for atomicMin / atomicMax).
+uint orderedKey(float f) {
+    uint u = floatBitsToUint(f);
+    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
+}
+float fromOrderedKey(uint k) {
+    return uintBitsToFloat((k & 0x80000000u) != 0u ? k & 0x7FFFFFFFu : ~k);
+}
+
+// floor(log2(h / h_min)), 0..MAX_LEVELS - 1: the exponent of the ratio's float.
+int levelOf(float h) {
+    float ratio = h / uintBitsToFloat(hMinBits);
+    int e = int(floatBitsToUint(max(ratio, 1.0)) >> 23) - 127;
+    return clamp(e, 0, MAX_LEVELS - 1);
+}
+
+int gridCoord(float p, float origin, float invCell, int n) {
+    return clamp(int(floor((p - origin) * invCell)), 0, n - 1);
+}
+
+float levelInvCell(Level g) { return 1.0 / g.originCell.w; }
+
+int cellIndex(Level g, vec3 p) {
+    float inv = levelInvCell(g);
+    int ix = gridCoord(p.x, g.originCell.x, inv, g.dims.x);
+    int iy = gridCoord(p.y, g.originCell.y, inv, g.dims.y);
+    int iz = gridCoord(p.z, g.originCell.z, inv, g.dims.z);
+    return g.dims.w + (iz * g.dims.y + iy) * g.dims.x + ix;
+}
+
+#ifdef GRID_READ
+// The particles sorted by cell (index order within a cell).
+struct GridEntry {
+    vec4 positionInvH;  // position; 1 / h
+    vec4 coefficients;  // v / (pi h^4); v / (pi h^3) (W(0) = that); uint bits of the index; body
+};
+
+layout(std430, binding = 7) readonly buffer Cells {
+    uint cellStart[];  // totalCells + 1 offsets into entries
+};
+layout(std430, binding = 9) readonly buffer Entries {
+    GridEntry entries[];
+};
+
+// Calls VISIT(k) for every grid entry k of every level whose cells the ball of radius
+// REACH(level's largest h) around POINT may reach, in a fixed order (levels, z, y rows, entries).
+// Entries beyond the ball may be visited: VISIT tests the distance.
+#define FOR_EACH_NEAR(POINT, REACH, VISIT)                                                     \
+    for (int L_ = 0; L_ < MAX_LEVELS; ++L_) {                                                \
+        Level g_ = levels[L_];                                                               \
+        if (g_.minKey.w == 0u) continue;                                                     \
+        float reach_ = REACH(uintBitsToFloat(g_.maxKey.w));                                  \
+        float inv_ = levelInvCell(g_);                                                       \
+        float cell_ = g_.originCell.w;                                                       \
+        int z0_ = int(floor((POINT.z - reach_ - g_.originCell.z) * inv_));                   \
+        int z1_ = int(floor((POINT.z + reach_ - g_.originCell.z) * inv_));                   \
+        int y0_ = int(floor((POINT.y - reach_ - g_.originCell.y) * inv_));                   \
+        int y1_ = int(floor((POINT.y + reach_ - g_.originCell.y) * inv_));                   \
+        if (z1_ < 0 || z0_ >= g_.dims.z || y1_ < 0 || y0_ >= g_.dims.y) continue;            \
+        z0_ = max(z0_, 0); z1_ = min(z1_, g_.dims.z - 1);                                    \
+        y0_ = max(y0_, 0); y1_ = min(y1_, g_.dims.y - 1);                                    \
+        for (int iz_ = z0_; iz_ <= z1_; ++iz_) {                                             \
+            float zLo_ = g_.originCell.z + float(iz_) * cell_;                               \
+            float dz_ = max(0.0, max(zLo_ - POINT.z, POINT.z - (zLo_ + cell_)));             \
+            for (int iy_ = y0_; iy_ <= y1_; ++iy_) {                                         \
+                float yLo_ = g_.originCell.y + float(iy_) * cell_;                           \
+                float dy_ = max(0.0, max(yLo_ - POINT.y, POINT.y - (yLo_ + cell_)));         \
+                float rest_ = reach_ * reach_ - dy_ * dy_ - dz_ * dz_;                       \
+                if (rest_ < 0.0) continue;                                                   \
+                float half_ = sqrt(rest_);                                                   \
+                int x0_ = int(floor((POINT.x - half_ - g_.originCell.x) * inv_));            \
+                int x1_ = int(floor((POINT.x + half_ - g_.originCell.x) * inv_));            \
+                if (x1_ < 0 || x0_ >= g_.dims.x) continue;                                   \
+                x0_ = max(x0_, 0); x1_ = min(x1_, g_.dims.x - 1);                            \
+                int row_ = g_.dims.w + (iz_ * g_.dims.y + iy_) * g_.dims.x;                  \
+                uint end_ = cellStart[row_ + x1_ + 1];                                       \
+                for (uint k_ = cellStart[row_ + x0_]; k_ < end_; ++k_) VISIT(k_);            \
+            }                                                                                \
+        }                                                                                    \
+    }
+
+// The M4 kernel's shape w(q) and its derivatives (core/sph_kernel.h).
+float m4Shape(float q) {
+    if (q >= 2.0) return 0.0;
+    float a = 2.0 - q;
+    return q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * a * a * a;
+}
+float m4ShapeDerivative(float q) {
+    if (q < 1.0) return -3.0 * q + 2.25 * q * q;
+    if (q < 2.0) return -0.75 * (2.0 - q) * (2.0 - q);
+    return 0.0;
+}
+float m4ShapeSecondDerivative(float q) {
+    if (q < 1.0) return -3.0 + 4.5 * q;
+    if (q < 2.0) return 1.5 * (2.0 - q);
+    return 0.0;
+}
+
+float supportReach(float hMax) { return 2.0 * hMax; }
+
+#endif
