@@ -145,25 +145,33 @@ Droplets fitDroplets(const core::ParticleSet& ps, std::span<const float> radii, 
                           clusters.join(i, j);
                       });
     }
-    // The clusters of 2 .. maxAtoms sparse particles, by first particle.
-    std::vector<std::vector<std::uint32_t>> members(n);
-    std::vector<std::uint8_t> rejected(n, 0);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const std::uint32_t r = clusters.root(i);
-        if (r == i && !sparse[i]) continue;
-        if (!sparse[i] || joinsBody[i]) rejected[r] = 1;
-        if (!rejected[r]) members[r].push_back(i);
-    }
+    // The clusters of 2 .. maxAtoms sparse particles, by first particle: (first, member) pairs
+    // of the sparse particles only, sorted. A cluster with an edge to a particle that is not
+    // sparse has a sparse member marked joinsBody.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> byCluster;
+    byCluster.reserve(candidates.size());
+    for (std::uint32_t i : candidates) byCluster.emplace_back(clusters.root(i), i);
+    std::sort(byCluster.begin(), byCluster.end());
     std::vector<std::uint32_t> firsts;
-    for (std::uint32_t r = 0; r < n; ++r)
-        if (!rejected[r] && members[r].size() >= 2 &&
-            members[r].size() <= static_cast<std::size_t>(maxAtoms))
-            firsts.push_back(r);
+    std::vector<std::vector<std::uint32_t>> members;
+    for (std::size_t k = 0; k < byCluster.size();) {
+        std::size_t end = k;
+        bool joins = false;
+        for (; end < byCluster.size() && byCluster[end].first == byCluster[k].first; ++end)
+            joins = joins || joinsBody[byCluster[end].second];
+        const std::size_t size = end - k;
+        if (!joins && size >= 2 && size <= static_cast<std::size_t>(maxAtoms)) {
+            firsts.push_back(byCluster[k].first);
+            members.emplace_back();
+            for (std::size_t m = k; m < end; ++m) members.back().push_back(byCluster[m].second);
+        }
+        k = end;
+    }
     std::vector<std::optional<Ellipsoid>> fitted(firsts.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, firsts.size(), 16),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t k = range.begin(); k != range.end(); ++k)
-                              fitted[k] = fitEllipsoid(ps, field, members[firsts[k]], level);
+                              fitted[k] = fitEllipsoid(ps, field, members[k], level);
                       });
     out.ellipsoids.resize(n);
     for (std::size_t i = 0; i < n; ++i) out.ellipsoids[i] = Ellipsoid::sphere(radii[i]);
@@ -171,7 +179,7 @@ Droplets fitDroplets(const core::ParticleSet& ps, std::span<const float> radii, 
     for (std::size_t k = 0; k < firsts.size(); ++k) {
         if (!fitted[k]) continue;
         const std::uint32_t first = firsts[k];
-        for (std::uint32_t i : members[first]) {
+        for (std::uint32_t i : members[k]) {
             out.radii[i] = 0.0f;
             out.ellipsoids[i] = Ellipsoid::sphere(0.0f);
         }
