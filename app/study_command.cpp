@@ -159,9 +159,9 @@ ExitCode runStudies(const StudyOptions& o) {
         s.xLog = d.xLog;
         s.metric = d.metric;
         s.columns = d.columns;
-        const fs::path dir = out / d.name;
-        fs::create_directories(dir / "points");
-        fs::create_directories(dir / "references");
+        // The study's images, by path under OUT/NAME: written with its report, so that a
+        // signal or an error during the renders leaves nothing of it.
+        std::map<std::string, core::Image> images;
         std::map<std::string, double> unbracketed;  // per distinct reference
         // Frame-to-frame: the previous frame's renders (reference, real-time), per series.
         std::map<std::string, std::pair<core::Frame, core::Frame>> previous;
@@ -220,10 +220,10 @@ ExitCode runStudies(const StudyOptions& o) {
                     previous[row.series] = {ref, test};
                 }
                 const std::string png = fmt::format("points/{:03}.realtime.png", i);
-                core::writeImage(test.display, dir / png);
+                images[png] = test.display;
                 row.images["realtime"] = png;
                 const std::string refPng = "references/" + key + ".png";
-                if (!fs::exists(dir / refPng)) core::writeImage(ref.display, dir / refPng);
+                images.try_emplace(refPng, ref.display);
                 row.images["reference"] = refPng;
                 const auto y = row.metrics.find(d.metric);
                 std::printf("[%s %zu/%zu] %s%s%s, x = %g: %s %s (real-time %.1f ms)\n",
@@ -253,7 +253,11 @@ ExitCode runStudies(const StudyOptions& o) {
         // A signal during the renders leaves no report of this study; one from here on lets
         // it finish.
         throwIfInterrupted();
-        writeTogether(out, [&](const fs::path& staging) { compare::writeStudy(s, staging); });
+        writeTogether(out, [&](const fs::path& staging) {
+            for (const auto& [path, image] : images)
+                core::writeImage(image, staging / d.name / path);
+            compare::writeStudy(s, staging);
+        });
         std::printf("%s: %s [reference: %s unbracketed rays in %zu renders; %.1f s]\n",
                     d.name.c_str(), s.finding.c_str(),
                     compare::formatValue(s.unbracketedRays).c_str(), s.references, s.wallSeconds);

@@ -263,11 +263,12 @@ TEST_P(InterruptTest, StopsPromptlyWith128PlusTheSignalAndLeavesNoReport) {
     // A render of several seconds on two cores (about 1 s of it is loading and set-up).
     const std::string heavy =
         " --set camera.width=640 --set camera.height=480 --set raymarch.spp=4";
-    const std::string args = std::string(p.command) == "run"
-                                 ? "run " + SLAB + heavy + " --out " + out.string()
-                                 : "sweep " + SLAB + heavy +
-                                       " --vary realtime.ssss.enabled=true,false --out " +
-                                       out.string();
+    const std::string command = p.command;
+    const std::string args =
+        command == "run"     ? "run " + SLAB + heavy + " --out " + out.string()
+        : command == "sweep" ? "sweep " + SLAB + heavy +
+                                   " --vary realtime.ssss.enabled=true,false --out " + out.string()
+                             : "study particle_size --quick" + heavy + " --out " + out.string();
     const Child c = start(split(args), dir / "log.txt");
     // Until the handlers are installed (a signal before main would end the process by its
     // default action), then a second more: the raymarcher is under way, and its render is
@@ -289,13 +290,14 @@ TEST_P(InterruptTest, StopsPromptlyWith128PlusTheSignalAndLeavesNoReport) {
     EXPECT_NE(log.find("stopped by SIG"), std::string::npos) << log;
     EXPECT_EQ(temporaryFiles(out), std::vector<std::string>{});
     for (const char* f : {"summary.json", "summary.md", "index.html", "slab/metrics.json",
-                          "sweep.json", "sweep.csv"})
+                          "sweep.json", "sweep.csv", "studies.json", "particle_size"})
         EXPECT_FALSE(fs::exists(out / f)) << f;
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, InterruptTest,
                          ::testing::Values(Interruption{"run", SIGINT},
-                                           Interruption{"sweep", SIGTERM}),
+                                           Interruption{"sweep", SIGTERM},
+                                           Interruption{"study", SIGINT}),
                          [](const auto& info) {
                              return std::string(info.param.command) +
                                     (info.param.signal == SIGINT ? "_SIGINT" : "_SIGTERM");
