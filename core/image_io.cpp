@@ -147,11 +147,18 @@ void checkWrite(const fs::path& path, const std::string& error) {
 }  // namespace
 
 Image readImage(const fs::path& path) {
+    // A device, pipe or folder: /dev/zero would be read for ever.
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw InputError(
+            fmt::format("{}: not an image file (a device, pipe or folder); give "
+                        "the path of an EXR or PNG file",
+                        path.string()));
     // PNGs through libpng (png_io.h): such a process never loads OpenImageIO.
     if (isPngFile(path))
         if (std::optional<DecodedPixels> png = readPng(path)) return toImage(std::move(*png));
-    std::error_code ec;
-    if (fs::is_regular_file(path, ec)) checkExrHeader(path);
+    if (fs::is_regular_file(status)) checkExrHeader(path);
     DecodedPixels decoded;
     check(path, oiio::api().read(path.string(), decoded));
     return toImage(std::move(decoded));

@@ -72,6 +72,18 @@ TEST(ImageIo, FailedWritesLeaveNothingAndUnreadableFilesNameThemselves) {
     } catch (const tc::InputError& e) {
         EXPECT_NE(std::string(e.what()).find("missing.exr"), std::string::npos);
     }
+    // A device never ends: /dev/zero is refused before a byte is read (it once kept
+    // `compare` reading for ever), and so is a folder.
+    for (const fs::path& notAFile : {fs::path("/dev/zero"), dir}) {
+        try {
+            tc::readImage(notAFile);
+            FAIL() << notAFile;
+        } catch (const tc::InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(notAFile.string() + ": not an image file"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 // A damaged EXR header whose attribute claims 2 GB (OpenEXR would allocate it before reading)
