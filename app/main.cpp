@@ -164,6 +164,9 @@ int main(int argc, char** argv) {
                        "thresholds file (default: thresholds.toml beside the scenes)");
     runCmd->add_option("--baseline", runOpts.baseline, "baseline from `twinrender bless`");
     runCmd->add_option("--junit", runOpts.junit, "also write JUnit XML here");
+    runCmd->add_option("--cache", runOpts.cache,
+                       "reference cache folder for every scene (default: sequences only, in "
+                       "OUT/reference_cache)");
     addPpd(runCmd, runOpts.ppd);
     addFlipOver(runCmd, runOpts.flipOver);
     runCmd

@@ -176,8 +176,12 @@ ExitCode runSuite(const RunOptions& o) {
     // The GL context before the first render: without one, nothing can be compared.
     Devices devices(o.requireGpu);
     devices.realtime();
-    // Sequences take their references from the cache, frame by frame.
-    ReferenceCache cache(fs::path(o.out) / "reference_cache", devices);
+    // Sequences take their references from the cache, frame by frame; with --cache, every
+    // scene does.
+    const fs::path cacheDir =
+        o.cache.empty() ? fs::path(o.out) / "reference_cache" : fs::path(o.cache);
+    if (!o.cache.empty()) prepareOutputFolder(cacheDir);
+    ReferenceCache cache(cacheDir, devices);
     // Making a real-time renderer compiles a user's surface shader: one that does not compile
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
@@ -205,7 +209,12 @@ ExitCode runSuite(const RunOptions& o) {
                 run.scenes.push_back(runSequence(s, devices, cache, sequence, dir));
                 continue;
             }
-            const core::Frame ref = render("raymarch", devices, s);
+            const core::Frame ref = o.cache.empty() ? render("raymarch", devices, s) : [&] {
+                const auto [key, what] = referenceKey(s, o.sets);
+                core::Frame cached = cache.get(s, key, what);
+                cache.forget(key);
+                return cached;
+            }();
             writeRender(s, ref, dir);
             const core::Frame test = render("realtime", devices, s);
             writeRender(s, test, dir);

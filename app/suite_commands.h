@@ -28,6 +28,10 @@ struct RunOptions {
     std::string thresholds;  // empty: thresholds.toml beside the first input, if any
     std::string baseline;
     std::string junit;
+    // Reference cache folder (app/reference_cache.h): given, every scene's reference comes
+    // from it (shards on one disk can share it); empty, a sequence's references are cached in
+    // OUT/reference_cache and a still scene's reference is rendered.
+    std::string cache;
     std::vector<std::string> sets;
     bool requireGpu = false;
     double ppd = 67.0;

@@ -197,22 +197,29 @@ TEST(Suite, TheRingShadowLandsWhereTheShadowRaysPutIt) {
 
 TEST(Suite, ABaselineCatchesARegressionInsideTheBounds) {
     const fs::path out = tt::freshDir("suite_bless");
+    // The runs share one reference cache: the first renders the reference, the others read it
+    // (the real-time settings are not part of its key).
+    const std::string cache = " --cache " + (out / "cache").string();
     const auto first =
-        tt::runTwinrender("run " + SCENES + "planet.toml --out " + (out / "a").string());
+        tt::runTwinrender("run " + SCENES + "planet.toml --out " + (out / "a").string() + cache);
     ASSERT_EQ(first.exitCode, 0) << first.output;
+    EXPECT_NE(first.output.find("cached in"), std::string::npos) << first.output;
     const auto bless = tt::runTwinrender("bless " + (out / "a").string() + " --out " +
                                          (out / "baseline.json").string());
     ASSERT_EQ(bless.exitCode, 0) << bless.output;
-    // The same run again: deterministic renders reproduce the blessed metrics.
-    const auto same =
-        run("bless_same", SCENES + "planet.toml --baseline " + (out / "baseline.json").string());
+    // The same run again: deterministic renders reproduce the blessed metrics, the cached
+    // reference too.
+    const auto same = run("bless_same", SCENES + "planet.toml --baseline " +
+                                            (out / "baseline.json").string() + cache);
     EXPECT_EQ(same.exitCode, 0) << same.output;
+    EXPECT_NE(same.output.find("cache hit"), std::string::npos) << same.output;
     // A larger blur: still inside every absolute bound (normal error 2.82 degrees against a
     // bound of 3.5), but worse than the baseline (2.31).
     const auto worse =
         run("bless_worse", SCENES + "planet.toml --set realtime.ssss.radius_scale=0.8 --baseline " +
-                               (out / "baseline.json").string());
+                               (out / "baseline.json").string() + cache);
     EXPECT_EQ(worse.exitCode, 2) << worse.output;
+    EXPECT_NE(worse.output.find("cache hit"), std::string::npos) << worse.output;
     bool namedTheChange = false;
     for (const auto& s : worse.summary["scenes"])
         for (const auto& c : s["checks"])
