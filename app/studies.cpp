@@ -532,7 +532,7 @@ const std::string IMPOSTOR_SPHERES = "impostor spheres";
 std::vector<StudyPoint> flickerPoints(bool quick) {
     const int frames = quick ? 3 : 6;
     std::vector<StudyPoint> pts;
-    for (const std::string particles : {std::string(), IMPOSTOR_SPHERES})
+    for (const std::string& particles : {std::string(), IMPOSTOR_SPHERES})
         for (const char* method : FLICKER_METHODS)
             for (int f = 0; f < frames; ++f) {
                 StudyPoint p{particles.empty() ? method : fmt::format("{} ({})", method, particles),
@@ -554,7 +554,7 @@ void flickerConclude(StudyResult& s) {
     s.chart = seriesChart(s, "temporal.flicker");
     // Per particle model: the method with the least and the most mean flicker.
     std::string parts;
-    for (const std::string particles : {std::string(), IMPOSTOR_SPHERES}) {
+    for (const std::string& particles : {std::string(), IMPOSTOR_SPHERES}) {
         std::string least, most;
         double lo = INFINITY, hi = -INFINITY;
         for (const auto& [name, rows] : bySeries(s)) {

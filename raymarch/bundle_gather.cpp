@@ -110,8 +110,7 @@ std::vector<std::uint32_t> BundleGather::groupOrder(std::span<const glm::vec3> c
 
 BundleGather::BundleGather(const EmbreeDevice& device, std::span<const glm::vec3> centers,
                            std::span<const float> supportRadius, std::span<const float> margin,
-                           std::span<const std::uint32_t> order)
-    : mDevice(device) {
+                           std::span<const std::uint32_t> order) {
     std::vector<std::uint32_t> own;
     if (order.empty()) {
         own = groupOrder(centers);

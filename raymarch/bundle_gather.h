@@ -99,7 +99,6 @@ class BundleGather {
     static void occluded(const RTCOccludedFunctionNArguments* args);
     static void firstEntryTest(const RTCIntersectFunctionNArguments* args);
 
-    const EmbreeDevice& mDevice;
     std::vector<Group> mGroups;
     RTCScene mScene = nullptr;
 };

@@ -379,7 +379,8 @@ Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Came
     const std::vector<GpuParticle> gpuParticles =
         nothingDrawn ? std::vector<GpuParticle>{}
                      : packParticles(ps, in.scene.camera.position, radii, drawn, fieldNormalModels);
-    Uploaded out{sceneBuffers(d, in, camera, settings, gpuParticles.size()), {}, {}, {}};
+    Uploaded out{
+        sceneBuffers(d, in, camera, settings, gpuParticles.size()), {}, {}, {}, nullptr, {}};
     out.particles =
         std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuParticle>(gpuParticles)));
     out.scene.particles = out.particles.get();
@@ -423,7 +424,7 @@ Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Came
 Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
                    const Settings& settings, core::Frame& frame) {
     const core::ParticleSet& ps = in.particles.particles;
-    Uploaded out{sceneBuffers(d, in, camera, settings, ps.size()), {}, {}, {}};
+    Uploaded out{sceneBuffers(d, in, camera, settings, ps.size()), {}, {}, {}, nullptr, {}};
     const PerSetRequest request = perSetRequest(settings);
     GpuPerSet& g = d.perSetGpu;
     const bool built = g.update(d.programs, ps, request);
@@ -689,11 +690,9 @@ core::Frame Renderer::render(const core::RenderInput& in) {
 
     const auto totalStart = Clock::now();
     const Uploaded uploaded = upload(d, in, camera, mSettings, frame);
-    PassInputs passInputs{d.programs, uploaded.scene, mSettings};
-    passInputs.kernels = uploaded.kernelBuffer;
-    passInputs.kernelDraw = uploaded.kernelDraw;
-    passInputs.width = camera.width();
-    passInputs.height = camera.height();
+    PassInputs passInputs{
+        d.programs,          uploaded.scene, mSettings,      uploaded.kernelBuffer,
+        uploaded.kernelDraw, camera.width(), camera.height()};
     passInputs.emits = emits;
     passInputs.exposure = static_cast<float>(in.scene.camera.exposure);
     if (mSettings.shadows == ShadowMode::Spheres) {
