@@ -187,12 +187,4 @@ void deriveGlow(ParticleSet& set) {
                       });
 }
 
-void deriveAttributes(ParticleSet& set, std::span<const BodyInfo> bodies,
-                      const std::vector<bool>& keepUv) {
-    for (std::size_t b = 0; b < bodies.size(); ++b)
-        deriveUv(set, bodies[b], b < keepUv.size() && keepUv[b]);
-    deriveNormals(set, bodies);
-    deriveGlow(set);
-}
-
 }  // namespace twinrender::core

@@ -61,9 +61,4 @@ void deriveNormals(ParticleSet& particles, std::span<const BodyInfo> bodies);
 // glow = blackbodyRadiance(temperature) (blackbody.h).
 void deriveGlow(ParticleSet& particles);
 
-// All of the above. keepUv[b] says whether body b keeps the uv already in the set (shorter
-// than bodies, or empty: the missing ones do not).
-void deriveAttributes(ParticleSet& particles, std::span<const BodyInfo> bodies,
-                      const std::vector<bool>& keepUv = {});
-
 }  // namespace twinrender::core

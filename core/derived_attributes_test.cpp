@@ -22,6 +22,13 @@
 namespace twinrender::core {
 namespace {
 
+// The particles with their normals, which buildParticles leaves to their user.
+SceneParticles builtWithNormals(const Scene& scene) {
+    SceneParticles sp = buildParticles(scene);
+    deriveNormals(sp);
+    return sp;
+}
+
 constexpr double PI = std::numbers::pi;
 
 double degreesBetween(const glm::dvec3& a, const glm::dvec3& b) {
@@ -149,7 +156,7 @@ TEST(SphericalUv, FileUvIsKeptAndWrapped) {
 // Measured for a 20000-particle hcp ball, over the outermost particles (r > R - s/2): median
 // ~6 degrees, 95th percentile ~13, maximum ~18 (the same at 1M: the facets scale with s).
 TEST(Normals, BallSurfaceNormalsPointOutward) {
-    const SceneParticles sp = buildParticles(sceneWith({ballBody(20000)}));
+    const SceneParticles sp = builtWithNormals(sceneWith({ballBody(20000)}));
     const ParticleSet& p = sp.particles;
     const double s = latticeSpacing(ballBody(20000));
     std::vector<double> angles;
@@ -167,7 +174,7 @@ TEST(Normals, BallSurfaceNormalsPointOutward) {
 
 // A random ball has no facets; its surface normals scatter with the noise of the positions.
 TEST(Normals, RandomBallSurfaceNormalsPointOutward) {
-    const SceneParticles sp = buildParticles(sceneWith({ballBody(20000, Lattice::Random)}));
+    const SceneParticles sp = builtWithNormals(sceneWith({ballBody(20000, Lattice::Random)}));
     const ParticleSet& p = sp.particles;
     const double s = latticeSpacing(ballBody(20000, Lattice::Random));
     std::vector<double> angles;
@@ -188,7 +195,7 @@ TEST(Normals, InteriorFallsBackToRadial) {
     for (const glm::dvec3 center : {glm::dvec3(3.0, -1.0, 2.0), glm::dvec3(700.0, 0.0, -300.0)}) {
         BodyDesc b = ballBody(20000);
         b.center = center;
-        const SceneParticles sp = buildParticles(sceneWith({b}));
+        const SceneParticles sp = builtWithNormals(sceneWith({b}));
         const ParticleSet& p = sp.particles;
         int interior = 0, radial = 0;
         for (std::size_t i = 0; i < p.size(); ++i) {
@@ -290,9 +297,9 @@ TEST(Normals, SameResultOnAnyThreadCount) {
     SceneParticles one, many;
     {
         tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
-        one = buildParticles(scene);
+        one = builtWithNormals(scene);
     }
-    many = buildParticles(scene);
+    many = builtWithNormals(scene);
     ASSERT_EQ(one.particles.size(), many.particles.size());
     EXPECT_TRUE(std::equal(one.particles.normal.begin(), one.particles.normal.end(),
                            many.particles.normal.begin()));
@@ -352,7 +359,7 @@ TEST(BuildParticles, BodiesRangesMaterialsGlowAndBounds) {
     ring.particles = 3000;
     ring.lattice = Lattice::Random;
     ring.materialIndex = 0;
-    const SceneParticles sp = buildParticles(sceneWith({planet, ring}));
+    const SceneParticles sp = builtWithNormals(sceneWith({planet, ring}));
     const ParticleSet& p = sp.particles;
     ASSERT_EQ(sp.bodies.size(), 2u);
     EXPECT_EQ(sp.bodies[0].name, "planet");
@@ -411,7 +418,7 @@ TEST(BuildParticles, FileBody) {
     b.center = glm::dvec3(1, 2, 3);
     b.materialIndex = 2;
     b.temperature = 900.0;  // overridden by the file's column
-    const SceneParticles sp = buildParticles(sceneWith({b}));
+    const SceneParticles sp = builtWithNormals(sceneWith({b}));
     const ParticleSet& p = sp.particles;
     ASSERT_EQ(p.size(), 3u);
     ASSERT_EQ(sp.bodies.size(), 2u);
@@ -466,7 +473,7 @@ TEST(BuildParticles, FileValuesBeyondTheFloatRangeAreRejected) {
         b.path = path;
         b.scale = c.scale;
         try {
-            buildParticles(sceneWith({b}));
+            builtWithNormals(sceneWith({b}));
             ADD_FAILURE() << "no error for " << c.rows;
         } catch (const InputError& e) {
             EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": particle ", 0), 0u)
@@ -487,7 +494,7 @@ TEST(BuildParticles, OpenSphBall) {
     b.shape = Shape::File;
     b.path = path;
     b.scale = 1e-3;  // m -> km
-    const SceneParticles sp = buildParticles(sceneWith({b}));
+    const SceneParticles sp = builtWithNormals(sceneWith({b}));
     const ParticleSet& p = sp.particles;
     ASSERT_EQ(p.size(), 10648u);
     ASSERT_EQ(sp.bodies.size(), 1u);

@@ -194,7 +194,10 @@ SceneParticles buildParticles(const Scene& scene) {
                                      scene.name, set.size(),
                                      std::numeric_limits<std::uint32_t>::max()));
 
-    deriveAttributes(set, out.bodies, keepUv);
+    for (std::size_t b = 0; b < out.bodies.size(); ++b)
+        deriveUv(set, out.bodies[b], b < keepUv.size() && keepUv[b]);
+    deriveGlow(set);
+    out.hasNormals = false;
 
     if (set.size() > 0) {
         glm::dvec3 lo(INFINITY), hi(-INFINITY);
@@ -208,6 +211,11 @@ SceneParticles buildParticles(const Scene& scene) {
         out.boundsMax = hi;
     }
     return out;
+}
+
+void deriveNormals(SceneParticles& particles) {
+    deriveNormals(particles.particles, particles.bodies);
+    particles.hasNormals = true;
 }
 
 }  // namespace twinrender::core

@@ -1,6 +1,8 @@
 // The particles of a scene and their derived attributes, computed once in core/ and shared
-// by both renderers (DESIGN.md, "The two renderers"). Structure of arrays, float32: what a
-// GPU buffer and Embree want.
+// by both renderers (DESIGN.md, "The two renderers"), except the particle normals: only the
+// real-time renderer uses them, and it derives them as a stage of its per-set work (on the GPU
+// with realtime.per_set = "gpu"). Structure of arrays, float32: what a GPU buffer and Embree
+// want.
 #pragma once
 
 #include <cstdint>
@@ -25,9 +27,11 @@ struct ParticleSet {
     std::vector<glm::vec2> uv;            // texture coordinates, u in [0,1) wraps, v in [0,1]
     std::vector<glm::vec3> dudx;          // gradient of u with respect to position, 1/scene unit
     std::vector<glm::vec3> dvdx;          // gradient of v with respect to position, 1/scene unit
-    std::vector<glm::vec3> normal;        // unit, outward: -grad(colour field) normalised
-    std::vector<float> temperature;       // kelvin
-    std::vector<glm::vec3> glow;          // blackbody emitted radiance from temperature, linear RGB
+    // Unit, outward: -grad(colour field) normalised (deriveNormals); zero where a SceneParticles
+    // says it has none.
+    std::vector<glm::vec3> normal;
+    std::vector<float> temperature;  // kelvin
+    std::vector<glm::vec3> glow;     // blackbody emitted radiance from temperature, linear RGB
 
     std::size_t size() const { return position.size(); }
     // Resizes every attribute to n.
@@ -49,10 +53,18 @@ struct SceneParticles {
     std::vector<BodyInfo> bodies;
     glm::dvec3 boundsMin{0.0};  // of the support spheres (position +- 2h)
     glm::dvec3 boundsMax{0.0};
+    // Whether particles.normal holds the normals (given, or derived by deriveNormals); false:
+    // they are zero, and a user that needs them derives them.
+    bool hasNormals = true;
 };
 
-// Generates or reads every body of the scene and derives the shared attributes.
-// Deterministic: the same scene gives the same particles on any thread count.
+// Generates or reads every body of the scene and derives the shared attributes: uv and glow,
+// not the normals (hasNormals false). Deterministic: the same scene gives the same particles
+// on any thread count.
 SceneParticles buildParticles(const Scene& scene);
+
+// The normals of `particles` (derived_attributes.h's deriveNormals over its bodies); sets
+// hasNormals.
+void deriveNormals(SceneParticles& particles);
 
 }  // namespace twinrender::core

@@ -48,7 +48,10 @@ void runParticlePipeline(std::string_view bytes, const std::string& extension) {
     const std::filesystem::path path = writeScratchFile("particles" + extension, bytes);
     expectCleanOutcome([&] {
         const core::Scene scene = fileScene(path);
-        const core::SceneParticles particles = core::buildParticles(scene);
+        core::SceneParticles particles = core::buildParticles(scene);
+        // The normals, as the real-time renderer's CPU path derives them (their neighbour
+        // grids are where a corrupted snapshot once hung).
+        core::deriveNormals(particles);
         const std::vector<core::Material> materials = core::loadMaterials(scene);
 
         const realtime::ParticleSettings particleSettings;

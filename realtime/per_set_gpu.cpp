@@ -7,6 +7,7 @@
 #include <span>
 #include <utility>
 
+#include "core/derived_attributes.h"
 #include "realtime/droplets.h"
 #include "realtime/field_normal.h"
 #include "realtime/gl/pipeline.h"
@@ -48,6 +49,7 @@ enum Binding : unsigned {
     DRAW_LISTS = 14,
     DIRECTIONS = 15,
     DROPLETS = 16,
+    BODIES = 17,
 };
 
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
@@ -83,8 +85,9 @@ int modelKind(const ParticleSettings& p) {
 
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
     for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
-    std::vector<const char*> stages = {"INIT", "H_MIN",  "LEVELS", "LAYOUT", "COUNT", "SCATTER",
-                                       "SORT", "GATHER", "RADIUS", "MARK",   "PACK",  "FINISH"};
+    std::vector<const char*> stages = {"INIT",    "H_MIN", "LEVELS", "LAYOUT",  "COUNT",
+                                       "SCATTER", "SORT",  "GATHER", "NORMALS", "RADIUS",
+                                       "MARK",    "PACK",  "FINISH"};
     if (request.kernels) stages.push_back("KERNELS");
     if (request.cull) stages.insert(stages.end(), {"CULL", "NEAR"});
     const int kind = modelKind(request.particles);
@@ -194,8 +197,24 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
     run("GATHER", groups(mCount));
 }
 
+void GpuPerSet::deriveNormals(ProgramCache& programs, std::span<const core::BodyInfo> bodies) {
+    std::vector<glm::vec4> records;
+    records.reserve(2 * bodies.size());
+    for (const core::BodyInfo& b : bodies) {
+        records.emplace_back(glm::vec3(b.center), 0.0f);
+        records.emplace_back(glm::vec3(b.frame[2]), 0.0f);
+    }
+    mBodies = gl::Buffer::of(std::span<const glm::vec4>(records));
+    mBodies.bindStorage(BODIES);
+    const gl::Program& p = programs.compute("per_set.comp", {"NORMALS"});
+    p.set("uCount", static_cast<unsigned>(mCount));
+    p.set("uFallbackRatio", static_cast<float>(core::NORMAL_FALLBACK_RATIO));
+    p.dispatch(groups(mCount));
+}
+
 bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
-                       const PerSetRequest& request) {
+                       const PerSetRequest& request,
+                       std::span<const core::BodyInfo> deriveNormalsOf) {
     bool built = false;
     mRequest = request;
     const auto start = std::chrono::steady_clock::now();
@@ -214,6 +233,8 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     mUploadMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (built && mCount > 0) timed("grid", [&] { buildGrid(programs); });
+    if (built && mCount > 0 && !deriveNormalsOf.empty())
+        timed("particle_normals", [&] { deriveNormals(programs, deriveNormalsOf); });
     if (mCount == 0) return built;
     bindStorage();
     const ParticleSettings& s = request.particles;
@@ -384,6 +405,14 @@ std::uint32_t GpuPerSet::kernelCount() const {
 
 std::vector<float> GpuPerSet::radii() const {
     return mRadii.read<float>(0, mCount);
+}
+
+std::vector<glm::vec3> GpuPerSet::normals() const {
+    const std::vector<float> xyz = mAttributes.read<float>(5 * mCount, 3 * mCount);
+    std::vector<glm::vec3> out(mCount);
+    for (std::size_t i = 0; i < mCount; ++i)
+        out[i] = glm::vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    return out;
 }
 
 std::vector<std::uint32_t> GpuPerSet::kernelParticles() const {

@@ -15,6 +15,7 @@
 #include <glm/vec3.hpp>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,10 +48,12 @@ class GpuPerSet {
   public:
     // Builds what `request` needs (and remembers it for pack()) for `particles` that the last
     // sets did not (all of it for a new set, inputs compared exactly as ParticleSetKey), each
-    // stage timed; returns
-    // whether anything was built. Programs are compiled through `programs` on first use.
+    // stage timed; returns whether anything was built. Programs are compiled through
+    // `programs` on first use. With `deriveNormalsOf` (the set's bodies), the particles came
+    // without normals: a compute pass derives them as core::deriveNormals does (stage
+    // "particle_normals"), and every later stage uses those.
     bool update(ProgramCache& programs, const core::ParticleSet& particles,
-                const PerSetRequest& request);
+                const PerSetRequest& request, std::span<const core::BodyInfo> deriveNormalsOf = {});
 
     // The frame's draw lists: the drawn particles (radius > 0, not hidden unless a sphere
     // reaches into the near plane's ball) as GpuParticle[] (and GpuEllipsoid[] with ellipsoids),
@@ -75,9 +78,9 @@ class GpuPerSet {
     // attributes copied to the device, the set's key compared and kept.
     double uploadMs() const { return mUploadMs; }
 
-    // The stages run since the last call, milliseconds each ("grid", "radius", "kernels",
-    // "cull", "field_normals", "anisotropy", "pack"): wall clock from the stage's first command
-    // to the end of its last (glFinish).
+    // The stages run since the last call, milliseconds each ("grid", "particle_normals", "radius",
+    // "kernels", "cull", "field_normals", "anisotropy", "pack"): wall clock from the stage's first
+    // command to the end of its last (glFinish).
     std::map<std::string, double> takeTimings();
     // Read back after the frame (waits): the drawn particles and kernels.
     std::uint32_t drawnCount() const;
@@ -85,6 +88,7 @@ class GpuPerSet {
 
     // Read back, for tests: per particle of the last set.
     std::vector<float> radii() const;
+    std::vector<glm::vec3> normals() const;
     // The kernels of the last frame (ascending): those whose support reaches a drawn impostor
     // (a superset of what surfaceKernels() keeps where it matters).
     std::vector<std::uint32_t> kernelParticles() const;
@@ -95,6 +99,7 @@ class GpuPerSet {
     void upload(const core::ParticleSet& particles);
     void applyDroplets(const core::ParticleSet& particles, const ParticleSettings& settings);
     void buildGrid(ProgramCache& programs);
+    void deriveNormals(ProgramCache& programs, std::span<const core::BodyInfo> bodies);
     void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
               std::size_t count);
     void bindStorage() const;
@@ -115,6 +120,7 @@ class GpuPerSet {
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
     gl::Buffer mDroplets;  // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
+    gl::Buffer mBodies;    // deriveNormals: 2 vec4 per body, its centre and pole axis
     std::map<std::string, double> mTimings;  // since the last takeTimings()
 };
 

@@ -24,7 +24,8 @@ namespace {
 // particles: the contact scene made small.
 struct Loaded {
     core::Scene scene;
-    core::SceneParticles particles;
+    core::SceneParticles particles;    // as the renderer gets them: without normals
+    core::SceneParticles withNormals;  // core::deriveNormals', for the CPU functions
     std::vector<core::Material> materials;
 };
 
@@ -36,6 +37,8 @@ const Loaded& contact() {
                                                     "camera.width=160", "camera.height=120"};
         l.scene = core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/contact.toml", overrides);
         l.particles = core::buildParticles(l.scene);
+        l.withNormals = l.particles;
+        core::deriveNormals(l.withNormals);
         l.materials = core::loadMaterials(l.scene);
         return l;
     }();
@@ -56,8 +59,38 @@ class PerSetGpu : public ::testing::Test {
     }
 };
 
+// A set without normals: the NORMALS pass derives core::deriveNormals' normals. Float sums of
+// ~100 kernels in another order: rounding of ~1e-7 of the sum of the terms' sizes, which an
+// interior particle's gradient (1e-3 of that sum where the neighbours nearly balance) turns
+// into up to ~1e-3 rad (measured: 1.3e-3 at most, 40 of 2100 beyond 1e-4); a particle at the
+// fallback's threshold may take the radial direction on one side only.
+TEST_F(PerSetGpu, NormalsMatchCore) {
+    const Loaded& l = contact();
+    PerSetRequest request;
+    context.makeCurrent();
+    GpuPerSet g;
+    g.update(programs, l.particles.particles, request, l.particles.bodies);
+    EXPECT_GT(g.takeTimings().at("particle_normals"), 0.0);
+    const std::vector<glm::vec3> gpu = g.normals();
+    const std::vector<glm::vec3>& cpu = l.withNormals.particles.normal;
+    ASSERT_EQ(gpu.size(), cpu.size());
+    int apart = 0;
+    for (std::size_t i = 0; i < cpu.size(); ++i) {
+        EXPECT_NEAR(glm::length(gpu[i]), 1.0f, 1e-5f) << i;
+        apart += !(glm::length(gpu[i] - cpu[i]) < 2e-3f);  // the chord: the angle, radians
+    }
+    EXPECT_LE(apart, static_cast<int>(cpu.size() / 200));
+    // The radii from the GPU's normals are the CPU's (RadiiCullingAndFieldNormalsMatchTheCpu).
+    const std::vector<float> cpuRadii = impostorRadii(l.withNormals.particles, request.particles);
+    const std::vector<float> gpuRadii = g.radii();
+    int radiiApart = 0;
+    for (std::size_t i = 0; i < cpu.size(); ++i)
+        radiiApart += !(std::abs(gpuRadii[i] - cpuRadii[i]) <= 3e-4f * l.particles.particles.h[i]);
+    EXPECT_LE(radiiApart, apart);
+}
+
 TEST_F(PerSetGpu, RadiiCullingAndFieldNormalsMatchTheCpu) {
-    const core::ParticleSet& ps = contact().particles.particles;
+    const core::ParticleSet& ps = contact().withNormals.particles;
     ASSERT_GT(ps.h.back() / ps.h.front(), 2.0f);  // two levels of the grid
     PerSetRequest request;
     request.particles.normal = NormalModel::Field;
@@ -115,7 +148,7 @@ TEST_F(PerSetGpu, RadiiCullingAndFieldNormalsMatchTheCpu) {
 }
 
 TEST_F(PerSetGpu, EllipsoidsMatchTheCpu) {
-    const core::ParticleSet& ps = contact().particles.particles;
+    const core::ParticleSet& ps = contact().withNormals.particles;
     PerSetRequest request;
     request.particles.shape = ParticleShape::Ellipsoid;
     GpuPerSet g = built(ps, request);
@@ -162,9 +195,13 @@ TEST_F(PerSetGpu, PerSetWorkIsRedoneExactlyWhenTheSetChanges) {
         const core::Frame first = renderer.render({l.scene, l.particles, l.materials});
         EXPECT_EQ(first.counters.at("per_set_builds"), 1.0) << toString(where);
         EXPECT_GT(first.timingsMs.at("radius"), 0.0);
+        EXPECT_GT(first.timingsMs.at("particle_normals"), 0.0);  // the set came without normals
         const core::Frame again = renderer.render({l.scene, l.particles, l.materials});
         EXPECT_EQ(again.counters.at("per_set_builds"), 0.0) << toString(where);
-        if (where == PerSetDevice::Gpu) EXPECT_EQ(again.timingsMs.at("radius"), 0.0);
+        if (where == PerSetDevice::Gpu) {
+            EXPECT_EQ(again.timingsMs.at("radius"), 0.0);
+            EXPECT_EQ(again.timingsMs.at("particle_normals"), 0.0);
+        }
         EXPECT_EQ(again.counters.at("particles_drawn"), first.counters.at("particles_drawn"));
         core::SceneParticles moved = l.particles;
         moved.particles.position[7].x += 1e-3f;  // one particle moves: a new set

@@ -15,6 +15,7 @@
 
 #include "core/camera.h"
 #include "core/cancellation.h"
+#include "core/derived_attributes.h"
 #include "core/error.h"
 #include "realtime/anisotropy.h"
 #include "realtime/droplets.h"
@@ -34,11 +35,36 @@
 
 namespace twinrender::realtime {
 
+// per_set = "cpu": a set that came without normals (core::buildParticles leaves them to the
+// real-time renderer), copied with core::deriveNormals' normals and kept for the set.
+class DerivedNormalsCache {
+  public:
+    const core::ParticleSet& particles(const core::SceneParticles& in) {
+        mReused = true;
+        if (in.hasNormals) return in.particles;
+        mReused = mKey.matches(in.particles);
+        if (!mReused) {
+            mKey.clear();
+            mSet = in.particles;
+            core::deriveNormals(mSet, in.bodies);
+            mKey.assign(in.particles);
+        }
+        return mSet;
+    }
+    bool reused() const { return mReused; }
+
+  private:
+    bool mReused = false;
+    ParticleSetKey mKey;
+    core::ParticleSet mSet;
+};
+
 struct DeviceState {
     explicit DeviceState(const gl::Context& c) : context(c) {}
     const gl::Context& context;
     gl::Limits limits;
     ProgramCache programs;
+    DerivedNormalsCache normals;        // the particle normals, where a set comes without them
     OcclusionCuller culler;             // keeps the last particle set's answer (view-independent)
     FieldNormalCache fieldNormals;      // the same for the G-buffer's field normal models
     ImpostorRadiusCache radii;          // and for the impostor radii
@@ -65,8 +91,8 @@ using Clock = std::chrono::steady_clock;
 
 // The stages of the work done once per particle set (timings_ms; 0 when they do not run or
 // an unchanged set reuses them). "upload" and, with per_set = "gpu", "pack" are per frame.
-constexpr const char* PER_SET_STAGES[] = {"grid",          "radius",     "droplets", "kernels",
-                                          "field_normals", "anisotropy", "cull"};
+constexpr const char* PER_SET_STAGES[] = {"grid",    "particle_normals", "radius",     "droplets",
+                                          "kernels", "field_normals",    "anisotropy", "cull"};
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -299,14 +325,15 @@ SceneBuffers sceneBuffers(DeviceState& d, const core::RenderInput& in, const cor
 Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
                    const Settings& settings, core::Frame& frame) {
     const auto start = Clock::now();
-    const core::ParticleSet& ps = in.particles.particles;
     auto timed = [&](const char* stage, const auto& work) -> decltype(auto) {
         const auto stageStart = Clock::now();
         decltype(auto) result = work();
         frame.timingsMs[stage] = msSince(stageStart);
         return result;
     };
-    bool built = false;
+    const core::ParticleSet& ps = timed(
+        "particle_normals", [&]() -> auto& { return d.normals.particles(in.particles); });
+    bool built = !d.normals.reused();
     std::span<const float> radii = timed(
         "radius", [&]() -> auto& { return d.radii.radii(ps, settings.particles); });
     built |= !d.radii.reused();
@@ -427,7 +454,9 @@ Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Came
     Uploaded out{sceneBuffers(d, in, camera, settings, ps.size()), {}, {}, {}, nullptr, {}};
     const PerSetRequest request = perSetRequest(settings);
     GpuPerSet& g = d.perSetGpu;
-    const bool built = g.update(d.programs, ps, request);
+    const bool built =
+        g.update(d.programs, ps, request,
+                 in.particles.hasNormals ? std::span<const core::BodyInfo>() : in.particles.bodies);
     frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
     frame.counters["droplets"] = static_cast<double>(g.dropletCount());
     frame.timingsMs["upload"] = g.uploadMs();

@@ -1,9 +1,10 @@
 // The per-particle-set work on the GPU (realtime/per_set_gpu.h), one stage per #define: the
-// grid (INIT, H_MIN, LEVELS, LAYOUT, COUNT, SCATTER, SORT, GATHER), the answers per particle
+// grid (INIT, H_MIN, LEVELS, LAYOUT, COUNT, SCATTER, SORT, GATHER), the particle normals where
+// the set came without them (NORMALS), the answers per particle
 // (RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR, MARK,
 // PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or cell).
-#if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
-    defined(ANISOTROPY)
+#if defined(NORMALS) || defined(RADIUS) || defined(KERNELS) || defined(CULL) || \
+    defined(FIELD_NORMAL) || defined(ANISOTROPY)
 #define GRID_READ
 #endif
 #include "per_set.glsl"
@@ -464,6 +465,56 @@ void main() {
 #undef ADD_CAP
 #undef COVERED
     flags[i] = (flags[i] & ~HIDDEN) | (hidden ? HIDDEN : 0u);
+}
+#endif
+
+#ifdef NORMALS
+// core::deriveNormals (derived_attributes.h): -grad c / |grad c| of the colour field at the
+// particle, summed over every particle whose support covers it; where the sum cancels below
+// (uFallbackRatio + FLT_EPSILON |x| / h) sum |dW/dr| (a lattice's interior), the radial
+// direction from the particle's body centre, and the body's pole axis at the centre.
+layout(std430, binding = 17) readonly buffer Bodies {
+    vec4 bodies[];  // 2 per body: the centre; the pole axis
+};
+uniform float uFallbackRatio;
+const float FLT_EPSILON = 1.1920929e-7;
+void main() {
+    // Particles in grid order (the entries'): neighbouring invocations walk the same cells.
+    uint slot = invocation();
+    if (slot >= uCount) return;
+    uint i = floatBitsToUint(entries[slot].coefficients.z);
+    vec3 x = entries[slot].positionInvH.xyz;
+    vec3 gradient = vec3(0.0);
+    float magnitudeSum = 0.0;
+#define ADD_GRADIENT(k)                                                  \
+    {                                                                    \
+        vec4 e = entries[k].positionInvH;                                \
+        vec3 d = x - e.xyz;                                              \
+        float r = length(d);                                             \
+        float q = r * e.w;                                               \
+        if (q < 2.0 && r > 0.0) {                                        \
+            float dWdr = entries[k].coefficients.x * m4ShapeDerivative(q); \
+            gradient += (dWdr / r) * d;                                  \
+            magnitudeSum -= dWdr;                                        \
+        }                                                                \
+    }
+    FOR_EACH_NEAR(x, supportReach, ADD_GRADIENT)
+#undef ADD_GRADIENT
+    float len = length(gradient);
+    float resolvable = uFallbackRatio + FLT_EPSILON * length(x) / particleH(i);
+    vec3 n;
+    if (len > resolvable * magnitudeSum && len > 0.0) {
+        n = -gradient / len;
+    } else {
+        uint b = attributeBits(ATTR_BODY, i);
+        vec3 radial = x - bodies[2u * b].xyz;
+        float rl = length(radial);
+        n = rl > 0.0 ? radial / rl : bodies[2u * b + 1u].xyz;
+    }
+    uint k = ATTR_NORMAL * uCount + 3u * i;
+    attributes[k] = n.x;
+    attributes[k + 1u] = n.y;
+    attributes[k + 2u] = n.z;
 }
 #endif
 

@@ -25,7 +25,13 @@ const int MAX_LEVELS = 32;
 
 uniform uint uCount;  // particles in the set
 
-layout(std430, binding = 5) readonly buffer Attributes {
+// NORMALS writes the normals (derived_attributes.h's, where the set came without them).
+#ifdef NORMALS
+#define ATTRIBUTES_ACCESS
+#else
+#define ATTRIBUTES_ACCESS readonly
+#endif
+layout(std430, binding = 5) ATTRIBUTES_ACCESS buffer Attributes {
     float attributes[];
 };
 
