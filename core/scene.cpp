@@ -195,7 +195,14 @@ TextureSource parseTexture(const ParameterTable& t, std::string_view key, Textur
         } else {
             src.kind = TextureSource::Kind::File;
             src.path = fs::absolute(dir / *s).lexically_normal();
-            if (!fs::is_regular_file(src.path))
+            std::error_code ec;
+            const fs::file_status status = fs::status(src.path, ec);
+            // A device such as /dev/zero would be read for ever.
+            if (fs::exists(status) && !fs::is_regular_file(status))
+                throw InputError(fmt::format(
+                    "{}: texture {} is not a file (a device, pipe or folder); give an image file",
+                    src.where, src.path.string()));
+            if (!fs::is_regular_file(status))
                 throw InputError(
                     fmt::format("{}: texture file {} does not exist; give a path "
                                 "relative to the scene file",

@@ -181,6 +181,15 @@ TEST(Scene, RejectsWhatItDoesNotKnow) {
     const std::string m = messageOf(writeScene("k7", "[[bodies]]\nname = \"a\"\nradius = -1.0\n"));
     EXPECT_NE(m.find("k7.toml:3:"), std::string::npos) << m;
     EXPECT_NE(m.find("bodies[0].radius"), std::string::npos) << m;
+    // A texture that is a device (read for ever) or missing, named by its key.
+    const std::string device = messageOf(
+        writeScene("k8", "[[materials]]\nname = \"m\"\ndiffuse = \"/dev/zero\"\n[[bodies]]\n"));
+    EXPECT_NE(device.find("materials[0].diffuse': texture /dev/zero is not a file"),
+              std::string::npos)
+        << device;
+    const std::string missing = messageOf(
+        writeScene("k9", "[[materials]]\nname = \"m\"\ndiffuse = \"missing.png\"\n[[bodies]]\n"));
+    EXPECT_NE(missing.find("missing.png does not exist"), std::string::npos) << missing;
 }
 
 TEST(Parameters, TypesRangesAndUnreadKeys) {
