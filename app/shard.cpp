@@ -62,14 +62,27 @@ json readShardManifest(const fs::path& dir) {
                         "`run --shard K/N` or `sweep --shard K/N`",
                         file.string()));
     const json j = json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || j.value("format", "") != "twinrender-shard")
+    // Values are compared and their types checked, never converted: a damaged manifest is
+    // bad input naming the file and the key.
+    if (j.is_discarded() || !j.is_object() || !j.contains("format") ||
+        j["format"] != "twinrender-shard")
         throw core::InputError(fmt::format("{}: not a twinrender shard manifest", file.string()));
-    if (j.value("version", 0) != 1)
+    if (!j.contains("version") || j["version"] != 1)
         throw core::InputError(fmt::format("{}: manifest version {} is not supported",
-                                           file.string(), j.value("version", 0)));
+                                           file.string(), j.value("version", json()).dump()));
     for (const char* key : {"command", "shard", "of", "settings"})
         if (!j.contains(key))
             throw core::InputError(fmt::format("{}: no \"{}\"", file.string(), key));
+    const auto typed = [&](const char* key, bool ok, const char* what) {
+        if (!ok)
+            throw core::InputError(
+                fmt::format("{}: \"{}\" is {}, not {}", file.string(), key, j[key].dump(), what));
+    };
+    typed("command", j["command"].is_string(), "a command name");
+    typed("shard", j["shard"].is_number_integer(), "a shard number");
+    typed("of", j["of"].is_number_integer() && j["of"].get<long long>() >= 1,
+          "a shard count of 1 or more");
+    typed("settings", j["settings"].is_object(), "an object");
     return j;
 }
 
@@ -202,21 +215,8 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
     return finishSweep(*merged);
 }
 
-}  // namespace
-
-ExitCode runMerge(const MergeOptions& o) {
-    if (o.inputs.empty()) throw core::InputError("merge: give the shard folders to merge");
-    std::vector<fs::path> dirs;
-    std::vector<json> manifests;
-    const fs::path out = fs::weakly_canonical(o.out);
-    for (const auto& in : o.inputs) {
-        if (!fs::is_directory(in)) throw core::InputError(fmt::format("{}: no such folder", in));
-        if (fs::weakly_canonical(in) == out)
-            throw core::InputError(
-                fmt::format("--out {}: is one of the shards; merge into a new folder", o.out));
-        dirs.emplace_back(in);
-        manifests.push_back(readShardManifest(in));
-    }
+ExitCode mergeManifests(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+                        const fs::path& out, const MergeOptions& o) {
     // They belong together: one command, one N, every K once, the same settings.
     const json& first = manifests.front();
     const int n = first.at("of").get<int>();
@@ -259,6 +259,33 @@ ExitCode runMerge(const MergeOptions& o) {
     if (command == "sweep") return mergeSweep(dirs, manifests, out, o.commandLine);
     throw core::InputError(
         fmt::format("{}: unknown command '{}' in the manifest", dirs[0].string(), command));
+}
+
+}  // namespace
+
+ExitCode runMerge(const MergeOptions& o) {
+    if (o.inputs.empty()) throw core::InputError("merge: give the shard folders to merge");
+    std::vector<fs::path> dirs;
+    std::vector<json> manifests;
+    const fs::path out = fs::weakly_canonical(o.out);
+    for (const auto& in : o.inputs) {
+        if (!fs::is_directory(in)) throw core::InputError(fmt::format("{}: no such folder", in));
+        if (fs::weakly_canonical(in) == out)
+            throw core::InputError(
+                fmt::format("--out {}: is one of the shards; merge into a new folder", o.out));
+        dirs.emplace_back(in);
+        manifests.push_back(readShardManifest(in));
+    }
+    try {
+        return mergeManifests(dirs, manifests, out, o);
+    } catch (const json::exception& e) {
+        // A part of a manifest that is not what `run` or `sweep` wrote.
+        std::string files;
+        for (const fs::path& d : dirs)
+            files += (files.empty() ? "" : ", ") + (d / "shard.json").string();
+        throw core::InputError(
+            fmt::format("{}: a shard manifest is damaged ({})", files, e.what()));
+    }
 }
 
 }  // namespace twinrender::app

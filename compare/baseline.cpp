@@ -131,7 +131,8 @@ Baseline parseBaseline(const json& j, const std::string& file) {
     auto bad = [&](const std::string& key, const std::string& what) {
         return core::InputError(fmt::format("{}: key '{}' {}", file, key, what));
     };
-    if (!j.is_object() || j.value("format", std::string()) != "twinrender-baseline")
+    // "format" of any type (a duplicated key keeps the last): compared, never converted.
+    if (!j.is_object() || !j.contains("format") || j["format"] != "twinrender-baseline")
         throw core::InputError(fmt::format(
             "{}: not a twinrender baseline (no \"format\": \"twinrender-baseline\"); make one "
             "with 'twinrender bless RUN_DIR'",
