@@ -33,6 +33,7 @@
 #include "realtime/gl/context.h"
 #include "realtime/impostor_radius.h"
 #include "realtime/occlusion_culling.h"
+#include "realtime/per_set_gpu.h"
 #include "realtime/renderer.h"
 #include "realtime/settings.h"
 
@@ -192,6 +193,48 @@ void BM_Planet1M1080pNewSet(benchmark::State& state, tr::realtime::PerSetDevice 
     newSetFrames(state, 1000000, 1920, 1080, where);
 }
 
+// The per-set work alone on the GPU (realtime/per_set_gpu.h), without the render passes: every
+// iteration a new set (as newSetFrames), what the planet's frame asks for (its radii, the
+// gradient pass's kernels, culling), each stage in milliseconds and per_set_ms their sum.
+void BM_PerSet1MGpu(benchmark::State& state) {
+    const LoadedScene& s = planet(1000000, 1920, 1080);
+    tr::realtime::PerSetRequest request;
+    request.particles = s.settings.particles;
+    request.kernels = s.settings.particles.normal == tr::realtime::NormalModel::Gradient;
+    request.cull = s.settings.particles.cullHidden;
+    request.droplets = s.settings.particles.radius == tr::realtime::RadiusModel::Field &&
+                       s.settings.particles.dropletAtoms >= 2;
+    tr::core::SceneParticles sets[2] = {s.particles, s.particles};
+    for (glm::vec3& p : sets[1].particles.position)
+        p = glm::vec3(std::nextafter(p.x, 1e30f), p.y, p.z);
+    context().makeCurrent();
+    tr::realtime::ProgramCache programs;
+    tr::realtime::compilePerSetPrograms(programs, request);
+    tr::realtime::GpuPerSet perSet;
+    const tr::realtime::FrameRequest frame{s.scene.camera.position, 1e-3};
+    perSet.update(programs, sets[1].particles, request);
+    perSet.pack(programs, frame);
+    perSet.takeTimings();
+    std::map<std::string, double> sums;
+    int k = 0;
+    for (auto _ : state) {
+        perSet.update(programs, sets[k++ % 2].particles, request);
+        perSet.pack(programs, frame);
+        sums["upload"] += perSet.uploadMs();
+        for (const auto& [stage, ms] : perSet.takeTimings()) sums[stage] += ms;
+    }
+    double total = 0.0;
+    for (const auto& [stage, ms] : sums) {
+        state.counters[fmt::format("{}_ms", stage)] =
+            benchmark::Counter(ms, benchmark::Counter::kAvgIterations);
+        total += ms;
+    }
+    state.counters["per_set_ms"] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);
+    state.counters["drawn"] = double(perSet.drawnCount());
+    state.counters["kernels"] = double(perSet.kernelCount());
+    state.SetLabel(context().renderer());
+}
+
 // Occlusion culling alone (CPU, part of "upload").
 void BM_Cull100k(benchmark::State& state) {
     const LoadedScene& s = planet(100000, 1280, 720);
@@ -231,6 +274,7 @@ BENCHMARK_CAPTURE(BM_Planet100k720pSurface, shader_pass_through,
     ->Iterations(3);
 BENCHMARK(BM_Planet100k720pEllipsoids)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet100k720pNoCulling)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_PerSet1MGpu)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Cull100k)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet1M1080p)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK_CAPTURE(BM_Planet100k720pNewSet, gpu, tr::realtime::PerSetDevice::Gpu)
