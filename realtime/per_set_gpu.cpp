@@ -1,6 +1,7 @@
 #include "realtime/per_set_gpu.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <glm/vec4.hpp>
@@ -26,6 +27,9 @@ constexpr std::size_t HEADER_BYTES = 16 + 32 + MAX_LEVELS * 64;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
 constexpr std::size_t BLOCK = 1024;  // values per work group of scan.comp
+// The coarse culling grid's directions (CullingDirections::coarseCount), per_set.comp's
+// COARSE_DIRECTIONS.
+constexpr std::size_t COARSE_DIRECTIONS = 42;
 
 unsigned groups(std::size_t count, std::size_t per = GROUP) {
     return static_cast<unsigned>((count + per - 1) / per);
@@ -48,6 +52,7 @@ enum Binding : unsigned {
     DRAW_LISTS = 14,
     DIRECTIONS = 15,
     DROPLETS = 16,
+    CULL_SPHERES = 17,
 };
 
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
@@ -86,7 +91,7 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
     std::vector<const char*> stages = {"INIT", "H_MIN",  "LEVELS", "LAYOUT", "COUNT", "SCATTER",
                                        "SORT", "GATHER", "RADIUS", "MARK",   "PACK",  "FINISH"};
     if (request.kernels) stages.push_back("KERNELS");
-    if (request.cull) stages.insert(stages.end(), {"CULL", "NEAR"});
+    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "CULL", "NEAR"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
@@ -117,6 +122,7 @@ void GpuPerSet::bindStorage() const {
     if (mDrawLists) mDrawLists->bindStorage(DRAW_LISTS);
     mDirections.bindStorage(DIRECTIONS);
     if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
+    if (mCullSpheres.size() > 0) mCullSpheres.bindStorage(CULL_SPHERES);
 }
 
 void GpuPerSet::upload(const core::ParticleSet& ps) {
@@ -145,11 +151,12 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     mBlockSums = gl::Buffer::zeros((groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) *
                                    sizeof(std::uint32_t));
     if (mDirections.size() == 0) {
-        std::vector<glm::vec4> directions;
+        assert(cullingDirections().coarseCount == COARSE_DIRECTIONS);
         for (const glm::dvec3& d : cullingDirections().directions)
-            directions.emplace_back(glm::vec3(d), 0.0f);
-        mDirections = gl::Buffer::of(std::span<const glm::vec4>(directions));
+            mDirectionValues.emplace_back(glm::vec3(d), 0.0f);
+        mDirections = gl::Buffer::of(std::span<const glm::vec4>(mDirectionValues));
     }
+    mCullSpheres = gl::Buffer();
     mModelBuffer.reset();
     mDroplets = gl::Buffer();
     mDropletCount = 0;
@@ -248,13 +255,20 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     }
     if (request.cull && !mCulled) {
         timed("cull", [&] {
+            if (mCullSpheres.size() == 0) {
+                mCullSpheres = gl::Buffer::zeros(mCount * sizeof(glm::vec4));
+                mCullSpheres.bindStorage(CULL_SPHERES);
+            }
+            stage("CULL_SPHERES").dispatch(groups(mCount));
+            gl::computeBarrier();
             const gl::Program& p = stage("CULL");
             const CullingDirections& grid = cullingDirections();
             p.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
             p.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
             p.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
             p.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
-            p.set("uCoarseDirections", static_cast<int>(grid.coarseCount));
+            p.set("uCoarse",
+                  std::span<const glm::vec4>(mDirectionValues.data(), COARSE_DIRECTIONS));
             p.set("uRadiusScale", static_cast<float>(s.radiusScale));
             p.dispatch(groups(mCount));
         });

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 #include <map>
 #include <optional>
 #include <string>
@@ -114,8 +115,10 @@ class GpuPerSet {
     gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
-    gl::Buffer mDroplets;  // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
-    std::map<std::string, double> mTimings;  // since the last takeTimings()
+    gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
+    gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
+    std::vector<glm::vec4> mDirectionValues;  // cullingDirections(), coarse grid first
+    std::map<std::string, double> mTimings;   // since the last takeTimings()
 };
 
 }  // namespace twinrender::realtime

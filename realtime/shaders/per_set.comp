@@ -3,7 +3,7 @@
 // (RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR, MARK,
 // PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or cell).
 #if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
-    defined(ANISOTROPY)
+    defined(ANISOTROPY) || defined(CULL_SPHERES)
 #define GRID_READ
 #endif
 #include "per_set.glsl"
@@ -29,7 +29,7 @@ layout(std430, binding = 10) buffer Sorted {
 #endif
 
 #if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
-    defined(ANISOTROPY) || defined(NEAR) || defined(MARK) || defined(PACK)
+    defined(ANISOTROPY) || defined(NEAR) || defined(MARK) || defined(PACK) || defined(CULL_SPHERES)
 layout(std430, binding = 11) buffer Radii {
     float radii[];
 };
@@ -37,7 +37,8 @@ layout(std430, binding = 11) buffer Radii {
 
 // flags: bit 1: hidden (occlusion_culling.h).
 const uint HIDDEN = 2u;
-#if defined(CULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+#if defined(CULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || defined(PACK) || \
+    defined(CULL_SPHERES)
 layout(std430, binding = 12) buffer Flags {
     uint flags[];  // CULL writes bit 1 of its own particle's flags only
 };
@@ -45,7 +46,7 @@ layout(std430, binding = 12) buffer Flags {
 
 // A droplet's first particle: its slot + 1 in the flags from bit 8 (0: not a droplet's), and
 // per droplet its ellipsoid (GpuEllipsoid) and field normal model (FieldNormal), 3 vec4 each.
-#if defined(CULL) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+#if defined(CULL_SPHERES) || defined(NEAR) || defined(KERNELS) || defined(PACK)
 uint dropletSlot(uint i) { return flags[i] >> 8; }
 #endif
 #if defined(KERNELS) || defined(PACK)
@@ -355,6 +356,26 @@ void main() {
 }
 #endif
 
+#if defined(CULL_SPHERES) || defined(CULL)
+// Per grid slot (the order of the grid's entries): the sphere the culling tests, its position
+// and radius, the radius 0 where the particle neither hides nor is hidden (no radius, or a
+// droplet's: renderer.cpp's cullRadii). One compact record per neighbour read.
+layout(std430, binding = 17) buffer CullSpheres {
+    vec4 cullSpheres[];
+};
+uint entryIndex(uint k) { return floatBitsToUint(entries[k].coefficients.z); }
+#endif
+
+#ifdef CULL_SPHERES
+void main() {
+    uint k = invocation();
+    if (k >= uCount) return;
+    uint i = entryIndex(k);
+    float r = radii[i];
+    cullSpheres[k] = vec4(entries[k].positionInvH.xyz, r > 0.0 && dropletSlot(i) == 0u ? r : 0.0);
+}
+#endif
+
 #ifdef CULL
 // occlusion_culling.cpp's exact test: hidden when every direction of the 162-point grid is
 // covered, with the grid's covering margin, by the cap of an overlapping sphere of the same
@@ -363,106 +384,127 @@ void main() {
 // Caps beyond MAX_CAPS are left out, which can only keep a sphere. The answer does not depend
 // on the neighbours' order.
 //
-// Most spheres lie inside a body, buried under the wide caps of their nearest neighbours.
-// Before that test, a cheaper one: the near shell alone (a third of the neighbourhood's
-// volume) on the coarse grid's 42 directions with its wider margin, a sufficient condition of
-// its own (a sphere it hides is hidden: exact as well, though it may hide a few borderline
-// spheres the fine grid keeps).
+// One invocation per grid slot (neighbouring invocations test neighbouring spheres, which read
+// the same cells and mostly take the same branches). Most spheres lie inside a body, buried
+// under the wide caps of their nearest neighbours. Before the full test, a cheaper one: the
+// near shell alone (a third of the neighbourhood's volume) on the coarse grid's 42 directions
+// with its wider margin, a sufficient condition of its own (a sphere it hides is hidden: exact
+// as well, though it may hide a few borderline spheres the fine grid keeps). Each near cap
+// marks the coarse directions it covers in a bit mask as it is found: no list of caps.
 layout(std430, binding = 15) readonly buffer Directions {
     vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
 };
+const int COARSE_DIRECTIONS = 42;
+uniform vec4 uCoarse[COARSE_DIRECTIONS];  // the coarse grid's directions
 uniform float uCosMargin, uSinMargin, uRadiusScale;
 uniform float uCoarseCosMargin, uCoarseSinMargin;
-uniform int uCoarseDirections;
 const int DIRECTIONS = 162, MAX_CAPS = 96;
 const float NEAR_SHELL = 1.4;  // radii
 float cullReach_ri;
 float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
 void main() {
-    uint i = invocation();
-    if (i >= uCount) return;
-    float ri = radii[i];
-    // Droplets are culled as nothing: neither hidden nor hiding (renderer.cpp's cullRadii).
-    if (!(ri > 0.0) || dropletSlot(i) != 0u) return;
-    vec3 xi = particlePosition(i);
-    uint body = attributeBits(ATTR_BODY, i);
-    vec4 caps[MAX_CAPS];  // unit axis, the least cosine of a covered direction
-    int nearCaps = 0, farCaps = 0;
+    uint slot = invocation();
+    if (slot >= uCount) return;
+    vec4 self = cullSpheres[slot];
+    float ri = self.w;
+    if (!(ri > 0.0)) return;
+    uint i = entryIndex(slot);
+    vec3 xi = self.xyz;
+    uint body = floatBitsToUint(entries[slot].coefficients.w);
     bool hidden = false;
     cullReach_ri = ri;
     float nearLimit2 = NEAR_SHELL * NEAR_SHELL * ri * ri;
-    // Sphere j (overlapping, of the same body, not a droplet) as a cap of directions covered
-    // with margin (COS_MARGIN, SIN_MARGIN), or i inside j; NEAR_ONLY: the near shell only.
-#define ADD_CAP(k, COS_MARGIN, SIN_MARGIN, NEAR_ONLY)                                       \
-    if (!hidden) {                                                                          \
-        uint j = floatBitsToUint(entries[k].coefficients.z);                                \
-        float rj = radii[j];                                                                \
-        vec3 d = entries[k].positionInvH.xyz - xi;                                          \
-        float dist2 = dot(d, d);                                                            \
-        float reach = ri + rj;                                                              \
-        if (j != i && rj > 0.0 && dropletSlot(j) == 0u &&                                   \
-            floatBitsToUint(entries[k].coefficients.w) == body && dist2 < reach * reach &&  \
-            (!NEAR_ONLY || dist2 <= nearLimit2)) {                                          \
-            float dist = sqrt(dist2);                                                       \
-            if (rj >= ri && dist + ri <= rj) {                                              \
-                if (dist2 > 0.0 || rj > ri || j < i) hidden = true;                         \
-            } else if (dist2 > 0.0 && nearCaps + farCaps < MAX_CAPS) {                      \
-                float cosG =                                                                \
-                    clamp((dist2 + ri * ri - rj * rj) / (2.0 * dist * ri), -1.0, 1.0);      \
-                if (cosG < COS_MARGIN) {                                                    \
-                    float sinG = sqrt(1.0 - cosG * cosG);                                   \
-                    vec4 cap = vec4(d / dist, cosG * COS_MARGIN + sinG * SIN_MARGIN + 2e-4); \
-                    if (dist2 <= nearLimit2)                                                \
-                        caps[nearCaps++] = cap;                                             \
-                    else                                                                    \
-                        caps[MAX_CAPS - 1 - farCaps++] = cap;                               \
-                }                                                                           \
-            }                                                                               \
-        }                                                                                   \
-    }
-    // Whether every direction in [FIRST, END) is covered by a cap.
-#define COVERED(FIRST, END, RESULT)                                                         \
-    {                                                                                       \
-        RESULT = true;                                                                      \
-        for (int dir = FIRST; dir < END && RESULT; ++dir) {                                 \
-            vec3 u = directions[dir].xyz;                                                   \
-            bool covered = false;                                                           \
-            for (int c = 0; c < nearCaps && !covered; ++c)                                  \
-                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
-            for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)                 \
-                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
-            RESULT = covered;                                                               \
-        }                                                                                   \
+    // The sphere in slot k if it overlaps (of the same body, neither hiding nor hidden
+    // excluded): hidden where i lies inside it, else its cap of directions covered with margin
+    // (COS_MARGIN, SIN_MARGIN) as CAP (unit axis, the least cosine of a covered direction);
+    // NEAR_ONLY: the near shell only.
+#define OVERLAP(k, COS_MARGIN, SIN_MARGIN, NEAR_ONLY, CAP)                                      \
+    vec4 s_ = cullSpheres[k];                                                                   \
+    float rj_ = s_.w;                                                                           \
+    vec3 d_ = s_.xyz - xi;                                                                      \
+    float dist2_ = dot(d_, d_);                                                                 \
+    float reach_ = ri + rj_;                                                                    \
+    if (k != slot && rj_ > 0.0 && dist2_ < reach_ * reach_ && (!NEAR_ONLY || dist2_ <= nearLimit2) && \
+        floatBitsToUint(entries[k].coefficients.w) == body) {                                   \
+        float dist_ = sqrt(dist2_);                                                             \
+        if (rj_ >= ri && dist_ + ri <= rj_) {                                                   \
+            if (dist2_ > 0.0 || rj_ > ri || entryIndex(k) < i) hidden = true;                   \
+        } else if (dist2_ > 0.0) {                                                              \
+            float cosG = clamp((dist2_ + ri * ri - rj_ * rj_) / (2.0 * dist_ * ri), -1.0, 1.0); \
+            if (cosG < COS_MARGIN) {                                                            \
+                float sinG = sqrt(1.0 - cosG * cosG);                                           \
+                vec4 CAP = vec4(d_ / dist_, cosG * COS_MARGIN + sinG * SIN_MARGIN + 2e-4);
+#define END_OVERLAP \
+    }               \
+    }               \
     }
     // The near shell's caps from the 3 x 3 x 3 cells of the particle's own level around its
-    // cell (cells are at least the level's largest h: they hold the nearest neighbours).
+    // cell (cells are at least the level's largest h: they hold the nearest neighbours), each
+    // row of 3 cells one run of slots.
+    vec4 caps[MAX_CAPS];
+    int nearCaps = 0, farCaps = 0;
     {
         Level g = levels[levelOf(particleH(i))];
         float inv = levelInvCell(g);
         ivec3 home = ivec3(floor((xi - g.originCell.xyz) * inv));
+        int x0 = max(home.x - 1, 0), x1 = min(home.x + 1, g.dims.x - 1);
         for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    ivec3 c = home + ivec3(dx, dy, dz);
-                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, g.dims.xyz))) continue;
-                    int cell = g.dims.w + (c.z * g.dims.y + c.y) * g.dims.x + c.x;
-                    uint end = cellStart[cell + 1];
-                    for (uint k = cellStart[cell]; k < end; ++k)
-                        ADD_CAP(k, uCoarseCosMargin, uCoarseSinMargin, true)
+            for (int dy = -1; dy <= 1; ++dy) {
+                ivec2 c = home.yz + ivec2(dy, dz);
+                if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, g.dims.yz)) || x0 > x1)
+                    continue;
+                int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
+                uint end = cellStart[row + x1 + 1];
+                for (uint k = cellStart[row + x0]; k < end; ++k) {
+                    OVERLAP(k, uCoarseCosMargin, uCoarseSinMargin, true, cap)
+                    if (nearCaps < MAX_CAPS) caps[nearCaps++] = cap;
+                    END_OVERLAP
                 }
+            }
     }
-    if (!hidden && nearCaps > 0) COVERED(0, uCoarseDirections, hidden)
+    if (!hidden && nearCaps > 0) {
+        uvec2 mask = uvec2(0u);  // the coarse directions covered, bit d % 32 of word d / 32
+        for (int c = 0; c < nearCaps; ++c) {
+            vec4 cap = caps[c];
+            for (int d = 0; d < 32; ++d)
+                if (dot(uCoarse[d].xyz, cap.xyz) >= cap.w) mask.x |= 1u << uint(d);
+            for (int d = 32; d < COARSE_DIRECTIONS; ++d)
+                if (dot(uCoarse[d].xyz, cap.xyz) >= cap.w) mask.y |= 1u << uint(d - 32);
+        }
+        hidden = mask == uvec2(0xFFFFFFFFu, (1u << uint(COARSE_DIRECTIONS - 32)) - 1u);
+    }
     if (hidden) {
         flags[i] |= HIDDEN;
         return;
     }
+    // The full test: every overlapping sphere, the near shell's caps first in the list.
     nearCaps = 0;
-#define COVER(k) ADD_CAP(k, uCosMargin, uSinMargin, false)
+#define COVER(k)                                                    \
+    if (!hidden) {                                                  \
+        OVERLAP(k, uCosMargin, uSinMargin, false, cap)              \
+        if (nearCaps + farCaps < MAX_CAPS) {                        \
+            if (dist2_ <= nearLimit2)                               \
+                caps[nearCaps++] = cap;                             \
+            else                                                    \
+                caps[MAX_CAPS - 1 - farCaps++] = cap;               \
+        }                                                           \
+        END_OVERLAP                                                 \
+    }
     FOR_EACH_NEAR(xi, cullReach, COVER)
 #undef COVER
-    if (!hidden && nearCaps + farCaps > 0) COVERED(0, DIRECTIONS, hidden)
-#undef ADD_CAP
-#undef COVERED
+#undef OVERLAP
+#undef END_OVERLAP
+    if (!hidden && nearCaps + farCaps > 0) {
+        hidden = true;
+        for (int dir = 0; dir < DIRECTIONS && hidden; ++dir) {
+            vec3 u = directions[dir].xyz;
+            bool covered = false;
+            for (int c = 0; c < nearCaps && !covered; ++c) covered = dot(u, caps[c].xyz) >= caps[c].w;
+            for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)
+                covered = dot(u, caps[c].xyz) >= caps[c].w;
+            hidden = covered;
+        }
+    }
     flags[i] = (flags[i] & ~HIDDEN) | (hidden ? HIDDEN : 0u);
 }
 #endif
