@@ -1,5 +1,7 @@
 #include "realtime/per_set_gpu.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cassert>
 #include <chrono>
@@ -84,6 +86,19 @@ int modelKind(const ParticleSettings& p) {
     return p.normal == NormalModel::Field ? 1 : 0;
 }
 
+// The CULL stage, the coarse grid's directions compiled in.
+const gl::Program& cullProgram(ProgramCache& programs) {
+    static const std::string directions = [] {
+        std::string list;
+        const auto& d = cullingDirections().directions;
+        for (std::size_t k = 0; k < COARSE_DIRECTIONS; ++k)
+            list += fmt::format("{}vec3({:.9g}, {:.9g}, {:.9g})", k ? ", " : "", float(d[k].x),
+                                float(d[k].y), float(d[k].z));
+        return list;
+    }();
+    return programs.compute("per_set.comp", {"CULL", "COARSE_DIRECTION_VALUES " + directions});
+}
+
 }  // namespace
 
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
@@ -91,11 +106,12 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
     std::vector<const char*> stages = {"INIT", "H_MIN",  "LEVELS", "LAYOUT", "COUNT", "SCATTER",
                                        "SORT", "GATHER", "RADIUS", "MARK",   "PACK",  "FINISH"};
     if (request.kernels) stages.push_back("KERNELS");
-    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "CULL", "NEAR"});
+    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
     for (const char* stage : stages) programs.compute("per_set.comp", {stage});
+    if (request.cull) cullProgram(programs);
 }
 
 void GpuPerSet::timed(const char* stage, const auto& work) {
@@ -152,9 +168,10 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
                                    sizeof(std::uint32_t));
     if (mDirections.size() == 0) {
         assert(cullingDirections().coarseCount == COARSE_DIRECTIONS);
+        std::vector<glm::vec4> directions;
         for (const glm::dvec3& d : cullingDirections().directions)
-            mDirectionValues.emplace_back(glm::vec3(d), 0.0f);
-        mDirections = gl::Buffer::of(std::span<const glm::vec4>(mDirectionValues));
+            directions.emplace_back(glm::vec3(d), 0.0f);
+        mDirections = gl::Buffer::of(std::span<const glm::vec4>(directions));
     }
     mCullSpheres = gl::Buffer();
     mModelBuffer.reset();
@@ -261,14 +278,13 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             }
             stage("CULL_SPHERES").dispatch(groups(mCount));
             gl::computeBarrier();
-            const gl::Program& p = stage("CULL");
+            const gl::Program& p = cullProgram(programs);
+            p.set("uCount", static_cast<unsigned>(mCount));
             const CullingDirections& grid = cullingDirections();
             p.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
             p.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
             p.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
             p.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
-            p.set("uCoarse",
-                  std::span<const glm::vec4>(mDirectionValues.data(), COARSE_DIRECTIONS));
             p.set("uRadiusScale", static_cast<float>(s.radiusScale));
             p.dispatch(groups(mCount));
         });

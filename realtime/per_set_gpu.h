@@ -13,7 +13,6 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
 #include <map>
 #include <optional>
 #include <string>
@@ -117,8 +116,7 @@ class GpuPerSet {
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
     gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
-    std::vector<glm::vec4> mDirectionValues;  // cullingDirections(), coarse grid first
-    std::map<std::string, double> mTimings;   // since the last takeTimings()
+    std::map<std::string, double> mTimings;  // since the last takeTimings()
 };
 
 }  // namespace twinrender::realtime

@@ -395,7 +395,9 @@ layout(std430, binding = 15) readonly buffer Directions {
     vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
 };
 const int COARSE_DIRECTIONS = 42;
-uniform vec4 uCoarse[COARSE_DIRECTIONS];  // the coarse grid's directions
+// The coarse grid's directions, compiled in (per_set_gpu.cpp): the loops over them unroll into
+// straight code with constant operands.
+const vec3 COARSE[COARSE_DIRECTIONS] = vec3[](COARSE_DIRECTION_VALUES);
 uniform float uCosMargin, uSinMargin, uRadiusScale;
 uniform float uCoarseCosMargin, uCoarseSinMargin;
 const int DIRECTIONS = 162, MAX_CAPS = 96;
@@ -467,9 +469,9 @@ void main() {
         for (int c = 0; c < nearCaps; ++c) {
             vec4 cap = caps[c];
             for (int d = 0; d < 32; ++d)
-                if (dot(uCoarse[d].xyz, cap.xyz) >= cap.w) mask.x |= 1u << uint(d);
+                if (dot(COARSE[d], cap.xyz) >= cap.w) mask.x |= 1u << uint(d);
             for (int d = 32; d < COARSE_DIRECTIONS; ++d)
-                if (dot(uCoarse[d].xyz, cap.xyz) >= cap.w) mask.y |= 1u << uint(d - 32);
+                if (dot(COARSE[d], cap.xyz) >= cap.w) mask.y |= 1u << uint(d - 32);
         }
         hidden = mask == uvec2(0xFFFFFFFFu, (1u << uint(COARSE_DIRECTIONS - 32)) - 1u);
     }
