@@ -24,8 +24,10 @@ namespace {
 // units of n floats) of each attribute.
 constexpr std::size_t ATTRIBUTE_FLOATS = 21;
 constexpr int MAX_LEVELS = 32;
-// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes.
-constexpr std::size_t HEADER_BYTES = 16 + 32 + MAX_LEVELS * 64;
+// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes, RADIUS_WALK's
+// dispatch (at WALK_DISPATCH, bytes).
+constexpr std::size_t WALK_DISPATCH = 16 + 32 + MAX_LEVELS * 64;
+constexpr std::size_t HEADER_BYTES = WALK_DISPATCH + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
 constexpr std::size_t BLOCK = 1024;  // values per work group of scan.comp
@@ -55,6 +57,7 @@ enum Binding : unsigned {
     DIRECTIONS = 15,
     DROPLETS = 16,
     CULL_SPHERES = 17,
+    WALKS = 18,
 };
 
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
@@ -103,8 +106,9 @@ const gl::Program& cullProgram(ProgramCache& programs) {
 
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
     for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
-    std::vector<const char*> stages = {"INIT", "H_MIN",  "LEVELS", "LAYOUT", "COUNT", "SCATTER",
-                                       "SORT", "GATHER", "RADIUS", "MARK",   "PACK",  "FINISH"};
+    std::vector<const char*> stages = {"INIT",    "H_MIN", "LEVELS", "LAYOUT", "COUNT",
+                                       "SCATTER", "SORT",  "GATHER", "RADIUS", "RADIUS_WALK",
+                                       "MARK",    "PACK",  "FINISH"};
     if (request.kernels) stages.push_back("KERNELS");
     if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR"});
     const int kind = modelKind(request.particles);
@@ -133,6 +137,7 @@ void GpuPerSet::bindStorage() const {
     mEntries.bindStorage(ENTRIES);
     mSorted.bindStorage(SORTED);
     mRadii.bindStorage(RADII);
+    mWalks.bindStorage(WALKS);
     mFlags.bindStorage(FLAGS);
     if (mModelBuffer) mModelBuffer->bindStorage(MODELS);
     if (mDrawLists) mDrawLists->bindStorage(DRAW_LISTS);
@@ -163,6 +168,7 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     mSorted = gl::Buffer::zeros(n * sizeof(std::uint32_t));
     mEntries = gl::Buffer::zeros(n * GRID_ENTRY_BYTES);
     mRadii = gl::Buffer::zeros(n * sizeof(float));
+    mWalks = gl::Buffer::zeros(n * sizeof(std::uint32_t));
     mFlags = gl::Buffer::zeros(n * sizeof(std::uint32_t));
     mBlockSums = gl::Buffer::zeros((groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) *
                                    sizeof(std::uint32_t));
@@ -254,13 +260,21 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             mFlags.clear();  // no droplet slots
             const std::uint32_t zero = 0;
             mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
-            const gl::Program& p = stage("RADIUS");
-            p.set("uDropletAtoms", radiusSettings.dropletAtoms);
-            p.set("uRadiusScale", static_cast<float>(s.radiusScale));
-            p.set("uCrossingScale", static_cast<float>(s.crossingScale));
-            p.set("uLevel", static_cast<float>(s.surfaceLevel));
-            p.set("uFixed", s.radius == RadiusModel::Fixed ? 1 : 0);
-            p.dispatch(groups(mCount));
+            const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};
+            mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
+            auto radiusStage = [&](const char* name) -> const gl::Program& {
+                const gl::Program& p = stage(name);
+                p.set("uDropletAtoms", radiusSettings.dropletAtoms);
+                p.set("uRadiusScale", static_cast<float>(s.radiusScale));
+                p.set("uCrossingScale", static_cast<float>(s.crossingScale));
+                p.set("uLevel", static_cast<float>(s.surfaceLevel));
+                p.set("uFixed", s.radius == RadiusModel::Fixed ? 1 : 0);
+                return p;
+            };
+            radiusStage("RADIUS").dispatch(groups(mCount));
+            gl::computeBarrier();
+            // The particles the early exit left, as many work groups as RADIUS counted.
+            radiusStage("RADIUS_WALK").dispatchIndirect(mHeader, WALK_DISPATCH);
         });
         mDropletCount = 0;
         if (radiusSettings.dropletAtoms >= 2)

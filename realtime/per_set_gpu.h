@@ -115,6 +115,7 @@ class GpuPerSet {
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
     gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
+    gl::Buffer mWalks;        // the particles RADIUS_WALK takes
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
     std::map<std::string, double> mTimings;  // since the last takeTimings()
 };

@@ -2,8 +2,8 @@
 // grid (INIT, H_MIN, LEVELS, LAYOUT, COUNT, SCATTER, SORT, GATHER), the answers per particle
 // (RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR, MARK,
 // PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or cell).
-#if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
-    defined(ANISOTROPY) || defined(CULL_SPHERES)
+#if defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || defined(CULL) || \
+    defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(CULL_SPHERES)
 #define GRID_READ
 #endif
 #include "per_set.glsl"
@@ -28,8 +28,9 @@ layout(std430, binding = 10) buffer Sorted {
 };
 #endif
 
-#if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
-    defined(ANISOTROPY) || defined(NEAR) || defined(MARK) || defined(PACK) || defined(CULL_SPHERES)
+#if defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || defined(CULL) || \
+    defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(NEAR) || defined(MARK) ||     \
+    defined(PACK) || defined(CULL_SPHERES)
 layout(std430, binding = 11) buffer Radii {
     float radii[];
 };
@@ -210,7 +211,7 @@ mat3 normalFrame(vec3 n) {
     return mat3(t1, cross(n, t1), n);
 }
 
-#ifdef RADIUS
+#if defined(RADIUS) || defined(RADIUS_WALK)
 // impostor_radius.cpp: the distance along the normal to the level set (0 where the field at
 // the centre is not above it), at most radius_scale h; "fixed" (uFixed): radius_scale h.
 //
@@ -253,9 +254,36 @@ uniform int uDropletAtoms;
 float countReach_, halfCap_;
 // About the samples' midpoint: every kernel that reaches a sample, every neighbour within 2 h.
 float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + halfCap_; }
+
+// The particles the early exit leaves (RADIUS appends them, RADIUS_WALK takes them): one
+// dispatch over them alone keeps the lanes of the long walks busy, where in the particles'
+// order they would be a few lanes of many vectors, each vector paying the walk.
+layout(std430, binding = 18) buffer Walks {
+    uint walkList[];
+};
+
+// The field at the centre, half-way and at the cap, and the neighbours within 2 h.
+#define ADD_SAMPLES(k)                                                                  \
+    {                                                                                   \
+        vec4 e = entries[k].positionInvH;                                               \
+        vec3 d = e.xyz - centre;                                                        \
+        float c = entries[k].coefficients.x / e.w;                                      \
+        atCentre += c * m4Shape(length(d) * e.w);                                       \
+        atHalf += c * m4Shape(length(d - halfway) * e.w);                               \
+        atCap += c * m4Shape(length(d - cap) * e.w);                                    \
+        if (dot(d, d) < countReach2 && floatBitsToUint(entries[k].coefficients.z) != i) \
+            ++neighbours;                                                               \
+    }
+
 void main() {
+#ifdef RADIUS_WALK
+    uint t = invocation();
+    if (t >= walkDispatch.w) return;
+    uint i = walkList[t];
+#else
     uint i = invocation();
     if (i >= uCount) return;
+#endif
     float h = particleH(i);
     float maxRadius = uRadiusScale * h;
     if (uFixed != 0) {
@@ -267,22 +295,11 @@ void main() {
     const float PI = 3.14159265358979;
     float own = attribute1(ATTR_VOLUME, i) / (PI * h * h * h);
     float ownBound = own * (1.0 + 1e-4);  // at or below: alone in its support
-    // The field at the centre, half-way and at the cap, and the neighbours within 2 h.
     vec3 halfway = (0.5 * maxRadius) * n, cap = maxRadius * n;
     float countReach2 = uDropletAtoms > 0 ? 4.0 * h * h : 0.0;
     float atCentre = 0.0, atHalf = 0.0, atCap = 0.0;
     int neighbours = 0;
-#define ADD_SAMPLES(k)                                                                  \
-    {                                                                                   \
-        vec4 e = entries[k].positionInvH;                                               \
-        vec3 d = e.xyz - centre;                                                        \
-        float c = entries[k].coefficients.x / e.w;                                      \
-        atCentre += c * m4Shape(length(d) * e.w);                                       \
-        atHalf += c * m4Shape(length(d - halfway) * e.w);                                 \
-        atCap += c * m4Shape(length(d - cap) * e.w);                                    \
-        if (dot(d, d) < countReach2 && floatBitsToUint(entries[k].coefficients.z) != i) \
-            ++neighbours;                                                               \
-    }
+#ifndef RADIUS_WALK
     {
         Level g = levels[levelOf(h)];
         float inv = levelInvCell(g);
@@ -302,13 +319,15 @@ void main() {
         radii[i] = min(maxRadius, uCrossingScale * maxRadius);
         return;
     }
-    atCentre = atHalf = atCap = 0.0;
-    neighbours = 0;
+    // Left to RADIUS_WALK; walkDispatch.x counts its work groups.
+    uint slot = atomicAdd(walkDispatch.w, 1u);
+    if (slot % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
+    walkList[slot] = i;
+#else
     countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
     halfCap_ = 0.5 * maxRadius;
     vec3 middle = centre + 0.5 * cap;
     FOR_EACH_NEAR(middle, walkReach, ADD_SAMPLES)
-#undef ADD_SAMPLES
     float crossing = 0.0;
     if (atCentre > uLevel) {
         if (atCap > uLevel && atHalf > uLevel) {
@@ -353,7 +372,9 @@ void main() {
     float radius = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
     radii[i] = radius;
     if (radius > 0.0 && neighbours < uDropletAtoms) atomicAdd(sparseCount, 1u);
+#endif
 }
+#undef ADD_SAMPLES
 #endif
 
 #if defined(CULL_SPHERES) || defined(CULL)
