@@ -110,7 +110,7 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
                                        "SCATTER", "SORT",  "GATHER", "RADIUS", "RADIUS_WALK",
                                        "MARK",    "PACK",  "FINISH"};
     if (request.kernels) stages.push_back("KERNELS");
-    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR"});
+    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "CULL_FULL", "NEAR"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
@@ -291,16 +291,22 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
                 mCullSpheres.bindStorage(CULL_SPHERES);
             }
             stage("CULL_SPHERES").dispatch(groups(mCount));
+            const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};
+            mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
             gl::computeBarrier();
-            const gl::Program& p = cullProgram(programs);
-            p.set("uCount", static_cast<unsigned>(mCount));
             const CullingDirections& grid = cullingDirections();
-            p.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
-            p.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
-            p.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
-            p.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
-            p.set("uRadiusScale", static_cast<float>(s.radiusScale));
-            p.dispatch(groups(mCount));
+            const gl::Program& coarse = cullProgram(programs);
+            coarse.set("uCount", static_cast<unsigned>(mCount));
+            coarse.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
+            coarse.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
+            coarse.dispatch(groups(mCount));
+            gl::computeBarrier();
+            // The spheres the coarse test left, as many work groups as CULL counted.
+            const gl::Program& full = stage("CULL_FULL");
+            full.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
+            full.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
+            full.set("uRadiusScale", static_cast<float>(s.radiusScale));
+            full.dispatchIndirect(mHeader, WALK_DISPATCH);
         });
         mCulled = true;
         built = true;

@@ -3,7 +3,7 @@
 // (RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR, MARK,
 // PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or cell).
 #if defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || defined(CULL) || \
-    defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(CULL_SPHERES)
+    defined(CULL_FULL) || defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(CULL_SPHERES)
 #define GRID_READ
 #endif
 #include "per_set.glsl"
@@ -38,8 +38,8 @@ layout(std430, binding = 11) buffer Radii {
 
 // flags: bit 1: hidden (occlusion_culling.h).
 const uint HIDDEN = 2u;
-#if defined(CULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || defined(PACK) || \
-    defined(CULL_SPHERES)
+#if defined(CULL) || defined(CULL_FULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || \
+    defined(PACK) || defined(CULL_SPHERES)
 layout(std430, binding = 12) buffer Flags {
     uint flags[];  // CULL writes bit 1 of its own particle's flags only
 };
@@ -377,7 +377,7 @@ void main() {
 #undef ADD_SAMPLES
 #endif
 
-#if defined(CULL_SPHERES) || defined(CULL)
+#if defined(CULL_SPHERES) || defined(CULL) || defined(CULL_FULL)
 // Per grid slot (the order of the grid's entries): the sphere the culling tests, its position
 // and radius, the radius 0 where the particle neither hides nor is hidden (no radius, or a
 // droplet's: renderer.cpp's cullRadii). One compact record per neighbour read.
@@ -397,7 +397,7 @@ void main() {
 }
 #endif
 
-#ifdef CULL
+#if defined(CULL) || defined(CULL_FULL)
 // occlusion_culling.cpp's exact test: hidden when every direction of the 162-point grid is
 // covered, with the grid's covering margin, by the cap of an overlapping sphere of the same
 // body, or when the sphere lies inside another (of equal coincident spheres the lower index
@@ -405,20 +405,21 @@ void main() {
 // Caps beyond MAX_CAPS are left out, which can only keep a sphere. The answer does not depend
 // on the neighbours' order.
 //
-// One invocation per grid slot (neighbouring invocations test neighbouring spheres, which read
-// the same cells and mostly take the same branches). Most spheres lie inside a body, buried
-// under the wide caps of their nearest neighbours. Before the full test, a cheaper one: the
-// near shell alone (a third of the neighbourhood's volume) on the coarse grid's 42 directions
-// with its wider margin, a sufficient condition of its own (a sphere it hides is hidden: exact
-// as well, though it may hide a few borderline spheres the fine grid keeps). Each near cap
-// marks the coarse directions it covers in a bit mask as it is found: no list of caps.
+// CULL: one invocation per grid slot (neighbouring invocations test neighbouring spheres,
+// which read the same cells and mostly take the same branches). Most spheres lie inside a
+// body, buried under the wide caps of their nearest neighbours: a cheaper test first, the near
+// shell alone (a third of the neighbourhood's volume) on the coarse grid's 42 directions with
+// its wider margin, a sufficient condition of its own (a sphere it hides is hidden: exact as
+// well, though it may hide a few borderline spheres the fine grid keeps). The near caps are
+// listed, then each marks the coarse directions it covers in a bit mask (straight code over
+// constants). The spheres it leaves are appended to a list that CULL_FULL takes (one dispatch
+// over them alone, as RADIUS_WALK).
 layout(std430, binding = 15) readonly buffer Directions {
     vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
 };
-const int COARSE_DIRECTIONS = 42;
-// The coarse grid's directions, compiled in (per_set_gpu.cpp): the loops over them unroll into
-// straight code with constant operands.
-const vec3 COARSE[COARSE_DIRECTIONS] = vec3[](COARSE_DIRECTION_VALUES);
+layout(std430, binding = 18) buffer Walks {
+    uint walkList[];  // the grid slots CULL_FULL takes
+};
 uniform float uCosMargin, uSinMargin, uRadiusScale;
 uniform float uCoarseCosMargin, uCoarseSinMargin;
 const int DIRECTIONS = 162, MAX_CAPS = 96;
@@ -426,8 +427,13 @@ const float NEAR_SHELL = 1.4;  // radii
 float cullReach_ri;
 float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
 void main() {
+#ifdef CULL_FULL
+    if (invocation() >= walkDispatch.w) return;
+    uint slot = walkList[invocation()];
+#else
     uint slot = invocation();
     if (slot >= uCount) return;
+#endif
     vec4 self = cullSpheres[slot];
     float ri = self.w;
     if (!(ri > 0.0)) return;
@@ -461,11 +467,16 @@ void main() {
     }               \
     }               \
     }
+#ifndef CULL_FULL
     // The near shell's caps from the 3 x 3 x 3 cells of the particle's own level around its
     // cell (cells are at least the level's largest h: they hold the nearest neighbours), each
     // row of 3 cells one run of slots.
-    vec4 caps[MAX_CAPS];
-    int nearCaps = 0, farCaps = 0;
+    const int COARSE_DIRECTIONS = 42, MAX_NEAR_CAPS = 32;
+    // The coarse grid's directions, compiled in (per_set_gpu.cpp): the loops over them unroll
+    // into straight code with constant operands.
+    const vec3 COARSE[COARSE_DIRECTIONS] = vec3[](COARSE_DIRECTION_VALUES);
+    vec4 caps[MAX_NEAR_CAPS];
+    int nearCaps = 0;
     {
         Level g = levels[levelOf(particleH(i))];
         float inv = levelInvCell(g);
@@ -480,7 +491,7 @@ void main() {
                 uint end = cellStart[row + x1 + 1];
                 for (uint k = cellStart[row + x0]; k < end; ++k) {
                     OVERLAP(k, uCoarseCosMargin, uCoarseSinMargin, true, cap)
-                    if (nearCaps < MAX_CAPS) caps[nearCaps++] = cap;
+                    if (nearCaps < MAX_NEAR_CAPS) caps[nearCaps++] = cap;
                     END_OVERLAP
                 }
             }
@@ -500,8 +511,14 @@ void main() {
         flags[i] |= HIDDEN;
         return;
     }
+    // Left to CULL_FULL; walkDispatch.x counts its work groups.
+    uint next = atomicAdd(walkDispatch.w, 1u);
+    if (next % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
+    walkList[next] = slot;
+#else
     // The full test: every overlapping sphere, the near shell's caps first in the list.
-    nearCaps = 0;
+    vec4 caps[MAX_CAPS];
+    int nearCaps = 0, farCaps = 0;
 #define COVER(k)                                                    \
     if (!hidden) {                                                  \
         OVERLAP(k, uCosMargin, uSinMargin, false, cap)              \
@@ -515,8 +532,6 @@ void main() {
     }
     FOR_EACH_NEAR(xi, cullReach, COVER)
 #undef COVER
-#undef OVERLAP
-#undef END_OVERLAP
     if (!hidden && nearCaps + farCaps > 0) {
         hidden = true;
         for (int dir = 0; dir < DIRECTIONS && hidden; ++dir) {
@@ -529,6 +544,9 @@ void main() {
         }
     }
     flags[i] = (flags[i] & ~HIDDEN) | (hidden ? HIDDEN : 0u);
+#endif
+#undef OVERLAP
+#undef END_OVERLAP
 }
 #endif
 
