@@ -290,9 +290,9 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
                 mCullSpheres = gl::Buffer::zeros(mCount * sizeof(glm::vec4));
                 mCullSpheres.bindStorage(CULL_SPHERES);
             }
-            stage("CULL_SPHERES").dispatch(groups(mCount));
             const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};
             mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
+            stage("CULL_SPHERES").dispatch(groups(mCount));
             gl::computeBarrier();
             const CullingDirections& grid = cullingDirections();
             const gl::Program& coarse = cullProgram(programs);

@@ -410,10 +410,11 @@ void main() {
 // body, buried under the wide caps of their nearest neighbours: a cheaper test first, the near
 // shell alone (a third of the neighbourhood's volume) on the coarse grid's 42 directions with
 // its wider margin, a sufficient condition of its own (a sphere it hides is hidden: exact as
-// well, though it may hide a few borderline spheres the fine grid keeps). The near caps are
-// listed, then each marks the coarse directions it covers in a bit mask (straight code over
-// constants). The spheres it leaves are appended to a list that CULL_FULL takes (one dispatch
-// over them alone, as RADIUS_WALK).
+// well, though it may hide a few borderline spheres the fine grid keeps). The near shell's
+// slots are listed first, by distance alone (one record read per neighbour, a cheap loop that
+// every lane runs alike), then their caps (the body compared), each marking the coarse
+// directions it covers in a bit mask (straight code over constants). The spheres it leaves are
+// appended to a list that CULL_FULL takes (one dispatch over them alone, as RADIUS_WALK).
 layout(std430, binding = 15) readonly buffer Directions {
     vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
 };
@@ -475,8 +476,8 @@ void main() {
     // The coarse grid's directions, compiled in (per_set_gpu.cpp): the loops over them unroll
     // into straight code with constant operands.
     const vec3 COARSE[COARSE_DIRECTIONS] = vec3[](COARSE_DIRECTION_VALUES);
-    vec4 caps[MAX_NEAR_CAPS];
-    int nearCaps = 0;
+    uint near[MAX_NEAR_CAPS];  // the near shell's grid slots (of any body: OVERLAP tests it)
+    int nearCount = 0;
     {
         Level g = levels[levelOf(particleH(i))];
         float inv = levelInvCell(g);
@@ -490,23 +491,27 @@ void main() {
                 int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
                 uint end = cellStart[row + x1 + 1];
                 for (uint k = cellStart[row + x0]; k < end; ++k) {
-                    OVERLAP(k, uCoarseCosMargin, uCoarseSinMargin, true, cap)
-                    if (nearCaps < MAX_NEAR_CAPS) caps[nearCaps++] = cap;
-                    END_OVERLAP
+                    vec4 s = cullSpheres[k];
+                    vec3 d = s.xyz - xi;
+                    float dist2 = dot(d, d), reach = ri + s.w;
+                    if (k != slot && s.w > 0.0 && dist2 < reach * reach && dist2 <= nearLimit2 &&
+                        nearCount < MAX_NEAR_CAPS)
+                        near[nearCount++] = k;
                 }
             }
     }
-    if (!hidden && nearCaps > 0) {
-        uvec2 mask = uvec2(0u);  // the coarse directions covered, bit d % 32 of word d / 32
-        for (int c = 0; c < nearCaps; ++c) {
-            vec4 cap = caps[c];
-            for (int d = 0; d < 32; ++d)
-                if (dot(COARSE[d], cap.xyz) >= cap.w) mask.x |= 1u << uint(d);
-            for (int d = 32; d < COARSE_DIRECTIONS; ++d)
-                if (dot(COARSE[d], cap.xyz) >= cap.w) mask.y |= 1u << uint(d - 32);
-        }
-        hidden = mask == uvec2(0xFFFFFFFFu, (1u << uint(COARSE_DIRECTIONS - 32)) - 1u);
+    // Then their caps, each marking the coarse directions it covers.
+    uvec2 mask = uvec2(0u);  // bit d % 32 of word d / 32: coarse direction d covered
+    for (int n = 0; n < nearCount && !hidden; ++n) {
+        uint k = near[n];
+        OVERLAP(k, uCoarseCosMargin, uCoarseSinMargin, true, cap)
+        for (int d = 0; d < 32; ++d)
+            if (dot(COARSE[d], cap.xyz) >= cap.w) mask.x |= 1u << uint(d);
+        for (int d = 32; d < COARSE_DIRECTIONS; ++d)
+            if (dot(COARSE[d], cap.xyz) >= cap.w) mask.y |= 1u << uint(d - 32);
+        END_OVERLAP
     }
+    if (mask == uvec2(0xFFFFFFFFu, (1u << uint(COARSE_DIRECTIONS - 32)) - 1u)) hidden = true;
     if (hidden) {
         flags[i] |= HIDDEN;
         return;
