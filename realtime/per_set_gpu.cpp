@@ -102,6 +102,19 @@ const gl::Program& cullProgram(ProgramCache& programs) {
     return programs.compute("per_set.comp", {"CULL", "COARSE_DIRECTION_VALUES " + directions});
 }
 
+// `buffer` kept where it has `bytes` already, else a new zero-filled one.
+enum class Resized { Kept, New };
+Resized resized(gl::Buffer& buffer, std::size_t bytes) {
+    if (buffer.size() == std::max<std::size_t>(bytes, 16)) return Resized::Kept;
+    buffer = gl::Buffer::zeros(bytes);
+    return Resized::New;
+}
+Resized resized(std::optional<gl::Buffer>& buffer, std::size_t bytes) {
+    if (buffer) return resized(*buffer, bytes);
+    buffer.emplace(gl::Buffer::zeros(bytes));
+    return Resized::New;
+}
+
 }  // namespace
 
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
@@ -151,7 +164,14 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     mCount = n;
     // Every level has at most max(4 x its particles, 4096) cells.
     mMaxCells = 4 * n + 4096 * MAX_LEVELS;
-    mAttributes = gl::Buffer::zeros(ATTRIBUTE_FLOATS * n * sizeof(float));
+    // A set of as many particles as the last keeps the buffers: each stage writes what it reads
+    // (the grid's counters are cleared in buildGrid), and allocating and zeroing them anew cost
+    // more than the rest of the upload.
+    const bool kept = resized(mAttributes, ATTRIBUTE_FLOATS * n * sizeof(float)) == Resized::Kept;
+    const bool complete = ps.h.size() == n && ps.volume.size() == n && ps.normal.size() == n &&
+                          ps.body.size() == n && ps.uv.size() == n && ps.dudx.size() == n &&
+                          ps.dvdx.size() == n && ps.glow.size() == n && ps.material.size() == n;
+    if (kept && !complete) mAttributes.clear();  // the attributes a set lacks read as 0
     writeAttribute(mAttributes, 0, n, ps.position);
     writeAttribute(mAttributes, 3, n, ps.h);
     writeAttribute(mAttributes, 4, n, ps.volume);
@@ -163,15 +183,15 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     writeAttribute(mAttributes, 17, n, ps.glow);
     writeAttribute(mAttributes, 20, n, ps.material);
     mHeader = gl::Buffer::zeros(HEADER_BYTES);
-    mCells = gl::Buffer::zeros((mMaxCells + 1) * sizeof(std::uint32_t));
-    mCellOf = gl::Buffer::zeros((n + mMaxCells) * sizeof(std::uint32_t));
-    mSorted = gl::Buffer::zeros(n * sizeof(std::uint32_t));
-    mEntries = gl::Buffer::zeros(n * GRID_ENTRY_BYTES);
-    mRadii = gl::Buffer::zeros(n * sizeof(float));
-    mWalks = gl::Buffer::zeros(n * sizeof(std::uint32_t));
-    mFlags = gl::Buffer::zeros(n * sizeof(std::uint32_t));
-    mBlockSums = gl::Buffer::zeros((groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) *
-                                   sizeof(std::uint32_t));
+    resized(mCells, (mMaxCells + 1) * sizeof(std::uint32_t));
+    resized(mCellOf, (n + mMaxCells) * sizeof(std::uint32_t));
+    resized(mSorted, n * sizeof(std::uint32_t));
+    resized(mEntries, n * GRID_ENTRY_BYTES);
+    resized(mRadii, n * sizeof(float));
+    resized(mWalks, n * sizeof(std::uint32_t));
+    resized(mFlags, n * sizeof(std::uint32_t));
+    resized(mBlockSums,
+            (groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) * sizeof(std::uint32_t));
     if (mDirections.size() == 0) {
         assert(cullingDirections().coarseCount == COARSE_DIRECTIONS);
         std::vector<glm::vec4> directions;
@@ -179,14 +199,16 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
             directions.emplace_back(glm::vec3(d), 0.0f);
         mDirections = gl::Buffer::of(std::span<const glm::vec4>(directions));
     }
-    mCullSpheres = gl::Buffer();
-    mModelBuffer.reset();
+    if (!kept) {
+        mCullSpheres = gl::Buffer();
+        mModelBuffer.reset();
+        mEllipsoids.reset();
+    }
     mDroplets = gl::Buffer();
     mDropletCount = 0;
-    mDrawLists.emplace(gl::Buffer::zeros(2 * (n + 1) * sizeof(std::uint32_t)));
-    mParticles.emplace(gl::Buffer::zeros(n * sizeof(GpuParticle)));
-    mKernels.emplace(gl::Buffer::zeros(n * sizeof(GpuKernel)));
-    mEllipsoids.reset();
+    resized(mDrawLists, 2 * (n + 1) * sizeof(std::uint32_t));
+    resized(mParticles, n * sizeof(GpuParticle));
+    resized(mKernels, n * sizeof(GpuKernel));
 }
 
 void GpuPerSet::scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
@@ -212,6 +234,8 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
         p.dispatch(count);
         gl::computeBarrier();
     };
+    mCells.clear();   // COUNT's counts
+    mCellOf.clear();  // SCATTER's fill counts
     bindStorage();
     run("INIT", 1);
     run("H_MIN", groups(mCount));
