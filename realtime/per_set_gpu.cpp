@@ -142,6 +142,11 @@ void GpuPerSet::timed(const char* stage, const auto& work) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+void GpuPerSet::clearWalks() {
+    const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};  // no work groups, no entries
+    mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
+}
+
 void GpuPerSet::bindStorage() const {
     mAttributes.bindStorage(ATTRIBUTES);
     mHeader.bindStorage(HEADER);
@@ -284,8 +289,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             mFlags.clear();  // no droplet slots
             const std::uint32_t zero = 0;
             mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
-            const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};
-            mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
+            clearWalks();
             auto radiusStage = [&](const char* name) -> const gl::Program& {
                 const gl::Program& p = stage(name);
                 p.set("uDropletAtoms", radiusSettings.dropletAtoms);
@@ -314,8 +318,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
                 mCullSpheres = gl::Buffer::zeros(mCount * sizeof(glm::vec4));
                 mCullSpheres.bindStorage(CULL_SPHERES);
             }
-            const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};
-            mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
+            clearWalks();
             stage("CULL_SPHERES").dispatch(groups(mCount));
             gl::computeBarrier();
             const CullingDirections& grid = cullingDirections();
@@ -413,8 +416,10 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
             gl::computeBarrier();
         }
         {
+            clearWalks();
             const gl::Program& p = stage("MARK");
             p.set("uCull", cull ? 1 : 0);
+            p.set("uListDrawn", mRequest.kernels ? 1 : 0);  // for KERNELS
             p.dispatch(groups(mCount));
             gl::computeBarrier();
         }
@@ -424,7 +429,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
             const gl::Program& p = programs.compute("per_set.comp", {"KERNELS"});
             p.set("uCount", static_cast<unsigned>(mCount));
             p.set("uEllipsoids", mModels == 2 ? 1 : 0);
-            p.dispatch(groups(mCount));
+            p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed
         });
     timed("pack", [&] {
         scan(programs, *mDrawLists, 0, mCount);

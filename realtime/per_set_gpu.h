@@ -98,6 +98,7 @@ class GpuPerSet {
     void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
               std::size_t count);
     void bindStorage() const;
+    void clearWalks();  // empties the walk list (shaders/per_set.comp's appendWalk)
     void timed(const char* stage, const auto& work);
 
     std::size_t mCount = 0, mMaxCells = 0;

@@ -64,6 +64,23 @@ layout(std430, binding = 13) buffer Models {
 };
 #endif
 
+// The invocations a long pass takes, appended by the pass before it and dispatched indirectly
+// (the Header's walkDispatch: work groups, 1, 1, entries): RADIUS_WALK the particles RADIUS's
+// early exit leaves, CULL_FULL the grid slots CULL's coarse test leaves, KERNELS the particles
+// MARK draws. One dispatch over them alone keeps the lanes busy, where in the particles' order
+// they would be a few lanes of many vectors, each vector paying the long loops.
+#if defined(RADIUS) || defined(RADIUS_WALK) || defined(CULL) || defined(CULL_FULL) || \
+    defined(MARK) || defined(KERNELS)
+layout(std430, binding = 18) buffer Walks {
+    uint walkList[];
+};
+void appendWalk(uint value) {
+    uint next = atomicAdd(walkDispatch.w, 1u);
+    if (next % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
+    walkList[next] = value;
+}
+#endif
+
 // ---- The grid ----
 
 #ifdef INIT
@@ -255,13 +272,6 @@ float countReach_, halfCap_;
 // About the samples' midpoint: every kernel that reaches a sample, every neighbour within 2 h.
 float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + halfCap_; }
 
-// The particles the early exit leaves (RADIUS appends them, RADIUS_WALK takes them): one
-// dispatch over them alone keeps the lanes of the long walks busy, where in the particles'
-// order they would be a few lanes of many vectors, each vector paying the walk.
-layout(std430, binding = 18) buffer Walks {
-    uint walkList[];
-};
-
 // The field at the centre, half-way and at the cap, and the neighbours within 2 h.
 #define ADD_SAMPLES(k)                                                                  \
     {                                                                                   \
@@ -319,10 +329,7 @@ void main() {
         radii[i] = min(maxRadius, uCrossingScale * maxRadius);
         return;
     }
-    // Left to RADIUS_WALK; walkDispatch.x counts its work groups.
-    uint slot = atomicAdd(walkDispatch.w, 1u);
-    if (slot % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
-    walkList[slot] = i;
+    appendWalk(i);  // left to RADIUS_WALK
 #else
     countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
     halfCap_ = 0.5 * maxRadius;
@@ -417,9 +424,6 @@ void main() {
 // appended to a list that CULL_FULL takes (one dispatch over them alone, as RADIUS_WALK).
 layout(std430, binding = 15) readonly buffer Directions {
     vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
-};
-layout(std430, binding = 18) buffer Walks {
-    uint walkList[];  // the grid slots CULL_FULL takes
 };
 uniform float uCosMargin, uSinMargin, uRadiusScale;
 uniform float uCoarseCosMargin, uCoarseSinMargin;
@@ -516,10 +520,7 @@ void main() {
         flags[i] |= HIDDEN;
         return;
     }
-    // Left to CULL_FULL; walkDispatch.x counts its work groups.
-    uint next = atomicAdd(walkDispatch.w, 1u);
-    if (next % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
-    walkList[next] = slot;
+    appendWalk(slot);  // left to CULL_FULL
 #else
     // The full test: every overlapping sphere, the near shell's caps first in the list.
     vec4 caps[MAX_CAPS];
@@ -744,13 +745,15 @@ void main() {
 #endif
 
 #ifdef MARK
-uniform int uCull;
+uniform int uCull, uListDrawn;
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
     bool hidden = uCull != 0 && nearHit == 0u && (flags[i] & HIDDEN) != 0u;
-    drawnPrefix[i] = radii[i] > 0.0 && !hidden ? 1u : 0u;
+    bool drawn = radii[i] > 0.0 && !hidden;
+    drawnPrefix[i] = drawn ? 1u : 0u;
     drawnPrefix[uCount + 1u + i] = 0u;
+    if (drawn && uListDrawn != 0) appendWalk(i);  // for KERNELS
 }
 #endif
 
@@ -763,8 +766,8 @@ uniform int uEllipsoids;
 float kernelReach_r;
 float kernelReach(float hMax) { return kernelReach_r + 2.0 * hMax; }
 void main() {
-    uint i = invocation();
-    if (i >= uCount || drawnPrefix[i] == 0u) return;
+    if (invocation() >= walkDispatch.w) return;
+    uint i = walkList[invocation()];  // a drawn particle
     float r = radii[i];
     vec3 centre = particlePosition(i);
     uint slot = dropletSlot(i);
