@@ -272,17 +272,19 @@ float countReach_, halfCap_;
 // About the samples' midpoint: every kernel that reaches a sample, every neighbour within 2 h.
 float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + halfCap_; }
 
-// The field at the centre, half-way and at the cap, and the neighbours within 2 h.
-#define ADD_SAMPLES(k)                                                                  \
-    {                                                                                   \
-        vec4 e = entries[k].positionInvH;                                               \
-        vec3 d = e.xyz - centre;                                                        \
-        float c = entries[k].coefficients.x / e.w;                                      \
-        atCentre += c * m4Shape(length(d) * e.w);                                       \
-        atHalf += c * m4Shape(length(d - halfway) * e.w);                               \
-        atCap += c * m4Shape(length(d - cap) * e.w);                                    \
-        if (dot(d, d) < countReach2 && floatBitsToUint(entries[k].coefficients.z) != i) \
-            ++neighbours;                                                               \
+// The field at the centre, half-way and at the cap, and the particles within 2 h, the particle
+// itself among them: RADIUS_WALK visits it once (it lies within walkReach), so its neighbours
+// are one fewer; the early exit's 2 x 2 x 2 cells hold it too unless radius_scale is large, and
+// a count one short there only leaves the particle to the walk.
+#define ADD_SAMPLES(k)                                            \
+    {                                                             \
+        vec4 e = entries[k].positionInvH;                         \
+        vec3 d = e.xyz - centre;                                  \
+        float c = entries[k].coefficients.x / e.w;                \
+        atCentre += c * m4Shape(length(d) * e.w);                 \
+        atHalf += c * m4Shape(length(d - halfway) * e.w);         \
+        atCap += c * m4Shape(length(d - cap) * e.w);              \
+        if (dot(d, d) < countReach2) ++neighbours;                \
     }
 
 void main() {
@@ -324,6 +326,7 @@ void main() {
                     for (uint k = cellStart[cell]; k < end; ++k) ADD_SAMPLES(k)
                 }
     }
+    if (uDropletAtoms > 0) --neighbours;  // itself
     if (atCentre > max(uLevel, ownBound) && atHalf > uLevel && atCap > uLevel &&
         neighbours >= uDropletAtoms) {
         radii[i] = min(maxRadius, uCrossingScale * maxRadius);
@@ -335,6 +338,7 @@ void main() {
     halfCap_ = 0.5 * maxRadius;
     vec3 middle = centre + 0.5 * cap;
     FOR_EACH_NEAR(middle, walkReach, ADD_SAMPLES)
+    if (uDropletAtoms > 0) --neighbours;  // itself
     float crossing = 0.0;
     if (atCentre > uLevel) {
         if (atCap > uLevel && atHalf > uLevel) {
