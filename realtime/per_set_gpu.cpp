@@ -24,10 +24,12 @@ namespace {
 // units of n floats) of each attribute.
 constexpr std::size_t ATTRIBUTE_FLOATS = 21;
 constexpr int MAX_LEVELS = 32;
-// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes, RADIUS_WALK's
-// dispatch (at WALK_DISPATCH, bytes).
+// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes, then indirect
+// dispatches (bytes): the walk list's, the cell scan's, SORT's.
 constexpr std::size_t WALK_DISPATCH = 16 + 32 + MAX_LEVELS * 64;
-constexpr std::size_t HEADER_BYTES = WALK_DISPATCH + 16;
+constexpr std::size_t SCAN_DISPATCH = WALK_DISPATCH + 16;
+constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
+constexpr std::size_t HEADER_BYTES = SORT_DISPATCH + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
 constexpr std::size_t BLOCK = 1024;  // values per work group of scan.comp
@@ -58,6 +60,7 @@ enum Binding : unsigned {
     DROPLETS = 16,
     CULL_SPHERES = 17,
     WALKS = 18,
+    BLOCK_SUMS = 19,  // scan.comp
 };
 
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
@@ -217,16 +220,20 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
 }
 
 void GpuPerSet::scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
-                     std::size_t count) {
-    const unsigned blocks = groups(count, BLOCK);
+                     std::size_t count, bool cells) {
     data.bindStorage(ATTRIBUTES);
-    mBlockSums.bindStorage(HEADER);
+    mBlockSums.bindStorage(BLOCK_SUMS);
     for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) {
         const gl::Program& p = programs.compute("scan.comp", {stage});
         p.set("uCount", static_cast<unsigned>(count));
         p.set("uOffset", static_cast<unsigned>(offset));
-        p.set("uBlocks", blocks);
-        p.dispatch(std::string_view(stage) == "SUMS" ? 1u : std::max(blocks, 1u));
+        p.set("uCells", cells ? 1 : 0);
+        if (std::string_view(stage) == "SUMS")
+            p.dispatch(1);
+        else if (cells)
+            p.dispatchIndirect(mHeader, SCAN_DISPATCH);
+        else
+            p.dispatch(std::max(groups(count, BLOCK), 1u));
         gl::computeBarrier();
     }
     bindStorage();
@@ -247,9 +254,13 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
     run("LEVELS", groups(mCount));
     run("LAYOUT", 1);
     run("COUNT", groups(mCount));
-    scan(programs, mCells, 0, mMaxCells);
+    scan(programs, mCells, 0, mMaxCells, true);  // the cells LAYOUT made
     run("SCATTER", groups(mCount));
-    run("SORT", groups(mMaxCells));
+    {
+        const gl::Program& p = programs.compute("per_set.comp", {"SORT"});
+        p.dispatchIndirect(mHeader, SORT_DISPATCH);
+        gl::computeBarrier();
+    }
     run("GATHER", groups(mCount));
 }
 

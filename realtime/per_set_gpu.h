@@ -95,8 +95,10 @@ class GpuPerSet {
     void upload(const core::ParticleSet& particles);
     void applyDroplets(const core::ParticleSet& particles, const ParticleSettings& settings);
     void buildGrid(ProgramCache& programs);
-    void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
-              std::size_t count);
+    // Exclusive prefix sum of `count` uints of `data` from `offset` (with `cells`: of the
+    // grid's cells, at most `count`, their number read on the GPU).
+    void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset, std::size_t count,
+              bool cells = false);
     void bindStorage() const;
     void clearWalks();  // empties the walk list (shaders/per_set.comp's appendWalk)
     void timed(const char* stage, const auto& work);

@@ -153,6 +153,8 @@ void main() {
         first += int(n.x * n.y * n.z);
     }
     totalCells = uint(first);
+    scanDispatch = uvec4((totalCells + 1023u) / 1024u, 1u, 1u, 0u);
+    sortDispatch = uvec4((totalCells + 63u) / 64u, 1u, 1u, 0u);  // SORT's work groups of 64
 }
 #endif
 

@@ -56,6 +56,9 @@ layout(std430, binding = 6) coherent buffer Header {
     Level levels[MAX_LEVELS];
     // RADIUS_WALK's glDispatchComputeIndirect: its work groups, 1, 1; w: the particles it takes.
     uvec4 walkDispatch;
+    // LAYOUT: the work groups of the scan of the cells (scan.comp's blocks) and of SORT, 1, 1.
+    uvec4 scanDispatch;
+    uvec4 sortDispatch;
 };
 
 // A float as a uint whose order is the float's (for atomicMin / atomicMax).
