@@ -336,11 +336,33 @@ void main() {
     }
     appendWalk(i);  // left to RADIUS_WALK
 #else
+    // One walk for the field at the centre and at the 8 samples k maxRadius / 8 (k = 1..8) of the
+    // bisection's first pass, half-way and the cap among them (the same offsets, so the same
+    // sums as three separate walks would give).
     countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
     halfCap_ = 0.5 * maxRadius;
     vec3 middle = centre + 0.5 * cap;
-    FOR_EACH_NEAR(middle, walkReach, ADD_SAMPLES)
+    float step = maxRadius / 8.0;
+    float values[8];
+    vec3 offsets[8];
+    for (int k = 0; k < 8; ++k) {
+        values[k] = 0.0;
+        offsets[k] = (0.0 + float(k + 1) * step) * n;  // fieldSamples' offsets from 0
+    }
+#define ADD_NINE(k)                                                                         \
+    {                                                                                       \
+        vec4 e = entries[k].positionInvH;                                                   \
+        vec3 d = e.xyz - centre;                                                            \
+        float c = entries[k].coefficients.x / e.w;                                          \
+        atCentre += c * m4Shape(length(d) * e.w);                                           \
+        for (int s = 0; s < 8; ++s) values[s] += c * m4Shape(length(d - offsets[s]) * e.w); \
+        if (dot(d, d) < countReach2) ++neighbours;                                          \
+    }
+    FOR_EACH_NEAR(middle, walkReach, ADD_NINE)
+#undef ADD_NINE
     if (uDropletAtoms > 0) --neighbours;  // itself
+    atHalf = values[3];
+    atCap = values[7];
     float crossing = 0.0;
     if (atCentre > uLevel) {
         if (atCap > uLevel && atHalf > uLevel) {
@@ -351,10 +373,8 @@ void main() {
             // crossing is interpolated linearly within it (the CPU path bisects to
             // maxRadius / 8192; the two agree within 1e-4 h).
             float inside = 0.0, outside = -1.0, atInside = atCentre, atOutside = 0.0;
-            float step = maxRadius / 8.0;
-            float values[8];
             for (int pass = 0; pass < 3 && !(pass > 0 && outside < 0.0); ++pass) {
-                fieldSamples(centre, n, inside, step, values);
+                if (pass > 0) fieldSamples(centre, n, inside, step, values);
                 int first = 8;
                 for (int k = 7; k >= 0; --k)
                     if (!(values[k] > uLevel)) first = k;
