@@ -32,7 +32,7 @@ constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
 constexpr std::size_t HEADER_BYTES = SORT_DISPATCH + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
-constexpr std::size_t BLOCK = 1024;  // values per work group of scan.comp
+constexpr std::size_t BLOCK = 4096;  // values per work group of scan.comp
 // The coarse culling grid's directions (CullingDirections::coarseCount), per_set.comp's
 // COARSE_DIRECTIONS.
 constexpr std::size_t COARSE_DIRECTIONS = 42;

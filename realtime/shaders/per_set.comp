@@ -153,7 +153,7 @@ void main() {
         first += int(n.x * n.y * n.z);
     }
     totalCells = uint(first);
-    scanDispatch = uvec4((totalCells + 1023u) / 1024u, 1u, 1u, 0u);
+    scanDispatch = uvec4((totalCells + 4095u) / 4096u, 1u, 1u, 0u);  // scan.comp BLOCK
     sortDispatch = uvec4((totalCells + 63u) / 64u, 1u, 1u, 0u);  // SORT's work groups of 64
 }
 #endif
