@@ -548,22 +548,36 @@ void main() {
     }
     appendWalk(slot);  // left to CULL_FULL
 #else
-    // The full test: every overlapping sphere, the near shell's caps first in the list.
+    // The full test: every overlapping sphere, the near shell's caps first in the list. The
+    // overlapping slots are listed first (a cheap loop), then their caps are made (the
+    // arithmetic once per overlapping sphere, not once per neighbour visited).
+    const int MAX_OVERLAPS = 160;
+    uint overlaps[MAX_OVERLAPS];
+    int overlapCount = 0;
+#define LIST(k)                                                                       \
+    {                                                                                 \
+        vec4 s = cullSpheres[k];                                                      \
+        vec3 d = s.xyz - xi;                                                          \
+        float reach = ri + s.w;                                                       \
+        if (k != slot && s.w > 0.0 && dot(d, d) < reach * reach &&                    \
+            overlapCount < MAX_OVERLAPS)                                              \
+            overlaps[overlapCount++] = k;                                             \
+    }
+    FOR_EACH_NEAR(xi, cullReach, LIST)
+#undef LIST
     vec4 caps[MAX_CAPS];
     int nearCaps = 0, farCaps = 0;
-#define COVER(k)                                                    \
-    if (!hidden) {                                                  \
-        OVERLAP(k, uCosMargin, uSinMargin, false, cap)              \
-        if (nearCaps + farCaps < MAX_CAPS) {                        \
-            if (dist2_ <= nearLimit2)                               \
-                caps[nearCaps++] = cap;                             \
-            else                                                    \
-                caps[MAX_CAPS - 1 - farCaps++] = cap;               \
-        }                                                           \
-        END_OVERLAP                                                 \
+    for (int n = 0; n < overlapCount && !hidden; ++n) {
+        uint k = overlaps[n];
+        OVERLAP(k, uCosMargin, uSinMargin, false, cap)
+        if (nearCaps + farCaps < MAX_CAPS) {
+            if (dist2_ <= nearLimit2)
+                caps[nearCaps++] = cap;
+            else
+                caps[MAX_CAPS - 1 - farCaps++] = cap;
+        }
+        END_OVERLAP
     }
-    FOR_EACH_NEAR(xi, cullReach, COVER)
-#undef COVER
     if (!hidden && nearCaps + farCaps > 0) {
         hidden = true;
         for (int dir = 0; dir < DIRECTIONS && hidden; ++dir) {
