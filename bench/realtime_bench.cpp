@@ -15,6 +15,8 @@
 // droplets, kernels, cull, field_normals, anisotropy, upload, pack) and per_set_share its share of
 // the frame. BM_Planet1M1080pNewSet/gpu is the GPU target (a frame of a new 1M-particle set
 // at 1920 x 1080 under 16 ms): it runs as it is on an NVIDIA EGL device.
+// BM_PerSet1MGpu: the per-set stages alone (realtime/per_set_gpu.h, no render passes) for a new
+// 1M-particle set every iteration: a quick measure of those stages while working on them.
 // Run: build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
