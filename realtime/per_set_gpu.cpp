@@ -32,6 +32,7 @@ constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
 constexpr std::size_t HEADER_BYTES = SORT_DISPATCH + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
+constexpr unsigned REDUCED = 16;     // particles per invocation of H_MIN and LEVELS
 constexpr std::size_t BLOCK = 4096;  // values per work group of scan.comp
 // The coarse culling grid's directions (CullingDirections::coarseCount), per_set.comp's
 // COARSE_DIRECTIONS.
@@ -250,8 +251,8 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
     mCellOf.clear();  // SCATTER's fill counts
     bindStorage();
     run("INIT", 1);
-    run("H_MIN", groups(mCount));
-    run("LEVELS", groups(mCount));
+    run("H_MIN", groups(mCount, GROUP * REDUCED));
+    run("LEVELS", groups(mCount, GROUP * REDUCED));
     run("LAYOUT", 1);
     run("COUNT", groups(mCount));
     scan(programs, mCells, 0, mMaxCells, true);  // the cells LAYOUT made

@@ -98,28 +98,51 @@ void main() {
 }
 #endif
 
+// H_MIN and LEVELS: each invocation takes PER_INVOCATION particles (a stride of all the
+// invocations apart, so neighbouring invocations read neighbouring particles), folds them in
+// its registers and updates the Header once per value (per level run for LEVELS): an atomic
+// per particle and value, on the same few words, would cost more than the rest of the grid.
+const uint PER_INVOCATION = 16u;  // per_set_gpu.cpp's REDUCED
+uint stride() { return gl_NumWorkGroups.x * gl_WorkGroupSize.x; }
+
 #ifdef H_MIN
 void main() {
-    uint i = invocation();
-    if (i < uCount) atomicMin(hMinBits, floatBitsToUint(particleH(i)));
+    uint least = 0x7F800000u;  // +inf
+    for (uint k = 0u, i = invocation(); k < PER_INVOCATION && i < uCount; ++k, i += stride())
+        least = min(least, floatBitsToUint(particleH(i)));
+    atomicMin(hMinBits, least);
 }
 #endif
 
 #ifdef LEVELS
+void addToLevel(int L, uvec4 lo, uvec4 hi) {
+    atomicMin(levels[L].minKey.x, lo.x);
+    atomicMin(levels[L].minKey.y, lo.y);
+    atomicMin(levels[L].minKey.z, lo.z);
+    atomicAdd(levels[L].minKey.w, lo.w);
+    atomicMax(levels[L].maxKey.x, hi.x);
+    atomicMax(levels[L].maxKey.y, hi.y);
+    atomicMax(levels[L].maxKey.z, hi.z);
+    atomicMax(levels[L].maxKey.w, hi.w);
+}
 void main() {
-    uint i = invocation();
-    if (i >= uCount) return;
-    float h = particleH(i);
-    int L = levelOf(h);
-    vec3 p = particlePosition(i);
-    atomicMin(levels[L].minKey.x, orderedKey(p.x));
-    atomicMin(levels[L].minKey.y, orderedKey(p.y));
-    atomicMin(levels[L].minKey.z, orderedKey(p.z));
-    atomicAdd(levels[L].minKey.w, 1u);
-    atomicMax(levels[L].maxKey.x, orderedKey(p.x));
-    atomicMax(levels[L].maxKey.y, orderedKey(p.y));
-    atomicMax(levels[L].maxKey.z, orderedKey(p.z));
-    atomicMax(levels[L].maxKey.w, floatBitsToUint(h));
+    int L = -1;  // the level of the run of particles folded so far
+    uvec4 lo = uvec4(0u), hi = uvec4(0u);  // their smallest keys, count; largest keys, h
+    for (uint k = 0u, i = invocation(); k < PER_INVOCATION && i < uCount; ++k, i += stride()) {
+        float h = particleH(i);
+        int level = levelOf(h);
+        vec3 p = particlePosition(i);
+        uvec3 key = uvec3(orderedKey(p.x), orderedKey(p.y), orderedKey(p.z));
+        if (level != L) {
+            if (L >= 0) addToLevel(L, lo, hi);
+            L = level;
+            lo = uvec4(key, 0u);
+            hi = uvec4(key, 0u);
+        }
+        lo = uvec4(min(lo.xyz, key), lo.w + 1u);
+        hi = uvec4(max(hi.xyz, key), max(hi.w, floatBitsToUint(h)));
+    }
+    if (L >= 0) addToLevel(L, lo, hi);
 }
 #endif
 
