@@ -11,11 +11,13 @@
 // BM_Planet100k720pSurface/<method>: each surface method at its defaults.
 // BM_Planet*NewSet/<gpu|cpu>: every frame a new particle set (the particles move by a few
 // float ulps between frames, so the per-set work is redone: counters.per_set_builds = 1), with
-// realtime.per_set = gpu or cpu; per_set_ms is the sum of the per-set stages (grid, radius,
-// droplets, kernels, cull, field_normals, anisotropy, upload, pack) and per_set_share its share of
-// the frame. BM_Planet1M1080pNewSet/gpu is the GPU target (a frame of a new 1M-particle set
-// at 1920 x 1080 under 16 ms): it runs as it is on an NVIDIA EGL device.
-// Run: build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
+// realtime.per_set = gpu or cpu; per_set_ms is the sum of the per-set stages (grid,
+// particle_normals, radius, droplets, kernels, cull, field_normals, anisotropy, upload, pack) and
+// per_set_share its share of the frame. BM_Planet1M1080pNewSet/gpu is the GPU target (a
+// frame of a new 1M-particle set at 1920 x 1080 under 16 ms): it runs as it is on an NVIDIA EGL
+// device. BM_PerSet1MGpu: the per-set stages alone (realtime/per_set_gpu.h, no render passes) for a
+// new 1M-particle set every iteration: a quick measure of those stages while working on them. Run:
+// build/bench/realtime_bench [--benchmark_filter=...] [--benchmark_repetitions=3]
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -33,6 +35,7 @@
 #include "realtime/gl/context.h"
 #include "realtime/impostor_radius.h"
 #include "realtime/occlusion_culling.h"
+#include "realtime/per_set_gpu.h"
 #include "realtime/renderer.h"
 #include "realtime/settings.h"
 
@@ -167,8 +170,8 @@ void newSetFrames(benchmark::State& state, int particles, int width, int height,
     for (auto _ : state) {
         tr::core::Frame r = renderer.render({s.scene, sets[frame++ % 2], s.materials});
         for (const auto& [stage, ms] : r.timingsMs) sums[stage] += ms;
-        for (const char* stage : {"grid", "radius", "droplets", "kernels", "cull", "field_normals",
-                                  "anisotropy", "upload", "pack"})
+        for (const char* stage : {"grid", "particle_normals", "radius", "droplets", "kernels",
+                                  "cull", "field_normals", "anisotropy", "upload", "pack"})
             perSet += r.timingsMs[stage];
         builds += r.counters["per_set_builds"];
         benchmark::DoNotOptimize(r.image.pixels().data());
@@ -190,6 +193,49 @@ void BM_Planet100k720pNewSet(benchmark::State& state, tr::realtime::PerSetDevice
 }
 void BM_Planet1M1080pNewSet(benchmark::State& state, tr::realtime::PerSetDevice where) {
     newSetFrames(state, 1000000, 1920, 1080, where);
+}
+
+// The per-set work alone on the GPU (realtime/per_set_gpu.h), without the render passes: every
+// iteration a new set (as newSetFrames), what the planet's frame asks for (its radii, the
+// gradient pass's kernels, culling), each stage in milliseconds and per_set_ms their sum.
+void BM_PerSet1MGpu(benchmark::State& state) {
+    const LoadedScene& s = planet(1000000, 1920, 1080);
+    tr::realtime::PerSetRequest request;
+    request.particles = s.settings.particles;
+    request.kernels = s.settings.particles.normal == tr::realtime::NormalModel::Gradient;
+    request.cull = s.settings.particles.cullHidden;
+    request.droplets = s.settings.particles.radius == tr::realtime::RadiusModel::Field &&
+                       s.settings.particles.dropletAtoms >= 2;
+    tr::core::SceneParticles sets[2] = {s.particles, s.particles};
+    for (glm::vec3& p : sets[1].particles.position)
+        p = glm::vec3(std::nextafter(p.x, 1e30f), p.y, p.z);
+    context().makeCurrent();
+    tr::realtime::ProgramCache programs;
+    tr::realtime::compilePerSetPrograms(programs, request);
+    tr::realtime::GpuPerSet perSet;
+    const tr::realtime::FrameRequest frame{s.scene.camera.position, 1e-3};
+    perSet.update(programs, sets[1].particles, request, sets[1].bodies);
+    perSet.pack(programs, frame);
+    perSet.takeTimings();
+    std::map<std::string, double> sums;
+    int k = 0;
+    for (auto _ : state) {
+        const tr::core::SceneParticles& set = sets[k++ % 2];
+        perSet.update(programs, set.particles, request, set.bodies);
+        perSet.pack(programs, frame);
+        sums["upload"] += perSet.uploadMs();
+        for (const auto& [stage, ms] : perSet.takeTimings()) sums[stage] += ms;
+    }
+    double total = 0.0;
+    for (const auto& [stage, ms] : sums) {
+        state.counters[fmt::format("{}_ms", stage)] =
+            benchmark::Counter(ms, benchmark::Counter::kAvgIterations);
+        total += ms;
+    }
+    state.counters["per_set_ms"] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);
+    state.counters["drawn"] = double(perSet.drawnCount());
+    state.counters["kernels"] = double(perSet.kernelCount());
+    state.SetLabel(context().renderer());
 }
 
 // Occlusion culling alone (CPU, part of "upload").
@@ -231,6 +277,7 @@ BENCHMARK_CAPTURE(BM_Planet100k720pSurface, shader_pass_through,
     ->Iterations(3);
 BENCHMARK(BM_Planet100k720pEllipsoids)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet100k720pNoCulling)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_PerSet1MGpu)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Cull100k)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet1M1080p)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK_CAPTURE(BM_Planet100k720pNewSet, gpu, tr::realtime::PerSetDevice::Gpu)

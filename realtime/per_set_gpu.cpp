@@ -1,6 +1,9 @@
 #include "realtime/per_set_gpu.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <glm/vec4.hpp>
@@ -22,11 +25,19 @@ namespace {
 // units of n floats) of each attribute.
 constexpr std::size_t ATTRIBUTE_FLOATS = 21;
 constexpr int MAX_LEVELS = 32;
-// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes.
-constexpr std::size_t HEADER_BYTES = 16 + 32 + MAX_LEVELS * 64;
+// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes, then indirect
+// dispatches (bytes): the walk list's, the cell scan's, SORT's.
+constexpr std::size_t WALK_DISPATCH = 16 + 32 + MAX_LEVELS * 64;
+constexpr std::size_t SCAN_DISPATCH = WALK_DISPATCH + 16;
+constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
+constexpr std::size_t HEADER_BYTES = SORT_DISPATCH + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
-constexpr std::size_t BLOCK = 1024;  // values per work group of scan.comp
+constexpr unsigned REDUCED = 16;     // particles per invocation of H_MIN and LEVELS
+constexpr std::size_t BLOCK = 4096;  // values per work group of scan.comp
+// The coarse culling grid's directions (CullingDirections::coarseCount), per_set.comp's
+// COARSE_DIRECTIONS.
+constexpr std::size_t COARSE_DIRECTIONS = 42;
 
 unsigned groups(std::size_t count, std::size_t per = GROUP) {
     return static_cast<unsigned>((count + per - 1) / per);
@@ -49,7 +60,10 @@ enum Binding : unsigned {
     DRAW_LISTS = 14,
     DIRECTIONS = 15,
     DROPLETS = 16,
-    BODIES = 17,
+    CULL_SPHERES = 17,
+    WALKS = 18,
+    BLOCK_SUMS = 19,  // scan.comp
+    BODIES = 20,      // NORMALS
 };
 
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
@@ -81,19 +95,46 @@ int modelKind(const ParticleSettings& p) {
     return p.normal == NormalModel::Field ? 1 : 0;
 }
 
+// The CULL stage, the coarse grid's directions compiled in.
+const gl::Program& cullProgram(ProgramCache& programs) {
+    static const std::string directions = [] {
+        std::string list;
+        const auto& d = cullingDirections().directions;
+        for (std::size_t k = 0; k < COARSE_DIRECTIONS; ++k)
+            list += fmt::format("{}vec3({:.9g}, {:.9g}, {:.9g})", k ? ", " : "", float(d[k].x),
+                                float(d[k].y), float(d[k].z));
+        return list;
+    }();
+    return programs.compute("per_set.comp", {"CULL", "COARSE_DIRECTION_VALUES " + directions});
+}
+
+// `buffer` kept where it has `bytes` already, else a new zero-filled one.
+enum class Resized { Kept, New };
+Resized resized(gl::Buffer& buffer, std::size_t bytes) {
+    if (buffer.size() == std::max<std::size_t>(bytes, 16)) return Resized::Kept;
+    buffer = gl::Buffer::zeros(bytes);
+    return Resized::New;
+}
+Resized resized(std::optional<gl::Buffer>& buffer, std::size_t bytes) {
+    if (buffer) return resized(*buffer, bytes);
+    buffer.emplace(gl::Buffer::zeros(bytes));
+    return Resized::New;
+}
+
 }  // namespace
 
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
     for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
-    std::vector<const char*> stages = {"INIT",    "H_MIN", "LEVELS", "LAYOUT",  "COUNT",
-                                       "SCATTER", "SORT",  "GATHER", "NORMALS", "RADIUS",
-                                       "MARK",    "PACK",  "FINISH"};
+    std::vector<const char*> stages = {"INIT",        "H_MIN", "LEVELS", "LAYOUT",  "COUNT",
+                                       "SCATTER",     "SORT",  "GATHER", "NORMALS", "RADIUS",
+                                       "RADIUS_WALK", "MARK",  "PACK",   "FINISH"};
     if (request.kernels) stages.push_back("KERNELS");
-    if (request.cull) stages.insert(stages.end(), {"CULL", "NEAR"});
+    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "CULL_FULL", "NEAR"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
     for (const char* stage : stages) programs.compute("per_set.comp", {stage});
+    if (request.cull) cullProgram(programs);
 }
 
 void GpuPerSet::timed(const char* stage, const auto& work) {
@@ -107,6 +148,11 @@ void GpuPerSet::timed(const char* stage, const auto& work) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+void GpuPerSet::clearWalks() {
+    const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};  // no work groups, no entries
+    mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
+}
+
 void GpuPerSet::bindStorage() const {
     mAttributes.bindStorage(ATTRIBUTES);
     mHeader.bindStorage(HEADER);
@@ -115,11 +161,13 @@ void GpuPerSet::bindStorage() const {
     mEntries.bindStorage(ENTRIES);
     mSorted.bindStorage(SORTED);
     mRadii.bindStorage(RADII);
+    mWalks.bindStorage(WALKS);
     mFlags.bindStorage(FLAGS);
     if (mModelBuffer) mModelBuffer->bindStorage(MODELS);
     if (mDrawLists) mDrawLists->bindStorage(DRAW_LISTS);
     mDirections.bindStorage(DIRECTIONS);
     if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
+    if (mCullSpheres.size() > 0) mCullSpheres.bindStorage(CULL_SPHERES);
 }
 
 void GpuPerSet::upload(const core::ParticleSet& ps) {
@@ -127,7 +175,14 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     mCount = n;
     // Every level has at most max(4 x its particles, 4096) cells.
     mMaxCells = 4 * n + 4096 * MAX_LEVELS;
-    mAttributes = gl::Buffer::zeros(ATTRIBUTE_FLOATS * n * sizeof(float));
+    // A set of as many particles as the last keeps the buffers: each stage writes what it reads
+    // (the grid's counters are cleared in buildGrid), and allocating and zeroing them anew cost
+    // more than the rest of the upload.
+    const bool kept = resized(mAttributes, ATTRIBUTE_FLOATS * n * sizeof(float)) == Resized::Kept;
+    const bool complete = ps.h.size() == n && ps.volume.size() == n && ps.normal.size() == n &&
+                          ps.body.size() == n && ps.uv.size() == n && ps.dudx.size() == n &&
+                          ps.dvdx.size() == n && ps.glow.size() == n && ps.material.size() == n;
+    if (kept && !complete) mAttributes.clear();  // the attributes a set lacks read as 0
     writeAttribute(mAttributes, 0, n, ps.position);
     writeAttribute(mAttributes, 3, n, ps.h);
     writeAttribute(mAttributes, 4, n, ps.volume);
@@ -139,40 +194,49 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     writeAttribute(mAttributes, 17, n, ps.glow);
     writeAttribute(mAttributes, 20, n, ps.material);
     mHeader = gl::Buffer::zeros(HEADER_BYTES);
-    mCells = gl::Buffer::zeros((mMaxCells + 1) * sizeof(std::uint32_t));
-    mCellOf = gl::Buffer::zeros((n + mMaxCells) * sizeof(std::uint32_t));
-    mSorted = gl::Buffer::zeros(n * sizeof(std::uint32_t));
-    mEntries = gl::Buffer::zeros(n * GRID_ENTRY_BYTES);
-    mRadii = gl::Buffer::zeros(n * sizeof(float));
-    mFlags = gl::Buffer::zeros(n * sizeof(std::uint32_t));
-    mBlockSums = gl::Buffer::zeros((groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) *
-                                   sizeof(std::uint32_t));
+    resized(mCells, (mMaxCells + 1) * sizeof(std::uint32_t));
+    resized(mCellOf, (n + mMaxCells) * sizeof(std::uint32_t));
+    resized(mSorted, n * sizeof(std::uint32_t));
+    resized(mEntries, n * GRID_ENTRY_BYTES);
+    resized(mRadii, n * sizeof(float));
+    resized(mWalks, n * sizeof(std::uint32_t));
+    resized(mFlags, n * sizeof(std::uint32_t));
+    resized(mBlockSums,
+            (groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) * sizeof(std::uint32_t));
     if (mDirections.size() == 0) {
+        assert(cullingDirections().coarseCount == COARSE_DIRECTIONS);
         std::vector<glm::vec4> directions;
         for (const glm::dvec3& d : cullingDirections().directions)
             directions.emplace_back(glm::vec3(d), 0.0f);
         mDirections = gl::Buffer::of(std::span<const glm::vec4>(directions));
     }
-    mModelBuffer.reset();
+    if (!kept) {
+        mCullSpheres = gl::Buffer();
+        mModelBuffer.reset();
+        mEllipsoids.reset();
+    }
     mDroplets = gl::Buffer();
     mDropletCount = 0;
-    mDrawLists.emplace(gl::Buffer::zeros(2 * (n + 1) * sizeof(std::uint32_t)));
-    mParticles.emplace(gl::Buffer::zeros(n * sizeof(GpuParticle)));
-    mKernels.emplace(gl::Buffer::zeros(n * sizeof(GpuKernel)));
-    mEllipsoids.reset();
+    resized(mDrawLists, 2 * (n + 1) * sizeof(std::uint32_t));
+    resized(mParticles, n * sizeof(GpuParticle));
+    resized(mKernels, n * sizeof(GpuKernel));
 }
 
 void GpuPerSet::scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
-                     std::size_t count) {
-    const unsigned blocks = groups(count, BLOCK);
+                     std::size_t count, bool cells) {
     data.bindStorage(ATTRIBUTES);
-    mBlockSums.bindStorage(HEADER);
+    mBlockSums.bindStorage(BLOCK_SUMS);
     for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) {
         const gl::Program& p = programs.compute("scan.comp", {stage});
         p.set("uCount", static_cast<unsigned>(count));
         p.set("uOffset", static_cast<unsigned>(offset));
-        p.set("uBlocks", blocks);
-        p.dispatch(std::string_view(stage) == "SUMS" ? 1u : std::max(blocks, 1u));
+        p.set("uCells", cells ? 1 : 0);
+        if (std::string_view(stage) == "SUMS")
+            p.dispatch(1);
+        else if (cells)
+            p.dispatchIndirect(mHeader, SCAN_DISPATCH);
+        else
+            p.dispatch(std::max(groups(count, BLOCK), 1u));
         gl::computeBarrier();
     }
     bindStorage();
@@ -185,15 +249,21 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
         p.dispatch(count);
         gl::computeBarrier();
     };
+    mCells.clear();   // COUNT's counts
+    mCellOf.clear();  // SCATTER's fill counts
     bindStorage();
     run("INIT", 1);
-    run("H_MIN", groups(mCount));
-    run("LEVELS", groups(mCount));
+    run("H_MIN", groups(mCount, GROUP * REDUCED));
+    run("LEVELS", groups(mCount, GROUP * REDUCED));
     run("LAYOUT", 1);
     run("COUNT", groups(mCount));
-    scan(programs, mCells, 0, mMaxCells);
+    scan(programs, mCells, 0, mMaxCells, true);  // the cells LAYOUT made
     run("SCATTER", groups(mCount));
-    run("SORT", groups(mMaxCells));
+    {
+        const gl::Program& p = programs.compute("per_set.comp", {"SORT"});
+        p.dispatchIndirect(mHeader, SORT_DISPATCH);
+        gl::computeBarrier();
+    }
     run("GATHER", groups(mCount));
 }
 
@@ -251,13 +321,20 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             mFlags.clear();  // no droplet slots
             const std::uint32_t zero = 0;
             mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
-            const gl::Program& p = stage("RADIUS");
-            p.set("uDropletAtoms", radiusSettings.dropletAtoms);
-            p.set("uRadiusScale", static_cast<float>(s.radiusScale));
-            p.set("uCrossingScale", static_cast<float>(s.crossingScale));
-            p.set("uLevel", static_cast<float>(s.surfaceLevel));
-            p.set("uFixed", s.radius == RadiusModel::Fixed ? 1 : 0);
-            p.dispatch(groups(mCount));
+            clearWalks();
+            auto radiusStage = [&](const char* name) -> const gl::Program& {
+                const gl::Program& p = stage(name);
+                p.set("uDropletAtoms", radiusSettings.dropletAtoms);
+                p.set("uRadiusScale", static_cast<float>(s.radiusScale));
+                p.set("uCrossingScale", static_cast<float>(s.crossingScale));
+                p.set("uLevel", static_cast<float>(s.surfaceLevel));
+                p.set("uFixed", s.radius == RadiusModel::Fixed ? 1 : 0);
+                return p;
+            };
+            radiusStage("RADIUS").dispatch(groups(mCount));
+            gl::computeBarrier();
+            // The particles the early exit left, as many work groups as RADIUS counted.
+            radiusStage("RADIUS_WALK").dispatchIndirect(mHeader, WALK_DISPATCH);
         });
         mDropletCount = 0;
         if (radiusSettings.dropletAtoms >= 2)
@@ -269,15 +346,26 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     }
     if (request.cull && !mCulled) {
         timed("cull", [&] {
-            const gl::Program& p = stage("CULL");
+            if (mCullSpheres.size() == 0) {
+                mCullSpheres = gl::Buffer::zeros(mCount * sizeof(glm::vec4));
+                mCullSpheres.bindStorage(CULL_SPHERES);
+            }
+            clearWalks();
+            stage("CULL_SPHERES").dispatch(groups(mCount));
+            gl::computeBarrier();
             const CullingDirections& grid = cullingDirections();
-            p.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
-            p.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
-            p.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
-            p.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
-            p.set("uCoarseDirections", static_cast<int>(grid.coarseCount));
-            p.set("uRadiusScale", static_cast<float>(s.radiusScale));
-            p.dispatch(groups(mCount));
+            const gl::Program& coarse = cullProgram(programs);
+            coarse.set("uCount", static_cast<unsigned>(mCount));
+            coarse.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
+            coarse.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
+            coarse.dispatch(groups(mCount));
+            gl::computeBarrier();
+            // The spheres the coarse test left, as many work groups as CULL counted.
+            const gl::Program& full = stage("CULL_FULL");
+            full.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
+            full.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
+            full.set("uRadiusScale", static_cast<float>(s.radiusScale));
+            full.dispatchIndirect(mHeader, WALK_DISPATCH);
         });
         mCulled = true;
         built = true;
@@ -360,8 +448,10 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
             gl::computeBarrier();
         }
         {
+            clearWalks();
             const gl::Program& p = stage("MARK");
             p.set("uCull", cull ? 1 : 0);
+            p.set("uListDrawn", mRequest.kernels ? 1 : 0);  // for KERNELS
             p.dispatch(groups(mCount));
             gl::computeBarrier();
         }
@@ -371,7 +461,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
             const gl::Program& p = programs.compute("per_set.comp", {"KERNELS"});
             p.set("uCount", static_cast<unsigned>(mCount));
             p.set("uEllipsoids", mModels == 2 ? 1 : 0);
-            p.dispatch(groups(mCount));
+            p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed
         });
     timed("pack", [&] {
         scan(programs, *mDrawLists, 0, mCount);

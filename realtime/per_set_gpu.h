@@ -100,9 +100,12 @@ class GpuPerSet {
     void applyDroplets(const core::ParticleSet& particles, const ParticleSettings& settings);
     void buildGrid(ProgramCache& programs);
     void deriveNormals(ProgramCache& programs, std::span<const core::BodyInfo> bodies);
-    void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
-              std::size_t count);
+    // Exclusive prefix sum of `count` uints of `data` from `offset` (with `cells`: of the
+    // grid's cells, at most `count`, their number read on the GPU).
+    void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset, std::size_t count,
+              bool cells = false);
     void bindStorage() const;
+    void clearWalks();  // empties the walk list (shaders/per_set.comp's appendWalk)
     void timed(const char* stage, const auto& work);
 
     std::size_t mCount = 0, mMaxCells = 0;
@@ -119,8 +122,10 @@ class GpuPerSet {
     gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
-    gl::Buffer mDroplets;  // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
-    gl::Buffer mBodies;    // deriveNormals: 2 vec4 per body, its centre and pole axis
+    gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
+    gl::Buffer mWalks;        // the particles RADIUS_WALK takes
+    gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
+    gl::Buffer mBodies;       // deriveNormals: 2 vec4 per body, its centre and pole axis
     std::map<std::string, double> mTimings;  // since the last takeTimings()
 };
 

@@ -119,6 +119,13 @@ void Program::dispatch(unsigned groups) const {
     if (groups > 0) glDispatchCompute(groups, 1, 1);
 }
 
+void Program::dispatchIndirect(const Buffer& commands, std::size_t offset) const {
+    use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, commands.id());
+    glDispatchComputeIndirect(static_cast<GLintptr>(offset));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+}
+
 int Program::location(std::string_view uniform) const {
     auto it = mLocations.find(uniform);
     if (it == mLocations.end()) {

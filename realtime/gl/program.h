@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "realtime/gl/buffer.h"
 #include "realtime/gl/handle.h"
 
 namespace twinrender::realtime::gl {
@@ -42,6 +43,9 @@ class Program {
     void use() const;
     // use(), then glDispatchCompute(groups, 1, 1) (nothing when groups is 0).
     void dispatch(unsigned groups) const;
+    // use(), then glDispatchComputeIndirect from `commands` at `offset` bytes (3 uints: the work
+    // groups along x, y and z, written by an earlier pass).
+    void dispatchIndirect(const Buffer& commands, std::size_t offset) const;
     const std::string& name() const { return mName; }
     unsigned id() const { return mHandle.id(); }
 

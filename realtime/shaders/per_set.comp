@@ -3,8 +3,9 @@
 // the set came without them (NORMALS), the answers per particle
 // (RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR, MARK,
 // PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or cell).
-#if defined(NORMALS) || defined(RADIUS) || defined(KERNELS) || defined(CULL) || \
-    defined(FIELD_NORMAL) || defined(ANISOTROPY)
+#if defined(NORMALS) || defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || \
+    defined(CULL) || defined(CULL_FULL) || defined(FIELD_NORMAL) || defined(ANISOTROPY) ||   \
+    defined(CULL_SPHERES)
 #define GRID_READ
 #endif
 #include "per_set.glsl"
@@ -29,8 +30,9 @@ layout(std430, binding = 10) buffer Sorted {
 };
 #endif
 
-#if defined(RADIUS) || defined(KERNELS) || defined(CULL) || defined(FIELD_NORMAL) || \
-    defined(ANISOTROPY) || defined(NEAR) || defined(MARK) || defined(PACK)
+#if defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || defined(CULL) || \
+    defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(NEAR) || defined(MARK) ||     \
+    defined(PACK) || defined(CULL_SPHERES)
 layout(std430, binding = 11) buffer Radii {
     float radii[];
 };
@@ -38,7 +40,8 @@ layout(std430, binding = 11) buffer Radii {
 
 // flags: bit 1: hidden (occlusion_culling.h).
 const uint HIDDEN = 2u;
-#if defined(CULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+#if defined(CULL) || defined(CULL_FULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || \
+    defined(PACK) || defined(CULL_SPHERES)
 layout(std430, binding = 12) buffer Flags {
     uint flags[];  // CULL writes bit 1 of its own particle's flags only
 };
@@ -46,7 +49,7 @@ layout(std430, binding = 12) buffer Flags {
 
 // A droplet's first particle: its slot + 1 in the flags from bit 8 (0: not a droplet's), and
 // per droplet its ellipsoid (GpuEllipsoid) and field normal model (FieldNormal), 3 vec4 each.
-#if defined(CULL) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+#if defined(CULL_SPHERES) || defined(NEAR) || defined(KERNELS) || defined(PACK)
 uint dropletSlot(uint i) { return flags[i] >> 8; }
 #endif
 #if defined(KERNELS) || defined(PACK)
@@ -61,6 +64,23 @@ layout(std430, binding = 16) readonly buffer Droplets {
 layout(std430, binding = 13) buffer Models {
     vec4 models[];
 };
+#endif
+
+// The invocations a long pass takes, appended by the pass before it and dispatched indirectly
+// (the Header's walkDispatch: work groups, 1, 1, entries): RADIUS_WALK the particles RADIUS's
+// early exit leaves, CULL_FULL the grid slots CULL's coarse test leaves, KERNELS the particles
+// MARK draws. One dispatch over them alone keeps the lanes busy, where in the particles' order
+// they would be a few lanes of many vectors, each vector paying the long loops.
+#if defined(RADIUS) || defined(RADIUS_WALK) || defined(CULL) || defined(CULL_FULL) || \
+    defined(MARK) || defined(KERNELS)
+layout(std430, binding = 18) buffer Walks {
+    uint walkList[];
+};
+void appendWalk(uint value) {
+    uint next = atomicAdd(walkDispatch.w, 1u);
+    if (next % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
+    walkList[next] = value;
+}
 #endif
 
 // ---- The grid ----
@@ -80,28 +100,51 @@ void main() {
 }
 #endif
 
+// H_MIN and LEVELS: each invocation takes PER_INVOCATION particles (a stride of all the
+// invocations apart, so neighbouring invocations read neighbouring particles), folds them in
+// its registers and updates the Header once per value (per level run for LEVELS): an atomic
+// per particle and value, on the same few words, would cost more than the rest of the grid.
+const uint PER_INVOCATION = 16u;  // per_set_gpu.cpp's REDUCED
+uint stride() { return gl_NumWorkGroups.x * gl_WorkGroupSize.x; }
+
 #ifdef H_MIN
 void main() {
-    uint i = invocation();
-    if (i < uCount) atomicMin(hMinBits, floatBitsToUint(particleH(i)));
+    uint least = 0x7F800000u;  // +inf
+    for (uint k = 0u, i = invocation(); k < PER_INVOCATION && i < uCount; ++k, i += stride())
+        least = min(least, floatBitsToUint(particleH(i)));
+    atomicMin(hMinBits, least);
 }
 #endif
 
 #ifdef LEVELS
+void addToLevel(int L, uvec4 lo, uvec4 hi) {
+    atomicMin(levels[L].minKey.x, lo.x);
+    atomicMin(levels[L].minKey.y, lo.y);
+    atomicMin(levels[L].minKey.z, lo.z);
+    atomicAdd(levels[L].minKey.w, lo.w);
+    atomicMax(levels[L].maxKey.x, hi.x);
+    atomicMax(levels[L].maxKey.y, hi.y);
+    atomicMax(levels[L].maxKey.z, hi.z);
+    atomicMax(levels[L].maxKey.w, hi.w);
+}
 void main() {
-    uint i = invocation();
-    if (i >= uCount) return;
-    float h = particleH(i);
-    int L = levelOf(h);
-    vec3 p = particlePosition(i);
-    atomicMin(levels[L].minKey.x, orderedKey(p.x));
-    atomicMin(levels[L].minKey.y, orderedKey(p.y));
-    atomicMin(levels[L].minKey.z, orderedKey(p.z));
-    atomicAdd(levels[L].minKey.w, 1u);
-    atomicMax(levels[L].maxKey.x, orderedKey(p.x));
-    atomicMax(levels[L].maxKey.y, orderedKey(p.y));
-    atomicMax(levels[L].maxKey.z, orderedKey(p.z));
-    atomicMax(levels[L].maxKey.w, floatBitsToUint(h));
+    int L = -1;  // the level of the run of particles folded so far
+    uvec4 lo = uvec4(0u), hi = uvec4(0u);  // their smallest keys, count; largest keys, h
+    for (uint k = 0u, i = invocation(); k < PER_INVOCATION && i < uCount; ++k, i += stride()) {
+        float h = particleH(i);
+        int level = levelOf(h);
+        vec3 p = particlePosition(i);
+        uvec3 key = uvec3(orderedKey(p.x), orderedKey(p.y), orderedKey(p.z));
+        if (level != L) {
+            if (L >= 0) addToLevel(L, lo, hi);
+            L = level;
+            lo = uvec4(key, 0u);
+            hi = uvec4(key, 0u);
+        }
+        lo = uvec4(min(lo.xyz, key), lo.w + 1u);
+        hi = uvec4(max(hi.xyz, key), max(hi.w, floatBitsToUint(h)));
+    }
+    if (L >= 0) addToLevel(L, lo, hi);
 }
 #endif
 
@@ -135,6 +178,8 @@ void main() {
         first += int(n.x * n.y * n.z);
     }
     totalCells = uint(first);
+    scanDispatch = uvec4((totalCells + 4095u) / 4096u, 1u, 1u, 0u);  // scan.comp BLOCK
+    sortDispatch = uvec4((totalCells + 63u) / 64u, 1u, 1u, 0u);  // SORT's work groups of 64
 }
 #endif
 
@@ -210,7 +255,7 @@ mat3 normalFrame(vec3 n) {
     return mat3(t1, cross(n, t1), n);
 }
 
-#ifdef RADIUS
+#if defined(RADIUS) || defined(RADIUS_WALK)
 // impostor_radius.cpp: the distance along the normal to the level set (0 where the field at
 // the centre is not above it), at most radius_scale h; "fixed" (uFixed): radius_scale h.
 //
@@ -253,9 +298,31 @@ uniform int uDropletAtoms;
 float countReach_, halfCap_;
 // About the samples' midpoint: every kernel that reaches a sample, every neighbour within 2 h.
 float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + halfCap_; }
+
+// The field at the centre, half-way and at the cap, and the particles within 2 h, the particle
+// itself among them: RADIUS_WALK visits it once (it lies within walkReach), so its neighbours
+// are one fewer; the early exit's 2 x 2 x 2 cells hold it too unless radius_scale is large, and
+// a count one short there only leaves the particle to the walk.
+#define ADD_SAMPLES(k)                                            \
+    {                                                             \
+        vec4 e = entries[k].positionInvH;                         \
+        vec3 d = e.xyz - centre;                                  \
+        float c = entries[k].coefficients.x / e.w;                \
+        atCentre += c * m4Shape(length(d) * e.w);                 \
+        atHalf += c * m4Shape(length(d - halfway) * e.w);         \
+        atCap += c * m4Shape(length(d - cap) * e.w);              \
+        if (dot(d, d) < countReach2) ++neighbours;                \
+    }
+
 void main() {
+#ifdef RADIUS_WALK
+    uint t = invocation();
+    if (t >= walkDispatch.w) return;
+    uint i = walkList[t];
+#else
     uint i = invocation();
     if (i >= uCount) return;
+#endif
     float h = particleH(i);
     float maxRadius = uRadiusScale * h;
     if (uFixed != 0) {
@@ -267,22 +334,11 @@ void main() {
     const float PI = 3.14159265358979;
     float own = attribute1(ATTR_VOLUME, i) / (PI * h * h * h);
     float ownBound = own * (1.0 + 1e-4);  // at or below: alone in its support
-    // The field at the centre, half-way and at the cap, and the neighbours within 2 h.
     vec3 halfway = (0.5 * maxRadius) * n, cap = maxRadius * n;
     float countReach2 = uDropletAtoms > 0 ? 4.0 * h * h : 0.0;
     float atCentre = 0.0, atHalf = 0.0, atCap = 0.0;
     int neighbours = 0;
-#define ADD_SAMPLES(k)                                                                  \
-    {                                                                                   \
-        vec4 e = entries[k].positionInvH;                                               \
-        vec3 d = e.xyz - centre;                                                        \
-        float c = entries[k].coefficients.x / e.w;                                      \
-        atCentre += c * m4Shape(length(d) * e.w);                                       \
-        atHalf += c * m4Shape(length(d - halfway) * e.w);                                 \
-        atCap += c * m4Shape(length(d - cap) * e.w);                                    \
-        if (dot(d, d) < countReach2 && floatBitsToUint(entries[k].coefficients.z) != i) \
-            ++neighbours;                                                               \
-    }
+#ifndef RADIUS_WALK
     {
         Level g = levels[levelOf(h)];
         float inv = levelInvCell(g);
@@ -297,18 +353,41 @@ void main() {
                     for (uint k = cellStart[cell]; k < end; ++k) ADD_SAMPLES(k)
                 }
     }
+    if (uDropletAtoms > 0) --neighbours;  // itself
     if (atCentre > max(uLevel, ownBound) && atHalf > uLevel && atCap > uLevel &&
         neighbours >= uDropletAtoms) {
         radii[i] = min(maxRadius, uCrossingScale * maxRadius);
         return;
     }
-    atCentre = atHalf = atCap = 0.0;
-    neighbours = 0;
+    appendWalk(i);  // left to RADIUS_WALK
+#else
+    // One walk for the field at the centre and at the 8 samples k maxRadius / 8 (k = 1..8) of the
+    // bisection's first pass, half-way and the cap among them (the same offsets, so the same
+    // sums as three separate walks would give).
     countReach_ = uDropletAtoms > 0 ? 2.0 * h : 0.0;
     halfCap_ = 0.5 * maxRadius;
     vec3 middle = centre + 0.5 * cap;
-    FOR_EACH_NEAR(middle, walkReach, ADD_SAMPLES)
-#undef ADD_SAMPLES
+    float step = maxRadius / 8.0;
+    float values[8];
+    vec3 offsets[8];
+    for (int k = 0; k < 8; ++k) {
+        values[k] = 0.0;
+        offsets[k] = (0.0 + float(k + 1) * step) * n;  // fieldSamples' offsets from 0
+    }
+#define ADD_NINE(k)                                                                         \
+    {                                                                                       \
+        vec4 e = entries[k].positionInvH;                                                   \
+        vec3 d = e.xyz - centre;                                                            \
+        float c = entries[k].coefficients.x / e.w;                                          \
+        atCentre += c * m4Shape(length(d) * e.w);                                           \
+        for (int s = 0; s < 8; ++s) values[s] += c * m4Shape(length(d - offsets[s]) * e.w); \
+        if (dot(d, d) < countReach2) ++neighbours;                                          \
+    }
+    FOR_EACH_NEAR(middle, walkReach, ADD_NINE)
+#undef ADD_NINE
+    if (uDropletAtoms > 0) --neighbours;  // itself
+    atHalf = values[3];
+    atCap = values[7];
     float crossing = 0.0;
     if (atCentre > uLevel) {
         if (atCap > uLevel && atHalf > uLevel) {
@@ -319,10 +398,8 @@ void main() {
             // crossing is interpolated linearly within it (the CPU path bisects to
             // maxRadius / 8192; the two agree within 1e-4 h).
             float inside = 0.0, outside = -1.0, atInside = atCentre, atOutside = 0.0;
-            float step = maxRadius / 8.0;
-            float values[8];
             for (int pass = 0; pass < 3 && !(pass > 0 && outside < 0.0); ++pass) {
-                fieldSamples(centre, n, inside, step, values);
+                if (pass > 0) fieldSamples(centre, n, inside, step, values);
                 int first = 8;
                 for (int k = 7; k >= 0; --k)
                     if (!(values[k] > uLevel)) first = k;
@@ -353,10 +430,32 @@ void main() {
     float radius = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
     radii[i] = radius;
     if (radius > 0.0 && neighbours < uDropletAtoms) atomicAdd(sparseCount, 1u);
+#endif
+}
+#undef ADD_SAMPLES
+#endif
+
+#if defined(CULL_SPHERES) || defined(CULL) || defined(CULL_FULL)
+// Per grid slot (the order of the grid's entries): the sphere the culling tests, its position
+// and radius, the radius 0 where the particle neither hides nor is hidden (no radius, or a
+// droplet's: renderer.cpp's cullRadii). One compact record per neighbour read.
+layout(std430, binding = 17) buffer CullSpheres {
+    vec4 cullSpheres[];
+};
+uint entryIndex(uint k) { return floatBitsToUint(entries[k].coefficients.z); }
+#endif
+
+#ifdef CULL_SPHERES
+void main() {
+    uint k = invocation();
+    if (k >= uCount) return;
+    uint i = entryIndex(k);
+    float r = radii[i];
+    cullSpheres[k] = vec4(entries[k].positionInvH.xyz, r > 0.0 && dropletSlot(i) == 0u ? r : 0.0);
 }
 #endif
 
-#ifdef CULL
+#if defined(CULL) || defined(CULL_FULL)
 // occlusion_culling.cpp's exact test: hidden when every direction of the 162-point grid is
 // covered, with the grid's covering margin, by the cap of an overlapping sphere of the same
 // body, or when the sphere lies inside another (of equal coincident spheres the lower index
@@ -364,107 +463,161 @@ void main() {
 // Caps beyond MAX_CAPS are left out, which can only keep a sphere. The answer does not depend
 // on the neighbours' order.
 //
-// Most spheres lie inside a body, buried under the wide caps of their nearest neighbours.
-// Before that test, a cheaper one: the near shell alone (a third of the neighbourhood's
-// volume) on the coarse grid's 42 directions with its wider margin, a sufficient condition of
-// its own (a sphere it hides is hidden: exact as well, though it may hide a few borderline
-// spheres the fine grid keeps).
+// CULL: one invocation per grid slot (neighbouring invocations test neighbouring spheres,
+// which read the same cells and mostly take the same branches). Most spheres lie inside a
+// body, buried under the wide caps of their nearest neighbours: a cheaper test first, the near
+// shell alone (a third of the neighbourhood's volume) on the coarse grid's 42 directions with
+// its wider margin, a sufficient condition of its own (a sphere it hides is hidden: exact as
+// well, though it may hide a few borderline spheres the fine grid keeps). The near shell's
+// slots are listed first, by distance alone (one record read per neighbour, a cheap loop that
+// every lane runs alike), then their caps (the body compared), each marking the coarse
+// directions it covers in a bit mask (straight code over constants). The spheres it leaves are
+// appended to a list that CULL_FULL takes (one dispatch over them alone, as RADIUS_WALK).
 layout(std430, binding = 15) readonly buffer Directions {
     vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
 };
 uniform float uCosMargin, uSinMargin, uRadiusScale;
 uniform float uCoarseCosMargin, uCoarseSinMargin;
-uniform int uCoarseDirections;
 const int DIRECTIONS = 162, MAX_CAPS = 96;
 const float NEAR_SHELL = 1.4;  // radii
 float cullReach_ri;
 float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
 void main() {
-    uint i = invocation();
-    if (i >= uCount) return;
-    float ri = radii[i];
-    // Droplets are culled as nothing: neither hidden nor hiding (renderer.cpp's cullRadii).
-    if (!(ri > 0.0) || dropletSlot(i) != 0u) return;
-    vec3 xi = particlePosition(i);
-    uint body = attributeBits(ATTR_BODY, i);
-    vec4 caps[MAX_CAPS];  // unit axis, the least cosine of a covered direction
-    int nearCaps = 0, farCaps = 0;
+#ifdef CULL_FULL
+    if (invocation() >= walkDispatch.w) return;
+    uint slot = walkList[invocation()];
+#else
+    uint slot = invocation();
+    if (slot >= uCount) return;
+#endif
+    vec4 self = cullSpheres[slot];
+    float ri = self.w;
+    if (!(ri > 0.0)) return;
+    uint i = entryIndex(slot);
+    vec3 xi = self.xyz;
+    uint body = floatBitsToUint(entries[slot].coefficients.w);
     bool hidden = false;
     cullReach_ri = ri;
     float nearLimit2 = NEAR_SHELL * NEAR_SHELL * ri * ri;
-    // Sphere j (overlapping, of the same body, not a droplet) as a cap of directions covered
-    // with margin (COS_MARGIN, SIN_MARGIN), or i inside j; NEAR_ONLY: the near shell only.
-#define ADD_CAP(k, COS_MARGIN, SIN_MARGIN, NEAR_ONLY)                                       \
-    if (!hidden) {                                                                          \
-        uint j = floatBitsToUint(entries[k].coefficients.z);                                \
-        float rj = radii[j];                                                                \
-        vec3 d = entries[k].positionInvH.xyz - xi;                                          \
-        float dist2 = dot(d, d);                                                            \
-        float reach = ri + rj;                                                              \
-        if (j != i && rj > 0.0 && dropletSlot(j) == 0u &&                                   \
-            floatBitsToUint(entries[k].coefficients.w) == body && dist2 < reach * reach &&  \
-            (!NEAR_ONLY || dist2 <= nearLimit2)) {                                          \
-            float dist = sqrt(dist2);                                                       \
-            if (rj >= ri && dist + ri <= rj) {                                              \
-                if (dist2 > 0.0 || rj > ri || j < i) hidden = true;                         \
-            } else if (dist2 > 0.0 && nearCaps + farCaps < MAX_CAPS) {                      \
-                float cosG =                                                                \
-                    clamp((dist2 + ri * ri - rj * rj) / (2.0 * dist * ri), -1.0, 1.0);      \
-                if (cosG < COS_MARGIN) {                                                    \
-                    float sinG = sqrt(1.0 - cosG * cosG);                                   \
-                    vec4 cap = vec4(d / dist, cosG * COS_MARGIN + sinG * SIN_MARGIN + 2e-4); \
-                    if (dist2 <= nearLimit2)                                                \
-                        caps[nearCaps++] = cap;                                             \
-                    else                                                                    \
-                        caps[MAX_CAPS - 1 - farCaps++] = cap;                               \
-                }                                                                           \
-            }                                                                               \
-        }                                                                                   \
+    // The sphere in slot k if it overlaps (of the same body, neither hiding nor hidden
+    // excluded): hidden where i lies inside it, else its cap of directions covered with margin
+    // (COS_MARGIN, SIN_MARGIN) as CAP (unit axis, the least cosine of a covered direction);
+    // NEAR_ONLY: the near shell only.
+#define OVERLAP(k, COS_MARGIN, SIN_MARGIN, NEAR_ONLY, CAP)                                      \
+    vec4 s_ = cullSpheres[k];                                                                   \
+    float rj_ = s_.w;                                                                           \
+    vec3 d_ = s_.xyz - xi;                                                                      \
+    float dist2_ = dot(d_, d_);                                                                 \
+    float reach_ = ri + rj_;                                                                    \
+    if (k != slot && rj_ > 0.0 && dist2_ < reach_ * reach_ && (!NEAR_ONLY || dist2_ <= nearLimit2) && \
+        floatBitsToUint(entries[k].coefficients.w) == body) {                                   \
+        float dist_ = sqrt(dist2_);                                                             \
+        if (rj_ >= ri && dist_ + ri <= rj_) {                                                   \
+            if (dist2_ > 0.0 || rj_ > ri || entryIndex(k) < i) hidden = true;                   \
+        } else if (dist2_ > 0.0) {                                                              \
+            float cosG = clamp((dist2_ + ri * ri - rj_ * rj_) / (2.0 * dist_ * ri), -1.0, 1.0); \
+            if (cosG < COS_MARGIN) {                                                            \
+                float sinG = sqrt(1.0 - cosG * cosG);                                           \
+                vec4 CAP = vec4(d_ / dist_, cosG * COS_MARGIN + sinG * SIN_MARGIN + 2e-4);
+#define END_OVERLAP \
+    }               \
+    }               \
     }
-    // Whether every direction in [FIRST, END) is covered by a cap.
-#define COVERED(FIRST, END, RESULT)                                                         \
-    {                                                                                       \
-        RESULT = true;                                                                      \
-        for (int dir = FIRST; dir < END && RESULT; ++dir) {                                 \
-            vec3 u = directions[dir].xyz;                                                   \
-            bool covered = false;                                                           \
-            for (int c = 0; c < nearCaps && !covered; ++c)                                  \
-                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
-            for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)                 \
-                covered = dot(u, caps[c].xyz) >= caps[c].w;                                 \
-            RESULT = covered;                                                               \
-        }                                                                                   \
-    }
+#ifndef CULL_FULL
     // The near shell's caps from the 3 x 3 x 3 cells of the particle's own level around its
-    // cell (cells are at least the level's largest h: they hold the nearest neighbours).
+    // cell (cells are at least the level's largest h: they hold the nearest neighbours), each
+    // row of 3 cells one run of slots.
+    const int COARSE_DIRECTIONS = 42, MAX_NEAR_CAPS = 32;
+    // The coarse grid's directions, compiled in (per_set_gpu.cpp): the loops over them unroll
+    // into straight code with constant operands.
+    const vec3 COARSE[COARSE_DIRECTIONS] = vec3[](COARSE_DIRECTION_VALUES);
+    uint near[MAX_NEAR_CAPS];  // the near shell's grid slots (of any body: OVERLAP tests it)
+    int nearCount = 0;
     {
         Level g = levels[levelOf(particleH(i))];
         float inv = levelInvCell(g);
         ivec3 home = ivec3(floor((xi - g.originCell.xyz) * inv));
+        int x0 = max(home.x - 1, 0), x1 = min(home.x + 1, g.dims.x - 1);
         for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    ivec3 c = home + ivec3(dx, dy, dz);
-                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, g.dims.xyz))) continue;
-                    int cell = g.dims.w + (c.z * g.dims.y + c.y) * g.dims.x + c.x;
-                    uint end = cellStart[cell + 1];
-                    for (uint k = cellStart[cell]; k < end; ++k)
-                        ADD_CAP(k, uCoarseCosMargin, uCoarseSinMargin, true)
+            for (int dy = -1; dy <= 1; ++dy) {
+                ivec2 c = home.yz + ivec2(dy, dz);
+                if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, g.dims.yz)) || x0 > x1)
+                    continue;
+                int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
+                uint end = cellStart[row + x1 + 1];
+                for (uint k = cellStart[row + x0]; k < end; ++k) {
+                    vec4 s = cullSpheres[k];
+                    vec3 d = s.xyz - xi;
+                    float dist2 = dot(d, d), reach = ri + s.w;
+                    if (k != slot && s.w > 0.0 && dist2 < reach * reach && dist2 <= nearLimit2 &&
+                        nearCount < MAX_NEAR_CAPS)
+                        near[nearCount++] = k;
                 }
+            }
     }
-    if (!hidden && nearCaps > 0) COVERED(0, uCoarseDirections, hidden)
+    // Then their caps, each marking the coarse directions it covers.
+    uvec2 mask = uvec2(0u);  // bit d % 32 of word d / 32: coarse direction d covered
+    for (int n = 0; n < nearCount && !hidden; ++n) {
+        uint k = near[n];
+        OVERLAP(k, uCoarseCosMargin, uCoarseSinMargin, true, cap)
+        for (int d = 0; d < 32; ++d)
+            if (dot(COARSE[d], cap.xyz) >= cap.w) mask.x |= 1u << uint(d);
+        for (int d = 32; d < COARSE_DIRECTIONS; ++d)
+            if (dot(COARSE[d], cap.xyz) >= cap.w) mask.y |= 1u << uint(d - 32);
+        END_OVERLAP
+    }
+    if (mask == uvec2(0xFFFFFFFFu, (1u << uint(COARSE_DIRECTIONS - 32)) - 1u)) hidden = true;
     if (hidden) {
         flags[i] |= HIDDEN;
         return;
     }
-    nearCaps = 0;
-#define COVER(k) ADD_CAP(k, uCosMargin, uSinMargin, false)
-    FOR_EACH_NEAR(xi, cullReach, COVER)
-#undef COVER
-    if (!hidden && nearCaps + farCaps > 0) COVERED(0, DIRECTIONS, hidden)
-#undef ADD_CAP
-#undef COVERED
+    appendWalk(slot);  // left to CULL_FULL
+#else
+    // The full test: every overlapping sphere, the near shell's caps first in the list. The
+    // overlapping slots are listed first (a cheap loop), then their caps are made (the
+    // arithmetic once per overlapping sphere, not once per neighbour visited).
+    const int MAX_OVERLAPS = 160;
+    uint overlaps[MAX_OVERLAPS];
+    int overlapCount = 0;
+#define LIST(k)                                                                       \
+    {                                                                                 \
+        vec4 s = cullSpheres[k];                                                      \
+        vec3 d = s.xyz - xi;                                                          \
+        float reach = ri + s.w;                                                       \
+        if (k != slot && s.w > 0.0 && dot(d, d) < reach * reach &&                    \
+            overlapCount < MAX_OVERLAPS)                                              \
+            overlaps[overlapCount++] = k;                                             \
+    }
+    FOR_EACH_NEAR(xi, cullReach, LIST)
+#undef LIST
+    vec4 caps[MAX_CAPS];
+    int nearCaps = 0, farCaps = 0;
+    for (int n = 0; n < overlapCount && !hidden; ++n) {
+        uint k = overlaps[n];
+        OVERLAP(k, uCosMargin, uSinMargin, false, cap)
+        if (nearCaps + farCaps < MAX_CAPS) {
+            if (dist2_ <= nearLimit2)
+                caps[nearCaps++] = cap;
+            else
+                caps[MAX_CAPS - 1 - farCaps++] = cap;
+        }
+        END_OVERLAP
+    }
+    if (!hidden && nearCaps + farCaps > 0) {
+        hidden = true;
+        for (int dir = 0; dir < DIRECTIONS && hidden; ++dir) {
+            vec3 u = directions[dir].xyz;
+            bool covered = false;
+            for (int c = 0; c < nearCaps && !covered; ++c) covered = dot(u, caps[c].xyz) >= caps[c].w;
+            for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)
+                covered = dot(u, caps[c].xyz) >= caps[c].w;
+            hidden = covered;
+        }
+    }
     flags[i] = (flags[i] & ~HIDDEN) | (hidden ? HIDDEN : 0u);
+#endif
+#undef OVERLAP
+#undef END_OVERLAP
 }
 #endif
 
@@ -473,7 +626,7 @@ void main() {
 // particle, summed over every particle whose support covers it; where the sum cancels below
 // (uFallbackRatio + FLT_EPSILON |x| / h) sum |dW/dr| (a lattice's interior), the radial
 // direction from the particle's body centre, and the body's pole axis at the centre.
-layout(std430, binding = 17) readonly buffer Bodies {
+layout(std430, binding = 20) readonly buffer Bodies {
     vec4 bodies[];  // 2 per body: the centre; the pole axis
 };
 uniform float uFallbackRatio;
@@ -707,13 +860,15 @@ void main() {
 #endif
 
 #ifdef MARK
-uniform int uCull;
+uniform int uCull, uListDrawn;
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
     bool hidden = uCull != 0 && nearHit == 0u && (flags[i] & HIDDEN) != 0u;
-    drawnPrefix[i] = radii[i] > 0.0 && !hidden ? 1u : 0u;
+    bool drawn = radii[i] > 0.0 && !hidden;
+    drawnPrefix[i] = drawn ? 1u : 0u;
     drawnPrefix[uCount + 1u + i] = 0u;
+    if (drawn && uListDrawn != 0) appendWalk(i);  // for KERNELS
 }
 #endif
 
@@ -726,8 +881,8 @@ uniform int uEllipsoids;
 float kernelReach_r;
 float kernelReach(float hMax) { return kernelReach_r + 2.0 * hMax; }
 void main() {
-    uint i = invocation();
-    if (i >= uCount || drawnPrefix[i] == 0u) return;
+    if (invocation() >= walkDispatch.w) return;
+    uint i = walkList[invocation()];  // a drawn particle
     float r = radii[i];
     vec3 centre = particlePosition(i);
     uint slot = dropletSlot(i);

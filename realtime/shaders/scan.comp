@@ -1,20 +1,27 @@
 // Exclusive prefix sum of uCount uints in place, the total written after them (data[uCount]):
-// BLOCKS scans each block of 1024 values and keeps its total, SUMS scans the block totals in one
+// BLOCKS scans each block of 4096 values and keeps its total, SUMS scans the block totals in one
 // work group, ADD adds each block's offset. Integer sums: the result does not depend on
-// scheduling.
+// scheduling. With uCells, the count is the grid's cells (per_set.glsl's Header, written by
+// LAYOUT), and BLOCKS and ADD are dispatched indirectly over its blocks (scanDispatch).
 layout(local_size_x = 256) in;
 
 uniform uint uCount;
 uniform uint uOffset;  // the first value, in uints from the buffer's start
+uniform int uCells;    // count the grid's cells instead of uCount
 
 layout(std430, binding = 5) buffer Data {
     uint data[];
 };
-layout(std430, binding = 6) buffer BlockSums {
+layout(std430, binding = 19) buffer BlockSums {
     uint blockSums[];  // one per block, then their total
 };
+layout(std430, binding = 6) readonly buffer Header {
+    uint hMinBits, nearHit, totalCells;  // per_set.glsl's Header, its first members
+};
 
-const uint PER_THREAD = 4u, BLOCK = 256u * PER_THREAD;
+uint count() { return uCells != 0 ? totalCells : uCount; }
+
+const uint PER_THREAD = 16u, BLOCK = 256u * PER_THREAD;
 shared uint partial[256];
 
 // Exclusive scan of partial[] (one value per invocation), by Hillis and Steele; returns the
@@ -39,17 +46,18 @@ uint scanShared(uint own) {
 
 #ifdef BLOCKS
 void main() {
+    uint n = count();
     uint base = gl_WorkGroupID.x * BLOCK + gl_LocalInvocationID.x * PER_THREAD;
     uint values[PER_THREAD];
     uint sum = 0u;
     for (uint k = 0u; k < PER_THREAD; ++k) {
-        values[k] = base + k < uCount ? data[uOffset + base + k] : 0u;
+        values[k] = base + k < n ? data[uOffset + base + k] : 0u;
         sum += values[k];
     }
     uint total = scanShared(sum);
     uint running = partial[gl_LocalInvocationID.x];
     for (uint k = 0u; k < PER_THREAD; ++k) {
-        if (base + k < uCount) data[uOffset + base + k] = running;
+        if (base + k < n) data[uOffset + base + k] = running;
         running += values[k];
     }
     if (gl_LocalInvocationID.x == 0u) blockSums[gl_WorkGroupID.x] = total;
@@ -57,11 +65,12 @@ void main() {
 #endif
 
 #ifdef SUMS
-uniform uint uBlocks;
 void main() {
+    uint n = count();
+    uint blocks = (n + BLOCK - 1u) / BLOCK;
     uint t = gl_LocalInvocationID.x;
-    uint per = (uBlocks + 255u) / 256u;
-    uint begin = min(t * per, uBlocks), end = min(begin + per, uBlocks);
+    uint per = (blocks + 255u) / 256u;
+    uint begin = min(t * per, blocks), end = min(begin + per, blocks);
     uint sum = 0u;
     for (uint k = begin; k < end; ++k) sum += blockSums[k];
     uint total = scanShared(sum);
@@ -72,17 +81,18 @@ void main() {
         running += v;
     }
     if (t == 0u) {
-        blockSums[uBlocks] = total;
-        data[uOffset + uCount] = total;
+        blockSums[blocks] = total;
+        data[uOffset + n] = total;
     }
 }
 #endif
 
 #ifdef ADD
 void main() {
+    uint n = count();
     uint base = gl_WorkGroupID.x * BLOCK;
     uint offset = blockSums[gl_WorkGroupID.x];
     for (uint k = gl_LocalInvocationID.x; k < BLOCK; k += 256u)
-        if (base + k < uCount) data[uOffset + base + k] += offset;
+        if (base + k < n) data[uOffset + base + k] += offset;
 }
 #endif
