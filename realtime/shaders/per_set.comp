@@ -639,17 +639,19 @@ void main() {
     vec3 x = entries[slot].positionInvH.xyz;
     vec3 gradient = vec3(0.0);
     float magnitudeSum = 0.0;
-#define ADD_GRADIENT(k)                                                  \
-    {                                                                    \
-        vec4 e = entries[k].positionInvH;                                \
-        vec3 d = x - e.xyz;                                              \
-        float r = length(d);                                             \
-        float q = r * e.w;                                               \
-        if (q < 2.0 && r > 0.0) {                                        \
-            float dWdr = entries[k].coefficients.x * m4ShapeDerivative(q); \
-            gradient += (dWdr / r) * d;                                  \
-            magnitudeSum -= dWdr;                                        \
-        }                                                                \
+// Outside the support (q >= 2, where dW/dr is 0) and the particle itself are rejected on the
+// squared distance, before the square root.
+#define ADD_GRADIENT(k)                                                    \
+    {                                                                      \
+        vec4 e = entries[k].positionInvH;                                  \
+        vec3 d = x - e.xyz;                                                \
+        float r2 = dot(d, d);                                              \
+        if (r2 * (e.w * e.w) < 4.0 && r2 > 0.0) {                          \
+            float r = sqrt(r2);                                            \
+            float dWdr = entries[k].coefficients.x * m4ShapeDerivative(r * e.w); \
+            gradient += (dWdr / r) * d;                                    \
+            magnitudeSum -= dWdr;                                          \
+        }                                                                  \
     }
     FOR_EACH_NEAR(x, supportReach, ADD_GRADIENT)
 #undef ADD_GRADIENT
