@@ -239,7 +239,8 @@ TextureSource constantTexture(double v) {
 
 MaterialDesc parseMaterial(const ParameterTable& t, const fs::path& dir) {
     MaterialDesc m;
-    m.name = std::get<std::string>(t.require("name").value);
+    t.require("name");
+    m.name = *t.findString("name");  // a name of another type is bad input naming the key
     m.diffuse = parseTexture(t, "diffuse", constantTexture(0.8), dir);
     m.specular = parseTexture(t, "specular", constantTexture(0.0), dir);
     m.emission = parseTexture(t, "emission", constantTexture(0.0), dir);

@@ -190,6 +190,10 @@ TEST(Scene, RejectsWhatItDoesNotKnow) {
     const std::string missing = messageOf(
         writeScene("k9", "[[materials]]\nname = \"m\"\ndiffuse = \"missing.png\"\n[[bodies]]\n"));
     EXPECT_NE(missing.find("missing.png does not exist"), std::string::npos) << missing;
+    // A material name of another type (the fuzzer's find: it threw std::bad_variant_access).
+    const std::string number =
+        messageOf(writeScene("k10", "[[materials]]\nname = 6\n[[bodies]]\n"));
+    EXPECT_NE(number.find("materials[0].name"), std::string::npos) << number;
 }
 
 TEST(Parameters, TypesRangesAndUnreadKeys) {
