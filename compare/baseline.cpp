@@ -83,7 +83,8 @@ json readJsonFile(const fs::path& file, const std::string& what) {
         throw core::InputError(fmt::format("{}: cannot read the {}", file.string(), what));
     try {
         return json::parse(in);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // Not JSON, or a number beyond double (out_of_range 406: "99999999e999").
         throw core::InputError(
             fmt::format("{}: the {} is not valid JSON: {}", file.string(), what, e.what()));
     }

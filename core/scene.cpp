@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <map>
@@ -131,6 +132,15 @@ void applyOverride(toml::table& root, const std::string& assignment, const std::
     const std::string key = assignment.substr(0, eq);
     const std::string value = assignment.substr(eq + 1);
     std::vector<std::string> parts = splitDots(key);
+    // Every key the scene format has is a few names deep; an empty name ("a..b") or a key
+    // thousands deep would only build tables that nothing reads.
+    constexpr std::size_t MOST_DEPTH = 16;
+    if (parts.size() > MOST_DEPTH ||
+        std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
+        throw InputError(
+            fmt::format("--set {}: not a key of the scene format (dotted names "
+                        "such as camera.width, at most {} deep)",
+                        key.substr(0, 80), MOST_DEPTH));
     toml::table* table = &root;
     std::size_t i = 0;
     std::string path = key;

@@ -154,6 +154,20 @@ TEST(Scene, OverrideErrorsNameTheOverrideAndTheKeyAsWritten) {
               "'compare.thresholds.beauty.flip.max'");
     // Keys the file gives keep their lines.
     EXPECT_NE(s.realtime.describe("ssss.enabled").find("override_errors.toml:"), std::string::npos);
+    // A key of empty names or thousands deep (the fuzzer's find: a stack overflow while the
+    // tables it built were read) is refused before any table is made.
+    for (const std::string key :
+         {std::string("camera..width"), std::string(40, 'a') + std::string(40, '.')}) {
+        const std::vector<std::string> sets = {key + "=1"};
+        try {
+            tc::loadScene(writeScene("deep", BASIC), sets);
+            FAIL() << key;
+        } catch (const tc::InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("not a key of the scene format"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 TEST(Scene, RejectsWhatItDoesNotKnow) {
