@@ -280,6 +280,11 @@ double latticeSpacing(const BodyDesc& body) {
     }
 }
 
+double expectedParticles(const BodyDesc& body) {
+    const double s = latticeSpacing(body);
+    return localVolume(body) / (s * s * s);
+}
+
 bool insideShape(const BodyDesc& body, const glm::dvec3& local) {
     return localShape(body).contains(local);
 }
@@ -306,7 +311,7 @@ GeneratedBody generateBody(const BodyDesc& body) {
         invalidBody(body, fmt::format("normal: {}", e.what()));
     }
 
-    const double expected = localVolume(body) / s3;
+    const double expected = expectedParticles(body);
     checkCount(body, expected);
     if (body.lattice == Lattice::Random) {
         const auto count = std::max<std::int64_t>(1, std::llround(expected));

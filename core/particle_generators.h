@@ -50,6 +50,11 @@ double shapeVolume(const BodyDesc& body);
 // The lattice spacing s described above.
 double latticeSpacing(const BodyDesc& body);
 
+// How many particles generateBody makes, about: the shape's volume / s^3 (exactly that many,
+// rounded, for random). A thin shell or ring (two layers at least) may need far more than its
+// `particles`.
+double expectedParticles(const BodyDesc& body);
+
 // Whether a body-local point (frame of bodyFrame, origin at the centre) lies inside the shape
 // (closed: boundary points are inside).
 bool insideShape(const BodyDesc& body, const glm::dvec3& local);

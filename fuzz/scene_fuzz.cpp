@@ -52,8 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 particles += MOST_PARTICLES;
                 continue;
             }
-            const double s = core::latticeSpacing(b);
-            const double needed = core::shapeVolume(b) / (s * s * s);
+            const double needed = core::expectedParticles(b);
             particles += needed < double(MOST_PARTICLES)
                              ? std::max<std::int64_t>(b.particles, std::llround(needed))
                              : MOST_PARTICLES + 1;
