@@ -30,7 +30,9 @@ constexpr int MAX_LEVELS = 32;
 constexpr std::size_t WALK_DISPATCH = 16 + 32 + MAX_LEVELS * 64;
 constexpr std::size_t SCAN_DISPATCH = WALK_DISPATCH + 16;
 constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
-constexpr std::size_t HEADER_BYTES = SORT_DISPATCH + 16;
+// Then the levels that hold particles (LAYOUT): their count and their numbers, in order.
+constexpr std::size_t USED_LEVELS = SORT_DISPATCH + 16;
+constexpr std::size_t HEADER_BYTES = USED_LEVELS + 4 + MAX_LEVELS * 4;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
 constexpr unsigned REDUCED = 16;     // particles per invocation of H_MIN and LEVELS

@@ -153,12 +153,14 @@ void main() {
 void main() {
     if (invocation() != 0u) return;
     int first = 0;
+    uint used = 0u;
     for (int L = 0; L < MAX_LEVELS; ++L) {
         Level g = levels[L];
         if (g.minKey.w == 0u) {
             levels[L].dims = ivec4(1, 1, 1, first);
             continue;
         }
+        levelList[used++] = uint(L);
         vec3 lo = vec3(fromOrderedKey(g.minKey.x), fromOrderedKey(g.minKey.y),
                        fromOrderedKey(g.minKey.z));
         vec3 hi = vec3(fromOrderedKey(g.maxKey.x), fromOrderedKey(g.maxKey.y),
@@ -178,6 +180,7 @@ void main() {
         first += int(n.x * n.y * n.z);
     }
     totalCells = uint(first);
+    usedLevels = used;
     scanDispatch = uvec4((totalCells + 4095u) / 4096u, 1u, 1u, 0u);  // scan.comp BLOCK
     sortDispatch = uvec4((totalCells + 63u) / 64u, 1u, 1u, 0u);  // SORT's work groups of 64
 }

@@ -65,6 +65,11 @@ layout(std430, binding = 6) coherent buffer Header {
     // LAYOUT: the work groups of the scan of the cells (scan.comp's blocks) and of SORT, 1, 1.
     uvec4 scanDispatch;
     uvec4 sortDispatch;
+    // LAYOUT: the levels that hold particles, in increasing order. A walk visits these alone:
+    // a loop over all MAX_LEVELS, reading each level's header to skip it, cost a walk of a
+    // million particles more than its sums of one level did.
+    uint usedLevels;
+    uint levelList[MAX_LEVELS];
 };
 
 // A float as a uint whose order is the float's (for atomicMin / atomicMax).
@@ -115,9 +120,8 @@ layout(std430, binding = 9) readonly buffer Entries {
 // REACH(level's largest h) around POINT may reach, in a fixed order (levels, z, y rows, entries).
 // Entries beyond the ball may be visited: VISIT tests the distance.
 #define FOR_EACH_NEAR(POINT, REACH, VISIT)                                                     \
-    for (int L_ = 0; L_ < MAX_LEVELS; ++L_) {                                                \
-        Level g_ = levels[L_];                                                               \
-        if (g_.minKey.w == 0u) continue;                                                     \
+    for (uint u_ = 0u; u_ < usedLevels; ++u_) {                                             \
+        Level g_ = levels[levelList[u_]];                                                    \
         float reach_ = REACH(uintBitsToFloat(g_.maxKey.w));                                  \
         float inv_ = levelInvCell(g_);                                                       \
         float cell_ = g_.originCell.w;                                                       \
