@@ -156,7 +156,7 @@ TEST(Scene, OverrideErrorsNameTheOverrideAndTheKeyAsWritten) {
     EXPECT_NE(s.realtime.describe("ssss.enabled").find("override_errors.toml:"), std::string::npos);
     // A key of empty names or thousands deep (the fuzzer's find: a stack overflow while the
     // tables it built were read) is refused before any table is made.
-    for (const std::string key :
+    for (const std::string& key :
          {std::string("camera..width"), std::string(40, 'a') + std::string(40, '.')}) {
         const std::vector<std::string> sets = {key + "=1"};
         try {
