@@ -346,15 +346,17 @@ void main() {
         Level g = levels[levelOf(h)];
         float inv = levelInvCell(g);
         ivec3 base = ivec3(floor((centre + 0.5 * cap - g.originCell.xyz) * inv - 0.5));
+        // Each row of 2 cells one run of slots (the cells' order, as cell by cell).
+        int x0 = max(base.x, 0), x1 = min(base.x + 1, g.dims.x - 1);
         for (int dz = 0; dz < 2; ++dz)
-            for (int dy = 0; dy < 2; ++dy)
-                for (int dx = 0; dx < 2; ++dx) {
-                    ivec3 c = base + ivec3(dx, dy, dz);
-                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, g.dims.xyz))) continue;
-                    int cell = g.dims.w + (c.z * g.dims.y + c.y) * g.dims.x + c.x;
-                    uint end = cellStart[cell + 1];
-                    for (uint k = cellStart[cell]; k < end; ++k) ADD_SAMPLES(k)
-                }
+            for (int dy = 0; dy < 2; ++dy) {
+                ivec2 c = base.yz + ivec2(dy, dz);
+                if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, g.dims.yz)) || x0 > x1)
+                    continue;
+                int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
+                uint end = cellStart[row + x1 + 1];
+                for (uint k = cellStart[row + x0]; k < end; ++k) ADD_SAMPLES(k)
+            }
     }
     if (uDropletAtoms > 0) --neighbours;  // itself
     if (atCentre > max(uLevel, ownBound) && atHalf > uLevel && atCap > uLevel &&
