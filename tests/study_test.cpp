@@ -11,6 +11,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "compare/svg_chart.h"
 #include "compare/testdata/xml_check.h"
@@ -215,36 +216,88 @@ TEST(Study, TemporalFlickerIsTheRealTimeFrameToFrameFlipMinusTheReferences) {
     EXPECT_NE(s["finding"].get<std::string>().find("flicker: real-time "), std::string::npos);
 }
 
-TEST(Study, FlickerOfTheSurfaceMethodsOnChurningParticles) {
-    // 5 methods x 2 particle models x 3 frames; one reference per frame, shared by the methods.
-    const json s = runStudy("flicker", 5 * 2 * 3, "temporal.flicker");
+TEST(Study, FlickerOfTheSurfaceMethodsOnChurningParticlesAndRealSequences) {
+    // Per group (the churning ball with the default particles and with impostor spheres; the
+    // OpenSPH collision and the LAMMPS splash), 5 methods x 3 frames; one reference per frame
+    // of each scene, shared by the methods.
+    const std::vector<std::string> groups = {"churn", "churn, impostor spheres",
+                                             "OpenSPH collision", "LAMMPS splash"};
+    const std::vector<std::string> methods = {"none", "ssss", "bilateral", "narrow_range",
+                                              "curvature_flow"};
+    const json s = runStudy("flicker", 4 * 5 * 3, "temporal.flicker");
     ASSERT_FALSE(s.is_discarded());
-    EXPECT_EQ(s["references"], 3);
-    // The facts are the rows' means over frames 1 and 2, and the least and most are theirs.
+    EXPECT_EQ(s["references"], 3 * 3);
+    // Every series is there with its 3 frames; the first has nothing to compare with, every
+    // later one a finite flicker, the real-time frame-to-frame change minus the reference's.
     std::map<std::string, double> means;
-    for (const json& r : s["rows"]) {
-        if (r["x"] == 0.0) {
-            EXPECT_FALSE(r["metrics"].contains("temporal.flicker"));
-            continue;
-        }
-        EXPECT_NEAR(metric(r, "temporal.flicker"),
+    for (const std::string& g : groups)
+        for (const std::string& m : methods) {
+            const std::string name = m + " (" + g + ")";
+            const std::vector<json> rows = series(s, name);
+            ASSERT_EQ(rows.size(), 3u) << name;
+            for (std::size_t f = 0; f < rows.size(); ++f) {
+                const json& r = rows[f];
+                EXPECT_EQ(r["x"].get<double>(), double(f)) << name;
+                if (f == 0) {
+                    EXPECT_FALSE(r["metrics"].contains("temporal.flicker")) << name;
+                    continue;
+                }
+                const double v = metric(r, "temporal.flicker");
+                ASSERT_TRUE(std::isfinite(v)) << name << " frame " << f;
+                EXPECT_NEAR(
+                    v,
                     metric(r, "temporal.frame_flip") - metric(r, "temporal.reference_frame_flip"),
                     1e-12);
-        means[r["series"].get<std::string>()] += metric(r, "temporal.flicker") / 2.0;
+                EXPECT_TRUE(std::isfinite(metric(r, "temporal.normal_flicker_deg"))) << name;
+                means[name] += v / 2.0;
+            }
+        }
+    ASSERT_EQ(means.size(), 20u);
+    // The real sequences render their own frames: x is the frame from the sequence's first.
+    for (const auto& [g, scene, first] : {std::tuple{"OpenSPH collision", "collision_sequence", 10},
+                                          std::tuple{"LAMMPS splash", "splash_sequence", 16}})
+        for (const json& r : series(s, std::string("none (") + g + ")")) {
+            EXPECT_EQ(r["scene"], scene);
+            const std::string frame = std::to_string(first + r["x"].get<int>());
+            const auto& sets = r["sets"];
+            EXPECT_NE(std::find(sets.begin(), sets.end(), "sequence.first=" + frame), sets.end())
+                << r["sets"];
+        }
+    // The facts are the rows' means over frames 1 and 2; per group the least and the most are
+    // theirs, with their normal flicker.
+    const std::string finding = s["finding"];
+    for (const std::string& g : groups) {
+        std::string least, most;
+        for (const std::string& m : methods) {
+            const std::string name = m + " (" + g + ")";
+            EXPECT_NEAR(s["facts"]["flicker"][name].get<double>(), means[name], 1e-12) << name;
+            if (least.empty() || means[name] < means[least + " (" + g + ")"]) least = m;
+            if (most.empty() || means[name] > means[most + " (" + g + ")"]) most = m;
+        }
+        const json& f = s["facts"]["groups"][g];
+        EXPECT_EQ(f["least"], least) << g;
+        EXPECT_EQ(f["most"], most) << g;
+        EXPECT_NEAR(f["least_flicker"].get<double>(), means[least + " (" + g + ")"], 1e-12);
+        EXPECT_NEAR(f["most_normal_flicker_deg"].get<double>(),
+                    s["facts"]["normal_flicker_deg"][most + " (" + g + ")"].get<double>(), 1e-12);
+        EXPECT_NE(finding.find(g + ": least " + least + " ("), std::string::npos) << finding;
     }
-    ASSERT_EQ(means.size(), 10u);
-    std::string least, leastImpostors;
-    for (const auto& [series, v] : means) {
-        EXPECT_NEAR(s["facts"]["flicker"][series].get<double>(), v, 1e-12) << series;
-        std::string& l = series.ends_with("(impostor spheres)") ? leastImpostors : least;
-        if (l.empty() || v < means[l]) l = series;
-    }
-    EXPECT_EQ(s["facts"]["least"]["default particles"], least);
-    EXPECT_EQ(s["facts"]["least"]["impostor spheres"], leastImpostors);
     // Churning impostor spheres flicker unsmoothed (measured +0.048 over 6 frames), far above
     // the default particles' (+0.0003), which follow the truth's own change.
-    EXPECT_GT(means["none (impostor spheres)"], 0.02);
-    EXPECT_LT(std::abs(means["none"]), 0.01);
+    EXPECT_GT(means["none (churn, impostor spheres)"], 0.02);
+    EXPECT_LT(std::abs(means["none (churn)"]), 0.01);
+    // A chart per real sequence, a line per method; a table line per series.
+    const fs::path dir = fs::path(TWINRENDER_TEST_SCRATCH) / "study_flicker" / "flicker";
+    for (const char* figure : {"collision.svg", "splash.svg"}) {
+        auto xml = tt::checkXml(readText(dir / figure));
+        EXPECT_EQ(xml.error, "") << figure;
+        EXPECT_EQ(xml.classCounts["legend-entry"], 5) << figure;
+    }
+    std::istringstream summary(readText(dir / "summary.csv"));
+    std::string line;
+    std::size_t lines = 0;
+    while (std::getline(summary, line)) ++lines;
+    EXPECT_EQ(lines, 1u + 20u);
 }
 
 TEST(Study, CollisionBleedingInTheContactBand) {
