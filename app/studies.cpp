@@ -753,7 +753,8 @@ struct SuiteScene {
 };
 
 // The default suite (scenes/*.toml) at the size `run` renders it, opensph_ball (800 x 600
-// there) at 320 x 240; quick: the planet and the splash sheet, small.
+// there) at 320 x 240; of the two sequences the OpenSPH impact at one frame (splash_sequence's
+// frames lie beside splash_sheet's); quick: the planet and the splash sheet, small.
 std::vector<SuiteScene> suiteScenes(bool quick) {
     if (quick)
         return {
@@ -766,7 +767,11 @@ std::vector<SuiteScene> suiteScenes(bool quick) {
             {"ringworld", {}},
             {"splash_droplets", {}},
             {"splash_sheet", {}},
-            {"telescope", {}}};
+            {"telescope", {}},
+            // Real SPH output: the OpenSPH impact's middle frame (the target shattering under
+            // the impactor, 9,574 particles of several smoothing lengths) at 320x240.
+            {"collision_sequence",
+             {"sequence.first=12", "sequence.last=12", "camera.width=320", "camera.height=240"}}};
 }
 
 std::string methodSeries(const MethodSweep& m, const std::string& shape) {
