@@ -165,6 +165,7 @@ Measured measureSequence(Job& job, compare::SweepRow& row, const std::string& te
     for (const auto& [key, v] : m.checked)
         if (!key.starts_with("time.")) row.metrics[key] = v;
     addCounters(m.shown, row.metrics);
+    addCounters(m.shown, m.checked);
     return m;
 }
 

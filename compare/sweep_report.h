@@ -37,8 +37,8 @@ struct SweepRow {
     std::map<std::string, double> timingsMs;  // median over the frames: "total" and per stage
     MetricValues metrics;                     // the test render against its reference
     std::string dir;                          // the combination's folder, relative to the sweep's
-    std::string referenceKey;                 // the reference's cache key
-    std::string error;                        // set when the combination could not be rendered
+    std::string referenceKey;  // the reference's cache key (a sequence's: its shown frame's)
+    std::string error;         // set when the combination could not be rendered
     // Against the sweep's thresholds, when it has them: the verdict (Fail when the combination
     // could not be rendered), the metrics past a failing bound and those past a warning bound
     // only, in the metric table's order.
