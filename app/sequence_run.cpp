@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <utility>
 
 #include "app/comparison.h"
 #include "app/video_encoder.h"
@@ -38,14 +39,6 @@ void prefixImages(compare::SceneReport& report, const std::string& prefix) {
     for (auto& [name, r] : report.renderers)
         for (auto& [buffer, path] : r.images) path = prefix + path;
     for (auto& [buffer, m] : report.errorMaps) m.path = prefix + m.path;
-}
-
-nlohmann::json sequenceSettings(const core::SequenceSettings& q, std::size_t frames) {
-    const char* camera = q.camera == core::CameraPath::Orbit  ? "orbit"
-                         : q.camera == core::CameraPath::Keys ? "keys"
-                                                              : "fixed";
-    return {{"first", q.first}, {"last", q.last},   {"step", q.step},
-            {"fps", q.fps},     {"camera", camera}, {"frames", frames}};
 }
 
 }  // namespace
@@ -119,65 +112,96 @@ void renderFrames(LoadedScene& s, const std::vector<std::string>& names, Devices
     }
 }
 
+nlohmann::json sequenceSettings(const core::SequenceSettings& q, std::size_t frames) {
+    const char* camera = q.camera == core::CameraPath::Orbit  ? "orbit"
+                         : q.camera == core::CameraPath::Keys ? "keys"
+                                                              : "fixed";
+    return {{"first", q.first}, {"last", q.last},   {"step", q.step},
+            {"fps", q.fps},     {"camera", camera}, {"frames", frames}};
+}
+
+std::vector<compare::SequenceFrame> compareSequenceFrames(
+    LoadedScene& s, LoadedScene& referenceScene, const std::vector<std::string>& referenceOverrides,
+    core::Renderer& renderer, std::string_view rendererName, ReferenceCache& cache, double ppd,
+    double flipOver, const std::function<void(const SequenceStep&)>& visit) {
+    const std::vector<std::int64_t> frames = core::sequenceFrames(s.scene);
+    std::vector<compare::SequenceFrame> out;
+    std::optional<std::pair<core::Frame, core::Frame>> previous;  // reference, real-time
+    compare::FlipSettings flip;
+    flip.ppd = ppd;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        SequenceStep step;
+        step.frame = frames[k];
+        step.index = k;
+        step.count = frames.size();
+        setFrame(s, step.frame);
+        if (&referenceScene != &s) setFrame(referenceScene, step.frame);
+        const auto [key, what] = referenceKey(referenceScene, referenceOverrides);
+        step.referenceKey = key;
+        step.reference = cache.get(referenceScene, key, what);
+        cache.forget(key);
+        step.test = render(renderer, rendererName, s);
+        step.result = compare::computeMetrics(step.reference.image, step.test.image,
+                                              metricSettings(s, ppd, flipOver));
+        step.metrics = step.result.values;
+        addTimeMetrics(step.reference, step.test, step.metrics);
+        if (previous) {
+            const core::Frame &ref = step.reference, &test = step.test;
+            step.change = compare::frameChange({previous->first.image, previous->first.display},
+                                               {ref.image, ref.display},
+                                               {previous->second.image, previous->second.display},
+                                               {test.image, test.display}, flip);
+            compare::addFrameChangeMetrics(*step.change, step.metrics);
+        }
+        visit(step);
+        out.push_back({step.frame, step.metrics});
+        previous.emplace(std::move(step.reference), std::move(step.test));
+    }
+    return out;
+}
+
 compare::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache& cache,
                                  const SequenceRun& run, const fs::path& dir) {
-    const std::vector<std::int64_t> frames = core::sequenceFrames(s.scene);
     const double fps = s.scene.sequence->fps;
     auto realtime = makeRenderer("realtime", devices, s);
     VideoEncoder video(dir / "sequence.mp4", dir / "sequence.webm", fps);
     compare::SequenceReport sequence;
     sequence.fps = fps;
     std::vector<compare::SceneReport> frameReports;
-    std::optional<std::pair<core::Frame, core::Frame>> previous;  // reference, real-time
-    compare::FlipSettings flip;
-    flip.ppd = run.ppd;
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-        const std::int64_t n = frames[k];
-        setFrame(s, n);
-        const std::string folder = "frames/" + frameFolder(n) + "/";
-        const auto [key, what] = referenceKey(s, run.overrides);
-        core::Frame ref = cache.get(s, key, what);
-        cache.forget(key);
-        core::Frame test = render(*realtime, "realtime", s);
-        writeRender(s, ref, dir / folder);
-        writeRender(s, test, dir / folder);
-        const compare::MetricResult result = compare::computeMetrics(
-            ref.image, test.image, metricSettings(s, run.ppd, run.flipOver));
-        compare::SceneReport report =
-            sceneReport(s, ref, test, result, run.bounds, nullptr, dir / folder);
-        std::string flicker = "-";
-        if (previous) {
-            const compare::FrameChange change = compare::frameChange(
-                {previous->first.image, previous->first.display}, {ref.image, ref.display},
-                {previous->second.image, previous->second.display}, {test.image, test.display},
-                flip);
-            compare::addFrameChangeMetrics(change, report.metrics);
-            flicker = fmt::format("{:+.4f}", change.flicker());
-        }
-        const double flipMean = result.values.at("beauty.flip");
-        video.add(compare::sideBySideFrame(
-            test.display, ref.display, result.errorMaps.at("beauty.flip"),
-            fmt::format("FRAME {}  FLIP {:.4f}  FLICKER {}", n, flipMean, flicker)));
-        std::printf(
-            "%s: frame %lld (%zu/%zu): real-time %.1f ms, reference %.1f ms, ꟻLIP %.4f, "
-            "flicker %s\n",
-            s.scene.name.c_str(), static_cast<long long>(n), k + 1, frames.size(),
-            test.timingsMs.at("total"), ref.timingsMs.at("total"), flipMean, flicker.c_str());
-        std::fflush(stdout);
-        sequence.frames.push_back({n, report.metrics});
-        prefixImages(report, folder);
-        frameReports.push_back(std::move(report));
-        previous.emplace(std::move(ref), std::move(test));
-    }
+    sequence.frames = compareSequenceFrames(
+        s, s, run.overrides, *realtime, "realtime", cache, run.ppd, run.flipOver,
+        [&](const SequenceStep& step) {
+            const std::string folder = "frames/" + frameFolder(step.frame) + "/";
+            writeRender(s, step.reference, dir / folder);
+            writeRender(s, step.test, dir / folder);
+            compare::SceneReport report = sceneReport(s, step.reference, step.test, step.result,
+                                                      run.bounds, nullptr, dir / folder);
+            report.metrics = step.metrics;
+            const std::string flicker =
+                step.change ? fmt::format("{:+.4f}", step.change->flicker()) : "-";
+            const double flipMean = step.result.values.at("beauty.flip");
+            video.add(compare::sideBySideFrame(
+                step.test.display, step.reference.display, step.result.errorMaps.at("beauty.flip"),
+                fmt::format("FRAME {}  FLIP {:.4f}  FLICKER {}", step.frame, flipMean, flicker)));
+            std::printf(
+                "%s: frame %lld (%zu/%zu): real-time %.1f ms, reference %.1f ms, ꟻLIP %.4f, "
+                "flicker %s\n",
+                s.scene.name.c_str(), static_cast<long long>(step.frame), step.index + 1,
+                step.count, step.test.timingsMs.at("total"), step.reference.timingsMs.at("total"),
+                flipMean, flicker.c_str());
+            std::fflush(stdout);
+            prefixImages(report, folder);
+            frameReports.push_back(std::move(report));
+        });
     video.finish();
     sequence.videos = {{"video/webm", "sequence.webm"}, {"video/mp4", "sequence.mp4"}};
     sequence.charts = compare::writeSequenceCharts(sequence, dir);
     sequence.shownFrame = compare::worstFrame(sequence.frames);
-    const std::size_t shown = static_cast<std::size_t>(
-        std::find(frames.begin(), frames.end(), sequence.shownFrame) - frames.begin());
+    std::size_t shown = 0;
+    while (sequence.frames.at(shown).frame != sequence.shownFrame) ++shown;
     compare::SceneReport report = std::move(frameReports.at(shown));
     report.metrics = compare::summariseSequence(sequence.frames);
-    report.settings["sequence"] = sequenceSettings(*s.scene.sequence, frames.size());
+    report.settings["sequence"] = sequenceSettings(*s.scene.sequence, sequence.frames.size());
     checkReport(report, run.bounds, run.baseline);
     report.sequence = std::move(sequence);
     return report;

@@ -7,15 +7,21 @@
 // (compare/sequence_summary.h). Every frame is a new particle set for the real-time renderer.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/reference_cache.h"
 #include "app/render_job.h"
 #include "compare/baseline.h"
+#include "compare/metrics.h"
 #include "compare/report.h"
+#include "compare/temporal_error.h"
 #include "compare/thresholds.h"
 
 namespace twinrender::app {
@@ -40,6 +46,37 @@ void checkSequenceFiles(const LoadedScene& scene);
 // DIR/<frameFolder>/<renderer>.exr|png|json. Prints a line per render.
 void renderFrames(LoadedScene& scene, const std::vector<std::string>& renderers, Devices& devices,
                   const std::filesystem::path& dir);
+
+// One frame of a sequence, rendered by both sides and compared (compareSequenceFrames).
+struct SequenceStep {
+    std::int64_t frame = 0;
+    std::size_t index = 0, count = 0;  // the index-th (from 0) of the range's count frames
+    core::Frame reference, test;
+    std::string referenceKey;      // the reference's cache key
+    compare::MetricResult result;  // compare::computeMetrics of the pair
+    // The frame's metrics: result.values, the times (time.<renderer>_ms) and, from the second
+    // frame on, the change from the previous frame (temporal.*); what SequenceFrame holds.
+    compare::MetricValues metrics;
+    std::optional<compare::FrameChange> change;  // none for the first frame
+};
+
+// The frames of a sequence compared one by one, as `run` and `sweep` take them: per frame of
+// the test scene's range, both scenes moved to it (setFrame; `reference` is the scene of the
+// reference's settings, the test scene itself unless a convergence sweep's tight one), the
+// reference from the cache (keyed by the frame and `referenceOverrides`, let go of after the
+// frame), the test render by `renderer` (`rendererName`; the real-time renderer gets each frame as
+// a new particle set: its per-set work is part of the frame's time), the metrics (with `ppd` and
+// `flipOver`) and the change from the previous frame (compare/temporal_error.h). `visit` sees
+// each step before the next frame renders. Returns the frames' metrics, for
+// compare::summariseSequence.
+std::vector<compare::SequenceFrame> compareSequenceFrames(
+    LoadedScene& test, LoadedScene& reference, const std::vector<std::string>& referenceOverrides,
+    core::Renderer& renderer, std::string_view rendererName, ReferenceCache& cache, double ppd,
+    double flipOver, const std::function<void(const SequenceStep&)>& visit);
+
+// A sequence's settings as a report's settings show them: first, last, step, fps, camera and
+// the count of frames in the range.
+nlohmann::json sequenceSettings(const core::SequenceSettings& sequence, std::size_t frames);
 
 struct SequenceRun {
     std::vector<std::string> overrides;  // the run's --set, for the reference cache's keys

@@ -21,13 +21,17 @@
 #include "app/output_folder.h"
 #include "app/reference_cache.h"
 #include "app/render_job.h"
+#include "app/sequence_run.h"
 #include "app/shard.h"
 #include "compare/error_maps.h"
 #include "compare/metric_table.h"
 #include "compare/report_json.h"
+#include "compare/sequence_summary.h"
+#include "compare/study_summary.h"
 #include "compare/sweep_report.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/sequence.h"
 
 namespace twinrender::app {
 
@@ -77,6 +81,92 @@ std::string verdictSuffix(const compare::SweepRow& row) {
             fmt::format("{}{}", metrics.empty() ? "" : "; warned: ", fmt::join(row.warned, ", "));
     return fmt::format(", {}{}", compare::toString(*row.status),
                        metrics.empty() ? "" : " (" + metrics + ")");
+}
+
+// What a combination measured, beside its row's times and metrics: what its bounds see and
+// what its folder shows.
+struct Measured {
+    core::Frame shown;  // the test render in the folder (a sequence's: its worst frame)
+    std::map<std::string, core::Image> flipMap;  // that render's beauty.flip error map
+    compare::MetricValues checked;               // the row's metrics and the times
+    std::optional<compare::SequenceReport> sequence;
+};
+
+// The test render's counters as count.* metrics of the row.
+void addCounters(const core::Frame& test, compare::MetricValues& metrics) {
+    for (const auto& [name, n] : test.counters) metrics["count." + name] = n;
+}
+
+// A still scene: the reference, then `frames` timed test renders (the real-time renderer first
+// renders one frame untimed: renderTimed), their median times.
+Measured measureStill(const Job& job, compare::SweepRow& row, const std::string& testRenderer,
+                      int frames, const SweepOptions& o, Devices& devices, ReferenceCache& cache) {
+    const bool convergence = testRenderer == "raymarch";
+    const LoadedScene& refScene = convergence ? *job.tight : job.test;
+    const auto [key, what] =
+        referenceKey(refScene, convergence ? job.tightOverrides : job.testOverrides);
+    row.referenceKey = key;
+    const core::Frame& ref = cache.get(refScene, key, what);
+    TimedFrame timed = renderTimed(testRenderer, devices, job.test, frames, !convergence);
+    Measured m;
+    m.shown = std::move(timed.frame);
+    row.timingsMs = std::move(timed.medianMs);
+    compare::MetricResult result = compare::computeMetrics(
+        ref.image, m.shown.image, metricSettings(job.test, o.ppd, o.flipOver));
+    row.metrics = result.values;
+    addCounters(m.shown, row.metrics);
+    if (auto it = result.errorMaps.find("beauty.flip"); it != result.errorMaps.end())
+        m.flipMap.insert(result.errorMaps.extract(it));
+    // What the bounds see, as in `run`: the metrics and the renders' times, the test
+    // renderer's being its median frame.
+    m.checked = row.metrics;
+    addTimeMetrics(ref, m.shown, m.checked);
+    m.checked["time." + testRenderer + "_ms"] = row.timingsMs.at("total");
+    return m;
+}
+
+// A sequence scene, as `run` renders one (compareSequenceFrames): every frame of its range,
+// each once, the real-time renderer getting each as a new particle set, so that a frame's time
+// includes the per-set work; the reference per frame from the cache. The row holds the
+// summary over the frames (compare::summariseSequence: each metric at its worst frame, the
+// flicker's mean and largest) and each stage's median over the frames; the folder, the frame
+// with the largest beauty.flip.
+Measured measureSequence(Job& job, compare::SweepRow& row, const std::string& testRenderer,
+                         const SweepOptions& o, Devices& devices, ReferenceCache& cache) {
+    const bool convergence = testRenderer == "raymarch";
+    // The shader variants compile on their first use in the driver: one untimed frame by a
+    // renderer of its own, so that the sequence's renderer still sees its first frame as a new
+    // particle set.
+    if (!convergence) render(testRenderer, devices, job.test);
+    const auto renderer = makeRenderer(testRenderer, devices, job.test);
+    Measured m;
+    m.sequence.emplace();
+    m.sequence->fps = job.test.scene.sequence->fps;
+    std::map<std::string, std::vector<double>> times;
+    double worst = -INFINITY;  // as compare::worstFrame picks the shown frame
+    m.sequence->frames = compareSequenceFrames(
+        job.test, convergence ? *job.tight : job.test,
+        convergence ? job.tightOverrides : job.testOverrides, *renderer, testRenderer, cache, o.ppd,
+        o.flipOver, [&](const SequenceStep& step) {
+            for (const auto& [stage, ms] : step.test.timingsMs)
+                if (stage != "compile") times[stage].push_back(ms);
+            const double flip = step.result.values.at("beauty.flip");
+            if (step.index > 0 && !(flip > worst)) return;
+            if (flip > worst) worst = flip;
+            m.shown = step.test;
+            m.flipMap = {{"beauty.flip", step.result.errorMaps.at("beauty.flip")}};
+            row.referenceKey = step.referenceKey;
+        });
+    m.sequence->shownFrame = compare::worstFrame(m.sequence->frames);
+    for (const auto& [stage, v] : times) row.timingsMs[stage] = compare::median(v);
+    m.checked = compare::summariseSequence(m.sequence->frames);
+    m.checked["time." + testRenderer + "_ms"] = row.timingsMs.at("total");
+    // The row's times are its stages (time.* columns), as a still scene's row.
+    for (const auto& [key, v] : m.checked)
+        if (!key.starts_with("time.")) row.metrics[key] = v;
+    addCounters(m.shown, row.metrics);
+    addCounters(m.shown, m.checked);
+    return m;
 }
 
 std::string combinationDir(std::size_t index, std::size_t total) {
@@ -159,11 +249,15 @@ ExitCode runSweep(const SweepOptions& o) {
     const std::string testRenderer = convergence ? "raymarch" : "realtime";
     if (o.frames < 0 || o.frames > 1000)
         throw core::InputError(fmt::format("--frames {}: give 1..1000", o.frames));
-    const int frames = o.frames > 0 ? o.frames : (convergence ? 1 : 5);
-    // The metric must be one the comparison computes (compare/metric_table.h).
-    if (!compare::computedByComparison(o.metric))
-        throw core::InputError(fmt::format("--metric {}: not a metric; metrics are {}", o.metric,
-                                           compare::metricNames(true)));
+    int frames = o.frames > 0 ? o.frames : (convergence ? 1 : 5);
+    // The metric must be one the comparison computes (compare/metric_table.h), or on a
+    // sequence scene one its summary pools over the frames (checked below).
+    const std::vector<std::string> pooled = compare::pooledTemporalMetrics();
+    const bool pooledMetric = std::find(pooled.begin(), pooled.end(), o.metric) != pooled.end();
+    if (!compare::computedByComparison(o.metric) && !pooledMetric)
+        throw core::InputError(
+            fmt::format("--metric {}: not a metric; metrics are {}, and on a sequence scene {}",
+                        o.metric, compare::metricNames(true), fmt::join(pooled, ", ")));
     std::optional<Shard> shard;
     if (!o.shard.empty()) shard = parseShard(o.shard);
     std::optional<compare::Thresholds> thresholds;
@@ -191,6 +285,8 @@ ExitCode runSweep(const SweepOptions& o) {
     tightSpp = std::min(tightSpp, 1024);
 
     std::vector<Job> jobs;
+    bool sequence = false;  // a sequence scene: each combination renders every frame
+    std::size_t count = 0;  // its frames, as the first combination has them
     for (std::size_t i = 0; i < total; ++i) {
         Job job;
         job.index = i;
@@ -208,6 +304,15 @@ ExitCode runSweep(const SweepOptions& o) {
             }
             throw core::InputError(fmt::format("{} (in the combination {})", message, which));
         }
+        if (i == 0) {
+            sequence = job.test.scene.sequence.has_value();
+            if (sequence) count = core::sequenceFrames(job.test.scene).size();
+        }
+        if (job.test.scene.sequence.has_value() != sequence)
+            throw core::InputError(fmt::format(
+                "sweep: the combination {} makes {} {}a sequence scene and the first does not; "
+                "sweep a sequence scene and a still one separately",
+                fmt::join(job.varied, ", "), o.scene, sequence ? "not " : ""));
         // The bounds as `run` takes them: the file's, the scene file's own, the file's
         // [scenes.NAME].
         if (thresholds)
@@ -226,6 +331,24 @@ ExitCode runSweep(const SweepOptions& o) {
         if (shard && !shard->takes(i)) continue;
         if (convergence) job.tight = loadScene(o.scene, job.tightOverrides);
         jobs.push_back(std::move(job));
+    }
+
+    if (pooledMetric && !sequence)
+        throw core::InputError(fmt::format(
+            "--metric {}: a sequence's metric, pooled over its frames, and {} renders one frame; "
+            "give a scene with a [sequence] table or a sequence body (README, \"Sequences\"), or "
+            "one of {}",
+            o.metric, o.scene, compare::metricNames(true)));
+    if (sequence) {
+        // Each frame of a sequence is a new particle set, rendered once: its cost is that
+        // first render, which timing repeated renders of one set would hide.
+        if (o.frames > 0)
+            std::printf(
+                "note: --frames %d is not used on a sequence scene: each of its %zu frames is a "
+                "new particle set, rendered once, and a combination's time is the median "
+                "frame's\n",
+                o.frames, count);
+        frames = static_cast<int>(count);
     }
 
     const fs::path out(o.out);
@@ -249,13 +372,14 @@ ExitCode runSweep(const SweepOptions& o) {
     for (const auto& [k, _] : vary) report.keys.push_back(k);
     report.metric = o.metric;
     report.frames = frames;
+    report.sequence = sequence;
     report.combinations = total;
     report.createdAt = nowUtc();
     report.commandLine = o.commandLine;
     report.thresholdsFile = o.thresholds;
 
     for (std::size_t j = 0; j < jobs.size(); ++j) {
-        const Job& job = jobs[j];
+        Job& job = jobs[j];
         compare::SweepRow row;
         row.index = job.index;
         for (std::size_t k = 0; k < vary.size(); ++k)
@@ -264,20 +388,10 @@ ExitCode runSweep(const SweepOptions& o) {
         row.dir = combinationDir(job.index, total);
         if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", j + 1, jobs.size(), row.label().c_str());
         try {
-            const LoadedScene& refScene = convergence ? *job.tight : job.test;
-            const auto [key, what] =
-                referenceKey(refScene, convergence ? job.tightOverrides : job.testOverrides);
-            row.referenceKey = key;
-            const core::Frame& ref = cache.get(refScene, key, what);
-            // N frames; the median of each stage and of the total. The real-time renderer
-            // first renders one frame untimed (renderTimed).
-            TimedFrame timed = renderTimed(testRenderer, devices, job.test, frames, !convergence);
-            const core::Frame test = std::move(timed.frame);
-            row.timingsMs = std::move(timed.medianMs);
-            const compare::MetricResult result = compare::computeMetrics(
-                ref.image, test.image, metricSettings(job.test, o.ppd, o.flipOver));
-            row.metrics = result.values;
-            for (const auto& [name, n] : test.counters) row.metrics["count." + name] = n;
+            Measured measured =
+                sequence ? measureSequence(job, row, testRenderer, o, devices, cache)
+                         : measureStill(job, row, testRenderer, frames, o, devices, cache);
+            const core::Frame& test = measured.shown;
 
             // The combination's folder: its render, the ꟻLIP map, its metrics.
             const fs::path dir = out / row.dir;
@@ -293,15 +407,9 @@ ExitCode runSweep(const SweepOptions& o) {
             rr.counters = test.counters;
             rr.images["beauty"] = testRenderer + ".png";
             scene.renderers[testRenderer] = rr;
-            if (const auto it = result.errorMaps.find("beauty.flip"); it != result.errorMaps.end())
-                scene.errorMaps = compare::writeErrorMapImages({*it}, dir);
+            scene.errorMaps = compare::writeErrorMapImages(measured.flipMap, dir);
             if (thresholds) {
-                // What the bounds see, as in `run`: the metrics and the renders' times, the
-                // test renderer's being its median frame.
-                compare::MetricValues checked = row.metrics;
-                addTimeMetrics(ref, test, checked);
-                checked["time." + testRenderer + "_ms"] = row.timingsMs.at("total");
-                scene.checks = compare::evaluate(checked, job.bounds);
+                scene.checks = compare::evaluate(measured.checked, job.bounds);
                 compare::recordChecks(row, scene.checks);
             }
             json settings = json::object();
@@ -309,7 +417,12 @@ ExitCode runSweep(const SweepOptions& o) {
             scene.settings = {{"varied", settings},
                               {"scene_file", job.test.scene.file.string()},
                               {testRenderer, test.settings},
-                              {"reference_key", key}};
+                              {"reference_key", row.referenceKey}};
+            if (measured.sequence) {
+                scene.settings["sequence"] =
+                    sequenceSettings(*job.test.scene.sequence, measured.sequence->frames.size());
+                scene.sequence = std::move(measured.sequence);
+            }
             compare::writeMetricsJson(scene, dir / "metrics.json");
             const auto m = row.metrics.find(o.metric);
             std::printf("[%zu/%zu] %s: %s %.2f ms, %s %s%s\n", j + 1, jobs.size(),

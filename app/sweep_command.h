@@ -4,7 +4,9 @@
 // everything that affects it. Varying realtime.* keys measures the real-time renderer against
 // the reference; varying raymarch.* keys measures the raymarcher against a tight render of
 // itself (its convergence). With thresholds, each combination is held to the scene's bounds
-// as `run` holds a scene, and the cheapest that passes is named. Writes
+// as `run` holds a scene, and the cheapest that passes is named. On a sequence scene each
+// combination renders every frame of the range, as `run` does (app/sequence_run.h), its row
+// the summary over the frames and its time the median frame's. Writes
 // compare/sweep_report.h's outputs.
 #pragma once
 

@@ -78,6 +78,12 @@ MetricValues summariseSequence(const std::vector<SequenceFrame>& frames) {
     return out;
 }
 
+std::vector<std::string> pooledTemporalMetrics() {
+    std::vector<std::string> keys;
+    for (const Pooled& p : POOLED) keys.insert(keys.end(), {p.mean, p.max});
+    return keys;
+}
+
 std::int64_t worstFrame(const std::vector<SequenceFrame>& frames) {
     if (frames.empty()) return 0;
     std::int64_t worst = frames.front().frame;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "compare/report.h"
@@ -17,6 +18,11 @@ namespace twinrender::compare {
 // temporal.normal_flicker_max_deg). The frames' other temporal.* values stay per frame.
 // NaN values are left out; a metric NaN in every frame is NaN.
 MetricValues summariseSequence(const std::vector<SequenceFrame>& frames);
+
+// The temporal metrics summariseSequence pools over the frames, which a sequence has and a
+// still scene lacks: temporal.flicker_mean, temporal.flicker_max,
+// temporal.normal_flicker_mean_deg, temporal.normal_flicker_max_deg.
+std::vector<std::string> pooledTemporalMetrics();
 
 // The frame with the largest beauty.flip (the first frame when none has one); 0 for none.
 std::int64_t worstFrame(const std::vector<SequenceFrame>& frames);

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace twinrender::compare {
 namespace {
@@ -44,6 +47,14 @@ TEST(SequenceSummary, EachMetricAtItsWorstFrameTimesAtTheMedianFlickerPooled) {
     EXPECT_DOUBLE_EQ(m.at("temporal.normal_flicker_max_deg"), 2.0);
     EXPECT_FALSE(m.count("temporal.flicker"));
     EXPECT_FALSE(m.count("temporal.frame_flip"));
+    // The pooled keys, as `sweep --metric` accepts them on a sequence scene: exactly the
+    // temporal ones the summary has.
+    std::vector<std::string> temporal;
+    for (const auto& [k, v] : m)
+        if (k.starts_with("temporal.")) temporal.push_back(k);
+    std::vector<std::string> pooled = pooledTemporalMetrics();
+    std::sort(pooled.begin(), pooled.end());
+    EXPECT_EQ(temporal, pooled);
     EXPECT_EQ(worstFrame(frames), 4);
     EXPECT_EQ(worstFrame({}), 0);
 }

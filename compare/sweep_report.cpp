@@ -222,6 +222,7 @@ json sweepJson(const SweepReport& s) {
               {"command", s.commandLine},
               {"rows", rows}};
     if (!s.thresholdsFile.empty()) j["thresholds"] = s.thresholdsFile;
+    if (s.sequence) j["sequence"] = true;
     return j;
 }
 
@@ -252,6 +253,7 @@ SweepReport sweepFromJson(const json& j, const std::string& source) {
         s.keys = j.at("keys").get<std::vector<std::string>>();
         s.metric = j.at("metric").get<std::string>();
         s.frames = j.at("frames").get<int>();
+        s.sequence = j.value("sequence", false);
         s.combinations = j.at("combinations").get<std::size_t>();
         s.createdAt = j.value("created", "");
         s.commandLine = j.value("command", "");
@@ -321,13 +323,20 @@ std::string sweepCsv(const SweepReport& s) {
     return out;
 }
 
+std::string framesDescription(const SweepReport& s) {
+    if (s.sequence)
+        return fmt::format("median of the sequence's {} frame{}, each a new particle set", s.frames,
+                           s.frames == 1 ? "" : "s");
+    return fmt::format("median of {} frame{}", s.frames, s.frames == 1 ? "" : "s");
+}
+
 std::string sweepSvg(const SweepReport& s) {
     ScatterChart chart;
     chart.title = fmt::format("{}: {} render time against {}", s.scene,
                               s.testRenderer == "realtime" ? "real-time" : "reference", s.metric);
-    chart.xLabel = fmt::format("{} render time per frame (ms, median of {} frame{})",
-                               s.testRenderer == "realtime" ? "real-time" : "reference", s.frames,
-                               s.frames == 1 ? "" : "s");
+    chart.xLabel =
+        fmt::format("{} render time per frame (ms, {})",
+                    s.testRenderer == "realtime" ? "real-time" : "reference", framesDescription(s));
     chartValue(s.metric, 0.0, &chart.yLabel);
     chart.lowerYIsBetter = lowerIsBetter(s.metric);
     for (const SweepRow& r : s.rows) {
@@ -452,7 +461,9 @@ std::string sweepHtml(const SweepReport& s) {
     std::vector<std::string> facts = {
         fmt::format("{} of {} combinations", s.rows.size(), s.combinations),
         "test: " + htmlEscape(s.testRenderer), "reference: " + htmlEscape(s.referenceDescription),
-        fmt::format("{} frame{} per combination (median)", s.frames, s.frames == 1 ? "" : "s")};
+        "time: " + framesDescription(s)};
+    if (s.sequence)
+        facts.push_back("metrics: each at its worst frame, the flicker's mean and largest");
     if (checked) facts.push_back("thresholds: " + htmlEscape(s.thresholdsFile));
     if (!s.createdAt.empty()) facts.push_back(htmlEscape(s.createdAt));
     std::string h =

@@ -7,14 +7,14 @@
 //
 // sweep.json:
 //   {"format": "twinrender-sweep", "version": 1, "scene", "scene_file", "mode", "test",
-//    "reference", "keys": [...], "metric", "better": "lower|higher", "frames",
+//    "reference", "keys": [...], "metric", "better": "lower|higher", "frames", ["sequence"],
 //    "combinations", "created", "command", ["thresholds"], "rows": [{"index", "label", "dir",
 //    "settings": {key: value}, "timings_ms": {stage: ms, "total": ms}, "metrics": {...},
 //    "reference_key", ["error"], ["status": "pass|warn|fail", "failed": [metric...],
 //    "warned": [metric...]]}]}
 // "thresholds" and the rows' "status", "failed" and "warned" are there only when the sweep
-// was held to thresholds. Non-finite numbers are the strings "Infinity", "-Infinity", "NaN"
-// (json_number.h).
+// was held to thresholds; "sequence": true only for a sequence scene. Non-finite numbers are the
+// strings "Infinity", "-Infinity", "NaN" (json_number.h).
 #pragma once
 
 #include <cstddef>
@@ -37,8 +37,8 @@ struct SweepRow {
     std::map<std::string, double> timingsMs;  // median over the frames: "total" and per stage
     MetricValues metrics;                     // the test render against its reference
     std::string dir;                          // the combination's folder, relative to the sweep's
-    std::string referenceKey;                 // the reference's cache key
-    std::string error;                        // set when the combination could not be rendered
+    std::string referenceKey;  // the reference's cache key (a sequence's: its shown frame's)
+    std::string error;         // set when the combination could not be rendered
     // Against the sweep's thresholds, when it has them: the verdict (Fail when the combination
     // could not be rendered), the metrics past a failing bound and those past a warning bound
     // only, in the metric table's order.
@@ -62,7 +62,10 @@ struct SweepReport {
     std::vector<std::string> keys;       // the varied keys, in --vary order
     std::string metric = "beauty.flip";  // the chart's y
     int frames = 5;                      // frames per combination (median)
-    std::size_t combinations = 0;        // size of the whole product (all shards)
+    // A sequence scene: each combination rendered each of the sequence's `frames` frames once,
+    // each a new particle set; its metrics summarise them (compare/sequence_summary.h).
+    bool sequence = false;
+    std::size_t combinations = 0;  // size of the whole product (all shards)
     std::string createdAt;
     std::string commandLine;
     std::string thresholdsFile;  // as given; empty: the rows were not checked
@@ -109,6 +112,10 @@ SweepReport sweepFromJson(const nlohmann::json& json, const std::string& source)
 // every metric (in the metric table's order), dir, error. Numbers at full precision; empty for
 // a missing value, "nan"/"inf" for non-finite ones.
 std::string sweepCsv(const SweepReport& sweep);
+
+// How a combination's time was taken: "median of 5 frames", or for a sequence "median of its
+// 3 frames, each a new particle set".
+std::string framesDescription(const SweepReport& sweep);
 
 // The chart: x the median total time, y the sweep's metric (chartValue).
 std::string sweepSvg(const SweepReport& sweep);

@@ -57,6 +57,20 @@ TEST(SweepReport, JsonRoundTrip) {
     EXPECT_TRUE(std::isinf(back.rows[1].metrics.at("beauty.psnr")));
     EXPECT_THROW(tc::sweepFromJson(nlohmann::json{{"format", "other"}}, "x.json"),
                  twinrender::core::InputError);
+    // "sequence" only for a sequence scene, read back (a merge keeps it).
+    EXPECT_FALSE(j.contains("sequence"));
+    tc::SweepReport q = sample();
+    q.sequence = true;
+    EXPECT_TRUE(tc::sweepFromJson(tc::sweepJson(q), "x.json").sequence);
+}
+
+TEST(SweepReport, TheFramesASequenceTimesAreItsOwn) {
+    tc::SweepReport s = sample();
+    EXPECT_EQ(tc::framesDescription(s), "median of 3 frames");
+    s.sequence = true;
+    EXPECT_EQ(tc::framesDescription(s),
+              "median of the sequence's 3 frames, each a new particle set");
+    EXPECT_NE(tc::sweepSvg(s).find("each a new particle set"), std::string::npos);
 }
 
 TEST(SweepReport, CsvHasOneLinePerRowAndTheSettingsColumns) {

@@ -4,12 +4,15 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "compare/svg_chart.h"
 #include "compare/testdata/xml_check.h"
@@ -324,4 +327,98 @@ TEST(Sweep, NoPassingCombinationIsExitTwoAndSaysWhichMetricFailed) {
     EXPECT_NE(lineStarting(warned.output, "cheapest with warnings only: ").find("--set "),
               std::string::npos)
         << warned.output;
+}
+
+// A sequence scene: every frame of its range per combination, as `run` renders one. The churning
+// ball of the flicker study, frames 0 to 2 at 64x48 without smoothing: the fixed impostor
+// spheres flicker (measured temporal.flicker_mean 0.0119), the field radii follow the truth's
+// own change (0.0030); a bound of 0.007 between them passes the field radii only.
+TEST(Sweep, ASequenceRendersEveryFrameAndHoldsTheSummaryOverThem) {
+    const fs::path out = tt::freshDir("sweep_sequence");
+    const fs::path bounds = twinrender::testing::scratchFile("sweep_sequence.toml");
+    tt::writeFile(bounds, "\"temporal.flicker_mean\" = { max = 0.007 }\n");
+    const std::string sweep =
+        "sweep " + SCENES +
+        "studies/flicker.toml --set sequence.last=2 --set camera.width=64 "
+        "--set camera.height=48 --set realtime.surface.method=none "
+        "--vary realtime.particles.radius=fixed,field --metric temporal.flicker_mean";
+    const auto r = tt::runTwinrender(sweep + " --frames 2 --thresholds " + bounds.string() +
+                                     " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    // One reference per frame, shared by the combinations; --frames says it is not used.
+    EXPECT_EQ(count(r.output, "rendered in"), 3u) << r.output;
+    EXPECT_EQ(count(r.output, "cache hit"), 3u) << r.output;
+    EXPECT_NE(r.output.find("note: --frames 2 is not used on a sequence scene"), std::string::npos)
+        << r.output;
+    EXPECT_TRUE(lineStarting(r.output, "cheapest passing: ")
+                    .ends_with(" ms: --set realtime.particles.radius=field"))
+        << r.output;
+
+    const auto json = readJson(out / "sweep.json");
+    EXPECT_EQ(json["sequence"], true);
+    EXPECT_EQ(json["frames"], 3);
+    ASSERT_EQ(json["rows"].size(), 2u);
+    for (const auto& row : json["rows"]) {
+        const bool fixed = row["settings"]["realtime.particles.radius"] == "fixed";
+        const auto& m = row["metrics"];
+        ASSERT_EQ(m["temporal.flicker_mean"].get<double>() > 0.007, fixed) << row;  // premise
+        EXPECT_EQ(row["status"], fixed ? "fail" : "pass") << row;
+        for (const char* k : {"temporal.flicker_max", "temporal.normal_flicker_mean_deg",
+                              "temporal.normal_flicker_max_deg", "beauty.ssim"})
+            EXPECT_TRUE(m[k].is_number()) << k;
+        // The folder: the frame with the largest beauty.flip, and every frame's metrics.
+        const auto metrics = readJson(out / row["dir"].get<std::string>() / "metrics.json");
+        const auto& frames = metrics["sequence"]["frames"];
+        ASSERT_EQ(frames.size(), 3u) << metrics.dump(1);
+        EXPECT_FALSE(frames[0]["metrics"].contains("temporal.flicker"));
+        double worst = -1.0, flicker = 0.0;
+        std::int64_t worstFrame = -1;
+        std::vector<double> times;
+        for (const auto& f : frames) {
+            const double flip = f["metrics"]["beauty.flip"].get<double>();
+            if (flip > worst) {
+                worst = flip;
+                worstFrame = f["frame"].get<std::int64_t>();
+            }
+            if (f["metrics"].contains("temporal.flicker"))
+                flicker += f["metrics"]["temporal.flicker"].get<double>() / 2.0;
+            times.push_back(f["metrics"]["time.realtime_ms"].get<double>());
+        }
+        EXPECT_EQ(m["beauty.flip"].get<double>(), worst);
+        EXPECT_EQ(metrics["sequence"]["shown_frame"], worstFrame);
+        EXPECT_NEAR(m["temporal.flicker_mean"].get<double>(), flicker, 1e-12);
+        // The time: the median frame's, each a new particle set.
+        std::sort(times.begin(), times.end());
+        EXPECT_EQ(row["timings_ms"]["total"].get<double>(), times[1]);
+        EXPECT_TRUE(fs::exists(out / row["dir"].get<std::string>() / "realtime.png"));
+    }
+    EXPECT_NE(readText(out / "index.html").find("each a new particle set"), std::string::npos);
+
+    // Shards merge into the same rows.
+    const fs::path cache = out / "reference_cache";
+    for (const char* k : {"1", "2"})
+        ASSERT_EQ(tt::runTwinrender(sweep + " --shard " + k + "/2 --cache " + cache.string() +
+                                    " --out " + (out / "shard" += k).string())
+                      .exitCode,
+                  0);
+    ASSERT_EQ(tt::runTwinrender("merge " + (out / "shard1").string() + " " +
+                                (out / "shard2").string() + " --out " + (out / "merged").string())
+                  .exitCode,
+              0);
+    const auto merged = readJson(out / "merged" / "sweep.json");
+    EXPECT_EQ(merged["sequence"], true);
+    ASSERT_EQ(merged["rows"].size(), 2u);
+    for (int i = 0; i < 2; ++i)  // the renders are deterministic; only the times differ
+        EXPECT_EQ(merged["rows"][i]["metrics"]["temporal.flicker_mean"],
+                  json["rows"][i]["metrics"]["temporal.flicker_mean"]);
+
+    // A still scene has no flicker to sweep for: exit 4, nothing written.
+    const fs::path still = tt::freshDir("sweep_sequence_still");
+    const auto s = tt::runTwinrender("sweep " + SCENES + "planet.toml" + SMALL + GRID +
+                                     " --metric temporal.flicker_mean --out " + still.string());
+    EXPECT_EQ(s.exitCode, 4) << s.output;
+    EXPECT_NE(s.output.find("--metric temporal.flicker_mean: a sequence's metric"),
+              std::string::npos)
+        << s.output;
+    EXPECT_EQ(tt::countFiles(still), 0u);
 }
