@@ -313,6 +313,13 @@ ExitCode runSweep(const SweepOptions& o) {
                 "sweep: the combination {} makes {} {}a sequence scene and the first does not; "
                 "sweep a sequence scene and a still one separately",
                 fmt::join(job.varied, ", "), o.scene, sequence ? "not " : ""));
+        // The report's frame count (its charts' axis, the merge of its shards) holds for every
+        // combination: varied sequence.* keys must keep the number of frames.
+        if (sequence && core::sequenceFrames(job.test.scene).size() != count)
+            throw core::InputError(fmt::format(
+                "sweep: the combination {} gives {} frames and the first {}; vary the "
+                "sequence's frames in separate sweeps",
+                fmt::join(job.varied, ", "), core::sequenceFrames(job.test.scene).size(), count));
         // The bounds as `run` takes them: the file's, the scene file's own, the file's
         // [scenes.NAME].
         if (thresholds)

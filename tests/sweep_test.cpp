@@ -421,4 +421,17 @@ TEST(Sweep, ASequenceRendersEveryFrameAndHoldsTheSummaryOverThem) {
               std::string::npos)
         << s.output;
     EXPECT_EQ(tt::countFiles(still), 0u);
+
+    // Varied frames that change the number of frames: one report cannot hold them.
+    const fs::path ranges = tt::freshDir("sweep_sequence_ranges");
+    const auto v = tt::runTwinrender("sweep " + SCENES +
+                                     "studies/flicker.toml --set camera.width=64 "
+                                     "--set camera.height=48 --vary sequence.last=1,2 --out " +
+                                     ranges.string());
+    EXPECT_EQ(v.exitCode, 4) << v.output;
+    EXPECT_NE(
+        v.output.find("sweep: the combination sequence.last=2 gives 3 frames and the first 2"),
+        std::string::npos)
+        << v.output;
+    EXPECT_EQ(tt::countFiles(ranges), 0u);
 }
