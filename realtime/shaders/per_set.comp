@@ -346,17 +346,7 @@ void main() {
         Level g = levels[levelOf(h)];
         float inv = levelInvCell(g);
         ivec3 base = ivec3(floor((centre + 0.5 * cap - g.originCell.xyz) * inv - 0.5));
-        // Each row of 2 cells one run of slots (the cells' order, as cell by cell).
-        int x0 = max(base.x, 0), x1 = min(base.x + 1, g.dims.x - 1);
-        for (int dz = 0; dz < 2; ++dz)
-            for (int dy = 0; dy < 2; ++dy) {
-                ivec2 c = base.yz + ivec2(dy, dz);
-                if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, g.dims.yz)) || x0 > x1)
-                    continue;
-                int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
-                uint end = cellStart[row + x1 + 1];
-                for (uint k = cellStart[row + x0]; k < end; ++k) ADD_SAMPLES(k)
-            }
+        FOR_EACH_IN_BLOCK(g, base, 2, ADD_SAMPLES)
     }
     if (uDropletAtoms > 0) --neighbours;  // itself
     if (atCentre > max(uLevel, ownBound) && atHalf > uLevel && atCap > uLevel &&
@@ -542,23 +532,17 @@ void main() {
         Level g = levels[levelOf(particleH(i))];
         float inv = levelInvCell(g);
         ivec3 home = ivec3(floor((xi - g.originCell.xyz) * inv));
-        int x0 = max(home.x - 1, 0), x1 = min(home.x + 1, g.dims.x - 1);
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy) {
-                ivec2 c = home.yz + ivec2(dy, dz);
-                if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, g.dims.yz)) || x0 > x1)
-                    continue;
-                int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
-                uint end = cellStart[row + x1 + 1];
-                for (uint k = cellStart[row + x0]; k < end; ++k) {
-                    vec4 s = cullSpheres[k];
-                    vec3 d = s.xyz - xi;
-                    float dist2 = dot(d, d), reach = ri + s.w;
-                    if (k != slot && s.w > 0.0 && dist2 < reach * reach && dist2 <= nearLimit2 &&
-                        nearCount < MAX_NEAR_CAPS)
-                        near[nearCount++] = k;
-                }
-            }
+#define LIST_NEAR(k)                                                                       \
+    {                                                                                      \
+        vec4 s = cullSpheres[k];                                                           \
+        vec3 d = s.xyz - xi;                                                               \
+        float dist2 = dot(d, d), reach = ri + s.w;                                         \
+        if (k != slot && s.w > 0.0 && dist2 < reach * reach && dist2 <= nearLimit2 &&      \
+            nearCount < MAX_NEAR_CAPS)                                                     \
+            near[nearCount++] = k;                                                         \
+    }
+        FOR_EACH_IN_BLOCK(g, (home - ivec3(1)), 3, LIST_NEAR)
+#undef LIST_NEAR
     }
     // Then their caps, each marking the coarse directions it covers.
     uvec2 mask = uvec2(0u);  // bit d % 32 of word d / 32: coarse direction d covered

@@ -116,6 +116,24 @@ layout(std430, binding = 9) readonly buffer Entries {
     GridEntry entries[];
 };
 
+// Calls VISIT(k) for every grid entry k of the SIZE x SIZE x SIZE cells of level G from cell
+// BASE (an ivec3; cells outside the grid left out), in the grid's order: each row of SIZE
+// cells is one run of slots.
+#define FOR_EACH_IN_BLOCK(G, BASE, SIZE, VISIT)                                             \
+    {                                                                                        \
+        int bx0_ = max(BASE.x, 0), bx1_ = min(BASE.x + SIZE - 1, G.dims.x - 1);              \
+        for (int bz_ = 0; bz_ < SIZE; ++bz_)                                                 \
+            for (int by_ = 0; by_ < SIZE; ++by_) {                                           \
+                ivec2 c_ = BASE.yz + ivec2(by_, bz_);                                        \
+                if (any(lessThan(c_, ivec2(0))) || any(greaterThanEqual(c_, G.dims.yz)) ||   \
+                    bx0_ > bx1_)                                                             \
+                    continue;                                                                \
+                int row_ = G.dims.w + (c_.y * G.dims.y + c_.x) * G.dims.x;                   \
+                uint end_ = cellStart[row_ + bx1_ + 1];                                      \
+                for (uint k_ = cellStart[row_ + bx0_]; k_ < end_; ++k_) VISIT(k_);           \
+            }                                                                                \
+    }
+
 // Calls VISIT(k) for every grid entry k of every level whose cells the ball of radius
 // REACH(level's largest h) around POINT may reach, in a fixed order (levels, z, y rows, entries).
 // Entries beyond the ball may be visited: VISIT tests the distance.
