@@ -67,6 +67,14 @@ enum Binding : unsigned {
     BLOCK_SUMS = 19,  // scan.comp
     BODIES = 20,      // NORMALS
 };
+// Texture units of the buffer textures the walks read (shaders/per_set.glsl; the render passes
+// use units 0-7).
+enum TextureUnit : unsigned {
+    ENTRY_TEXELS = 8,
+    CELL_TEXELS = 9,
+    CULL_SPHERE_TEXELS = 10,
+    DIRECTION_TEXELS = 11,
+};
 
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
 // bits from DROPLET_SHIFT up.
@@ -170,6 +178,10 @@ void GpuPerSet::bindStorage() const {
     mDirections.bindStorage(DIRECTIONS);
     if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
     if (mCullSpheres.size() > 0) mCullSpheres.bindStorage(CULL_SPHERES);
+    mEntryTexels.bind(ENTRY_TEXELS);
+    mCellTexels.bind(CELL_TEXELS);
+    mCullSphereTexels.bind(CULL_SPHERE_TEXELS);
+    mDirectionTexels.bind(DIRECTION_TEXELS);
 }
 
 void GpuPerSet::upload(const core::ParticleSet& ps) {
@@ -200,6 +212,8 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     resized(mCellOf, (n + mMaxCells) * sizeof(std::uint32_t));
     resized(mSorted, n * sizeof(std::uint32_t));
     resized(mEntries, n * GRID_ENTRY_BYTES);
+    mCellTexels.view(mCells, gl::BufferFormat::R32UI);
+    mEntryTexels.view(mEntries, gl::BufferFormat::RGBA32F);
     resized(mRadii, n * sizeof(float));
     resized(mWalks, n * sizeof(std::uint32_t));
     resized(mFlags, n * sizeof(std::uint32_t));
@@ -211,6 +225,7 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
         for (const glm::dvec3& d : cullingDirections().directions)
             directions.emplace_back(glm::vec3(d), 0.0f);
         mDirections = gl::Buffer::of(std::span<const glm::vec4>(directions));
+        mDirectionTexels.view(mDirections, gl::BufferFormat::RGBA32F);
     }
     if (!kept) {
         mCullSpheres = gl::Buffer();
@@ -351,6 +366,8 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             if (mCullSpheres.size() == 0) {
                 mCullSpheres = gl::Buffer::zeros(mCount * sizeof(glm::vec4));
                 mCullSpheres.bindStorage(CULL_SPHERES);
+                mCullSphereTexels.view(mCullSpheres, gl::BufferFormat::RGBA32F);
+                mCullSphereTexels.bind(CULL_SPHERE_TEXELS);
             }
             clearWalks();
             stage("CULL_SPHERES").dispatch(groups(mCount));

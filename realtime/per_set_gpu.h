@@ -21,6 +21,7 @@
 
 #include "core/particles.h"
 #include "realtime/gl/buffer.h"
+#include "realtime/gl/buffer_texture.h"
 #include "realtime/particle_set_key.h"
 #include "realtime/settings.h"
 #include "realtime/shader_library.h"
@@ -126,6 +127,9 @@ class GpuPerSet {
     gl::Buffer mWalks;        // the particles RADIUS_WALK takes
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
     gl::Buffer mBodies;       // deriveNormals: 2 vec4 per body, its centre and pole axis
+    // What the walks read as buffer textures (shaders/per_set.glsl): the grid's entries and
+    // cell offsets, the culling's spheres and directions.
+    gl::BufferView mEntryTexels, mCellTexels, mCullSphereTexels, mDirectionTexels;
     std::map<std::string, double> mTimings;  // since the last takeTimings()
 };
 

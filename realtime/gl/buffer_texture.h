@@ -12,6 +12,7 @@ namespace twinrender::realtime::gl {
 enum class BufferFormat {
     RGB32F,   // one vec3 texel per 12 bytes
     RGBA32F,  // one vec4 texel per 16 bytes
+    R32UI,    // one uint texel per 4 bytes (usamplerBuffer)
 };
 
 class BufferTexture {
@@ -28,6 +29,20 @@ class BufferTexture {
 
   private:
     Buffer mBuffer;
+    Handle mTexture;
+};
+
+// A buffer texture over a buffer kept elsewhere: shaders write the buffer as a storage block
+// and later stages read it with texelFetch (after computeBarrier).
+class BufferView {
+  public:
+    // Views the whole of `buffer`, which must outlive the view's use (and be viewed again
+    // when it is replaced).
+    void view(const Buffer& buffer, BufferFormat format);
+    void bind(unsigned unit) const;  // glBindTextureUnit; nothing while nothing is viewed
+    bool empty() const { return mTexture.id() == 0; }
+
+  private:
     Handle mTexture;
 };
 

@@ -39,7 +39,8 @@ void drawFullscreenTriangle();
 // Makes later texture reads see the writes of earlier draws to storage images or buffers
 // (not needed between a draw into a framebuffer and sampling its textures).
 void memoryBarrierAll();
-// Makes later shaders, indirect draws and read-backs see a compute shader's storage writes.
+// Makes later shaders (their texel fetches too), indirect draws and read-backs see a compute
+// shader's storage writes.
 void computeBarrier();
 void finish();
 

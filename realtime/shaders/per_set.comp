@@ -284,9 +284,9 @@ void fieldSamples(vec3 centre, vec3 n, float t0, float step, out float values[8]
     vec3 middle = centre + (t0 + 4.5 * step) * n;
 #define ADD_EIGHT(k)                                                                \
     {                                                                               \
-        vec4 e = entries[k].positionInvH;                                           \
+        vec4 e = entryPosition(k);                                           \
         vec3 d = e.xyz - centre;                                                    \
-        float c = entries[k].coefficients.x / e.w;                                  \
+        float c = entryCoefficients(k).x / e.w;                                  \
         for (int s = 0; s < 8; ++s) values[s] += c * m4Shape(length(d - offsets[s]) * e.w); \
     }
     FOR_EACH_NEAR(middle, samplesReach, ADD_EIGHT)
@@ -308,9 +308,9 @@ float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + half
 // a count one short there only leaves the particle to the walk.
 #define ADD_SAMPLES(k)                                            \
     {                                                             \
-        vec4 e = entries[k].positionInvH;                         \
+        vec4 e = entryPosition(k);                         \
         vec3 d = e.xyz - centre;                                  \
-        float c = entries[k].coefficients.x / e.w;                \
+        float c = entryCoefficients(k).x / e.w;                \
         atCentre += c * m4Shape(length(d) * e.w);                 \
         atHalf += c * m4Shape(length(d - halfway) * e.w);         \
         atCap += c * m4Shape(length(d - cap) * e.w);              \
@@ -371,9 +371,9 @@ void main() {
     }
 #define ADD_NINE(k)                                                                         \
     {                                                                                       \
-        vec4 e = entries[k].positionInvH;                                                   \
+        vec4 e = entryPosition(k);                                                   \
         vec3 d = e.xyz - centre;                                                            \
-        float c = entries[k].coefficients.x / e.w;                                          \
+        float c = entryCoefficients(k).x / e.w;                                          \
         atCentre += c * m4Shape(length(d) * e.w);                                           \
         for (int s = 0; s < 8; ++s) values[s] += c * m4Shape(length(d - offsets[s]) * e.w); \
         if (dot(d, d) < countReach2) ++neighbours;                                          \
@@ -433,11 +433,17 @@ void main() {
 #if defined(CULL_SPHERES) || defined(CULL) || defined(CULL_FULL)
 // Per grid slot (the order of the grid's entries): the sphere the culling tests, its position
 // and radius, the radius 0 where the particle neither hides nor is hidden (no radius, or a
-// droplet's: renderer.cpp's cullRadii). One compact record per neighbour read.
-layout(std430, binding = 17) buffer CullSpheres {
+// droplet's: renderer.cpp's cullRadii). One compact record per neighbour read: CULL_SPHERES
+// writes them, the tests read them as a buffer texture (as the grid's entries).
+#ifdef CULL_SPHERES
+layout(std430, binding = 17) writeonly buffer CullSpheres {
     vec4 cullSpheres[];
 };
-uint entryIndex(uint k) { return floatBitsToUint(entries[k].coefficients.z); }
+#else
+layout(binding = 10) uniform samplerBuffer uCullSphereTexels;
+vec4 cullSphere(uint k) { return texelFetch(uCullSphereTexels, int(k)); }
+#endif
+uint entryIndex(uint k) { return floatBitsToUint(entryCoefficients(k).z); }
 #endif
 
 #ifdef CULL_SPHERES
@@ -446,7 +452,7 @@ void main() {
     if (k >= uCount) return;
     uint i = entryIndex(k);
     float r = radii[i];
-    cullSpheres[k] = vec4(entries[k].positionInvH.xyz, r > 0.0 && dropletSlot(i) == 0u ? r : 0.0);
+    cullSpheres[k] = vec4(entryPosition(k).xyz, r > 0.0 && dropletSlot(i) == 0u ? r : 0.0);
 }
 #endif
 
@@ -468,9 +474,8 @@ void main() {
 // every lane runs alike), then their caps (the body compared), each marking the coarse
 // directions it covers in a bit mask (straight code over constants). The spheres it leaves are
 // appended to a list that CULL_FULL takes (one dispatch over them alone, as RADIUS_WALK).
-layout(std430, binding = 15) readonly buffer Directions {
-    vec4 directions[];  // 162 unit directions, the coarse grid's 42 first
-};
+layout(binding = 11) uniform samplerBuffer uDirectionTexels;  // 162 unit directions, the
+                                                             // coarse grid's 42 first
 uniform float uCosMargin, uSinMargin, uRadiusScale;
 uniform float uCoarseCosMargin, uCoarseSinMargin;
 const int DIRECTIONS = 162, MAX_CAPS = 96;
@@ -485,12 +490,12 @@ void main() {
     uint slot = invocation();
     if (slot >= uCount) return;
 #endif
-    vec4 self = cullSpheres[slot];
+    vec4 self = cullSphere(slot);
     float ri = self.w;
     if (!(ri > 0.0)) return;
     uint i = entryIndex(slot);
     vec3 xi = self.xyz;
-    uint body = floatBitsToUint(entries[slot].coefficients.w);
+    uint body = floatBitsToUint(entryCoefficients(slot).w);
     bool hidden = false;
     cullReach_ri = ri;
     float nearLimit2 = NEAR_SHELL * NEAR_SHELL * ri * ri;
@@ -499,13 +504,13 @@ void main() {
     // (COS_MARGIN, SIN_MARGIN) as CAP (unit axis, the least cosine of a covered direction);
     // NEAR_ONLY: the near shell only.
 #define OVERLAP(k, COS_MARGIN, SIN_MARGIN, NEAR_ONLY, CAP)                                      \
-    vec4 s_ = cullSpheres[k];                                                                   \
+    vec4 s_ = cullSphere(k);                                                                    \
     float rj_ = s_.w;                                                                           \
     vec3 d_ = s_.xyz - xi;                                                                      \
     float dist2_ = dot(d_, d_);                                                                 \
     float reach_ = ri + rj_;                                                                    \
     if (k != slot && rj_ > 0.0 && dist2_ < reach_ * reach_ && (!NEAR_ONLY || dist2_ <= nearLimit2) && \
-        floatBitsToUint(entries[k].coefficients.w) == body) {                                   \
+        floatBitsToUint(entryCoefficients(k).w) == body) {                                   \
         float dist_ = sqrt(dist2_);                                                             \
         if (rj_ >= ri && dist_ + ri <= rj_) {                                                   \
             if (dist2_ > 0.0 || rj_ > ri || entryIndex(k) < i) hidden = true;                   \
@@ -534,7 +539,7 @@ void main() {
         ivec3 home = ivec3(floor((xi - g.originCell.xyz) * inv));
 #define LIST_NEAR(k)                                                                       \
     {                                                                                      \
-        vec4 s = cullSpheres[k];                                                           \
+        vec4 s = cullSphere(k);                                                            \
         vec3 d = s.xyz - xi;                                                               \
         float dist2 = dot(d, d), reach = ri + s.w;                                         \
         if (k != slot && s.w > 0.0 && dist2 < reach * reach && dist2 <= nearLimit2 &&      \
@@ -570,7 +575,7 @@ void main() {
     int overlapCount = 0;
 #define LIST(k)                                                                       \
     {                                                                                 \
-        vec4 s = cullSpheres[k];                                                      \
+        vec4 s = cullSphere(k);                                                       \
         vec3 d = s.xyz - xi;                                                          \
         float reach = ri + s.w;                                                       \
         if (k != slot && s.w > 0.0 && dot(d, d) < reach * reach &&                    \
@@ -595,7 +600,7 @@ void main() {
     if (!hidden && nearCaps + farCaps > 0) {
         hidden = true;
         for (int dir = 0; dir < DIRECTIONS && hidden; ++dir) {
-            vec3 u = directions[dir].xyz;
+            vec3 u = texelFetch(uDirectionTexels, dir).xyz;
             bool covered = false;
             for (int c = 0; c < nearCaps && !covered; ++c) covered = dot(u, caps[c].xyz) >= caps[c].w;
             for (int c = MAX_CAPS - farCaps; c < MAX_CAPS && !covered; ++c)
@@ -624,20 +629,20 @@ void main() {
     // Particles in grid order (the entries'): neighbouring invocations walk the same cells.
     uint slot = invocation();
     if (slot >= uCount) return;
-    uint i = floatBitsToUint(entries[slot].coefficients.z);
-    vec3 x = entries[slot].positionInvH.xyz;
+    uint i = floatBitsToUint(entryCoefficients(slot).z);
+    vec3 x = entryPosition(slot).xyz;
     vec3 gradient = vec3(0.0);
     float magnitudeSum = 0.0;
 // Outside the support (q >= 2, where dW/dr is 0) and the particle itself are rejected on the
 // squared distance, before the square root.
 #define ADD_GRADIENT(k)                                                    \
     {                                                                      \
-        vec4 e = entries[k].positionInvH;                                  \
+        vec4 e = entryPosition(k);                                  \
         vec3 d = x - e.xyz;                                                \
         float r2 = dot(d, d);                                              \
         if (r2 * (e.w * e.w) < 4.0 && r2 > 0.0) {                          \
             float r = sqrt(r2);                                            \
-            float dWdr = entries[k].coefficients.x * m4ShapeDerivative(r * e.w); \
+            float dWdr = entryCoefficients(k).x * m4ShapeDerivative(r * e.w); \
             gradient += (dWdr / r) * d;                                    \
             magnitudeSum -= dWdr;                                          \
         }                                                                  \
@@ -677,12 +682,12 @@ void main() {
     mat3 hessian = mat3(0.0);
 #define ADD_DERIVATIVES(k)                                                        \
     {                                                                             \
-        vec4 e = entries[k].positionInvH;                                         \
+        vec4 e = entryPosition(k);                                         \
         vec3 delta = offset - (e.xyz - centre);                                   \
         float dist = length(delta);                                               \
         float q = dist * e.w;                                                     \
         if (q < 2.0 && dist > 0.0) {                                              \
-            float coef = entries[k].coefficients.x;                               \
+            float coef = entryCoefficients(k).x;                               \
             float dWdr = coef * m4ShapeDerivative(q);                             \
             float d2Wdr2 = coef * e.w * m4ShapeSecondDerivative(q);               \
             vec3 u = delta / dist;                                                \
@@ -741,7 +746,7 @@ void main() {
     int neighbours = 0;
 #define GATHER_MOMENTS(k)                                                  \
     {                                                                      \
-        vec3 d = entries[k].positionInvH.xyz - centre;                     \
+        vec3 d = entryPosition(k).xyz - centre;                     \
         float q = length(d) * inverse;                                     \
         if (q < 1.0) {                                                     \
             float w = 1.0 - q * q * q;                                     \
@@ -749,7 +754,7 @@ void main() {
             weight += w;                                                   \
             first += w * s;                                                \
             second += w * outerProduct(s, s);                              \
-            neighbours += floatBitsToUint(entries[k].coefficients.z) != i ? 1 : 0; \
+            neighbours += floatBitsToUint(entryCoefficients(k).z) != i ? 1 : 0; \
         }                                                                  \
     }
     FOR_EACH_NEAR(centre, ballReach, GATHER_MOMENTS)
@@ -888,11 +893,11 @@ void main() {
     kernelReach_r = r;
 #define MARK_KERNEL(k)                                                   \
     {                                                                    \
-        vec4 e = entries[k].positionInvH;                                \
+        vec4 e = entryPosition(k);                                \
         float reach = r + 2.0 / e.w;                                     \
         vec3 d = e.xyz - centre;                                         \
         if (dot(d, d) < reach * reach)                                   \
-            drawnPrefix[uCount + 1u + floatBitsToUint(entries[k].coefficients.z)] = 1u; \
+            drawnPrefix[uCount + 1u + floatBitsToUint(entryCoefficients(k).z)] = 1u; \
     }
     FOR_EACH_NEAR(centre, kernelReach, MARK_KERNEL)
 #undef MARK_KERNEL

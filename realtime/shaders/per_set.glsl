@@ -103,18 +103,17 @@ int cellIndex(Level g, vec3 p) {
 }
 
 #ifdef GRID_READ
-// The particles sorted by cell (index order within a cell).
-struct GridEntry {
-    vec4 positionInvH;  // position; 1 / h
-    vec4 coefficients;  // v / (pi h^4); v / (pi h^3) (W(0) = that); uint bits of the index; body
-};
-
-layout(std430, binding = 7) readonly buffer Cells {
-    uint cellStart[];  // totalCells + 1 offsets into entries
-};
-layout(std430, binding = 9) readonly buffer Entries {
-    GridEntry entries[];
-};
+// The particles sorted by cell (index order within a cell), GATHER's GridEntry records: two
+// texels each, the position and 1 / h; v / (pi h^4), v / (pi h^3) (W(0) = that), the uint
+// bits of the particle's index and of its body. The stages that walk the grid read it, and the
+// cells' offsets, as buffer textures (per_set_gpu.cpp's texture units): Mesa's llvmpipe loads
+// from a storage buffer lane by lane, a branch per lane and component, where a texel fetch is
+// one gather, and a walk's loads are most of its time (NORMALS at 1M particles: 758 -> 291 ms).
+layout(binding = 8) uniform samplerBuffer uEntryTexels;
+layout(binding = 9) uniform usamplerBuffer uCellTexels;  // totalCells + 1 offsets into entries
+vec4 entryPosition(uint k) { return texelFetch(uEntryTexels, int(2u * k)); }
+vec4 entryCoefficients(uint k) { return texelFetch(uEntryTexels, int(2u * k + 1u)); }
+uint cellStart(int c) { return texelFetch(uCellTexels, c).x; }
 
 // Calls VISIT(k) for every grid entry k of the SIZE x SIZE x SIZE cells of level G from cell
 // BASE (an ivec3; cells outside the grid left out), in the grid's order: each row of SIZE
@@ -129,8 +128,8 @@ layout(std430, binding = 9) readonly buffer Entries {
                     bx0_ > bx1_)                                                             \
                     continue;                                                                \
                 int row_ = G.dims.w + (c_.y * G.dims.y + c_.x) * G.dims.x;                   \
-                uint end_ = cellStart[row_ + bx1_ + 1];                                      \
-                for (uint k_ = cellStart[row_ + bx0_]; k_ < end_; ++k_) VISIT(k_);           \
+                uint end_ = cellStart(row_ + bx1_ + 1);                                      \
+                for (uint k_ = cellStart(row_ + bx0_); k_ < end_; ++k_) VISIT(k_);           \
             }                                                                                \
     }
 
@@ -164,8 +163,8 @@ layout(std430, binding = 9) readonly buffer Entries {
                 if (x1_ < 0 || x0_ >= g_.dims.x) continue;                                   \
                 x0_ = max(x0_, 0); x1_ = min(x1_, g_.dims.x - 1);                            \
                 int row_ = g_.dims.w + (iz_ * g_.dims.y + iy_) * g_.dims.x;                  \
-                uint end_ = cellStart[row_ + x1_ + 1];                                       \
-                for (uint k_ = cellStart[row_ + x0_]; k_ < end_; ++k_) VISIT(k_);            \
+                uint end_ = cellStart(row_ + x1_ + 1);                                       \
+                for (uint k_ = cellStart(row_ + x0_); k_ < end_; ++k_) VISIT(k_);            \
             }                                                                                \
         }                                                                                    \
     }
