@@ -54,14 +54,17 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const double maxRadius = settings.radiusScale * ps.h[i];
                 const glm::dvec3 centre(ps.position[i]);
-                const double crossing =
-                    fieldCrossing(field, centre, glm::normalize(glm::dvec3(ps.normal[i])),
-                                  maxRadius, settings.surfaceLevel);
                 // A particle alone in its support has a spherical droplet: the crossing is its
                 // radius exactly. crossing_scale is for the level set bulging between
-                // neighbours.
+                // neighbours. One deep inside a body (interior_level) reaches the cap.
                 const double own = ps.volume[i] * core::m4Kernel(0.0, double(ps.h[i]));
-                const bool alone = field.value(centre) <= own * (1.0 + 1e-4);
+                const double atCentre = field.value(centre);
+                const bool alone = atCentre <= own * (1.0 + 1e-4);
+                const double crossing =
+                    !alone && atCentre >= settings.interiorLevel
+                        ? maxRadius
+                        : fieldCrossing(field, centre, glm::normalize(glm::dvec3(ps.normal[i])),
+                                        maxRadius, settings.surfaceLevel);
                 radii[i] = static_cast<float>(
                     std::min(maxRadius, (alone ? 1.0 : settings.crossingScale) * crossing));
             }
@@ -74,7 +77,8 @@ const std::vector<float>& ImpostorRadiusCache::radii(const core::ParticleSet& ps
     const ParticleSettings& o = mSettings;
     const bool sameSettings =
         settings.radius == o.radius && settings.radiusScale == o.radiusScale &&
-        settings.surfaceLevel == o.surfaceLevel && settings.crossingScale == o.crossingScale;
+        settings.surfaceLevel == o.surfaceLevel && settings.crossingScale == o.crossingScale &&
+        settings.interiorLevel == o.interiorLevel;
     mReused = sameSettings && mKey.matches(ps);
     if (!mReused) {
         mKey.clear();

@@ -5,7 +5,9 @@
 // show as balls seven times too large. "field" takes the distance from the particle's centre
 // along its outward normal to the level set c(x) = surface_level of the colour field
 // (core/colour_field.h), capped at radius_scale * h, and 0 where the field at the centre is
-// already below the level (no surface there: the particle is not drawn).
+// already below the level (no surface there: the particle is not drawn). A particle deep inside
+// a body, the field at its centre at least interior_level, reaches the cap without the search:
+// there the normal is the gradient of a field that nearly cancels, and the level set is far.
 #pragma once
 
 #include <glm/vec3.hpp>

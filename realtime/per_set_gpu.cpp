@@ -91,7 +91,7 @@ void writeAttribute(gl::Buffer& buffer, std::size_t offset, std::size_t n,
 bool sameRadiusSettings(const ParticleSettings& a, const ParticleSettings& b) {
     return a.radius == b.radius && a.radiusScale == b.radiusScale &&
            a.surfaceLevel == b.surfaceLevel && a.crossingScale == b.crossingScale &&
-           a.dropletAtoms == b.dropletAtoms;
+           a.interiorLevel == b.interiorLevel && a.dropletAtoms == b.dropletAtoms;
 }
 
 bool sameAnisotropy(const AnisotropySettings& a, const AnisotropySettings& b) {
@@ -135,9 +135,10 @@ Resized resized(std::optional<gl::Buffer>& buffer, std::size_t bytes) {
 
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
     for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
-    std::vector<const char*> stages = {"INIT",        "H_MIN", "LEVELS", "LAYOUT",  "COUNT",
-                                       "SCATTER",     "SORT",  "GATHER", "NORMALS", "RADIUS",
-                                       "RADIUS_WALK", "MARK",  "PACK",   "FINISH"};
+    std::vector<const char*> stages = {"INIT",    "H_MIN",    "LEVELS", "LAYOUT",
+                                       "COUNT",   "SCATTER",  "SORT",   "GATHER",
+                                       "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
+                                       "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
     if (request.kernels) stages.push_back("KERNELS");
     if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "CULL_FULL", "NEAR"});
     const int kind = modelKind(request.particles);
@@ -284,7 +285,7 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
     run("GATHER", groups(mCount));
 }
 
-void GpuPerSet::deriveNormals(ProgramCache& programs, std::span<const core::BodyInfo> bodies) {
+void GpuPerSet::uploadBodies(std::span<const core::BodyInfo> bodies) {
     std::vector<glm::vec4> records;
     records.reserve(2 * bodies.size());
     for (const core::BodyInfo& b : bodies) {
@@ -293,10 +294,18 @@ void GpuPerSet::deriveNormals(ProgramCache& programs, std::span<const core::Body
     }
     mBodies = gl::Buffer::of(std::span<const glm::vec4>(records));
     mBodies.bindStorage(BODIES);
+}
+
+void GpuPerSet::deriveNormals(ProgramCache& programs, bool listed) {
     const gl::Program& p = programs.compute("per_set.comp", {"NORMALS"});
     p.set("uCount", static_cast<unsigned>(mCount));
     p.set("uFallbackRatio", static_cast<float>(core::NORMAL_FALLBACK_RATIO));
-    p.dispatch(groups(mCount));
+    p.set("uFromList", listed ? 1 : 0);
+    mBodies.bindStorage(BODIES);
+    if (listed)
+        p.dispatchIndirect(mHeader, WALK_DISPATCH);
+    else
+        p.dispatch(groups(mCount));
 }
 
 bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
@@ -320,11 +329,15 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     mUploadMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (built && mCount > 0) timed("grid", [&] { buildGrid(programs); });
-    if (built && mCount > 0 && !deriveNormalsOf.empty())
-        timed("particle_normals", [&] { deriveNormals(programs, deriveNormalsOf); });
+    const bool derive = !deriveNormalsOf.empty();
+    if (built) {
+        mNormals = derive ? Normals::None : Normals::Given;
+        if (derive && mCount > 0) uploadBodies(deriveNormalsOf);
+    }
     if (mCount == 0) return built;
     bindStorage();
     const ParticleSettings& s = request.particles;
+    const bool field = s.radius == RadiusModel::Field;
     // The radii depend on droplet_atoms where droplets are drawn (their members' are 0).
     ParticleSettings radiusSettings = s;
     radiusSettings.dropletAtoms = request.droplets ? s.dropletAtoms : 0;
@@ -334,24 +347,44 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
         return p;
     };
     if (!mRadiusSettings || !sameRadiusSettings(*mRadiusSettings, radiusSettings)) {
+        auto radiusStage = [&](const char* name) -> const gl::Program& {
+            const gl::Program& p = stage(name);
+            p.set("uDropletAtoms", radiusSettings.dropletAtoms);
+            p.set("uRadiusScale", static_cast<float>(s.radiusScale));
+            p.set("uCrossingScale", static_cast<float>(s.crossingScale));
+            p.set("uInteriorLevel", static_cast<float>(s.interiorLevel));
+            if (std::string_view(name) != "INTERIOR") {
+                p.set("uLevel", static_cast<float>(s.surfaceLevel));
+                p.set("uFixed", field ? 0 : 1);
+            }
+            return p;
+        };
         timed("radius", [&] {
-            mFlags.clear();  // no droplet slots
+            mFlags.clear();  // no droplet slots, nothing settled by INTERIOR
             const std::uint32_t zero = 0;
             mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
             clearWalks();
-            auto radiusStage = [&](const char* name) -> const gl::Program& {
-                const gl::Program& p = stage(name);
-                p.set("uDropletAtoms", radiusSettings.dropletAtoms);
-                p.set("uRadiusScale", static_cast<float>(s.radiusScale));
-                p.set("uCrossingScale", static_cast<float>(s.crossingScale));
-                p.set("uLevel", static_cast<float>(s.surfaceLevel));
-                p.set("uFixed", s.radius == RadiusModel::Fixed ? 1 : 0);
-                return p;
-            };
-            radiusStage("RADIUS").dispatch(groups(mCount));
+            if (field) {
+                // The particles deep inside a body; the others listed.
+                const gl::Program& p = radiusStage("INTERIOR");
+                p.set("uFallbackNormals", mNormals == Normals::Given ? 0 : 1);
+                p.dispatch(groups(mCount));
+            }
+        });
+        // The normals the radii need: INTERIOR's list's ("field"), or every particle's.
+        if (mNormals != Normals::Given && (field || mNormals != Normals::All)) {
+            timed("particle_normals", [&] { deriveNormals(programs, field); });
+            mNormals = field ? Normals::Listed : Normals::All;
+        }
+        timed("radius", [&] {
+            // "field": INTERIOR's list (RADIUS_WALK those RADIUS's early exit left);
+            // "fixed": every particle.
+            if (field)
+                radiusStage("RADIUS").dispatchIndirect(mHeader, WALK_DISPATCH);
+            else
+                radiusStage("RADIUS").dispatch(groups(mCount));
             gl::computeBarrier();
-            // The particles the early exit left, as many work groups as RADIUS counted.
-            radiusStage("RADIUS_WALK").dispatchIndirect(mHeader, WALK_DISPATCH);
+            if (field) radiusStage("RADIUS_WALK").dispatchIndirect(mHeader, WALK_DISPATCH);
         });
         mDropletCount = 0;
         if (radiusSettings.dropletAtoms >= 2)
@@ -389,6 +422,22 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
         mCulled = true;
         built = true;
     }
+    // The normals INTERIOR left for later: those of its particles that may be drawn, once the
+    // culling has found which (all of them without culling).
+    const bool culled = request.cull && mCulled;
+    if (mNormals == Normals::Listed || (mNormals == Normals::Drawn && !culled)) {
+        timed("particle_normals", [&] {
+            clearWalks();
+            const gl::Program& p = stage("INTERIOR_DRAWN");
+            p.set("uCull", culled ? 1 : 0);
+            p.dispatch(groups(mCount));
+            gl::computeBarrier();
+            deriveNormals(programs, true);
+        });
+        mNormals = culled ? Normals::Drawn : Normals::All;
+        mModelSettings.reset();  // the models read the normals
+        built = true;
+    }
     const int kind = modelKind(s);
     const bool sameModels = mModelSettings && mModels == kind &&
                             (kind != 2 || sameAnisotropy(mModelSettings->anisotropy, s.anisotropy));
@@ -422,12 +471,13 @@ void GpuPerSet::applyDroplets(const core::ParticleSet& ps, const ParticleSetting
     if (mHeader.read<std::uint32_t>(SPARSE_COUNT, 1)[0] == 0) return;  // no sparse particle
     const Droplets found = fitDroplets(ps, radii(), s.surfaceLevel, s.dropletAtoms);
     if (found.firsts.empty()) return;
-    std::vector<std::uint32_t> flags(mCount, 0);
+    // INTERIOR's marks kept (droplets are sparse: none of theirs is marked).
+    std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
     std::vector<glm::vec4> records;
     records.reserve(6 * found.firsts.size());
     for (std::size_t k = 0; k < found.firsts.size(); ++k) {
         const std::uint32_t first = found.firsts[k];
-        flags[first] = static_cast<std::uint32_t>(k + 1) << DROPLET_SHIFT;
+        flags[first] |= static_cast<std::uint32_t>(k + 1) << DROPLET_SHIFT;
         const Ellipsoid& e = found.ellipsoids[first];
         for (int a = 0; a < 3; ++a) records.emplace_back(e.axes[a], e.shift[a]);
         const FieldNormal model = dropletNormalModel(e);

@@ -100,7 +100,9 @@ class GpuPerSet {
     void upload(const core::ParticleSet& particles);
     void applyDroplets(const core::ParticleSet& particles, const ParticleSettings& settings);
     void buildGrid(ProgramCache& programs);
-    void deriveNormals(ProgramCache& programs, std::span<const core::BodyInfo> bodies);
+    void uploadBodies(std::span<const core::BodyInfo> bodies);
+    // NORMALS over the walk list (`listed`) or every particle.
+    void deriveNormals(ProgramCache& programs, bool listed);
     // Exclusive prefix sum of `count` uints of `data` from `offset` (with `cells`: of the
     // grid's cells, at most `count`, their number read on the GPU).
     void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset, std::size_t count,
@@ -117,6 +119,11 @@ class GpuPerSet {
     std::optional<ParticleSettings> mRadiusSettings;  // droplet_atoms 0 when not requested
     std::size_t mDropletCount = 0;
     bool mCulled = false;
+    // The particle normals: the set's own; or derived for none yet, for INTERIOR's list (the
+    // particles it settled keep a fallback normal), for those and the settled ones that may be
+    // drawn after culling, or for every particle.
+    enum class Normals { Given, None, Listed, Drawn, All };
+    Normals mNormals = Normals::Given;
     PerSetRequest mRequest;                          // the last update's, for pack()
     std::optional<ParticleSettings> mModelSettings;  // normal model and shape they were for
     int mModels = 0;                                 // 0 none, 1 field normals, 2 ellipsoids

@@ -196,6 +196,8 @@ Settings parseSettings(const core::ParameterTable& t) {
                              : RadiusModel::Field;
     s.particles.crossingScale =
         t.getDouble("particles.crossing_scale", d.particles.crossingScale, 1.0, 4.0);
+    s.particles.interiorLevel =
+        t.getDouble("particles.interior_level", d.particles.interiorLevel, 1e-6, 1e6);
     s.particles.dropletAtoms =
         static_cast<int>(t.getInt("particles.droplet_atoms", d.particles.dropletAtoms, 0, 64));
     s.particles.surfaceLevel =
@@ -256,6 +258,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.radius", toString(s.particles.radius)},
         {"realtime.particles.surface_level", s.particles.surfaceLevel},
         {"realtime.particles.crossing_scale", s.particles.crossingScale},
+        {"realtime.particles.interior_level", s.particles.interiorLevel},
         {"realtime.particles.droplet_atoms", s.particles.dropletAtoms},
         {"realtime.particles.normal", toString(s.particles.normal)},
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},

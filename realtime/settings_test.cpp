@@ -38,6 +38,7 @@ TEST(Settings, ReadsEveryKey) {
                                             {"particles.normal", std::string("blend")},
                                             {"particles.sphere_normal_weight", 0.5},
                                             {"particles.droplet_atoms", std::int64_t(5)},
+                                            {"particles.interior_level", 0.9},
                                             {"shadow_map.resolution", std::int64_t(512)},
                                             {"shadow_map.bias", 0.25},
                                             {"shadow_map.slope_bias", 3.0},
@@ -59,6 +60,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(s.particles.normal, NormalModel::Blend);
     EXPECT_DOUBLE_EQ(s.particles.sphereNormalWeight, 0.5);
     EXPECT_EQ(s.particles.dropletAtoms, 5);
+    EXPECT_DOUBLE_EQ(s.particles.interiorLevel, 0.9);
     EXPECT_EQ(s.shadowMap.resolution, 512);
     EXPECT_DOUBLE_EQ(s.shadowMap.bias, 0.25);
     EXPECT_DOUBLE_EQ(s.shadowMap.slopeBias, 3.0);
@@ -79,7 +81,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
     EXPECT_EQ(j.at("realtime.per_set"), "cpu");
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
-    EXPECT_EQ(j.size(), 47u);
+    EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
+    EXPECT_EQ(j.size(), 48u);
 }
 
 TEST(Settings, ReadsTheParticleShapeKeys) {

@@ -1,11 +1,12 @@
 // The per-particle-set work on the GPU (realtime/per_set_gpu.h), one stage per #define: the
 // grid (INIT, H_MIN, LEVELS, LAYOUT, COUNT, SCATTER, SORT, GATHER), the particle normals where
 // the set came without them (NORMALS), the answers per particle
-// (RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR, MARK,
-// PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or cell).
+// (INTERIOR, RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR,
+// MARK, PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or
+// cell, or entry of a list).
 #if defined(NORMALS) || defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || \
     defined(CULL) || defined(CULL_FULL) || defined(FIELD_NORMAL) || defined(ANISOTROPY) ||   \
-    defined(CULL_SPHERES)
+    defined(CULL_SPHERES) || defined(INTERIOR)
 #define GRID_READ
 #endif
 #include "per_set.glsl"
@@ -32,16 +33,17 @@ layout(std430, binding = 10) buffer Sorted {
 
 #if defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || defined(CULL) || \
     defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(NEAR) || defined(MARK) ||     \
-    defined(PACK) || defined(CULL_SPHERES)
+    defined(PACK) || defined(CULL_SPHERES) || defined(INTERIOR) || defined(INTERIOR_DRAWN)
 layout(std430, binding = 11) buffer Radii {
     float radii[];
 };
 #endif
 
-// flags: bit 1: hidden (occlusion_culling.h).
-const uint HIDDEN = 2u;
+// flags: bit 1: hidden (occlusion_culling.h); bit 2: settled by INTERIOR (its normal is not
+// derived until it may be drawn).
+const uint HIDDEN = 2u, INTERIOR_BIT = 4u;
 #if defined(CULL) || defined(CULL_FULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || \
-    defined(PACK) || defined(CULL_SPHERES)
+    defined(PACK) || defined(CULL_SPHERES) || defined(INTERIOR) || defined(INTERIOR_DRAWN)
 layout(std430, binding = 12) buffer Flags {
     uint flags[];  // CULL writes bit 1 of its own particle's flags only
 };
@@ -49,7 +51,8 @@ layout(std430, binding = 12) buffer Flags {
 
 // A droplet's first particle: its slot + 1 in the flags from bit 8 (0: not a droplet's), and
 // per droplet its ellipsoid (GpuEllipsoid) and field normal model (FieldNormal), 3 vec4 each.
-#if defined(CULL_SPHERES) || defined(NEAR) || defined(KERNELS) || defined(PACK)
+#if defined(CULL_SPHERES) || defined(NEAR) || defined(KERNELS) || defined(PACK) || \
+    defined(INTERIOR_DRAWN)
 uint dropletSlot(uint i) { return flags[i] >> 8; }
 #endif
 #if defined(KERNELS) || defined(PACK)
@@ -67,12 +70,15 @@ layout(std430, binding = 13) buffer Models {
 #endif
 
 // The invocations a long pass takes, appended by the pass before it and dispatched indirectly
-// (the Header's walkDispatch: work groups, 1, 1, entries): RADIUS_WALK the particles RADIUS's
-// early exit leaves, CULL_FULL the grid slots CULL's coarse test leaves, KERNELS the particles
-// MARK draws. One dispatch over them alone keeps the lanes busy, where in the particles' order
-// they would be a few lanes of many vectors, each vector paying the long loops.
+// (the Header's walkDispatch: work groups, 1, 1, entries): NORMALS, RADIUS and RADIUS_WALK the
+// particles INTERIOR leaves (RADIUS_WALK those of them whose radius RADIUS's early exit leaves
+// negative), NORMALS also those of INTERIOR's that INTERIOR_DRAWN lists, CULL_FULL the grid
+// slots CULL's coarse test leaves, KERNELS the particles MARK draws. One dispatch over them
+// alone keeps the lanes busy, where in the particles' order they would be a few lanes of many
+// vectors, each vector paying the long loops.
 #if defined(RADIUS) || defined(RADIUS_WALK) || defined(CULL) || defined(CULL_FULL) || \
-    defined(MARK) || defined(KERNELS)
+    defined(MARK) || defined(KERNELS) || defined(INTERIOR) || defined(INTERIOR_DRAWN) ||   \
+    defined(NORMALS)
 layout(std430, binding = 18) buffer Walks {
     uint walkList[];
 };
@@ -293,7 +299,7 @@ void fieldSamples(vec3 centre, vec3 n, float t0, float step, out float values[8]
 #undef ADD_EIGHT
 }
 
-uniform float uRadiusScale, uCrossingScale, uLevel;
+uniform float uRadiusScale, uCrossingScale, uLevel, uInteriorLevel;
 uniform int uFixed;
 // droplets.h's sparse test where > 0: a particle with a surface and fewer than this many
 // neighbours within 2 h counts in sparseCount.
@@ -322,9 +328,18 @@ void main() {
     uint t = invocation();
     if (t >= walkDispatch.w) return;
     uint i = walkList[t];
+    if (radii[i] >= 0.0) return;  // settled by RADIUS's early exit
 #else
-    uint i = invocation();
-    if (i >= uCount) return;
+    // "fixed": every particle; "field": those INTERIOR left, its list.
+    uint i;
+    if (uFixed != 0) {
+        i = invocation();
+        if (i >= uCount) return;
+    } else {
+        uint t = invocation();
+        if (t >= walkDispatch.w) return;
+        i = walkList[t];
+    }
 #endif
     float h = particleH(i);
     float maxRadius = uRadiusScale * h;
@@ -349,12 +364,13 @@ void main() {
         FOR_EACH_IN_BLOCK(g, base, 2, ADD_SAMPLES)
     }
     if (uDropletAtoms > 0) --neighbours;  // itself
-    if (atCentre > max(uLevel, ownBound) && atHalf > uLevel && atCap > uLevel &&
+    if (atCentre > max(uLevel, ownBound) &&
+        (atCentre >= uInteriorLevel || (atHalf > uLevel && atCap > uLevel)) &&
         neighbours >= uDropletAtoms) {
         radii[i] = min(maxRadius, uCrossingScale * maxRadius);
         return;
     }
-    appendWalk(i);  // left to RADIUS_WALK
+    radii[i] = -1.0;  // left to RADIUS_WALK, which takes the same list
 #else
     // One walk for the field at the centre and at the 8 samples k maxRadius / 8 (k = 1..8) of the
     // bisection's first pass, half-way and the cap among them (the same offsets, so the same
@@ -384,8 +400,9 @@ void main() {
     atHalf = values[3];
     atCap = values[7];
     float crossing = 0.0;
+    bool alone = atCentre <= ownBound;
     if (atCentre > uLevel) {
-        if (atCap > uLevel && atHalf > uLevel) {
+        if ((!alone && atCentre >= uInteriorLevel) || (atCap > uLevel && atHalf > uLevel)) {
             crossing = maxRadius;
         } else {
             // The first of the 8 samples not above the level brackets the crossing; two more
@@ -421,13 +438,83 @@ void main() {
                                                                0.0, 1.0);
         }
     }
-    bool alone = atCentre <= ownBound;
     float radius = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
     radii[i] = radius;
     if (radius > 0.0 && neighbours < uDropletAtoms) atomicAdd(sparseCount, 1u);
 #endif
 }
 #undef ADD_SAMPLES
+#endif
+
+#ifdef INTERIOR
+// impostor_radius.cpp's interior_level, before any normal: most particles of a body lie deep
+// inside it, where the field at the centre is far above the level and the normal is the
+// gradient of a field that nearly cancels. A lower bound of the field at the centre, the sum
+// over the 3 x 3 x 3 cells of the particle's own level about its cell (kernels are never
+// negative), at or above interior_level (and above the particle's own kernel's peak) settles
+// it: its radius is the cap, and it takes the fallback normal (NORMALS': the radial direction
+// from its body's centre, the pole axis at the centre) until INTERIOR_DRAWN finds it may be
+// drawn. So do the neighbours within 2 h counted there for the droplets' sparse test (a lower
+// bound too). The others are listed for NORMALS, RADIUS and RADIUS_WALK, which apply the same
+// rule to the full sum. Grid slots in order: neighbouring invocations read the same cells.
+layout(std430, binding = 20) readonly buffer Bodies {
+    vec4 bodies[];  // 2 per body: the centre; the pole axis
+};
+uniform float uRadiusScale, uCrossingScale, uInteriorLevel;
+uniform int uDropletAtoms, uFallbackNormals;
+void main() {
+    uint slot = invocation();
+    if (slot >= uCount) return;
+    uint i = floatBitsToUint(entryCoefficients(slot).z);
+    vec3 x = entryPosition(slot).xyz;
+    float h = particleH(i);
+    const float PI = 3.14159265358979;
+    float ownBound = attribute1(ATTR_VOLUME, i) / (PI * h * h * h) * (1.0 + 1e-4);
+    float reach2 = 4.0 * h * h, field = 0.0;
+    int neighbours = uDropletAtoms > 0 ? -1 : 0;  // itself
+    Level g = levels[levelOf(h)];
+    ivec3 home = ivec3(floor((x - g.originCell.xyz) * levelInvCell(g)));
+#define ADD_CENTRE(k)                                                      \
+    {                                                                      \
+        vec4 e = entryPosition(k);                                         \
+        vec3 d = e.xyz - x;                                                \
+        field += entryCoefficients(k).y * m4Shape(length(d) * e.w);        \
+        if (dot(d, d) < reach2) ++neighbours;                              \
+    }
+    FOR_EACH_IN_BLOCK(g, (home - ivec3(1)), 3, ADD_CENTRE)
+#undef ADD_CENTRE
+    if (!(field >= uInteriorLevel && field > ownBound && neighbours >= uDropletAtoms)) {
+        appendWalk(i);
+        return;
+    }
+    float maxRadius = uRadiusScale * h;
+    radii[i] = min(maxRadius, uCrossingScale * maxRadius);
+    flags[i] |= INTERIOR_BIT;
+    if (uFallbackNormals != 0) {
+        uint b = attributeBits(ATTR_BODY, i);
+        vec3 radial = x - bodies[2u * b].xyz;
+        float rl = length(radial);
+        vec3 n = rl > 0.0 ? radial / rl : bodies[2u * b + 1u].xyz;
+        uint k = ATTR_NORMAL * uCount + 3u * i;
+        attributes[k] = n.x;
+        attributes[k + 1u] = n.y;
+        attributes[k + 2u] = n.z;
+    }
+}
+#endif
+
+#ifdef INTERIOR_DRAWN
+// The particles INTERIOR settled that may be drawn (a surface, not hidden where culled, not a
+// droplet's), listed for NORMALS.
+uniform int uCull;
+void main() {
+    uint i = invocation();
+    if (i >= uCount) return;
+    uint f = flags[i];
+    if ((f & INTERIOR_BIT) != 0u && radii[i] > 0.0 && !(uCull != 0 && (f & HIDDEN) != 0u) &&
+        dropletSlot(i) == 0u)
+        appendWalk(i);
+}
 #endif
 
 #if defined(CULL_SPHERES) || defined(CULL) || defined(CULL_FULL)
@@ -624,13 +711,23 @@ layout(std430, binding = 20) readonly buffer Bodies {
     vec4 bodies[];  // 2 per body: the centre; the pole axis
 };
 uniform float uFallbackRatio;
+uniform int uFromList;  // the particles listed (INTERIOR's, INTERIOR_DRAWN's); else all
 const float FLT_EPSILON = 1.1920929e-7;
 void main() {
-    // Particles in grid order (the entries'): neighbouring invocations walk the same cells.
-    uint slot = invocation();
-    if (slot >= uCount) return;
-    uint i = floatBitsToUint(entryCoefficients(slot).z);
-    vec3 x = entryPosition(slot).xyz;
+    // All: in grid order (the entries'), so that neighbouring invocations walk the same cells.
+    uint i;
+    vec3 x;
+    if (uFromList != 0) {
+        uint t = invocation();
+        if (t >= walkDispatch.w) return;
+        i = walkList[t];
+        x = particlePosition(i);
+    } else {
+        uint slot = invocation();
+        if (slot >= uCount) return;
+        i = floatBitsToUint(entryCoefficients(slot).z);
+        x = entryPosition(slot).xyz;
+    }
     vec3 gradient = vec3(0.0);
     float magnitudeSum = 0.0;
 // Outside the support (q >= 2, where dW/dr is 0) and the particle itself are rejected on the

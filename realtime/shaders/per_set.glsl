@@ -25,8 +25,9 @@ const int MAX_LEVELS = 32;
 
 uniform uint uCount;  // particles in the set
 
-// NORMALS writes the normals (derived_attributes.h's, where the set came without them).
-#ifdef NORMALS
+// NORMALS writes the normals (derived_attributes.h's, where the set came without them), and
+// INTERIOR the fallback normals of those it settles.
+#if defined(NORMALS) || defined(INTERIOR)
 #define ATTRIBUTES_ACCESS
 #else
 #define ATTRIBUTES_ACCESS readonly
