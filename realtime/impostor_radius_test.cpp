@@ -92,6 +92,26 @@ TEST(ImpostorRadius, NeighboursGetTheCrossingScale) {
     for (int i = 0; i < 2; ++i) EXPECT_NEAR(scaled[i], 1.2f * plain[i], 1e-5f);
 }
 
+// interior_level: a particle whose field at its centre is at least that takes the cap without
+// the search along its normal (here against a crossing well inside the cap); a lone particle
+// keeps its droplet whatever the level.
+TEST(ImpostorRadius, AParticleAtTheInteriorLevelTakesTheCap) {
+    const float h = 0.5f;
+    const core::ParticleSet ps = pair(h);
+    ParticleSettings s;
+    const float searched = impostorRadii(ps, s)[0];
+    const float cap = static_cast<float>(s.radiusScale * h);
+    ASSERT_LT(searched, 0.5f * cap);
+    const double atCentre = core::ColourField(ps).value(glm::dvec3(ps.position[0]));
+    s.interiorLevel = atCentre;
+    EXPECT_FLOAT_EQ(impostorRadii(ps, s)[0], cap);
+    s.interiorLevel = std::nextafter(atCentre, 1e9);
+    EXPECT_EQ(impostorRadii(ps, s)[0], searched);
+    s.interiorLevel = 1e-6;
+    const core::ParticleSet one = lone(h);
+    EXPECT_EQ(impostorRadii(one, s)[0], impostorRadii(one, ParticleSettings{})[0]);
+}
+
 TEST(ImpostorRadius, TheCacheReusesItsAnswerOnlyForTheSameInputs) {
     core::ParticleSet ps = pair(0.5f);
     ImpostorRadiusCache cache;
@@ -102,6 +122,9 @@ TEST(ImpostorRadius, TheCacheReusesItsAnswerOnlyForTheSameInputs) {
     EXPECT_TRUE(cache.reused());
     s.crossingScale = 1.0;
     EXPECT_LT(cache.radii(ps, s)[0], first);
+    EXPECT_FALSE(cache.reused());
+    s.interiorLevel = 1e-6;
+    EXPECT_GT(cache.radii(ps, s)[0], first);
     EXPECT_FALSE(cache.reused());
     ps.position[0].x += 1.0f;
     cache.radii(ps, s);

@@ -89,6 +89,40 @@ TEST_F(PerSetGpu, NormalsMatchCore) {
     EXPECT_LE(radiiApart, apart);
 }
 
+// With culling, the particles INTERIOR settles (most of a body's) get their normals only where
+// they may be drawn: every visible particle has core::deriveNormals' normal (as
+// NormalsMatchCore), while hidden ones deep inside keep the fallback, the radial direction
+// from their body's centre, unless that happens to be theirs too. The radii are the CPU's
+// (interior_level on both paths).
+TEST_F(PerSetGpu, InteriorParticlesGetTheirNormalsWhereTheyMayBeDrawn) {
+    const Loaded& l = contact();
+    PerSetRequest request;
+    request.cull = true;
+    context.makeCurrent();
+    GpuPerSet g;
+    g.update(programs, l.particles.particles, request, l.particles.bodies);
+    const std::vector<glm::vec3> gpu = g.normals();
+    const core::ParticleSet& cpu = l.withNormals.particles;
+    const std::vector<std::uint32_t> visible = g.visibleParticles();
+    ASSERT_LT(visible.size(), cpu.size() / 2);
+    int visibleApart = 0;
+    for (std::uint32_t i : visible) visibleApart += !(glm::length(gpu[i] - cpu.normal[i]) < 2e-3f);
+    EXPECT_LE(visibleApart, static_cast<int>(visible.size() / 200));
+    int fallback = 0;
+    for (std::size_t i = 0; i < cpu.size(); ++i) {
+        EXPECT_NEAR(glm::length(gpu[i]), 1.0f, 1e-5f) << i;
+        const core::BodyInfo& body = l.particles.bodies[cpu.body[i]];
+        const glm::vec3 radial = glm::normalize(glm::dvec3(cpu.position[i]) - body.center);
+        fallback +=
+            glm::length(gpu[i] - radial) < 1e-6f && !(glm::length(cpu.normal[i] - radial) < 2e-3f);
+    }
+    EXPECT_GT(fallback, static_cast<int>(cpu.size() / 4));  // their normals were not derived
+    const std::vector<float> cpuRadii = impostorRadii(cpu, request.particles);
+    const std::vector<float> gpuRadii = g.radii();
+    for (std::size_t i = 0; i < cpu.size(); ++i)
+        EXPECT_NEAR(gpuRadii[i], cpuRadii[i], 3e-4 * cpu.h[i]) << i;
+}
+
 TEST_F(PerSetGpu, RadiiCullingAndFieldNormalsMatchTheCpu) {
     const core::ParticleSet& ps = contact().withNormals.particles;
     ASSERT_GT(ps.h.back() / ps.h.front(), 2.0f);  // two levels of the grid
