@@ -7,8 +7,10 @@
 // (anisotropy.h). Per frame, compute passes mark the drawn particles and the kernels whose
 // support reaches one of them (the gradient pass's), pack both (camera-relative, subtracted in
 // double) into the storage buffers the draw passes read, and write the draw counts into
-// indirect draw commands: nothing is read back. Sums over the grid run in a fixed order, so the
-// results do not depend on scheduling. shaders/per_set.comp, per_set.glsl, scan.comp.
+// indirect draw commands: nothing is read back (but one count where droplets are drawn). Sums
+// over the grid run in a fixed order, so the results do not depend on scheduling. The walks
+// read the grid as buffer textures (per_set.glsl says why). shaders/per_set.comp, per_set.glsl,
+// scan.comp.
 #pragma once
 
 #include <cstdint>
@@ -51,8 +53,11 @@ class GpuPerSet {
     // sets did not (all of it for a new set, inputs compared exactly as ParticleSetKey), each
     // stage timed; returns whether anything was built. Programs are compiled through
     // `programs` on first use. With `deriveNormalsOf` (the set's bodies), the particles came
-    // without normals: a compute pass derives them as core::deriveNormals does (stage
-    // "particle_normals"), and every later stage uses those.
+    // without normals: compute passes derive them as core::deriveNormals does (stage
+    // "particle_normals"), with "field" radii for the particles they need: those the radii
+    // search along, then those settled deep inside a body (interior_level) that may be drawn
+    // after culling; the other settled ones keep the fallback normal, the radial direction
+    // from their body's centre.
     bool update(ProgramCache& programs, const core::ParticleSet& particles,
                 const PerSetRequest& request, std::span<const core::BodyInfo> deriveNormalsOf = {});
 
@@ -89,7 +94,7 @@ class GpuPerSet {
 
     // Read back, for tests: per particle of the last set.
     std::vector<float> radii() const;
-    std::vector<glm::vec3> normals() const;
+    std::vector<glm::vec3> normals() const;  // as update() left them
     // The kernels of the last frame (ascending): those whose support reaches a drawn impostor
     // (a superset of what surfaceKernels() keeps where it matters).
     std::vector<std::uint32_t> kernelParticles() const;

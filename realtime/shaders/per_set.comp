@@ -290,9 +290,9 @@ void fieldSamples(vec3 centre, vec3 n, float t0, float step, out float values[8]
     vec3 middle = centre + (t0 + 4.5 * step) * n;
 #define ADD_EIGHT(k)                                                                \
     {                                                                               \
-        vec4 e = entryPosition(k);                                           \
+        vec4 e = entryPosition(k);                                                  \
         vec3 d = e.xyz - centre;                                                    \
-        float c = entryCoefficients(k).x / e.w;                                  \
+        float c = entryCoefficients(k).x / e.w;                                     \
         for (int s = 0; s < 8; ++s) values[s] += c * m4Shape(length(d - offsets[s]) * e.w); \
     }
     FOR_EACH_NEAR(middle, samplesReach, ADD_EIGHT)
@@ -314,9 +314,9 @@ float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + half
 // a count one short there only leaves the particle to the walk.
 #define ADD_SAMPLES(k)                                            \
     {                                                             \
-        vec4 e = entryPosition(k);                         \
+        vec4 e = entryPosition(k);                                \
         vec3 d = e.xyz - centre;                                  \
-        float c = entryCoefficients(k).x / e.w;                \
+        float c = entryCoefficients(k).x / e.w;                   \
         atCentre += c * m4Shape(length(d) * e.w);                 \
         atHalf += c * m4Shape(length(d - halfway) * e.w);         \
         atCap += c * m4Shape(length(d - cap) * e.w);              \
@@ -387,9 +387,9 @@ void main() {
     }
 #define ADD_NINE(k)                                                                         \
     {                                                                                       \
-        vec4 e = entryPosition(k);                                                   \
+        vec4 e = entryPosition(k);                                                          \
         vec3 d = e.xyz - centre;                                                            \
-        float c = entryCoefficients(k).x / e.w;                                          \
+        float c = entryCoefficients(k).x / e.w;                                             \
         atCentre += c * m4Shape(length(d) * e.w);                                           \
         for (int s = 0; s < 8; ++s) values[s] += c * m4Shape(length(d - offsets[s]) * e.w); \
         if (dot(d, d) < countReach2) ++neighbours;                                          \
@@ -597,7 +597,7 @@ void main() {
     float dist2_ = dot(d_, d_);                                                                 \
     float reach_ = ri + rj_;                                                                    \
     if (k != slot && rj_ > 0.0 && dist2_ < reach_ * reach_ && (!NEAR_ONLY || dist2_ <= nearLimit2) && \
-        floatBitsToUint(entryCoefficients(k).w) == body) {                                   \
+        floatBitsToUint(entryCoefficients(k).w) == body) {                                      \
         float dist_ = sqrt(dist2_);                                                             \
         if (rj_ >= ri && dist_ + ri <= rj_) {                                                   \
             if (dist2_ > 0.0 || rj_ > ri || entryIndex(k) < i) hidden = true;                   \
@@ -734,7 +734,7 @@ void main() {
 // squared distance, before the square root.
 #define ADD_GRADIENT(k)                                                    \
     {                                                                      \
-        vec4 e = entryPosition(k);                                  \
+        vec4 e = entryPosition(k);                                         \
         vec3 d = x - e.xyz;                                                \
         float r2 = dot(d, d);                                              \
         if (r2 * (e.w * e.w) < 4.0 && r2 > 0.0) {                          \
@@ -779,12 +779,12 @@ void main() {
     mat3 hessian = mat3(0.0);
 #define ADD_DERIVATIVES(k)                                                        \
     {                                                                             \
-        vec4 e = entryPosition(k);                                         \
+        vec4 e = entryPosition(k);                                                \
         vec3 delta = offset - (e.xyz - centre);                                   \
         float dist = length(delta);                                               \
         float q = dist * e.w;                                                     \
         if (q < 2.0 && dist > 0.0) {                                              \
-            float coef = entryCoefficients(k).x;                               \
+            float coef = entryCoefficients(k).x;                                  \
             float dWdr = coef * m4ShapeDerivative(q);                             \
             float d2Wdr2 = coef * e.w * m4ShapeSecondDerivative(q);               \
             vec3 u = delta / dist;                                                \
@@ -843,7 +843,7 @@ void main() {
     int neighbours = 0;
 #define GATHER_MOMENTS(k)                                                  \
     {                                                                      \
-        vec3 d = entryPosition(k).xyz - centre;                     \
+        vec3 d = entryPosition(k).xyz - centre;                            \
         float q = length(d) * inverse;                                     \
         if (q < 1.0) {                                                     \
             float w = 1.0 - q * q * q;                                     \
@@ -990,7 +990,7 @@ void main() {
     kernelReach_r = r;
 #define MARK_KERNEL(k)                                                   \
     {                                                                    \
-        vec4 e = entryPosition(k);                                \
+        vec4 e = entryPosition(k);                                       \
         float reach = r + 2.0 / e.w;                                     \
         vec3 d = e.xyz - centre;                                         \
         if (dot(d, d) < reach * reach)                                   \
