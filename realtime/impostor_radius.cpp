@@ -61,7 +61,7 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
                 const double atCentre = field.value(centre);
                 const bool alone = atCentre <= own * (1.0 + 1e-4);
                 const double crossing =
-                    !alone && atCentre >= settings.interiorLevel
+                    !alone && atCentre > settings.surfaceLevel && atCentre >= settings.interiorLevel
                         ? maxRadius
                         : fieldCrossing(field, centre, glm::normalize(glm::dvec3(ps.normal[i])),
                                         maxRadius, settings.surfaceLevel);

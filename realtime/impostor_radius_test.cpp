@@ -110,6 +110,11 @@ TEST(ImpostorRadius, AParticleAtTheInteriorLevelTakesTheCap) {
     s.interiorLevel = 1e-6;
     const core::ParticleSet one = lone(h);
     EXPECT_EQ(impostorRadii(one, s)[0], impostorRadii(one, ParticleSettings{})[0]);
+    // Below the surface level there is no surface, whatever interior_level says.
+    core::ParticleSet faint = ps;
+    for (float& v : faint.volume) v *= 0.5f;
+    ASSERT_LT(core::ColourField(faint).value(glm::dvec3(faint.position[0])), s.surfaceLevel);
+    EXPECT_EQ(impostorRadii(faint, s)[0], 0.0f);
 }
 
 TEST(ImpostorRadius, TheCacheReusesItsAnswerOnlyForTheSameInputs) {

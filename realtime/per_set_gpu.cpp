@@ -353,10 +353,8 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             p.set("uRadiusScale", static_cast<float>(s.radiusScale));
             p.set("uCrossingScale", static_cast<float>(s.crossingScale));
             p.set("uInteriorLevel", static_cast<float>(s.interiorLevel));
-            if (std::string_view(name) != "INTERIOR") {
-                p.set("uLevel", static_cast<float>(s.surfaceLevel));
-                p.set("uFixed", field ? 0 : 1);
-            }
+            p.set("uLevel", static_cast<float>(s.surfaceLevel));
+            if (std::string_view(name) != "INTERIOR") p.set("uFixed", field ? 0 : 1);
             return p;
         };
         timed("radius", [&] {

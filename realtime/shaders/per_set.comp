@@ -452,7 +452,7 @@ void main() {
 // gradient of a field that nearly cancels. A lower bound of the field at the centre, the sum
 // over the 3 x 3 x 3 cells of the particle's own level about its cell (kernels are never
 // negative), at or above interior_level (and above the particle's own kernel's peak) settles
-// it: its radius is the cap, and it takes the fallback normal (NORMALS': the radial direction
+// it (a field above surface_level too): its radius is the cap, and it takes the fallback normal (NORMALS': the radial direction
 // from its body's centre, the pole axis at the centre) until INTERIOR_DRAWN finds it may be
 // drawn. So do the neighbours within 2 h counted there for the droplets' sparse test (a lower
 // bound too). The others are listed for NORMALS, RADIUS and RADIUS_WALK, which apply the same
@@ -460,7 +460,7 @@ void main() {
 layout(std430, binding = 20) readonly buffer Bodies {
     vec4 bodies[];  // 2 per body: the centre; the pole axis
 };
-uniform float uRadiusScale, uCrossingScale, uInteriorLevel;
+uniform float uRadiusScale, uCrossingScale, uLevel, uInteriorLevel;
 uniform int uDropletAtoms, uFallbackNormals;
 void main() {
     uint slot = invocation();
@@ -483,7 +483,8 @@ void main() {
     }
     FOR_EACH_IN_BLOCK(g, (home - ivec3(1)), 3, ADD_CENTRE)
 #undef ADD_CENTRE
-    if (!(field >= uInteriorLevel && field > ownBound && neighbours >= uDropletAtoms)) {
+    if (!(field >= uInteriorLevel && field > max(uLevel, ownBound) &&
+          neighbours >= uDropletAtoms)) {
         appendWalk(i);
         return;
     }
