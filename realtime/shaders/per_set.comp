@@ -451,12 +451,12 @@ void main() {
 // inside it, where the field at the centre is far above the level and the normal is the
 // gradient of a field that nearly cancels. A lower bound of the field at the centre, the sum
 // over the 3 x 3 x 3 cells of the particle's own level about its cell (kernels are never
-// negative), at or above interior_level (and above the particle's own kernel's peak) settles
-// it (a field above surface_level too): its radius is the cap, and it takes the fallback normal (NORMALS': the radial direction
-// from its body's centre, the pole axis at the centre) until INTERIOR_DRAWN finds it may be
-// drawn. So do the neighbours within 2 h counted there for the droplets' sparse test (a lower
-// bound too). The others are listed for NORMALS, RADIUS and RADIUS_WALK, which apply the same
-// rule to the full sum. Grid slots in order: neighbouring invocations read the same cells.
+// negative), at or above interior_level, surface_level and the particle's own kernel's peak
+// settles it: its radius is the cap, and it takes the fallback normal (NORMALS': the radial
+// direction from its body's centre, the pole axis at the centre) until INTERIOR_DRAWN finds it
+// may be drawn. So do the neighbours within 2 h counted there for the droplets' sparse test (a
+// lower bound too). The others are listed for NORMALS, RADIUS and RADIUS_WALK, which apply the
+// same rule to the full sum. Grid slots in order: neighbouring invocations read the same cells.
 layout(std430, binding = 20) readonly buffer Bodies {
     vec4 bodies[];  // 2 per body: the centre; the pole axis
 };
