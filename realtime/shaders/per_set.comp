@@ -454,8 +454,8 @@ void main() {
 // negative), at or above interior_level, surface_level and the particle's own kernel's peak
 // settles it: its radius is the cap, and it takes the fallback normal (NORMALS': the radial
 // direction from its body's centre, the pole axis at the centre) until INTERIOR_DRAWN finds it
-// may be drawn. So do the neighbours within 2 h counted there for the droplets' sparse test (a
-// lower bound too). The others are listed for NORMALS, RADIUS and RADIUS_WALK, which apply the
+// may be drawn. It also needs droplet_atoms neighbours within 2 h in those cells (the
+// droplets' sparse test; a lower bound too). The others are listed for NORMALS, RADIUS and RADIUS_WALK, which apply the
 // same rule to the full sum. Grid slots in order: neighbouring invocations read the same cells.
 layout(std430, binding = 20) readonly buffer Bodies {
     vec4 bodies[];  // 2 per body: the centre; the pole axis
