@@ -409,8 +409,12 @@ void main() {
             // walks of 8 samples each narrow the bracket 9-fold, to maxRadius / 648, and the
             // crossing is interpolated linearly within it (the CPU path bisects to
             // maxRadius / 8192; the two agree within 1e-4 h).
+            // Once crossing_scale times the bracket's inner end reaches the cap, the radius is
+            // the cap wherever the crossing lies beyond: the bracket is not narrowed further.
             float inside = 0.0, outside = -1.0, atInside = atCentre, atOutside = 0.0;
-            for (int pass = 0; pass < 3 && !(pass > 0 && outside < 0.0); ++pass) {
+            float scale = alone ? 1.0 : uCrossingScale;
+            bool capped = false;
+            for (int pass = 0; pass < 3 && !(pass > 0 && outside < 0.0) && !capped; ++pass) {
                 if (pass > 0) fieldSamples(centre, n, inside, step, values);
                 int first = 8;
                 for (int k = 7; k >= 0; --k)
@@ -429,8 +433,9 @@ void main() {
                     atOutside = values[first];
                 }
                 step = (outside - inside) / 9.0;
+                capped = scale * inside >= maxRadius;
             }
-            if (outside < 0.0)
+            if (outside < 0.0 || capped)
                 crossing = maxRadius;
             else
                 crossing = inside + (outside - inside) * clamp((atInside - uLevel) /
