@@ -105,8 +105,8 @@ int modelKind(const ParticleSettings& p) {
     return p.normal == NormalModel::Field ? 1 : 0;
 }
 
-// The CULL stage, the coarse grid's directions compiled in.
-const gl::Program& cullProgram(ProgramCache& programs) {
+// A culling stage (CULL, CULL_FULL), the coarse grid's directions compiled in.
+const gl::Program& cullProgram(ProgramCache& programs, const char* stage) {
     static const std::string directions = [] {
         std::string list;
         const auto& d = cullingDirections().directions;
@@ -115,7 +115,7 @@ const gl::Program& cullProgram(ProgramCache& programs) {
                                 float(d[k].y), float(d[k].z));
         return list;
     }();
-    return programs.compute("per_set.comp", {"CULL", "COARSE_DIRECTION_VALUES " + directions});
+    return programs.compute("per_set.comp", {stage, "COARSE_DIRECTION_VALUES " + directions});
 }
 
 // `buffer` kept where it has `bytes` already, else a new zero-filled one.
@@ -140,12 +140,13 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
                                        "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
                                        "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
     if (request.kernels) stages.push_back("KERNELS");
-    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "CULL_FULL", "NEAR"});
+    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
     for (const char* stage : stages) programs.compute("per_set.comp", {stage});
-    if (request.cull) cullProgram(programs);
+    if (request.cull)
+        for (const char* stage : {"CULL", "CULL_FULL"}) cullProgram(programs, stage);
 }
 
 void GpuPerSet::timed(const char* stage, const auto& work) {
@@ -404,14 +405,15 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             stage("CULL_SPHERES").dispatch(groups(mCount));
             gl::computeBarrier();
             const CullingDirections& grid = cullingDirections();
-            const gl::Program& coarse = cullProgram(programs);
+            const gl::Program& coarse = cullProgram(programs, "CULL");
             coarse.set("uCount", static_cast<unsigned>(mCount));
             coarse.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
             coarse.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
             coarse.dispatch(groups(mCount));
             gl::computeBarrier();
             // The spheres the coarse test left, as many work groups as CULL counted.
-            const gl::Program& full = stage("CULL_FULL");
+            const gl::Program& full = cullProgram(programs, "CULL_FULL");
+            full.set("uCount", static_cast<unsigned>(mCount));
             full.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
             full.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
             full.set("uRadiusScale", static_cast<float>(s.radiusScale));

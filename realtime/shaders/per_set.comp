@@ -660,6 +660,37 @@ void main() {
     }
     appendWalk(slot);  // left to CULL_FULL
 #else
+    // Most spheres the coarse test leaves are seen (at a surface). A probe first: the coarse
+    // grid direction nearest the particle's normal (one of the full grid's, outward at a
+    // surface), tested against every overlapping sphere's cap in one walk without lists. Where
+    // no cap covers it and no sphere holds this one, the full test below could only find that
+    // direction uncovered: the sphere is seen.
+    {
+        const vec3 COARSE[42] = vec3[](COARSE_DIRECTION_VALUES);
+        vec3 normal = attribute3(ATTR_NORMAL, i), probe = COARSE[0];
+        float best = dot(probe, normal);
+        for (int d = 1; d < 42; ++d) {
+            float c = dot(COARSE[d], normal);
+            if (c > best) {
+                best = c;
+                probe = COARSE[d];
+            }
+        }
+        bool covered = false;
+#define PROBE(k)                                                  \
+    {                                                             \
+        OVERLAP(k, uCosMargin, uSinMargin, false, cap)            \
+        covered = covered || dot(probe, cap.xyz) >= cap.w;        \
+        END_OVERLAP                                               \
+    }
+        FOR_EACH_NEAR(xi, cullReach, PROBE)
+#undef PROBE
+        if (!covered && !hidden) {
+            flags[i] = flags[i] & ~HIDDEN;
+            return;
+        }
+        hidden = false;  // the full test decides
+    }
     // The full test: every overlapping sphere, the near shell's caps first in the list. The
     // overlapping slots are listed first (a cheap loop), then their caps are made (the
     // arithmetic once per overlapping sphere, not once per neighbour visited).
