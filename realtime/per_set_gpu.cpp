@@ -41,6 +41,11 @@ constexpr std::size_t BLOCK = 4096;  // values per work group of scan.comp
 // COARSE_DIRECTIONS.
 constexpr std::size_t COARSE_DIRECTIONS = 42;
 
+// Every level has at most max(4 x its particles, 4096) cells.
+std::size_t maxCells(std::size_t particles) {
+    return 4 * particles + 4096 * MAX_LEVELS;
+}
+
 unsigned groups(std::size_t count, std::size_t per = GROUP) {
     return static_cast<unsigned>((count + per - 1) / per);
 }
@@ -133,6 +138,11 @@ Resized resized(std::optional<gl::Buffer>& buffer, std::size_t bytes) {
 
 }  // namespace
 
+std::size_t perSetTexels(std::size_t particles) {
+    // The cells' offsets, one per cell and one more; the entries take 2 per particle.
+    return std::max(maxCells(particles) + 1, 2 * particles);
+}
+
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
     for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
     std::vector<const char*> stages = {"INIT",    "H_MIN",    "LEVELS", "LAYOUT",
@@ -189,8 +199,7 @@ void GpuPerSet::bindStorage() const {
 void GpuPerSet::upload(const core::ParticleSet& ps) {
     const std::size_t n = ps.size();
     mCount = n;
-    // Every level has at most max(4 x its particles, 4096) cells.
-    mMaxCells = 4 * n + 4096 * MAX_LEVELS;
+    mMaxCells = maxCells(n);
     // A set of as many particles as the last keeps the buffers: each stage writes what it reads
     // (the grid's counters are cleared in buildGrid), and allocating and zeroing them anew cost
     // more than the rest of the upload.

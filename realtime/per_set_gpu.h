@@ -44,6 +44,10 @@ struct FrameRequest {
     double nearReach = 0.0;  // renderer.cpp's cullingIsExact: the near plane's ball
 };
 
+// The most texels a set of `particles` has GpuPerSet view as one buffer texture (its grid's
+// cells), for the device's GL_MAX_TEXTURE_BUFFER_SIZE.
+std::size_t perSetTexels(std::size_t particles);
+
 // Compiles the compute programs GpuPerSet will use for `request` (set-up, like the passes').
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request);
 

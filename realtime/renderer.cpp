@@ -254,10 +254,11 @@ void compilePrograms(ProgramCache& programs, const Settings& settings, bool emit
 
 // ---- Upload ----
 
-// Throws core::InputError when the packed particles or material texels exceed the device's
-// buffer limits.
+// Throws core::InputError when the packed particles, the per-set work's grid (read as buffer
+// textures on the GPU path: per_set_gpu.h) or the material texels exceed the device's buffer
+// limits.
 void checkBufferLimits(const core::RenderInput& in, const DeviceState& d, std::size_t particles,
-                       std::size_t texels) {
+                       std::size_t texels, PerSetDevice perSet) {
     const gl::Limits& limits = d.limits;
     const std::size_t bytes = particles * sizeof(GpuParticle);
     if (static_cast<long long>(bytes) > limits.maxStorageBlockBytes)
@@ -265,6 +266,14 @@ void checkBufferLimits(const core::RenderInput& in, const DeviceState& d, std::s
             "{}: {} particles take {} MB, over the GL device's storage-buffer limit of {} MB ({})",
             in.scene.file.string(), particles, bytes >> 20, limits.maxStorageBlockBytes >> 20,
             d.context.renderer()));
+    const std::size_t gridTexels = perSetTexels(in.particles.particles.size());
+    if (perSet == PerSetDevice::Gpu &&
+        static_cast<long long>(gridTexels) > limits.maxTextureBufferTexels)
+        throw core::InputError(
+            fmt::format("{}: {} particles need a neighbour grid of {} texels, over the GL device's "
+                        "buffer-texture limit of {} ({}); set realtime.per_set = \"cpu\"",
+                        in.scene.file.string(), in.particles.particles.size(), gridTexels,
+                        limits.maxTextureBufferTexels, d.context.renderer()));
     if (static_cast<long long>(texels) > limits.maxTextureBufferTexels)
         throw core::InputError(fmt::format(
             "{}: the material textures hold {} texels, over the GL device's buffer-texture limit "
@@ -308,7 +317,7 @@ SceneBuffers sceneBuffers(DeviceState& d, const core::RenderInput& in, const cor
                         in.scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(in.scene, camera, in.particles, settings, light);
     const GpuMaterials gpuMaterials = packMaterials(in.materials);
-    checkBufferLimits(in, d, particles, gpuMaterials.texels.size() / 3);
+    checkBufferLimits(in, d, particles, gpuMaterials.texels.size() / 3, settings.perSet);
     return {gl::Buffer::of(std::span<const FrameUniforms>(&uniforms, 1)),
             nullptr,
             gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
