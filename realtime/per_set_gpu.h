@@ -7,10 +7,10 @@
 // (anisotropy.h). Per frame, compute passes mark the drawn particles and the kernels whose
 // support reaches one of them (the gradient pass's), pack both (camera-relative, subtracted in
 // double) into the storage buffers the draw passes read, and write the draw counts into
-// indirect draw commands: nothing is read back (but one count where droplets are drawn). Sums
-// over the grid run in a fixed order, so the results do not depend on scheduling. The walks
-// read the grid as buffer textures (per_set.glsl says why). shaders/per_set.comp, per_set.glsl,
-// scan.comp.
+// indirect draw commands: nothing is read back (but, with droplets, a count and then the
+// radii). Sums over the grid run in a fixed order, so the results do not depend on scheduling.
+// The walks read the grid as buffer textures (per_set.glsl says why). shaders/per_set.comp,
+// per_set.glsl, scan.comp.
 #pragma once
 
 #include <cstdint>
