@@ -98,12 +98,12 @@ struct ParticleSettings {
     // 1.1, 0.974/0.943/0.938/0.922 at 1.3, 0.968/0.939/0.930/0.911 at 1.4 (docs/methods.md).
     double crossingScale = 1.2;
     // particles.interior_level ("field" only): a particle whose colour field at its centre is at
-    // least this (and above its own kernel's peak) lies deep inside a body, and its radius is
-    // radius_scale h without the search along its normal, > 0. The field must fall from here to
-    // surface_level within radius_scale h along the normal for this to change a radius: at 0.8
-    // it changes none on any default scene or frame of the two real sequences, while 95 % of a
-    // million-particle planet's particles are settled by it. Their normals are derived only
-    // where they are drawn (per_set = "gpu"; realtime/per_set_gpu.h).
+    // least this (and above surface_level and its own kernel's peak) lies deep inside a body,
+    // and its radius is radius_scale h without the search along its normal, > 0. The field must
+    // fall from here to surface_level within radius_scale h along the normal for this to change a
+    // radius: at 0.8 it changes none on any default scene or frame of the two real sequences, while
+    // 95 % of a million-particle planet's particles are settled by it. Their normals are derived
+    // only where they are drawn (per_set = "gpu"; realtime/per_set_gpu.h).
     double interiorLevel = 0.8;
     // particles.droplet_atoms ("field" only): clusters of 2 to this many sparse particles are
     // drawn as one ellipsoid fitted to their level-set droplet (realtime/droplets.h), 0..64

@@ -109,7 +109,7 @@ int cellIndex(Level g, vec3 p) {
 // bits of the particle's index and of its body. The stages that walk the grid read it, and the
 // cells' offsets, as buffer textures (per_set_gpu.cpp's texture units): Mesa's llvmpipe loads
 // from a storage buffer lane by lane, a branch per lane and component, where a texel fetch is
-// one gather, and a walk's loads are most of its time (NORMALS at 1M particles: 758 -> 291 ms).
+// one gather, and a walk's loads are most of its time (NORMALS at 1M particles: 758 -> 304 ms).
 layout(binding = 8) uniform samplerBuffer uEntryTexels;
 layout(binding = 9) uniform usamplerBuffer uCellTexels;  // totalCells + 1 offsets into entries
 vec4 entryPosition(uint k) { return texelFetch(uEntryTexels, int(2u * k)); }
