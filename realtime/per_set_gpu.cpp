@@ -190,6 +190,7 @@ void GpuPerSet::bindStorage() const {
     mDirections.bindStorage(DIRECTIONS);
     if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
     if (mCullSpheres.size() > 0) mCullSpheres.bindStorage(CULL_SPHERES);
+    if (mBodies.size() > 0) mBodies.bindStorage(BODIES);
     mEntryTexels.bind(ENTRY_TEXELS);
     mCellTexels.bind(CELL_TEXELS);
     mCullSphereTexels.bind(CULL_SPHERE_TEXELS);
@@ -311,7 +312,6 @@ void GpuPerSet::deriveNormals(ProgramCache& programs, bool listed) {
     p.set("uCount", static_cast<unsigned>(mCount));
     p.set("uFallbackRatio", static_cast<float>(core::NORMAL_FALLBACK_RATIO));
     p.set("uFromList", listed ? 1 : 0);
-    mBodies.bindStorage(BODIES);
     if (listed)
         p.dispatchIndirect(mHeader, WALK_DISPATCH);
     else
@@ -364,7 +364,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             p.set("uCrossingScale", static_cast<float>(s.crossingScale));
             p.set("uInteriorLevel", static_cast<float>(s.interiorLevel));
             p.set("uLevel", static_cast<float>(s.surfaceLevel));
-            if (std::string_view(name) != "INTERIOR") p.set("uFixed", field ? 0 : 1);
+            p.set("uFixed", field ? 0 : 1);  // a uniform a stage lacks is left alone
             return p;
         };
         timed("radius", [&] {

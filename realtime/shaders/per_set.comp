@@ -460,11 +460,9 @@ void main() {
 // settles it: its radius is the cap, and it takes the fallback normal (NORMALS': the radial
 // direction from its body's centre, the pole axis at the centre) until INTERIOR_DRAWN finds it
 // may be drawn. It also needs droplet_atoms neighbours within 2 h in those cells (the
-// droplets' sparse test; a lower bound too). The others are listed for NORMALS, RADIUS and RADIUS_WALK, which apply the
-// same rule to the full sum. Grid slots in order: neighbouring invocations read the same cells.
-layout(std430, binding = 20) readonly buffer Bodies {
-    vec4 bodies[];  // 2 per body: the centre; the pole axis
-};
+// droplets' sparse test; a lower bound too). The others are listed for NORMALS, RADIUS and
+// RADIUS_WALK, which apply the same rule to the full sum. Grid slots in order: neighbouring
+// invocations read the same cells.
 uniform float uRadiusScale, uCrossingScale, uLevel, uInteriorLevel;
 uniform int uDropletAtoms, uFallbackNormals;
 void main() {
@@ -496,16 +494,7 @@ void main() {
     float maxRadius = uRadiusScale * h;
     radii[i] = min(maxRadius, uCrossingScale * maxRadius);
     flags[i] |= INTERIOR_BIT;
-    if (uFallbackNormals != 0) {
-        uint b = attributeBits(ATTR_BODY, i);
-        vec3 radial = x - bodies[2u * b].xyz;
-        float rl = length(radial);
-        vec3 n = rl > 0.0 ? radial / rl : bodies[2u * b + 1u].xyz;
-        uint k = ATTR_NORMAL * uCount + 3u * i;
-        attributes[k] = n.x;
-        attributes[k + 1u] = n.y;
-        attributes[k + 2u] = n.z;
-    }
+    if (uFallbackNormals != 0) writeNormal(i, fallbackNormal(i, x));
 }
 #endif
 
@@ -744,9 +733,6 @@ void main() {
 // particle, summed over every particle whose support covers it; where the sum cancels below
 // (uFallbackRatio + FLT_EPSILON |x| / h) sum |dW/dr| (a lattice's interior), the radial
 // direction from the particle's body centre, and the body's pole axis at the centre.
-layout(std430, binding = 20) readonly buffer Bodies {
-    vec4 bodies[];  // 2 per body: the centre; the pole axis
-};
 uniform float uFallbackRatio;
 uniform int uFromList;  // the particles listed (INTERIOR's, INTERIOR_DRAWN's); else all
 const float FLT_EPSILON = 1.1920929e-7;
@@ -785,19 +771,8 @@ void main() {
 #undef ADD_GRADIENT
     float len = length(gradient);
     float resolvable = uFallbackRatio + FLT_EPSILON * length(x) / particleH(i);
-    vec3 n;
-    if (len > resolvable * magnitudeSum && len > 0.0) {
-        n = -gradient / len;
-    } else {
-        uint b = attributeBits(ATTR_BODY, i);
-        vec3 radial = x - bodies[2u * b].xyz;
-        float rl = length(radial);
-        n = rl > 0.0 ? radial / rl : bodies[2u * b + 1u].xyz;
-    }
-    uint k = ATTR_NORMAL * uCount + 3u * i;
-    attributes[k] = n.x;
-    attributes[k + 1u] = n.y;
-    attributes[k + 2u] = n.z;
+    writeNormal(i, len > resolvable * magnitudeSum && len > 0.0 ? -gradient / len
+                                                                : fallbackNormal(i, x));
 }
 #endif
 

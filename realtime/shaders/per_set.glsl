@@ -43,6 +43,26 @@ vec3 attribute3(uint offset, uint i) {
 float attribute1(uint offset, uint i) { return attributes[offset * uCount + i]; }
 uint attributeBits(uint offset, uint i) { return floatBitsToUint(attributes[offset * uCount + i]); }
 
+#if defined(NORMALS) || defined(INTERIOR)
+layout(std430, binding = 20) readonly buffer Bodies {
+    vec4 bodies[];  // 2 per body: the centre; the pole axis
+};
+// core::deriveNormals' fallback at x, particle i's position: the radial direction from its
+// body's centre, the body's pole axis at the centre.
+vec3 fallbackNormal(uint i, vec3 x) {
+    uint b = attributeBits(ATTR_BODY, i);
+    vec3 radial = x - bodies[2u * b].xyz;
+    float length_ = length(radial);
+    return length_ > 0.0 ? radial / length_ : bodies[2u * b + 1u].xyz;
+}
+void writeNormal(uint i, vec3 n) {
+    uint k = ATTR_NORMAL * uCount + 3u * i;
+    attributes[k] = n.x;
+    attributes[k + 1u] = n.y;
+    attributes[k + 2u] = n.z;
+}
+#endif
+
 vec3 particlePosition(uint i) { return attribute3(ATTR_POSITION, i); }
 float particleH(uint i) { return attribute1(ATTR_H, i); }
 
