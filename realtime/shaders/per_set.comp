@@ -221,7 +221,10 @@ void main() {
     uint c = invocation();
     if (c >= totalCells) return;
     uint begin = cellStart[c], end = cellStart[c + 1u];
-    for (int g = 0; g < 8; ++g) {
+    if (end - begin < 2u) return;  // most cells
+    int first = 7;  // the largest gap below the count
+    while (first > 0 && GAPS[first - 1] < end - begin) --first;
+    for (int g = first; g < 8; ++g) {
         uint gap = GAPS[g];
         for (uint k = begin + gap; k < end; ++k) {
             uint v = sorted[k];
