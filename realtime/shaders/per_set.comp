@@ -428,12 +428,14 @@ void main() {
                     inside += 8.0 * step;
                     atInside = values[7];
                 } else {
-                    if (first > 0) {
-                        inside += float(first) * step;
-                        atInside = values[first - 1];
+                    // values[] indexed by constants alone (a dynamic index keeps the array in
+                    // memory, and every sum of the walks above loads and stores it).
+                    for (int k = 0; k < 8; ++k) {
+                        if (k == first - 1) atInside = values[k];
+                        if (k == first) atOutside = values[k];
                     }
+                    if (first > 0) inside += float(first) * step;
                     outside = inside + step;
-                    atOutside = values[first];
                 }
                 step = (outside - inside) / 9.0;
                 capped = scale * inside >= maxRadius;
