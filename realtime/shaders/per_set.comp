@@ -987,6 +987,9 @@ void main() {
 // every surface point of the G-buffer lies. Exact: a G-buffer pixel's gradient sums every kernel
 // whose support covers it (surface_kernels.h's probes, on the CPU, leave out a few whose share
 // is small). Each drawn particle marks its neighbours; the marks do not depend on the order.
+// A kernel is marked by some fifty drawn particles on a body's surface: each reads the mark
+// before writing it, since llvmpipe stores lane by lane at more cost than it loads (KERNELS at
+// 1M particles 59 -> 49 ms).
 uniform int uEllipsoids;
 float kernelReach_r;
 float kernelReach(float hMax) { return kernelReach_r + 2.0 * hMax; }
@@ -1010,8 +1013,9 @@ void main() {
         vec4 e = entryPosition(k);                                       \
         float reach = r + 2.0 / e.w;                                     \
         vec3 d = e.xyz - centre;                                         \
-        if (dot(d, d) < reach * reach)                                   \
-            drawnPrefix[uCount + 1u + floatBitsToUint(entryCoefficients(k).z)] = 1u; \
+        uint mark = uCount + 1u + floatBitsToUint(entryCoefficients(k).z); \
+        if (dot(d, d) < reach * reach && drawnPrefix[mark] == 0u)          \
+            drawnPrefix[mark] = 1u;                                        \
     }
     FOR_EACH_NEAR(centre, kernelReach, MARK_KERNEL)
 #undef MARK_KERNEL
