@@ -26,9 +26,10 @@ namespace {
 constexpr std::size_t ATTRIBUTE_FLOATS = 21;
 constexpr int MAX_LEVELS = 32;
 // The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes, then indirect
-// dispatches (bytes): the walk list's, the cell scan's, SORT's.
+// dispatches (bytes): the walk list's, the next walk list's, the cell scan's, SORT's.
 constexpr std::size_t WALK_DISPATCH = 16 + 32 + MAX_LEVELS * 64;
-constexpr std::size_t SCAN_DISPATCH = WALK_DISPATCH + 16;
+constexpr std::size_t NEXT_WALK_DISPATCH = WALK_DISPATCH + 16;
+constexpr std::size_t SCAN_DISPATCH = NEXT_WALK_DISPATCH + 16;
 constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
 // Then the levels that hold particles (LAYOUT): their count and their numbers, in order.
 constexpr std::size_t USED_LEVELS = SORT_DISPATCH + 16;
@@ -171,7 +172,8 @@ void GpuPerSet::timed(const char* stage, const auto& work) {
 }
 
 void GpuPerSet::clearWalks() {
-    const std::uint32_t walkDispatch[4] = {0, 1, 1, 0};  // no work groups, no entries
+    // No work groups, no entries, in either list.
+    const std::uint32_t walkDispatch[8] = {0, 1, 1, 0, 0, 1, 1, 0};
     mHeader.write(WALK_DISPATCH, std::span<const std::uint32_t>(walkDispatch));
 }
 
@@ -227,7 +229,7 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     mCellTexels.view(mCells, gl::BufferFormat::R32UI);
     mEntryTexels.view(mEntries, gl::BufferFormat::RGBA32F);
     resized(mRadii, n * sizeof(float));
-    resized(mWalks, n * sizeof(std::uint32_t));
+    resized(mWalks, 2 * n * sizeof(std::uint32_t));  // the walk list, the next
     resized(mFlags, n * sizeof(std::uint32_t));
     resized(mBlockSums,
             (groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) * sizeof(std::uint32_t));
@@ -392,7 +394,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             else
                 radiusStage("RADIUS").dispatch(groups(mCount));
             gl::computeBarrier();
-            if (field) radiusStage("RADIUS_WALK").dispatchIndirect(mHeader, WALK_DISPATCH);
+            if (field) radiusStage("RADIUS_WALK").dispatchIndirect(mHeader, NEXT_WALK_DISPATCH);
         });
         mDropletCount = 0;
         if (radiusSettings.dropletAtoms >= 2)
@@ -426,7 +428,12 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             full.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
             full.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
             full.set("uRadiusScale", static_cast<float>(s.radiusScale));
+            full.set("uProbe", 1);
             full.dispatchIndirect(mHeader, WALK_DISPATCH);
+            gl::computeBarrier();
+            // The spheres the probe left, over the next list.
+            full.set("uProbe", 0);
+            full.dispatchIndirect(mHeader, NEXT_WALK_DISPATCH);
         });
         mCulled = true;
         built = true;

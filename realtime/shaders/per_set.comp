@@ -70,12 +70,14 @@ layout(std430, binding = 13) buffer Models {
 #endif
 
 // The invocations a long pass takes, appended by the pass before it and dispatched indirectly
-// (the Header's walkDispatch: work groups, 1, 1, entries): NORMALS, RADIUS and RADIUS_WALK the
-// particles INTERIOR leaves (RADIUS_WALK those of them whose radius RADIUS's early exit leaves
-// negative), NORMALS also those of INTERIOR's that INTERIOR_DRAWN lists, CULL_FULL the grid
-// slots CULL's coarse test leaves, KERNELS the particles MARK draws. One dispatch over them
-// alone keeps the lanes busy, where in the particles' order they would be a few lanes of many
-// vectors, each vector paying the long loops.
+// (the Header's walkDispatch: work groups, 1, 1, entries): NORMALS and RADIUS the particles
+// INTERIOR leaves, NORMALS also those of INTERIOR's that INTERIOR_DRAWN lists, CULL_FULL the
+// grid slots CULL's coarse test leaves, KERNELS the particles MARK draws; and the next list
+// (nextWalkDispatch, after the first in the Walks buffer), which a pass over the walk list
+// fills: RADIUS_WALK the particles RADIUS's early exit leaves. One dispatch over them alone
+// keeps the lanes busy, where in the particles' order (or the list's) they would be a few lanes
+// of many vectors, each vector paying the long loops (RADIUS_WALK over RADIUS's whole list,
+// with the lanes RADIUS settled idle, took 65 ms at 1M particles; over the next list, 45 ms).
 #if defined(RADIUS) || defined(RADIUS_WALK) || defined(CULL) || defined(CULL_FULL) || \
     defined(MARK) || defined(KERNELS) || defined(INTERIOR) || defined(INTERIOR_DRAWN) ||   \
     defined(NORMALS)
@@ -86,6 +88,11 @@ void appendWalk(uint value) {
     uint next = atomicAdd(walkDispatch.w, 1u);
     if (next % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
     walkList[next] = value;
+}
+void appendNextWalk(uint value) {
+    uint next = atomicAdd(nextWalkDispatch.w, 1u);
+    if (next % gl_WorkGroupSize.x == 0u) atomicAdd(nextWalkDispatch.x, 1u);
+    walkList[uCount + next] = value;
 }
 #endif
 
@@ -275,8 +282,10 @@ mat3 normalFrame(vec3 n) {
 // early-exit samples (radius_scale h and half of it), so the radius is radius_scale h (times
 // crossing_scale, capped), whatever the sums' exact values. Kernels are never negative, so a
 // sum over some of the neighbours is a lower bound of the field, in float too (adding a
-// non-negative float never lowers a sum): the 2 x 2 x 2 cells of the particle's own level
-// around the samples' midpoint usually settle such a particle. The others take the full sums,
+// non-negative float never lowers a sum): the 3 x 3 x 3 cells of the particle's own level
+// about the samples' midpoint usually settle such a particle (of the 45k particles INTERIOR
+// leaves on the 1M planet, 2 x 2 x 2 cells settled 11k, 3 x 3 x 3 settle 25k: the radius
+// stages 150 -> 137 ms). The others take the full sums,
 // each over the whole neighbourhood in the grid's fixed order, the three samples in one walk,
 // then, where the early exit fails, walks of eight samples each (below).
 float samplesReach_;
@@ -313,7 +322,7 @@ float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + half
 
 // The field at the centre, half-way and at the cap, and the particles within 2 h, the particle
 // itself among them: RADIUS_WALK visits it once (it lies within walkReach), so its neighbours
-// are one fewer; the early exit's 2 x 2 x 2 cells hold it too unless radius_scale is large, and
+// are one fewer; the early exit's 3 x 3 x 3 cells hold it too unless radius_scale is large, and
 // a count one short there only leaves the particle to the walk.
 #define ADD_SAMPLES(k)                                            \
     {                                                             \
@@ -329,9 +338,8 @@ float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + half
 void main() {
 #ifdef RADIUS_WALK
     uint t = invocation();
-    if (t >= walkDispatch.w) return;
-    uint i = walkList[t];
-    if (radii[i] >= 0.0) return;  // settled by RADIUS's early exit
+    if (t >= nextWalkDispatch.w) return;
+    uint i = walkList[uCount + t];  // left by RADIUS's early exit
 #else
     // "fixed": every particle; "field": those INTERIOR left, its list.
     uint i;
@@ -363,8 +371,8 @@ void main() {
     {
         Level g = levels[levelOf(h)];
         float inv = levelInvCell(g);
-        ivec3 base = ivec3(floor((centre + 0.5 * cap - g.originCell.xyz) * inv - 0.5));
-        FOR_EACH_IN_BLOCK(g, base, 2, ADD_SAMPLES)
+        ivec3 base = ivec3(floor((centre + 0.5 * cap - g.originCell.xyz) * inv)) - ivec3(1);
+        FOR_EACH_IN_BLOCK(g, base, 3, ADD_SAMPLES)
     }
     if (uDropletAtoms > 0) --neighbours;  // itself
     if (atCentre > max(uLevel, ownBound) &&
@@ -373,7 +381,7 @@ void main() {
         radii[i] = min(maxRadius, uCrossingScale * maxRadius);
         return;
     }
-    radii[i] = -1.0;  // left to RADIUS_WALK, which takes the same list
+    appendNextWalk(i);  // left to RADIUS_WALK
 #else
     // One walk for the field at the centre and at the 8 samples k maxRadius / 8 (k = 1..8) of the
     // bisection's first pass, half-way and the cap among them (the same offsets, so the same
@@ -569,10 +577,21 @@ const int DIRECTIONS = 162, MAX_CAPS = 96;
 const float NEAR_SHELL = 1.4;  // radii
 float cullReach_ri;
 float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
+#ifdef CULL_FULL
+// 1: the probe (below) over the walk list, the spheres it leaves appended to the next list;
+// 0: the full test over the next list.
+uniform int uProbe;
+#endif
 void main() {
 #ifdef CULL_FULL
-    if (invocation() >= walkDispatch.w) return;
-    uint slot = walkList[invocation()];
+    uint slot;
+    if (uProbe != 0) {
+        if (invocation() >= walkDispatch.w) return;
+        slot = walkList[invocation()];
+    } else {
+        if (invocation() >= nextWalkDispatch.w) return;
+        slot = walkList[uCount + invocation()];
+    }
 #else
     uint slot = invocation();
     if (slot >= uCount) return;
@@ -659,7 +678,7 @@ void main() {
     // surface), tested against every overlapping sphere's cap in one walk without lists. Where
     // no cap covers it and no sphere holds this one, the full test below could only find that
     // direction uncovered: the sphere is seen.
-    {
+    if (uProbe != 0) {
         const vec3 COARSE[42] = vec3[](COARSE_DIRECTION_VALUES);
         vec3 normal = attribute3(ATTR_NORMAL, i), probe = COARSE[0];
         float best = dot(probe, normal);
@@ -683,7 +702,8 @@ void main() {
             flags[i] = flags[i] & ~HIDDEN;
             return;
         }
-        hidden = false;  // the full test decides
+        appendNextWalk(slot);  // the full test decides
+        return;
     }
     // The full test: every overlapping sphere, the near shell's caps first in the list. The
     // overlapping slots are listed first (a cheap loop), then their caps are made (the

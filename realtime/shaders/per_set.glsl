@@ -81,8 +81,10 @@ layout(std430, binding = 6) coherent buffer Header {
     uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 0, 0
     uvec4 drawKernels;       // the same for the kernels the gradient pass adds
     Level levels[MAX_LEVELS];
-    // RADIUS_WALK's glDispatchComputeIndirect: its work groups, 1, 1; w: the particles it takes.
+    // The walk list's glDispatchComputeIndirect (per_set.comp's appendWalk): its work groups,
+    // 1, 1; w: its entries. The next list's, which a pass over the walk list fills.
     uvec4 walkDispatch;
+    uvec4 nextWalkDispatch;
     // LAYOUT: the work groups of the scan of the cells (scan.comp's blocks) and of SORT, 1, 1.
     uvec4 scanDispatch;
     uvec4 sortDispatch;
