@@ -72,6 +72,7 @@ enum Binding : unsigned {
     WALKS = 18,
     BLOCK_SUMS = 19,  // scan.comp
     BODIES = 20,      // NORMALS
+    NEAR_MASKS = 21,  // INTERIOR, CULL
 };
 // Texture units of the buffer textures the walks read (shaders/per_set.glsl; the render passes
 // use units 0-7).
@@ -193,6 +194,7 @@ void GpuPerSet::bindStorage() const {
     if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
     if (mCullSpheres.size() > 0) mCullSpheres.bindStorage(CULL_SPHERES);
     if (mBodies.size() > 0) mBodies.bindStorage(BODIES);
+    if (mNearMasks.size() > 0) mNearMasks.bindStorage(NEAR_MASKS);
     mEntryTexels.bind(ENTRY_TEXELS);
     mCellTexels.bind(CELL_TEXELS);
     mCullSphereTexels.bind(CULL_SPHERE_TEXELS);
@@ -374,10 +376,17 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             const std::uint32_t zero = 0;
             mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
             clearWalks();
+            mNearMasksFound = field && request.cull;
             if (field) {
-                // The particles deep inside a body; the others listed.
+                // The particles deep inside a body; the others listed. With culling, the near
+                // shells of the coarse test too.
+                if (mNearMasksFound) {
+                    resized(mNearMasks, mCount * sizeof(glm::uvec4));
+                    mNearMasks.bindStorage(NEAR_MASKS);
+                }
                 const gl::Program& p = radiusStage("INTERIOR");
                 p.set("uFallbackNormals", mNormals == Normals::Given ? 0 : 1);
+                p.set("uNearMasks", mNearMasksFound ? 1 : 0);
                 p.dispatch(groups(mCount));
             }
         });
@@ -418,6 +427,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             const CullingDirections& grid = cullingDirections();
             const gl::Program& coarse = cullProgram(programs, "CULL");
             coarse.set("uCount", static_cast<unsigned>(mCount));
+            coarse.set("uNearMasks", mNearMasksFound ? 1 : 0);
             coarse.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
             coarse.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
             coarse.dispatch(groups(mCount));

@@ -143,6 +143,10 @@ class GpuPerSet {
     gl::Buffer mWalks;        // the particles RADIUS_WALK takes
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
     gl::Buffer mBodies;       // deriveNormals: 2 vec4 per body, its centre and pole axis
+    // Per grid slot, the culling's near shell as INTERIOR found it (shaders/per_set.comp), for
+    // the radii of the current settings when mNearMasksFound.
+    gl::Buffer mNearMasks;
+    bool mNearMasksFound = false;
     // What the walks read as buffer textures (shaders/per_set.glsl): the grid's entries and
     // cell offsets, the culling's spheres and directions.
     gl::BufferView mEntryTexels, mCellTexels, mCullSphereTexels, mDirectionTexels;
