@@ -601,6 +601,7 @@ uniform int uNearMasks;  // CULL: 1 where INTERIOR found the near shell (nearMas
 const int DIRECTIONS = 162, MAX_CAPS = 96;
 float cullReach_ri;
 float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
+float probeReach(float hMax) { return uRadiusScale * hMax; }
 #ifdef CULL_FULL
 // 1: the probe (below) over the walk list, the spheres it leaves appended to the next list;
 // 0: the full test over the next list.
@@ -730,10 +731,13 @@ void main() {
     appendWalk(slot);  // left to CULL_FULL
 #else
     // Most spheres the coarse test leaves are seen (at a surface). A probe first: the coarse
-    // grid direction nearest the particle's normal (one of the full grid's, outward at a
-    // surface), tested against every overlapping sphere's cap in one walk without lists. Where
-    // no cap covers it and no sphere holds this one, the full test below could only find that
-    // direction uncovered: the sphere is seen.
+    // grid direction u nearest the particle's normal (one of the full grid's, outward at a
+    // surface), tested against the caps of the overlapping spheres in one walk without lists.
+    // Where no cap covers it and no sphere holds this one, the full test below could only find
+    // that direction uncovered: the sphere is seen. A cap that covers u, or a sphere that holds
+    // this one, holds the point p = x_i + r_i u, so the walk takes the ball of the largest
+    // radius (radius_scale h) about p alone, not every overlapping sphere (at 1M particles
+    // 27 -> 11 ms).
     if (uProbe != 0) {
         const vec3 COARSE[42] = vec3[](COARSE_DIRECTION_VALUES);
         vec3 normal = attribute3(ATTR_NORMAL, i), probe = COARSE[0];
@@ -752,7 +756,8 @@ void main() {
         covered = covered || dot(probe, cap.xyz) >= cap.w;        \
         END_OVERLAP                                               \
     }
-        FOR_EACH_NEAR(xi, cullReach, PROBE)
+        vec3 point = xi + ri * probe;
+        FOR_EACH_NEAR(point, probeReach, PROBE)
 #undef PROBE
         if (!covered && !hidden) {
             flags[i] = flags[i] & ~HIDDEN;
