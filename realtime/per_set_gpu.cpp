@@ -151,7 +151,7 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
                                        "COUNT",   "SCATTER",  "SORT",   "GATHER",
                                        "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
                                        "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
-    if (request.kernels) stages.push_back("KERNELS");
+    if (request.kernels) stages.insert(stages.end(), {"KERNELS", "PACK_KERNELS"});
     if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
@@ -546,7 +546,6 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
             clearWalks();
             const gl::Program& p = stage("MARK");
             p.set("uCull", cull ? 1 : 0);
-            p.set("uListDrawn", mRequest.kernels ? 1 : 0);  // for KERNELS
             p.dispatch(groups(mCount));
             gl::computeBarrier();
         }
@@ -568,7 +567,12 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         p.set("uCamera", frame.camera);
         p.set("uModels", mModels);
         p.set("uEllipsoidsOut", ellipsoidsDrawn() ? 1 : 0);
-        p.dispatch(groups(mCount));
+        p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed
+        if (mRequest.kernels) {
+            const gl::Program& kernels = stage("PACK_KERNELS");
+            kernels.set("uCamera", frame.camera);
+            kernels.dispatch(groups(mCount));
+        }
         gl::computeBarrier();
         stage("FINISH").dispatch(1);
     });

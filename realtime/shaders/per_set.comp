@@ -72,15 +72,15 @@ layout(std430, binding = 13) buffer Models {
 // The invocations a long pass takes, appended by the pass before it and dispatched indirectly
 // (the Header's walkDispatch: work groups, 1, 1, entries): NORMALS and RADIUS the particles
 // INTERIOR leaves, NORMALS also those of INTERIOR's that INTERIOR_DRAWN lists, CULL_FULL the
-// grid slots CULL's coarse test leaves, KERNELS the particles MARK draws; and the next list
-// (nextWalkDispatch, after the first in the Walks buffer), which a pass over the walk list
-// fills: RADIUS_WALK the particles RADIUS's early exit leaves. One dispatch over them alone
+// grid slots CULL's coarse test leaves, KERNELS and PACK the particles MARK draws; and the
+// next list (nextWalkDispatch, after the first in the Walks buffer), which a pass over the walk
+// list fills: RADIUS_WALK the particles RADIUS's early exit leaves. One dispatch over them alone
 // keeps the lanes busy, where in the particles' order (or the list's) they would be a few lanes
 // of many vectors, each vector paying the long loops (RADIUS_WALK over RADIUS's whole list,
 // with the lanes RADIUS settled idle, took 65 ms at 1M particles; over the next list, 45 ms).
 #if defined(RADIUS) || defined(RADIUS_WALK) || defined(CULL) || defined(CULL_FULL) || \
     defined(MARK) || defined(KERNELS) || defined(INTERIOR) || defined(INTERIOR_DRAWN) ||   \
-    defined(NORMALS)
+    defined(NORMALS) || defined(PACK)
 layout(std430, binding = 18) buffer Walks {
     uint walkList[];
 };
@@ -1032,7 +1032,8 @@ void main() {
 
 // ---- The frame's draw lists ----
 
-#if defined(MARK) || defined(PACK) || defined(FINISH) || defined(KERNELS)
+#if defined(MARK) || defined(PACK) || defined(FINISH) || defined(KERNELS) || \
+    defined(PACK_KERNELS)
 layout(std430, binding = 14) buffer DrawLists {
     uint drawnPrefix[];  // n + 1: exclusive prefix of the drawn particles; then n + 1 of kernels
 };
@@ -1051,7 +1052,8 @@ void main() {
 #endif
 
 #ifdef MARK
-uniform int uCull, uListDrawn;
+// The drawn particles are also listed, for KERNELS and PACK.
+uniform int uCull;
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
@@ -1059,7 +1061,7 @@ void main() {
     bool drawn = radii[i] > 0.0 && !hidden;
     drawnPrefix[i] = drawn ? 1u : 0u;
     drawnPrefix[uCount + 1u + i] = 0u;
-    if (drawn && uListDrawn != 0) appendWalk(i);  // for KERNELS
+    if (drawn) appendWalk(i);
 }
 #endif
 
@@ -1103,9 +1105,16 @@ void main() {
 }
 #endif
 
-#ifdef PACK
+#if defined(PACK) || defined(PACK_KERNELS)
 // gpu_scene.cpp's packParticles, packEllipsoids and packKernels: positions relative to the
-// camera, subtracted in double.
+// camera, subtracted in double. PACK takes the drawn particles MARK listed, PACK_KERNELS every
+// particle, each writing its slot of the prefix sum (so the list's order does not matter).
+// Two programs: one invocation of the whole of PACK costs llvmpipe more than one of
+// PACK_KERNELS, whatever branch it takes (pack at 1M particles 36 -> 27 ms).
+uniform dvec3 uCamera;
+#endif
+
+#ifdef PACK
 struct Particle {
     vec4 positionRadius;
     vec4 normalU;
@@ -1118,6 +1127,50 @@ struct Particle {
 layout(std430, binding = 0) writeonly buffer Particles {
     Particle particles[];
 };
+layout(std430, binding = 4) writeonly buffer Ellipsoids {
+    vec4 ellipsoids[];
+};
+uniform int uModels;         // 0: none, 1: field normals, 2: ellipsoids
+uniform int uEllipsoidsOut;  // ellipsoid records (uModels 2, or droplets: spheres as round ones)
+
+void main() {
+    uint t = invocation();
+    if (t >= walkDispatch.w) return;
+    uint i = walkList[t];
+    uint k = drawnPrefix[i];
+    vec2 uv =
+        vec2(attributes[ATTR_UV * uCount + 2u * i], attributes[ATTR_UV * uCount + 2u * i + 1u]);
+    Particle p;
+    p.positionRadius = vec4(vec3(dvec3(particlePosition(i)) - uCamera), radii[i]);
+    p.normalU = vec4(attribute3(ATTR_NORMAL, i), uv.x);
+    p.dudxV = vec4(attribute3(ATTR_DUDX, i), uv.y);
+    p.dvdxBody = vec4(attribute3(ATTR_DVDX, i), float(attributeBits(ATTR_BODY, i)));
+    p.glowMaterial = vec4(attribute3(ATTR_GLOW, i), float(attributeBits(ATTR_MATERIAL, i)));
+    p.hessianDiagonal = vec4(0.0);
+    p.hessianOffDiagonal = vec4(0.0);
+    uint slot = dropletSlot(i);
+    if (uModels == 1) {
+        // A droplet's normal is its ellipsoid's.
+        uint m = slot != 0u ? 6u * (slot - 1u) + 3u : 3u * i;
+        p.normalU.xyz = slot != 0u ? droplets[m].xyz : models[m].xyz;
+        p.hessianDiagonal = slot != 0u ? droplets[m + 1u] : models[m + 1u];
+        p.hessianOffDiagonal = slot != 0u ? droplets[m + 2u] : models[m + 2u];
+    }
+    if (uEllipsoidsOut != 0) {
+        float r = radii[i];
+        for (uint a = 0u; a < 3u; ++a) {
+            vec4 round = vec4(0.0);
+            round[a] = r;
+            ellipsoids[3u * k + a] = slot != 0u     ? droplets[6u * (slot - 1u) + a]
+                                     : uModels == 2 ? models[3u * i + a]
+                                                    : round;
+        }
+    }
+    particles[k] = p;
+}
+#endif
+
+#ifdef PACK_KERNELS
 struct Kernel {
     vec4 positionSupport;
     vec4 coefficients;
@@ -1125,58 +1178,17 @@ struct Kernel {
 layout(std430, binding = 3) writeonly buffer Kernels {
     Kernel kernels[];
 };
-layout(std430, binding = 4) writeonly buffer Ellipsoids {
-    vec4 ellipsoids[];
-};
-uniform dvec3 uCamera;
-uniform int uModels;         // 0: none, 1: field normals, 2: ellipsoids
-uniform int uEllipsoidsOut;  // ellipsoid records (uModels 2, or droplets: spheres as round ones)
-
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
-    vec3 relative = vec3(dvec3(particlePosition(i)) - uCamera);
-    uint k = drawnPrefix[i];
-    if (drawnPrefix[i + 1u] > k) {
-        vec2 uv = vec2(attributes[ATTR_UV * uCount + 2u * i],
-                       attributes[ATTR_UV * uCount + 2u * i + 1u]);
-        Particle p;
-        p.positionRadius = vec4(relative, radii[i]);
-        p.normalU = vec4(attribute3(ATTR_NORMAL, i), uv.x);
-        p.dudxV = vec4(attribute3(ATTR_DUDX, i), uv.y);
-        p.dvdxBody = vec4(attribute3(ATTR_DVDX, i), float(attributeBits(ATTR_BODY, i)));
-        p.glowMaterial = vec4(attribute3(ATTR_GLOW, i), float(attributeBits(ATTR_MATERIAL, i)));
-        p.hessianDiagonal = vec4(0.0);
-        p.hessianOffDiagonal = vec4(0.0);
-        uint slot = dropletSlot(i);
-        if (uModels == 1) {
-            // A droplet's normal is its ellipsoid's.
-            uint m = slot != 0u ? 6u * (slot - 1u) + 3u : 3u * i;
-            p.normalU.xyz = slot != 0u ? droplets[m].xyz : models[m].xyz;
-            p.hessianDiagonal = slot != 0u ? droplets[m + 1u] : models[m + 1u];
-            p.hessianOffDiagonal = slot != 0u ? droplets[m + 2u] : models[m + 2u];
-        }
-        if (uEllipsoidsOut != 0) {
-            float r = radii[i];
-            for (uint a = 0u; a < 3u; ++a) {
-                vec4 round = vec4(0.0);
-                round[a] = r;
-                ellipsoids[3u * k + a] = slot != 0u  ? droplets[6u * (slot - 1u) + a]
-                                         : uModels == 2 ? models[3u * i + a]
-                                                        : round;
-            }
-        }
-        particles[k] = p;
-    }
     uint kernelBase = uCount + 1u;
-    uint kk = drawnPrefix[kernelBase + i];
-    if (drawnPrefix[kernelBase + i + 1u] > kk) {
-        double h = double(particleH(i));
-        double v = double(attribute1(ATTR_VOLUME, i));
-        const double PI = 3.14159265358979323846LF;
-        kernels[kk].positionSupport = vec4(relative, float(2.0LF * h));
-        kernels[kk].coefficients = vec4(float(v / (PI * h * h * h * h)), float(1.0LF / h), 0.0, 0.0);
-    }
+    uint k = drawnPrefix[kernelBase + i];
+    if (drawnPrefix[kernelBase + i + 1u] == k) return;
+    double h = double(particleH(i));
+    double v = double(attribute1(ATTR_VOLUME, i));
+    const double PI = 3.14159265358979323846LF;
+    kernels[k].positionSupport = vec4(vec3(dvec3(particlePosition(i)) - uCamera), float(2.0LF * h));
+    kernels[k].coefficients = vec4(float(v / (PI * h * h * h * h)), float(1.0LF / h), 0.0, 0.0);
 }
 #endif
 
