@@ -112,8 +112,9 @@ int modelKind(const ParticleSettings& p) {
     return p.normal == NormalModel::Field ? 1 : 0;
 }
 
-// A culling stage (CULL, CULL_FULL), the coarse grid's directions compiled in.
-const gl::Program& cullProgram(ProgramCache& programs, const char* stage) {
+// A culling stage (CULL, CULL_FULL), the coarse grid's directions compiled in, and a variant's
+// define (CULL: NEAR_MASKS, INTERIOR's near shells; CULL_FULL: CULL_PROBE, the probe) or "".
+const gl::Program& cullProgram(ProgramCache& programs, const char* stage, const char* variant) {
     static const std::string directions = [] {
         std::string list;
         const auto& d = cullingDirections().directions;
@@ -122,7 +123,9 @@ const gl::Program& cullProgram(ProgramCache& programs, const char* stage) {
                                 float(d[k].y), float(d[k].z));
         return list;
     }();
-    return programs.compute("per_set.comp", {stage, "COARSE_DIRECTION_VALUES " + directions});
+    std::vector<std::string> defines = {stage, "COARSE_DIRECTION_VALUES " + directions};
+    if (*variant) defines.emplace_back(variant);
+    return programs.compute("per_set.comp", defines);
 }
 
 // `buffer` kept where it has `bytes` already, else a new zero-filled one.
@@ -158,7 +161,11 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
     if (kind == 2) stages.push_back("ANISOTROPY");
     for (const char* stage : stages) programs.compute("per_set.comp", {stage});
     if (request.cull)
-        for (const char* stage : {"CULL", "CULL_FULL"}) cullProgram(programs, stage);
+        for (const auto& [stage, variant] :
+             {std::pair{"CULL", request.particles.radius == RadiusModel::Field ? "NEAR_MASKS" : ""},
+              {"CULL_FULL", "CULL_PROBE"},
+              {"CULL_FULL", ""}})
+            cullProgram(programs, stage, variant);
 }
 
 void GpuPerSet::timed(const char* stage, const auto& work) {
@@ -425,25 +432,24 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             stage("CULL_SPHERES").dispatch(groups(mCount));
             gl::computeBarrier();
             const CullingDirections& grid = cullingDirections();
-            const gl::Program& coarse = cullProgram(programs, "CULL");
+            const gl::Program& coarse =
+                cullProgram(programs, "CULL", mNearMasksFound ? "NEAR_MASKS" : "");
             coarse.set("uCount", static_cast<unsigned>(mCount));
-            coarse.set("uNearMasks", mNearMasksFound ? 1 : 0);
             coarse.set("uCoarseCosMargin", static_cast<float>(std::cos(grid.coarseCoveringAngle)));
             coarse.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
             coarse.dispatch(groups(mCount));
             gl::computeBarrier();
             // The spheres the coarse test left, as many work groups as CULL counted.
-            const gl::Program& full = cullProgram(programs, "CULL_FULL");
-            full.set("uCount", static_cast<unsigned>(mCount));
-            full.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
-            full.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
-            full.set("uRadiusScale", static_cast<float>(s.radiusScale));
-            full.set("uProbe", 1);
-            full.dispatchIndirect(mHeader, WALK_DISPATCH);
-            gl::computeBarrier();
-            // The spheres the probe left, over the next list.
-            full.set("uProbe", 0);
-            full.dispatchIndirect(mHeader, NEXT_WALK_DISPATCH);
+            // First the probe, then the full test of the spheres the probe left (the next list).
+            for (const char* variant : {"CULL_PROBE", ""}) {
+                const gl::Program& full = cullProgram(programs, "CULL_FULL", variant);
+                full.set("uCount", static_cast<unsigned>(mCount));
+                full.set("uCosMargin", static_cast<float>(std::cos(grid.coveringAngle)));
+                full.set("uSinMargin", static_cast<float>(std::sin(grid.coveringAngle)));
+                full.set("uRadiusScale", static_cast<float>(s.radiusScale));
+                full.dispatchIndirect(mHeader, *variant ? WALK_DISPATCH : NEXT_WALK_DISPATCH);
+                gl::computeBarrier();
+            }
         });
         mCulled = true;
         built = true;

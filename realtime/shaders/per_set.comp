@@ -597,26 +597,19 @@ layout(binding = 11) uniform samplerBuffer uDirectionTexels;  // 162 unit direct
                                                              // coarse grid's 42 first
 uniform float uCosMargin, uSinMargin, uRadiusScale;
 uniform float uCoarseCosMargin, uCoarseSinMargin;
-uniform int uNearMasks;  // CULL: 1 where INTERIOR found the near shell (nearMasks)
 const int DIRECTIONS = 162, MAX_CAPS = 96;
 float cullReach_ri;
 float cullReach(float hMax) { return cullReach_ri + uRadiusScale * hMax; }
 float probeReach(float hMax) { return uRadiusScale * hMax; }
-#ifdef CULL_FULL
-// 1: the probe (below) over the walk list, the spheres it leaves appended to the next list;
-// 0: the full test over the next list.
-uniform int uProbe;
-#endif
 void main() {
-#ifdef CULL_FULL
-    uint slot;
-    if (uProbe != 0) {
-        if (invocation() >= walkDispatch.w) return;
-        slot = walkList[invocation()];
-    } else {
-        if (invocation() >= nextWalkDispatch.w) return;
-        slot = walkList[uCount + invocation()];
-    }
+#if defined(CULL_FULL) && defined(CULL_PROBE)
+    // The probe (below) over the walk list; the spheres it leaves are appended to the next list.
+    if (invocation() >= walkDispatch.w) return;
+    uint slot = walkList[invocation()];
+#elif defined(CULL_FULL)
+    // The full test over the next list.
+    if (invocation() >= nextWalkDispatch.w) return;
+    uint slot = walkList[uCount + invocation()];
 #else
     uint slot = invocation();
     if (slot >= uCount) return;
@@ -675,7 +668,8 @@ void main() {
     }
     Level g = levels[levelOf(particleH(i))];
     ivec3 base = ivec3(floor((xi - g.originCell.xyz) * levelInvCell(g))) - ivec3(1);
-    if (uNearMasks != 0) {
+#ifdef NEAR_MASKS
+    {
         // INTERIOR's bits: the t-th entry visited lies in the last row (FOR_EACH_IN_BLOCK's
         // rows r = 3 z + y, those outside the grid empty) whose first entry is visited at or
         // before t. The table's indices are constants once its loops unroll.
@@ -701,7 +695,9 @@ void main() {
                 if (t >= rowVisit[r]) k = rowStart[r] + (t - rowVisit[r]);
             MARK_CAP(k)
         }
-    } else {
+    }
+#else
+    {
         // The near shell listed first, by distance alone (one record read per neighbour, a
         // cheap loop that every lane runs alike).
         uint near[MAX_NEAR_CAPS];  // grid slots (of any body: OVERLAP tests it)
@@ -722,6 +718,7 @@ void main() {
             MARK_CAP(k)
         }
     }
+#endif
 #undef MARK_CAP
     if (mask == uvec2(0xFFFFFFFFu, (1u << uint(COARSE_DIRECTIONS - 32)) - 1u)) hidden = true;
     if (hidden) {
@@ -738,7 +735,8 @@ void main() {
     // this one, holds the point p = x_i + r_i u, so the walk takes the ball of the largest
     // radius (radius_scale h) about p alone, not every overlapping sphere (at 1M particles
     // 27 -> 11 ms).
-    if (uProbe != 0) {
+#ifdef CULL_PROBE
+    {
         const vec3 COARSE[42] = vec3[](COARSE_DIRECTION_VALUES);
         vec3 normal = attribute3(ATTR_NORMAL, i), probe = COARSE[0];
         float best = dot(probe, normal);
@@ -764,8 +762,8 @@ void main() {
             return;
         }
         appendNextWalk(slot);  // the full test decides
-        return;
     }
+#else
     // The full test: every overlapping sphere, the near shell's caps first in the list. The
     // overlapping slots are listed first (a cheap loop), then their caps are made (the
     // arithmetic once per overlapping sphere, not once per neighbour visited).
@@ -808,6 +806,7 @@ void main() {
         }
     }
     flags[i] = (flags[i] & ~HIDDEN) | (hidden ? HIDDEN : 0u);
+#endif  // CULL_PROBE
 #endif
 #undef OVERLAP
 #undef END_OVERLAP
