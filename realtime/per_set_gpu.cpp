@@ -115,12 +115,23 @@ int modelKind(const ParticleSettings& p) {
 // A culling stage (CULL, CULL_FULL), the coarse grid's directions compiled in, and a variant's
 // define (CULL: NEAR_MASKS, INTERIOR's near shells; CULL_FULL: CULL_PROBE, the probe) or "".
 const gl::Program& cullProgram(ProgramCache& programs, const char* stage, const char* variant) {
+    // The grid is symmetric: the 21 directions whose antipode comes later, then those
+    // antipodes in the same order, so that one dot product tests a direction and its opposite.
     static const std::string directions = [] {
-        std::string list;
         const auto& d = cullingDirections().directions;
+        std::vector<glm::dvec3> half, opposite;
         for (std::size_t k = 0; k < COARSE_DIRECTIONS; ++k)
-            list += fmt::format("{}vec3({:.9g}, {:.9g}, {:.9g})", k ? ", " : "", float(d[k].x),
-                                float(d[k].y), float(d[k].z));
+            for (std::size_t m = k + 1; m < COARSE_DIRECTIONS; ++m)
+                if (glm::length(d[k] + d[m]) < 1e-9) {
+                    half.push_back(d[k]);
+                    opposite.push_back(d[m]);
+                }
+        assert(2 * half.size() == COARSE_DIRECTIONS);
+        half.insert(half.end(), opposite.begin(), opposite.end());
+        std::string list;
+        for (std::size_t k = 0; k < half.size(); ++k)
+            list += fmt::format("{}vec3({:.9g}, {:.9g}, {:.9g})", k ? ", " : "", float(half[k].x),
+                                float(half[k].y), float(half[k].z));
         return list;
     }();
     std::vector<std::string> defines = {stage, "COARSE_DIRECTION_VALUES " + directions};

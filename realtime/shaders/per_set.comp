@@ -656,14 +656,15 @@ void main() {
     // into straight code with constant operands.
     const vec3 COARSE[COARSE_DIRECTIONS] = vec3[](COARSE_DIRECTION_VALUES);
     // Each cap of the near shell marks the coarse directions it covers.
-    uvec2 mask = uvec2(0u);  // bit d % 32 of word d / 32: coarse direction d covered
+    uvec2 mask = uvec2(0u);  // bit d: coarse direction d covered (x), its opposite d + 21 (y)
 #define MARK_CAP(k)                                                             \
     {                                                                           \
         OVERLAP(k, uCoarseCosMargin, uCoarseSinMargin, true, cap)               \
-        for (int d = 0; d < 32; ++d)                                            \
-            if (dot(COARSE[d], cap.xyz) >= cap.w) mask.x |= 1u << uint(d);      \
-        for (int d = 32; d < COARSE_DIRECTIONS; ++d)                            \
-            if (dot(COARSE[d], cap.xyz) >= cap.w) mask.y |= 1u << uint(d - 32); \
+        for (int d = 0; d < COARSE_DIRECTIONS / 2; ++d) {                       \
+            float c = dot(COARSE[d], cap.xyz);                                  \
+            if (c >= cap.w) mask.x |= 1u << uint(d);                            \
+            if (-c >= cap.w) mask.y |= 1u << uint(d);                           \
+        }                                                                       \
         END_OVERLAP                                                             \
     }
     Level g = levels[levelOf(particleH(i))];
@@ -720,7 +721,7 @@ void main() {
     }
 #endif
 #undef MARK_CAP
-    if (mask == uvec2(0xFFFFFFFFu, (1u << uint(COARSE_DIRECTIONS - 32)) - 1u)) hidden = true;
+    if (mask == uvec2((1u << uint(COARSE_DIRECTIONS / 2)) - 1u)) hidden = true;
     if (hidden) {
         flags[i] |= HIDDEN;
         return;
