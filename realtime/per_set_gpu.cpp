@@ -37,7 +37,7 @@ constexpr std::size_t HEADER_BYTES = USED_LEVELS + 4 + MAX_LEVELS * 4;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
 constexpr unsigned REDUCED = 16;     // particles per invocation of H_MIN and LEVELS
-constexpr std::size_t BLOCK = 4096;  // values per work group of scan.comp
+constexpr std::size_t BLOCK = 16384;  // values per work group of scan.comp
 // The coarse culling grid's directions (CullingDirections::coarseCount), per_set.comp's
 // COARSE_DIRECTIONS.
 constexpr std::size_t COARSE_DIRECTIONS = 42;

@@ -194,7 +194,7 @@ void main() {
     }
     totalCells = uint(first);
     usedLevels = used;
-    scanDispatch = uvec4((totalCells + 4095u) / 4096u, 1u, 1u, 0u);  // scan.comp BLOCK
+    scanDispatch = uvec4((totalCells + 16383u) / 16384u, 1u, 1u, 0u);  // scan.comp BLOCK
     sortDispatch = uvec4((totalCells + 63u) / 64u, 1u, 1u, 0u);  // SORT's work groups of 64
 }
 #endif

@@ -1,5 +1,5 @@
 // Exclusive prefix sum of uCount uints in place, the total written after them (data[uCount]):
-// BLOCKS scans each block of 4096 values and keeps its total, SUMS scans the block totals in one
+// BLOCKS scans each block of 16384 values and keeps its total, SUMS scans the block totals in one
 // work group, ADD adds each block's offset. Integer sums: the result does not depend on
 // scheduling. With uCells, the count is the grid's cells (per_set.glsl's Header, written by
 // LAYOUT), and BLOCKS and ADD are dispatched indirectly over its blocks (scanDispatch).
@@ -21,7 +21,9 @@ layout(std430, binding = 6) readonly buffer Header {
 
 uint count() { return uCells != 0 ? totalCells : uCount; }
 
-const uint PER_THREAD = 16u, BLOCK = 256u * PER_THREAD;
+// 64 values per invocation: fewer work groups, each with its barriers, than 16 (the two scans of
+// a 1M-particle frame's draw lists 8.8 -> 7.4 ms on llvmpipe).
+const uint PER_THREAD = 64u, BLOCK = 256u * PER_THREAD;
 shared uint partial[256];
 
 // Exclusive scan of partial[] (one value per invocation), by Hillis and Steele; returns the
