@@ -26,17 +26,18 @@ namespace {
 constexpr std::size_t ATTRIBUTE_FLOATS = 21;
 constexpr int MAX_LEVELS = 32;
 // The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes, then indirect
-// dispatches (bytes): the walk list's, the next walk list's, the cell scan's, SORT's.
+// dispatches (bytes): the walk list's, the next walk list's, the cell scan's, SORT's, NEAR's.
 constexpr std::size_t WALK_DISPATCH = 16 + 32 + MAX_LEVELS * 64;
 constexpr std::size_t NEXT_WALK_DISPATCH = WALK_DISPATCH + 16;
 constexpr std::size_t SCAN_DISPATCH = NEXT_WALK_DISPATCH + 16;
 constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
+constexpr std::size_t NEAR_DISPATCH = SORT_DISPATCH + 16;
 // Then the levels that hold particles (LAYOUT): their count and their numbers, in order.
-constexpr std::size_t USED_LEVELS = SORT_DISPATCH + 16;
+constexpr std::size_t USED_LEVELS = NEAR_DISPATCH + 16;
 constexpr std::size_t HEADER_BYTES = USED_LEVELS + 4 + MAX_LEVELS * 4;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
-constexpr unsigned GROUP = 64;       // local_size_x of per_set.comp
-constexpr unsigned REDUCED = 16;     // particles per invocation of H_MIN and LEVELS
+constexpr unsigned GROUP = 64;        // local_size_x of per_set.comp
+constexpr unsigned REDUCED = 16;      // particles per invocation of H_MIN and LEVELS
 constexpr std::size_t BLOCK = 16384;  // values per work group of scan.comp
 // The coarse culling grid's directions (CullingDirections::coarseCount), per_set.comp's
 // COARSE_DIRECTIONS.
@@ -166,7 +167,7 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
                                        "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
                                        "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
     if (request.kernels) stages.insert(stages.end(), {"KERNELS", "PACK_KERNELS"});
-    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR"});
+    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR_BOUND", "NEAR"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
@@ -553,10 +554,17 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         mHeader.write(4, std::span<const std::uint32_t>(&zero, 1));  // nearHit
         const bool cull = mRequest.cull && mCulled;
         if (cull) {
+            // NEAR over every particle, where NEAR_BOUND finds the camera near enough.
+            const gl::Program& bound = stage("NEAR_BOUND");
+            bound.set("uCamera", frame.camera);
+            bound.set("uNearReach", frame.nearReach);
+            bound.set("uRadiusScale", static_cast<float>(mRequest.particles.radiusScale));
+            bound.dispatch(1);
+            gl::computeBarrier();
             const gl::Program& p = stage("NEAR");
             p.set("uCamera", frame.camera);
             p.set("uNearReach", frame.nearReach);
-            p.dispatch(groups(mCount));
+            p.dispatchIndirect(mHeader, NEAR_DISPATCH);
             gl::computeBarrier();
         }
         {

@@ -217,6 +217,38 @@ TEST_F(PerSetGpu, EllipsoidsMatchTheCpu) {
 
 // The frame of a new particle set redoes the per-set work (counters.per_set_builds = 1); a
 // frame of the same set reuses it (0), on both paths, and the two paths' frames agree.
+// Culling holds only where no drawn sphere reaches into the near plane's ball: then every
+// particle with a surface is drawn. A camera far from the particles' box skips the test
+// (NEAR); one outside the box but within a sphere's reach of it, or inside, takes it.
+TEST_F(PerSetGpu, CullingIsOffForFramesWhoseNearPlaneCutsASphere) {
+    const core::ParticleSet& ps = contact().particles.particles;
+    PerSetRequest request;
+    request.cull = true;
+    GpuPerSet g = built(ps, request);
+    const std::vector<float> radii = g.radii();
+    const auto withSurface = static_cast<std::uint32_t>(
+        std::count_if(radii.begin(), radii.end(), [](float r) { return r > 0.0f; }));
+    std::uint32_t visible = 0;  // not hidden, with a surface
+    for (std::uint32_t i : g.visibleParticles()) visible += radii[i] > 0.0f;
+    ASSERT_LT(visible, withSurface * 3 / 4);  // culling hides many of them
+    EXPECT_EQ(g.drawnCount(), visible);       // the camera 50 units away (built())
+
+    // The particle farthest along +x, and a camera just beyond its sphere.
+    std::size_t edge = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+        if (radii[i] > 0.0f && ps.position[i].x > ps.position[edge].x) edge = i;
+    const glm::dvec3 x(ps.position[edge]);
+    const double reach = 1e-3;
+    g.pack(programs, {x + glm::dvec3(radii[edge] + 2.0 * reach, 0.0, 0.0), reach});
+    EXPECT_EQ(g.drawnCount(), visible) << "a sphere's width outside: culled";
+    g.pack(programs, {x + glm::dvec3(radii[edge] + 0.5 * reach, 0.0, 0.0), reach});
+    EXPECT_EQ(g.drawnCount(), withSurface) << "the near plane's ball reaches a sphere";
+    g.pack(programs, {x, reach});
+    EXPECT_EQ(g.drawnCount(), withSurface) << "inside a sphere";
+    g.pack(programs, {glm::dvec3(0.0, -50.0, 0.0), reach});
+    EXPECT_EQ(g.drawnCount(), visible) << "far again";
+}
+
 TEST_F(PerSetGpu, PerSetWorkIsRedoneExactlyWhenTheSetChanges) {
     Loaded l = contact();
     Device device(context);

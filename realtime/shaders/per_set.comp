@@ -1039,10 +1039,36 @@ layout(std430, binding = 14) buffer DrawLists {
 };
 #endif
 
-#ifdef NEAR
+#if defined(NEAR) || defined(NEAR_BOUND)
 // renderer.cpp's cullingIsExact: whether a drawn sphere reaches into the near plane's ball.
 uniform dvec3 uCamera;
 uniform double uNearReach;
+#endif
+
+#ifdef NEAR_BOUND
+// Whether NEAR runs: only where the camera's ball, widened by a level's largest radius
+// (radius_scale times its largest h: no radius is larger; droplets are not tested), reaches
+// the level's box. A camera outside the particles' reach skips the pass over every particle
+// (at 1M particles, 4 ms).
+uniform float uRadiusScale;
+void main() {
+    if (invocation() != 0u) return;
+    bool mayReach = false;
+    for (uint u = 0u; u < usedLevels; ++u) {
+        Level g = levels[levelList[u]];
+        dvec3 lo = dvec3(fromOrderedKey(g.minKey.x), fromOrderedKey(g.minKey.y),
+                         fromOrderedKey(g.minKey.z));
+        dvec3 hi = dvec3(fromOrderedKey(g.maxKey.x), fromOrderedKey(g.maxKey.y),
+                         fromOrderedKey(g.maxKey.z));
+        dvec3 outside = max(max(lo - uCamera, uCamera - hi), dvec3(0.0));
+        double radius = double(uRadiusScale) * double(uintBitsToFloat(g.maxKey.w));
+        mayReach = mayReach || length(outside) - radius <= uNearReach;
+    }
+    nearDispatch = uvec4(mayReach ? (uCount + 63u) / 64u : 0u, 1u, 1u, 0u);
+}
+#endif
+
+#ifdef NEAR
 void main() {
     uint i = invocation();
     if (i >= uCount || !(radii[i] > 0.0) || dropletSlot(i) != 0u) return;

@@ -88,6 +88,8 @@ layout(std430, binding = 6) coherent buffer Header {
     // LAYOUT: the work groups of the scan of the cells (scan.comp's blocks) and of SORT, 1, 1.
     uvec4 scanDispatch;
     uvec4 sortDispatch;
+    // NEAR_BOUND: NEAR's work groups, 1, 1 (none where no level's box comes near the camera).
+    uvec4 nearDispatch;
     // LAYOUT: the levels that hold particles, in increasing order. A walk visits these alone:
     // a loop over all MAX_LEVELS, reading each level's header to skip it, cost a walk of a
     // million particles more than its sums of one level did.
