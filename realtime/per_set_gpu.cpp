@@ -6,6 +6,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 #include <span>
 #include <utility>
@@ -451,8 +452,8 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             coarse.set("uCoarseSinMargin", static_cast<float>(std::sin(grid.coarseCoveringAngle)));
             coarse.dispatch(groups(mCount));
             gl::computeBarrier();
-            // The spheres the coarse test left, as many work groups as CULL counted.
-            // First the probe, then the full test of the spheres the probe left (the next list).
+            // The spheres the coarse test left (as many work groups as CULL counted) to the
+            // probe, then those the probe left (the next list) to the full test.
             for (const char* variant : {"CULL_PROBE", ""}) {
                 const gl::Program& full = cullProgram(programs, "CULL_FULL", variant);
                 full.set("uCount", static_cast<unsigned>(mCount));

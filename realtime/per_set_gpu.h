@@ -140,7 +140,7 @@ class GpuPerSet {
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
     gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
-    gl::Buffer mWalks;        // the particles RADIUS_WALK takes
+    gl::Buffer mWalks;        // the walk list, then the next (shaders/per_set.comp)
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
     gl::Buffer mBodies;       // deriveNormals: 2 vec4 per body, its centre and pole axis
     // Per grid slot, the culling's near shell as INTERIOR found it (shaders/per_set.comp), for
