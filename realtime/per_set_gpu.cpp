@@ -35,7 +35,8 @@ constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
 constexpr std::size_t NEAR_DISPATCH = SORT_DISPATCH + 16;
 // Then the levels that hold particles (LAYOUT): their count and their numbers, in order.
 constexpr std::size_t USED_LEVELS = NEAR_DISPATCH + 16;
-constexpr std::size_t HEADER_BYTES = USED_LEVELS + 4 + MAX_LEVELS * 4;
+// Then LEVELS' least kernel coefficient per level.
+constexpr std::size_t HEADER_BYTES = USED_LEVELS + 4 + 2 * MAX_LEVELS * 4;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;        // local_size_x of per_set.comp
 constexpr unsigned REDUCED = 16;      // particles per invocation of H_MIN and LEVELS

@@ -95,6 +95,10 @@ layout(std430, binding = 6) coherent buffer Header {
     // million particles more than its sums of one level did.
     uint usedLevels;
     uint levelList[MAX_LEVELS];
+    // LEVELS: per level, the least of its particles' v / (pi h^3) (float bits), which INTERIOR
+    // takes for every kernel of the level (a lower bound of the field without reading each
+    // kernel's own).
+    uint levelCoefficientMin[MAX_LEVELS];
 };
 
 // A float as a uint whose order is the float's (for atomicMin / atomicMax).
