@@ -191,10 +191,7 @@ void main() {
             continue;
         }
         levelList[used++] = uint(L);
-        vec3 lo = vec3(fromOrderedKey(g.minKey.x), fromOrderedKey(g.minKey.y),
-                       fromOrderedKey(g.minKey.z));
-        vec3 hi = vec3(fromOrderedKey(g.maxKey.x), fromOrderedKey(g.maxKey.y),
-                       fromOrderedKey(g.maxKey.z));
+        vec3 lo = levelLow(g), hi = levelHigh(g);
         vec3 extent = hi - lo;
         float maxCells = max(4.0 * float(g.minKey.w), 4096.0);
         float cell = uintBitsToFloat(g.maxKey.w);
@@ -517,13 +514,14 @@ void main() {
     float ownBound = attribute1(ATTR_VOLUME, i) / (PI * h * h * h) * (1.0 + 1e-4);
     float reach2 = 4.0 * h * h, field = 0.0;
     int neighbours = uDropletAtoms > 0 ? -1 : 0;  // itself
-    Level g = levels[levelOf(h)];
+    int level = levelOf(h);
+    Level g = levels[level];
     ivec3 home = ivec3(floor((x - g.originCell.xyz) * levelInvCell(g)));
     // Every kernel of the level taken at the level's least W(0): no read of each kernel's own,
     // and still a lower bound (INTERIOR at 1M particles about -13 ms). Where the volumes of a
     // level vary, it settles fewer particles and leaves more to the exact path; in every
     // default scene and the real sequences it settles the same ones as before.
-    float coefficientMin = uintBitsToFloat(levelCoefficientMin[levelOf(h)]);
+    float coefficientMin = uintBitsToFloat(levelCoefficientMin[level]);
     float maxRadius = uRadiusScale * h, cap = min(maxRadius, uCrossingScale * maxRadius);
     float nearLimit2 = uNearMasks != 0 ? NEAR_SHELL * NEAR_SHELL * cap * cap : -1.0;
     uvec4 near = uvec4(0u);
@@ -690,21 +688,17 @@ void main() {
     ivec3 base = ivec3(floor((xi - g.originCell.xyz) * levelInvCell(g))) - ivec3(1);
 #ifdef NEAR_MASKS
     {
-        // INTERIOR's bits: the t-th entry visited lies in the last row (FOR_EACH_IN_BLOCK's
-        // rows r = 3 z + y, those outside the grid empty) whose first entry is visited at or
-        // before t. The table's indices are constants once its loops unroll.
+        // INTERIOR's bits: the t-th entry visited lies in the last row (blockRow's, as
+        // FOR_EACH_IN_BLOCK visits them) whose first entry is visited at or before t. The
+        // table's indices are constants once its loops unroll.
         uvec4 bits = nearMasks[slot];
-        int x0 = max(base.x, 0), x1 = min(base.x + 2, g.dims.x - 1);
         uint rowStart[9], rowVisit[9];
         uint visits = 0u;
         for (int r = 0; r < 9; ++r) {
-            ivec2 c = base.yz + ivec2(r % 3, r / 3);
-            bool inside = all(greaterThanEqual(c, ivec2(0))) && all(lessThan(c, g.dims.yz)) &&
-                          x0 <= x1;
-            int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
-            rowStart[r] = inside ? cellStart(row + x0) : 0u;
+            uvec2 row = blockRow(g, base, 3, r);
+            rowStart[r] = row.x;
             rowVisit[r] = visits;
-            visits += inside ? cellStart(row + x1 + 1) - rowStart[r] : 0u;
+            visits += row.y - row.x;
         }
         while (!hidden && any(notEqual(bits, uvec4(0u)))) {
             int w = bits.x != 0u ? 0 : bits.y != 0u ? 1 : bits.z != 0u ? 2 : 3;
@@ -1075,10 +1069,7 @@ void main() {
     bool mayReach = false;
     for (uint u = 0u; u < usedLevels; ++u) {
         Level g = levels[levelList[u]];
-        dvec3 lo = dvec3(fromOrderedKey(g.minKey.x), fromOrderedKey(g.minKey.y),
-                         fromOrderedKey(g.minKey.z));
-        dvec3 hi = dvec3(fromOrderedKey(g.maxKey.x), fromOrderedKey(g.maxKey.y),
-                         fromOrderedKey(g.maxKey.z));
+        dvec3 lo = dvec3(levelLow(g)), hi = dvec3(levelHigh(g));
         dvec3 outside = max(max(lo - uCamera, uCamera - hi), dvec3(0.0));
         double radius = double(uRadiusScale) * double(uintBitsToFloat(g.maxKey.w));
         mayReach = mayReach || length(outside) - radius <= uNearReach;

@@ -123,6 +123,14 @@ int gridCoord(float p, float origin, float invCell, int n) {
 
 float levelInvCell(Level g) { return 1.0 / g.originCell.w; }
 
+// The box of the level's particles' positions (LEVELS' ordered keys).
+vec3 levelLow(Level g) {
+    return vec3(fromOrderedKey(g.minKey.x), fromOrderedKey(g.minKey.y), fromOrderedKey(g.minKey.z));
+}
+vec3 levelHigh(Level g) {
+    return vec3(fromOrderedKey(g.maxKey.x), fromOrderedKey(g.maxKey.y), fromOrderedKey(g.maxKey.z));
+}
+
 int cellIndex(Level g, vec3 p) {
     float inv = levelInvCell(g);
     int ix = gridCoord(p.x, g.originCell.x, inv, g.dims.x);
@@ -144,22 +152,24 @@ vec4 entryPosition(uint k) { return texelFetch(uEntryTexels, int(2u * k)); }
 vec4 entryCoefficients(uint k) { return texelFetch(uEntryTexels, int(2u * k + 1u)); }
 uint cellStart(int c) { return texelFetch(uCellTexels, c).x; }
 
+// Row r (r = SIZE z + y) of the SIZE x SIZE x SIZE cells of level g from cell `base`: the
+// grid slots of its cells that lie in the grid, [first, end) (empty outside the grid). One run
+// of slots per row: the cells of a row are consecutive in the grid.
+uvec2 blockRow(Level g, ivec3 base, int size, int r) {
+    int x0 = max(base.x, 0), x1 = min(base.x + size - 1, g.dims.x - 1);
+    ivec2 c = base.yz + ivec2(r % size, r / size);
+    if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, g.dims.yz)) || x0 > x1)
+        return uvec2(0u);
+    int row = g.dims.w + (c.y * g.dims.y + c.x) * g.dims.x;
+    return uvec2(cellStart(row + x0), cellStart(row + x1 + 1));
+}
+
 // Calls VISIT(k) for every grid entry k of the SIZE x SIZE x SIZE cells of level G from cell
-// BASE (an ivec3; cells outside the grid left out), in the grid's order: each row of SIZE
-// cells is one run of slots.
-#define FOR_EACH_IN_BLOCK(G, BASE, SIZE, VISIT)                                             \
-    {                                                                                        \
-        int bx0_ = max(BASE.x, 0), bx1_ = min(BASE.x + SIZE - 1, G.dims.x - 1);              \
-        for (int bz_ = 0; bz_ < SIZE; ++bz_)                                                 \
-            for (int by_ = 0; by_ < SIZE; ++by_) {                                           \
-                ivec2 c_ = BASE.yz + ivec2(by_, bz_);                                        \
-                if (any(lessThan(c_, ivec2(0))) || any(greaterThanEqual(c_, G.dims.yz)) ||   \
-                    bx0_ > bx1_)                                                             \
-                    continue;                                                                \
-                int row_ = G.dims.w + (c_.y * G.dims.y + c_.x) * G.dims.x;                   \
-                uint end_ = cellStart(row_ + bx1_ + 1);                                      \
-                for (uint k_ = cellStart(row_ + bx0_); k_ < end_; ++k_) VISIT(k_);           \
-            }                                                                                \
+// BASE (an ivec3; cells outside the grid left out), in the grid's order: blockRow's rows.
+#define FOR_EACH_IN_BLOCK(G, BASE, SIZE, VISIT)                         \
+    for (int r_ = 0; r_ < SIZE * SIZE; ++r_) {                          \
+        uvec2 row_ = blockRow(G, BASE, SIZE, r_);                        \
+        for (uint k_ = row_.x; k_ < row_.y; ++k_) VISIT(k_);            \
     }
 
 // Calls VISIT(k) for every grid entry k of every level whose cells the ball of radius
