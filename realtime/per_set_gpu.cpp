@@ -402,7 +402,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
                 // The particles deep inside a body; the others listed. With culling, the near
                 // shells of the coarse test too.
                 if (mNearMasksFound) {
-                    resized(mNearMasks, mCount * sizeof(glm::uvec4));
+                    resized(mNearMasks, 2 * mCount * sizeof(glm::uvec4));
                     mNearMasks.bindStorage(NEAR_MASKS);
                 }
                 const gl::Program& p = radiusStage("INTERIOR");
