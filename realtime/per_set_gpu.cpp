@@ -12,7 +12,6 @@
 #include <utility>
 
 #include "core/derived_attributes.h"
-#include "realtime/droplets.h"
 #include "realtime/field_normal.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gpu_scene.h"
@@ -35,8 +34,10 @@ constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
 constexpr std::size_t NEAR_DISPATCH = SORT_DISPATCH + 16;
 // Then the levels that hold particles (LAYOUT): their count and their numbers, in order.
 constexpr std::size_t USED_LEVELS = NEAR_DISPATCH + 16;
-// Then LEVELS' least kernel coefficient per level.
-constexpr std::size_t HEADER_BYTES = USED_LEVELS + 4 + 2 * MAX_LEVELS * 4;
+// Then LEVELS' least kernel coefficient per level, then (16-byte aligned) the sparse particles'
+// list's dispatch (RADIUS_WALK's, which the droplet stages take).
+constexpr std::size_t SPARSE_DISPATCH = (USED_LEVELS + 4 + 2 * MAX_LEVELS * 4 + 15) / 16 * 16;
+constexpr std::size_t HEADER_BYTES = SPARSE_DISPATCH + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;        // local_size_x of per_set.comp
 constexpr unsigned REDUCED = 16;      // particles per invocation of H_MIN and LEVELS
@@ -73,9 +74,10 @@ enum Binding : unsigned {
     DROPLETS = 16,
     CULL_SPHERES = 17,
     WALKS = 18,
-    BLOCK_SUMS = 19,  // scan.comp
-    BODIES = 20,      // NORMALS
-    NEAR_MASKS = 21,  // INTERIOR, CULL
+    BLOCK_SUMS = 19,    // scan.comp
+    BODIES = 20,        // NORMALS
+    NEAR_MASKS = 21,    // INTERIOR, CULL
+    DROPLET_WORK = 22,  // RADIUS_WALK, the droplet stages
 };
 // Texture units of the buffer textures the walks read (shaders/per_set.glsl; the render passes
 // use units 0-7).
@@ -89,8 +91,8 @@ enum TextureUnit : unsigned {
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
 // bits from DROPLET_SHIFT up.
 constexpr unsigned DROPLET_SHIFT = 8;
-// The Header block's count of sparse particles (uint index).
-constexpr std::size_t SPARSE_COUNT = 3;
+// The Header block's count of droplets (uint index).
+constexpr std::size_t DROPLET_COUNT = 3;
 
 template <typename T>
 void writeAttribute(gl::Buffer& buffer, std::size_t offset, std::size_t n,
@@ -170,6 +172,9 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
                                        "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
     if (request.kernels) stages.insert(stages.end(), {"KERNELS", "PACK_KERNELS"});
     if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR_BOUND", "NEAR"});
+    if (request.droplets)
+        stages.insert(stages.end(),
+                      {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"});
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
@@ -216,6 +221,7 @@ void GpuPerSet::bindStorage() const {
     if (mCullSpheres.size() > 0) mCullSpheres.bindStorage(CULL_SPHERES);
     if (mBodies.size() > 0) mBodies.bindStorage(BODIES);
     if (mNearMasks.size() > 0) mNearMasks.bindStorage(NEAR_MASKS);
+    mDropletWork.bindStorage(DROPLET_WORK);
     mEntryTexels.bind(ENTRY_TEXELS);
     mCellTexels.bind(CELL_TEXELS);
     mCullSphereTexels.bind(CULL_SPHERE_TEXELS);
@@ -254,6 +260,7 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     resized(mRadii, n * sizeof(float));
     resized(mWalks, 2 * n * sizeof(std::uint32_t));  // the walk list, the next
     resized(mFlags, n * sizeof(std::uint32_t));
+    resized(mDropletWork, 4 * n * sizeof(std::uint32_t));  // per_set.comp's DropletWork
     resized(mBlockSums,
             (groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) * sizeof(std::uint32_t));
     if (mDirections.size() == 0) {
@@ -269,7 +276,6 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
         mModelBuffer.reset();
         mEllipsoids.reset();
     }
-    mDroplets = gl::Buffer();
     mDropletCount = 0;
     resized(mDrawLists, 2 * (n + 1) * sizeof(std::uint32_t));
     resized(mParticles, n * sizeof(GpuParticle));
@@ -394,8 +400,9 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
         };
         timed("radius", [&] {
             mFlags.clear();  // no droplet slots, nothing settled by INTERIOR
-            const std::uint32_t zero = 0;
-            mHeader.write(SPARSE_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
+            const std::uint32_t zero = 0, noSparse[4] = {0, 1, 1, 0};
+            mHeader.write(DROPLET_COUNT * 4, std::span<const std::uint32_t>(&zero, 1));
+            mHeader.write(SPARSE_DISPATCH, std::span<const std::uint32_t>(noSparse));
             clearWalks();
             mNearMasksFound = field && request.cull;
             if (field) {
@@ -428,7 +435,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
         });
         mDropletCount = 0;
         if (radiusSettings.dropletAtoms >= 2)
-            timed("droplets", [&] { applyDroplets(ps, radiusSettings); });
+            timed("droplets", [&] { fitDroplets(programs, radiusSettings); });
         mRadiusSettings = radiusSettings;
         mCulled = false;
         mModelSettings.reset();
@@ -513,29 +520,22 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     return built;
 }
 
-void GpuPerSet::applyDroplets(const core::ParticleSet& ps, const ParticleSettings& s) {
-    if (mHeader.read<std::uint32_t>(SPARSE_COUNT, 1)[0] == 0) return;  // no sparse particle
-    const Droplets found = fitDroplets(ps, radii(), s.surfaceLevel, s.dropletAtoms);
-    if (found.firsts.empty()) return;
-    // INTERIOR's marks kept (droplets are sparse: none of theirs is marked).
-    std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
-    std::vector<glm::vec4> records;
-    records.reserve(6 * found.firsts.size());
-    for (std::size_t k = 0; k < found.firsts.size(); ++k) {
-        const std::uint32_t first = found.firsts[k];
-        flags[first] |= static_cast<std::uint32_t>(k + 1) << DROPLET_SHIFT;
-        const Ellipsoid& e = found.ellipsoids[first];
-        for (int a = 0; a < 3; ++a) records.emplace_back(e.axes[a], e.shift[a]);
-        const FieldNormal model = dropletNormalModel(e);
-        records.emplace_back(model.outward, 0.0f);
-        records.emplace_back(model.diagonal, 0.0f);
-        records.emplace_back(model.offDiagonal, 0.0f);
-    }
-    mRadii.write(0, std::span<const float>(found.radii));
-    mFlags.write(0, std::span<const std::uint32_t>(flags));
-    mDroplets = gl::Buffer::of(std::span<const glm::vec4>(records));
+void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
+    // At most one droplet per two particles, 6 vec4 each.
+    resized(mDroplets, std::max<std::size_t>(mCount / 2, 1) * 6 * sizeof(glm::vec4));
     mDroplets.bindStorage(DROPLETS);
-    mDropletCount = found.firsts.size();
+    gl::computeBarrier();  // RADIUS_WALK's list
+    for (const char* stage :
+         {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"}) {
+        const gl::Program& p = programs.compute("per_set.comp", {stage});
+        p.set("uCount", static_cast<unsigned>(mCount));
+        p.set("uLevel",
+              static_cast<float>(s.surfaceLevel));  // a uniform a stage lacks is left alone
+        p.set("uDropletAtoms", s.dropletAtoms);
+        p.dispatchIndirect(mHeader, SPARSE_DISPATCH);
+        gl::computeBarrier();
+    }
+    mDropletCount = mHeader.read<std::uint32_t>(DROPLET_COUNT, 1)[0];
 }
 
 void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
@@ -646,6 +646,25 @@ std::vector<std::uint32_t> GpuPerSet::visibleParticles() const {
     std::vector<std::uint32_t> out;
     for (std::size_t i = 0; i < flags.size(); ++i)
         if (!(flags[i] & 2u)) out.push_back(static_cast<std::uint32_t>(i));
+    return out;
+}
+
+std::vector<std::pair<std::uint32_t, Ellipsoid>> GpuPerSet::droplets() const {
+    if (mDropletCount == 0) return {};
+    const std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
+    const std::vector<glm::vec4> records = mDroplets.read<glm::vec4>(0, 6 * mDropletCount);
+    std::vector<std::pair<std::uint32_t, Ellipsoid>> out;
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+        const std::uint32_t slot = flags[i] >> DROPLET_SHIFT;
+        if (slot == 0) continue;
+        Ellipsoid e;
+        for (int a = 0; a < 3; ++a) {
+            const glm::vec4& r = records[6 * (slot - 1) + a];
+            e.axes[a] = glm::vec3(r);
+            e.shift[a] = r.w;
+        }
+        out.emplace_back(static_cast<std::uint32_t>(i), e);
+    }
     return out;
 }
 

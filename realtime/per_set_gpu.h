@@ -19,9 +19,11 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/particles.h"
+#include "realtime/anisotropy.h"
 #include "realtime/gl/buffer.h"
 #include "realtime/gl/buffer_texture.h"
 #include "realtime/particle_set_key.h"
@@ -104,10 +106,12 @@ class GpuPerSet {
     std::vector<std::uint32_t> kernelParticles() const;
     std::vector<std::uint32_t> visibleParticles() const;  // not hidden, as unoccludedParticles()
     std::vector<glm::vec4> models() const;                // 3 per particle
+    // The droplets' first particles (ascending) and their ellipsoids (droplets.h).
+    std::vector<std::pair<std::uint32_t, Ellipsoid>> droplets() const;
 
   private:
     void upload(const core::ParticleSet& particles);
-    void applyDroplets(const core::ParticleSet& particles, const ParticleSettings& settings);
+    void fitDroplets(ProgramCache& programs, const ParticleSettings& settings);
     void buildGrid(ProgramCache& programs);
     void uploadBodies(std::span<const core::BodyInfo> bodies);
     // NORMALS over the walk list (`listed`) or every particle.
@@ -141,6 +145,7 @@ class GpuPerSet {
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
     gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
     gl::Buffer mWalks;        // the walk list, then the next (shaders/per_set.comp)
+    gl::Buffer mDropletWork;  // the sparse particles' list, their clusters (DropletWork)
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
     gl::Buffer mBodies;       // deriveNormals: 2 vec4 per body, its centre and pole axis
     // Per grid slot, the culling's near shell as INTERIOR found it (shaders/per_set.comp), for

@@ -1,12 +1,13 @@
 // The per-particle-set work on the GPU (realtime/per_set_gpu.h), one stage per #define: the
 // grid (INIT, H_MIN, LEVELS, LAYOUT, COUNT, SCATTER, SORT, GATHER), the particle normals where
 // the set came without them (NORMALS), the answers per particle
-// (INTERIOR, RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY) and the frame's draw lists (NEAR,
+// (INTERIOR, RADIUS, KERNELS, CULL, FIELD_NORMAL, ANISOTROPY), the small droplets (DROPLET_EDGES,
+// DROPLET_CLUSTERS, DROPLET_LINKS, DROPLET_FIT) and the frame's draw lists (NEAR,
 // MARK, PACK, FINISH). Every stage but LAYOUT and FINISH runs one invocation per particle (or
 // cell, or entry of a list).
 #if defined(NORMALS) || defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || \
     defined(CULL) || defined(CULL_FULL) || defined(FIELD_NORMAL) || defined(ANISOTROPY) ||   \
-    defined(CULL_SPHERES) || defined(INTERIOR)
+    defined(CULL_SPHERES) || defined(INTERIOR) || defined(DROPLET_EDGES) || defined(DROPLET_FIT)
 #define GRID_READ
 #endif
 #include "per_set.glsl"
@@ -33,17 +34,21 @@ layout(std430, binding = 10) buffer Sorted {
 
 #if defined(RADIUS) || defined(RADIUS_WALK) || defined(KERNELS) || defined(CULL) || \
     defined(FIELD_NORMAL) || defined(ANISOTROPY) || defined(NEAR) || defined(MARK) ||     \
-    defined(PACK) || defined(CULL_SPHERES) || defined(INTERIOR) || defined(INTERIOR_DRAWN)
+    defined(PACK) || defined(CULL_SPHERES) || defined(INTERIOR) || defined(INTERIOR_DRAWN) || \
+    defined(DROPLET_FIT)
 layout(std430, binding = 11) buffer Radii {
     float radii[];
 };
 #endif
 
 // flags: bit 1: hidden (occlusion_culling.h); bit 2: settled by INTERIOR (its normal is not
-// derived until it may be drawn).
-const uint HIDDEN = 2u, INTERIOR_BIT = 4u;
+// derived until it may be drawn); bit 3: sparse (droplets.h: a surface, fewer than
+// droplet_atoms neighbours); bit 4: a sparse particle with an edge to one that is not.
+const uint HIDDEN = 2u, INTERIOR_BIT = 4u, SPARSE_BIT = 8u, JOINS_BIT = 16u;
 #if defined(CULL) || defined(CULL_FULL) || defined(MARK) || defined(NEAR) || defined(KERNELS) || \
-    defined(PACK) || defined(CULL_SPHERES) || defined(INTERIOR) || defined(INTERIOR_DRAWN)
+    defined(PACK) || defined(CULL_SPHERES) || defined(INTERIOR) || defined(INTERIOR_DRAWN) ||  \
+    defined(RADIUS_WALK) || defined(DROPLET_EDGES) || defined(DROPLET_CLUSTERS) ||           \
+    defined(DROPLET_FIT)
 layout(std430, binding = 12) buffer Flags {
     uint flags[];  // CULL writes bit 1 of its own particle's flags only
 };
@@ -78,21 +83,48 @@ layout(std430, binding = 13) buffer Models {
 // keeps the lanes busy, where in the particles' order (or the list's) they would be a few lanes
 // of many vectors, each vector paying the long loops (RADIUS_WALK over RADIUS's whole list,
 // with the lanes RADIUS settled idle, took 65 ms at 1M particles; over the next list, 45 ms).
+// Appends VALUE to a list, LIST[AT + entry], dispatched indirectly by DISPATCH (work groups,
+// 1, 1, entries). A macro: GLSL hands no buffer member to an atomic through a parameter.
+#define APPEND(DISPATCH, LIST, AT, VALUE)                               \
+    {                                                                   \
+        uint entry_ = atomicAdd(DISPATCH.w, 1u);                        \
+        if (entry_ % gl_WorkGroupSize.x == 0u) atomicAdd(DISPATCH.x, 1u); \
+        LIST[(AT) + entry_] = (VALUE);                                  \
+    }
 #if defined(RADIUS) || defined(RADIUS_WALK) || defined(CULL) || defined(CULL_FULL) || \
     defined(MARK) || defined(KERNELS) || defined(INTERIOR) || defined(INTERIOR_DRAWN) ||   \
     defined(NORMALS) || defined(PACK)
 layout(std430, binding = 18) buffer Walks {
     uint walkList[];
 };
-void appendWalk(uint value) {
-    uint next = atomicAdd(walkDispatch.w, 1u);
-    if (next % gl_WorkGroupSize.x == 0u) atomicAdd(walkDispatch.x, 1u);
-    walkList[next] = value;
+void appendWalk(uint value) APPEND(walkDispatch, walkList, 0u, value)
+void appendNextWalk(uint value) APPEND(nextWalkDispatch, walkList, uCount, value)
+#endif
+
+// The droplet stages' work (droplets.h), four runs of uCount words: the sparse particles'
+// list, which RADIUS_WALK appends (sparseDispatch); per sparse particle its parent in the
+// clusters' union-find (DROPLET_CLUSTERS: its root; DROPLET_LINKS: the next member of its
+// droplet); per root its cluster's size and JOINS_BIT (DROPLET_CLUSTERS); per root of a
+// droplet the first of its members' list (DROPLET_LINKS). RADIUS_WALK sets a sparse particle's
+// words; the others are never read.
+#if defined(RADIUS_WALK) || defined(DROPLET_EDGES) || defined(DROPLET_CLUSTERS) || \
+    defined(DROPLET_LINKS) || defined(DROPLET_FIT)
+layout(std430, binding = 22) coherent buffer DropletWork {
+    uint dropletWork[];
+};
+const uint NO_MEMBER = 0xFFFFFFFFu;
+#define PARENT(i) dropletWork[uCount + (i)]
+#define CLUSTER(i) dropletWork[2u * uCount + (i)]
+#define MEMBERS(i) dropletWork[3u * uCount + (i)]
+void appendSparse(uint i) {
+    APPEND(sparseDispatch, dropletWork, 0u, i)
+    PARENT(i) = i;
+    CLUSTER(i) = 0u;
+    MEMBERS(i) = NO_MEMBER;
 }
-void appendNextWalk(uint value) {
-    uint next = atomicAdd(nextWalkDispatch.w, 1u);
-    if (next % gl_WorkGroupSize.x == 0u) atomicAdd(nextWalkDispatch.x, 1u);
-    walkList[uCount + next] = value;
+// The sparse particle of this invocation (NO_MEMBER past the list).
+uint sparseParticle() {
+    return invocation() < sparseDispatch.w ? dropletWork[invocation()] : NO_MEMBER;
 }
 #endif
 
@@ -325,7 +357,7 @@ void fieldSamples(vec3 centre, vec3 n, float t0, float step, out float values[8]
 uniform float uRadiusScale, uCrossingScale, uLevel, uInteriorLevel;
 uniform int uFixed;
 // droplets.h's sparse test where > 0: a particle with a surface and fewer than this many
-// neighbours within 2 h counts in sparseCount.
+// neighbours within 2 h is listed for the droplet stages (appendSparse).
 uniform int uDropletAtoms;
 float countReach_, halfCap_;
 // About the samples' midpoint: every kernel that reaches a sample, every neighbour within 2 h.
@@ -469,7 +501,10 @@ void main() {
     }
     float radius = min(maxRadius, (alone ? 1.0 : uCrossingScale) * crossing);
     radii[i] = radius;
-    if (radius > 0.0 && neighbours < uDropletAtoms) atomicAdd(sparseCount, 1u);
+    if (radius > 0.0 && neighbours < uDropletAtoms) {
+        flags[i] |= SPARSE_BIT;
+        appendSparse(i);
+    }
 #endif
 }
 #undef ADD_SAMPLES
@@ -936,6 +971,69 @@ void main() {
 }
 #endif
 
+#if defined(ANISOTROPY) || defined(DROPLET_FIT)
+// core::symmetricEigen: the eigenvalues (descending) and unit eigenvectors (columns, a
+// right-handed frame) of the symmetric C by cyclic Jacobi rotations, at most SWEEPS sweeps,
+// done once the off-diagonal sum is below TINY or EPSILON times the diagonal's. For float
+// (ANISOTROPY) and double (DROPLET_FIT, the CPU's precision).
+#define SYMMETRIC_EIGEN(T, VEC3, MAT3, SWEEPS, TINY, EPSILON)                                 \
+    void symmetricEigen(MAT3 c, out VEC3 values, out MAT3 vectors) {                          \
+        T a[3][3]; /* a[row][col] as c[col][row]; v accumulates the rotations */              \
+        T v[3][3];                                                                            \
+        for (int row = 0; row < 3; ++row)                                                     \
+            for (int col = 0; col < 3; ++col) {                                               \
+                a[row][col] = row <= col ? c[col][row] : c[row][col];                         \
+                v[row][col] = row == col ? T(1) : T(0);                                       \
+            }                                                                                 \
+        const ivec2 PAIRS[3] = ivec2[](ivec2(0, 1), ivec2(0, 2), ivec2(1, 2));                \
+        for (int sweep = 0; sweep < SWEEPS; ++sweep) {                                        \
+            T off = abs(a[0][1]) + abs(a[0][2]) + abs(a[1][2]);                               \
+            T scale = abs(a[0][0]) + abs(a[1][1]) + abs(a[2][2]);                             \
+            if (!(off > TINY) || off <= EPSILON * scale) break;                               \
+            for (int pq = 0; pq < 3; ++pq) {                                                  \
+                int p = PAIRS[pq].x, q = PAIRS[pq].y;                                         \
+                if (a[p][q] == T(0)) continue;                                                \
+                T theta = (a[q][q] - a[p][p]) / (T(2) * a[p][q]);                             \
+                T t = (theta >= T(0) ? T(1) : T(-1)) / (abs(theta) + sqrt(theta * theta + T(1))); \
+                T cs = T(1) / sqrt(t * t + T(1)), sn = t * cs;                                \
+                for (int k = 0; k < 3; ++k) {                                                 \
+                    T akp = a[k][p], akq = a[k][q];                                           \
+                    a[k][p] = cs * akp - sn * akq;                                            \
+                    a[k][q] = sn * akp + cs * akq;                                            \
+                }                                                                             \
+                for (int k = 0; k < 3; ++k) {                                                 \
+                    T apk = a[p][k], aqk = a[q][k];                                           \
+                    a[p][k] = cs * apk - sn * aqk;                                            \
+                    a[q][k] = sn * apk + cs * aqk;                                            \
+                }                                                                             \
+                a[p][q] = T(0);                                                               \
+                a[q][p] = T(0);                                                               \
+                for (int k = 0; k < 3; ++k) {                                                 \
+                    T vkp = v[k][p], vkq = v[k][q];                                           \
+                    v[k][p] = cs * vkp - sn * vkq;                                            \
+                    v[k][q] = sn * vkp + cs * vkq;                                            \
+                }                                                                             \
+            }                                                                                 \
+        }                                                                                     \
+        /* Descending, stable (std::stable_sort's order for equal values). */                 \
+        ivec3 order = ivec3(0, 1, 2);                                                         \
+        if (a[order.y][order.y] > a[order.x][order.x]) order.xy = order.yx;                   \
+        if (a[order.z][order.z] > a[order.y][order.y]) order.yz = order.zy;                   \
+        if (a[order.y][order.y] > a[order.x][order.x]) order.xy = order.yx;                   \
+        for (int k = 0; k < 3; ++k) {                                                         \
+            values[k] = a[order[k]][order[k]];                                                \
+            vectors[k] = VEC3(v[0][order[k]], v[1][order[k]], v[2][order[k]]);                \
+        }                                                                                     \
+        if (dot(cross(vectors[0], vectors[1]), vectors[2]) < T(0)) vectors[2] = -vectors[2];  \
+    }
+#endif
+#ifdef ANISOTROPY
+SYMMETRIC_EIGEN(float, vec3, mat3, 16, 1e-30, 1e-9)
+#endif
+#ifdef DROPLET_FIT
+SYMMETRIC_EIGEN(double, dvec3, dmat3, 32, 1e-300LF, 1e-17LF)
+#endif
+
 #ifdef ANISOTROPY
 // anisotropy.cpp (Yu & Turk 2013): the weighted covariance of the neighbours within 2 h, its
 // eigen-decomposition (core::symmetricEigen's cyclic Jacobi rotations), the clamped spread
@@ -990,56 +1088,9 @@ void main() {
     }
     vec3 mean = first / weight;
     mat3 c = second / weight - outerProduct(mean, mean);
-    // Cyclic Jacobi: a[row][col] as mat3 a[col][row]; v accumulates the rotations.
-    float a[3][3];
-    float v[3][3];
-    for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col) {
-            a[row][col] = row <= col ? c[col][row] : c[row][col];
-            v[row][col] = row == col ? 1.0 : 0.0;
-        }
-    const ivec2 PAIRS[3] = ivec2[](ivec2(0, 1), ivec2(0, 2), ivec2(1, 2));
-    for (int sweep = 0; sweep < 16; ++sweep) {
-        float off = abs(a[0][1]) + abs(a[0][2]) + abs(a[1][2]);
-        float scale = abs(a[0][0]) + abs(a[1][1]) + abs(a[2][2]);
-        if (!(off > 1e-30) || off <= 1e-9 * scale) break;
-        for (int pq = 0; pq < 3; ++pq) {
-            int p = PAIRS[pq].x, q = PAIRS[pq].y;
-            if (a[p][q] == 0.0) continue;
-            float theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-            float t = (theta >= 0.0 ? 1.0 : -1.0) / (abs(theta) + sqrt(theta * theta + 1.0));
-            float cs = 1.0 / sqrt(t * t + 1.0), sn = t * cs;
-            for (int k = 0; k < 3; ++k) {
-                float akp = a[k][p], akq = a[k][q];
-                a[k][p] = cs * akp - sn * akq;
-                a[k][q] = sn * akp + cs * akq;
-            }
-            for (int k = 0; k < 3; ++k) {
-                float apk = a[p][k], aqk = a[q][k];
-                a[p][k] = cs * apk - sn * aqk;
-                a[q][k] = sn * apk + cs * aqk;
-            }
-            a[p][q] = 0.0;
-            a[q][p] = 0.0;
-            for (int k = 0; k < 3; ++k) {
-                float vkp = v[k][p], vkq = v[k][q];
-                v[k][p] = cs * vkp - sn * vkq;
-                v[k][q] = sn * vkp + cs * vkq;
-            }
-        }
-    }
-    // Descending, stable (std::stable_sort's order for equal values).
-    ivec3 order = ivec3(0, 1, 2);
-    if (a[order.y][order.y] > a[order.x][order.x]) order.xy = order.yx;
-    if (a[order.z][order.z] > a[order.y][order.y]) order.yz = order.zy;
-    if (a[order.y][order.y] > a[order.x][order.x]) order.xy = order.yx;
     vec3 values;
     mat3 vectors;
-    for (int k = 0; k < 3; ++k) {
-        values[k] = a[order[k]][order[k]];
-        vectors[k] = vec3(v[0][order[k]], v[1][order[k]], v[2][order[k]]);
-    }
-    if (dot(cross(vectors[0], vectors[1]), vectors[2]) < 0.0) vectors[2] = -vectors[2];
+    symmetricEigen(c, values, vectors);
     float largest = values[0];
     if (!(largest > 0.0)) {
         writeSphere(i, r);
@@ -1057,6 +1108,193 @@ void main() {
         shift += (r - reach) * n;
     }
     for (int k = 0; k < 3; ++k) models[3u * i + uint(k)] = vec4(axes[k], shift[k]);
+}
+#endif
+
+// ---- The small droplets (droplets.h) ----
+// RADIUS_WALK lists the sparse particles (a surface, fewer than droplet_atoms neighbours within
+// 2 h). DROPLET_EDGES joins each to the sparse neighbours within its 2 h whose midpoint with it
+// lies inside the level set (union-find: a root is hooked under the smaller one by compare-and-
+// swap, so each cluster's root is its least index whatever the order), and marks it JOINS_BIT
+// where such a neighbour is not sparse (the cluster is part of a body). DROPLET_CLUSTERS counts
+// each cluster's members at its root, DROPLET_LINKS lists the members of the clusters of
+// 2 .. droplet_atoms without JOINS_BIT at their root, and DROPLET_FIT fits each one's ellipsoid
+// at its root (its first particle), as fitDroplets does on the CPU, sums in the same order
+// (float field sums, as the radii's). Nothing is read back.
+#if defined(DROPLET_EDGES) || defined(DROPLET_FIT)
+uniform float uLevel;
+// The colour field at P (every kernel that reaches it, in the grid's order).
+float fieldAt(vec3 p) {
+    float value = 0.0;
+#define ADD_FIELD(k)                                                                \
+    {                                                                               \
+        vec4 e = entryPosition(k);                                                  \
+        value += entryCoefficients(k).x / e.w * m4Shape(length(e.xyz - p) * e.w);   \
+    }
+    FOR_EACH_NEAR(p, supportReach, ADD_FIELD)
+#undef ADD_FIELD
+    return value;
+}
+#endif
+#if defined(DROPLET_EDGES) || defined(DROPLET_CLUSTERS)
+uint findRoot(uint x) {
+    for (uint p = PARENT(x); p != x; p = PARENT(x)) x = p;
+    return x;
+}
+#endif
+const uint CLUSTER_JOINS = 0x80000000u;  // CLUSTER(root): a member has JOINS_BIT
+
+#ifdef DROPLET_EDGES
+void unite(uint a, uint b) {
+    for (;;) {
+        a = findRoot(a);
+        b = findRoot(b);
+        if (a == b) return;
+        if (a > b) {
+            uint t = a;
+            a = b;
+            b = t;
+        }
+        if (atomicCompSwap(PARENT(b), b, a) == b) return;  // else b was hooked meanwhile
+    }
+}
+float edgeReach_;
+float edgeReach(float hMax) { return edgeReach_; }
+void main() {
+    uint i = sparseParticle();
+    if (i == NO_MEMBER) return;
+    vec3 x = particlePosition(i);
+    float reach = 2.0 * particleH(i);  // core::M4_SUPPORT h
+    edgeReach_ = reach;
+    bool joins = false;
+#define EDGE(k)                                                                               \
+    {                                                                                         \
+        vec4 e = entryPosition(k);                                                            \
+        vec3 d = e.xyz - x;                                                                   \
+        uint j = floatBitsToUint(entryCoefficients(k).z);                                     \
+        if (j != i && dot(d, d) < reach * reach && fieldAt(0.5 * (x + e.xyz)) > uLevel) {     \
+            if ((flags[j] & SPARSE_BIT) == 0u)                                                \
+                joins = true;                                                                 \
+            else                                                                              \
+                unite(i, j);                                                                  \
+        }                                                                                     \
+    }
+    FOR_EACH_NEAR(x, edgeReach, EDGE)
+#undef EDGE
+    if (joins) flags[i] |= JOINS_BIT;
+}
+#endif
+
+#ifdef DROPLET_CLUSTERS
+void main() {
+    uint i = sparseParticle();
+    if (i == NO_MEMBER) return;
+    uint root = findRoot(i);
+    PARENT(i) = root;  // path compression: the root is an ancestor whatever others write
+    atomicAdd(CLUSTER(root), 1u);
+    if ((flags[i] & JOINS_BIT) != 0u) atomicOr(CLUSTER(root), CLUSTER_JOINS);
+}
+#endif
+
+#ifdef DROPLET_LINKS
+uniform int uDropletAtoms;
+void main() {
+    uint i = sparseParticle();
+    if (i == NO_MEMBER) return;
+    uint root = PARENT(i);
+    uint cluster = CLUSTER(root), size = cluster & ~CLUSTER_JOINS;
+    if ((cluster & CLUSTER_JOINS) != 0u || size < 2u || size > uint(uDropletAtoms)) return;
+    PARENT(i) = atomicExchange(MEMBERS(root), i);  // the next member
+}
+#endif
+
+#ifdef DROPLET_FIT
+layout(std430, binding = 16) writeonly buffer Droplets {
+    vec4 droplets[];  // 6 per droplet: GpuEllipsoid (3), its FieldNormal model (3)
+};
+const int MAX_DROPLET_ATOMS = 64;  // settings.cpp's limit of droplet_atoms
+// impostor_radius.cpp's fieldCrossing: the distance from CENTRE along DIRECTION to the level
+// set, 0 where the field at the centre is not above it, MAX_RADIUS where it is above at the
+// early-exit samples or at every scan sample.
+bool above(dvec3 p) { return fieldAt(vec3(p)) > uLevel; }
+double fieldCrossing(dvec3 centre, dvec3 direction, double maxRadius) {
+    const int SCAN_STEPS = 8, BISECTION_STEPS = 10;
+    if (!above(centre)) return 0.0LF;
+    if (above(centre + maxRadius * direction) && above(centre + 0.5LF * maxRadius * direction))
+        return maxRadius;
+    double inside = 0.0LF, outside = -1.0LF;
+    for (int k = 1; k <= SCAN_STEPS && outside < 0.0LF; ++k) {
+        double t = maxRadius * double(k) / double(SCAN_STEPS);
+        if (above(centre + t * direction))
+            inside = t;
+        else
+            outside = t;
+    }
+    if (outside < 0.0LF) return maxRadius;
+    for (int k = 0; k < BISECTION_STEPS; ++k) {
+        double t = 0.5LF * (inside + outside);
+        if (above(centre + t * direction))
+            inside = t;
+        else
+            outside = t;
+    }
+    return 0.5LF * (inside + outside);
+}
+void main() {
+    uint first = sparseParticle();
+    if (first == NO_MEMBER || MEMBERS(first) == NO_MEMBER) return;  // a droplet's root only
+    uint members[MAX_DROPLET_ATOMS];
+    int count = 0;
+    for (uint m = MEMBERS(first); m != NO_MEMBER && count < MAX_DROPLET_ATOMS; m = PARENT(m))
+        members[count++] = m;
+    // Ascending, the CPU's order of the sums (insertion sort; Mesa 22.3's llvmpipe lost
+    // members where the loop's condition compared them).
+    for (int k = 1; k < count; ++k)
+        for (int j = k; j > 0; --j) {
+            uint lower = members[j - 1], upper = members[j];
+            if (lower <= upper) break;
+            members[j] = lower;
+            members[j - 1] = upper;
+        }
+    dvec3 mean = dvec3(0.0LF);
+    for (int k = 0; k < count; ++k) mean += dvec3(particlePosition(members[k]));
+    mean /= double(count);
+    dmat3 covariance = dmat3(0.0LF);
+    double reach = 0.0LF;  // beyond it from the mean no member's kernel adds to the field
+    for (int k = 0; k < count; ++k) {
+        dvec3 d = dvec3(particlePosition(members[k])) - mean;
+        covariance += outerProduct(d, d);
+        reach = max(reach, length(d) + 2.0LF * double(particleH(members[k])));
+    }
+    dvec3 values;
+    dmat3 vectors;
+    symmetricEigen(covariance, values, vectors);
+    dvec3 centre = mean;
+    mat3 axes;
+    for (int k = 0; k < 3; ++k) {
+        dvec3 e = vectors[k];
+        double plus = fieldCrossing(mean, e, reach), minus = fieldCrossing(mean, -e, reach);
+        // No surface about the mean, or none found within the cluster's reach: spheres.
+        if (!(plus > 0.0LF && minus > 0.0LF) || plus >= reach || minus >= reach) return;
+        centre += 0.5LF * (plus - minus) * e;
+        axes[k] = vec3(0.5LF * (plus + minus) * e);
+    }
+    vec3 shift = vec3(centre - dvec3(particlePosition(first)));
+    uint slot = atomicAdd(dropletCount, 1u);
+    // droplets.cpp's dropletNormalModel: M = sum_k a_k a_k^T / |a_k|^4.
+    mat3 model = mat3(0.0);
+    for (int k = 0; k < 3; ++k) {
+        float length2 = dot(axes[k], axes[k]);
+        model += outerProduct(axes[k], axes[k]) / (length2 * length2);
+        droplets[6u * slot + uint(k)] = vec4(axes[k], shift[k]);
+    }
+    droplets[6u * slot + 3u] = vec4(-(model * shift), 0.0);
+    droplets[6u * slot + 4u] = vec4(model[0][0], model[1][1], model[2][2], 0.0);
+    droplets[6u * slot + 5u] = vec4(model[1][0], model[2][0], model[2][1], 0.0);
+    for (int k = 0; k < count; ++k) radii[members[k]] = 0.0;
+    // The radius of the sphere of the ellipsoid's volume (the culling and the near test).
+    radii[first] = pow(length(axes[0]) * length(axes[1]) * length(axes[2]), 1.0 / 3.0);
+    flags[first] |= (slot + 1u) << 8;
 }
 #endif
 

@@ -77,7 +77,7 @@ layout(std430, binding = 6) coherent buffer Header {
     uint hMinBits;           // the smallest h (float bits: positive floats order as uints)
     uint nearHit;            // a drawn sphere reaches into the near plane's ball (this frame)
     uint totalCells;         // cells of all levels
-    uint sparseCount;        // RADIUS: particles with a surface and few neighbours (droplets)
+    uint dropletCount;       // DROPLET_FIT: the droplets fitted
     uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 0, 0
     uvec4 drawKernels;       // the same for the kernels the gradient pass adds
     Level levels[MAX_LEVELS];
@@ -99,6 +99,9 @@ layout(std430, binding = 6) coherent buffer Header {
     // takes for every kernel of the level (a lower bound of the field without reading each
     // kernel's own).
     uint levelCoefficientMin[MAX_LEVELS];
+    // RADIUS_WALK: the sparse particles' list's dispatch (work groups, 1, 1; w: its entries),
+    // which the droplet stages take (per_set.comp's DROPLET_EDGES).
+    uvec4 sparseDispatch;
 };
 
 // A float as a uint whose order is the float's (for atomicMin / atomicMax).
