@@ -29,12 +29,7 @@ GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int wi
          .depthWrite = true,
          .depthClamp = true,
          .clipDepth = reversed ? gl::ClipDepth::ZeroToOne : gl::ClipDepth::MinusOneToOne});
-    programs
-        .get("impostor.vert", "gbuffer.frag",
-             impostorDefines(scene.ellipsoids != nullptr, {depthDefine(mode)}))
-        .use();
-    scene.bind();
-    scene.draw.draw();
+    scene.drawImpostors(programs, "gbuffer.frag", {depthDefine(mode)});
     gl::setPipelineState({});
     return g;
 }

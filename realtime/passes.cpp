@@ -11,6 +11,19 @@ void SceneBuffers::bind() const {
     if (ellipsoids) ellipsoids->bindStorage(4);
 }
 
+void SceneBuffers::drawImpostors(ProgramCache& programs, const char* fragment,
+                                 const std::vector<std::string>& defines) const {
+    programs.get("impostor.vert", fragment, impostorDefines(ellipsoids != nullptr, defines)).use();
+    bind();
+    draw.draw();
+    if (!droplets) return;
+    programs.get("impostor.vert", fragment, impostorDefines(true, defines)).use();
+    droplets->particles->bindStorage(0);
+    droplets->ellipsoids->bindStorage(4);
+    droplets->draw.draw();
+    particles->bindStorage(0);
+}
+
 void DrawList::draw() const {
     if (commands)
         gl::drawTrianglesIndirect(commands->id(), offset);

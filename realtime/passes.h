@@ -42,8 +42,21 @@ struct SceneBuffers {
     // realtime.particles.shape = "ellipsoid": GpuEllipsoid[], one per particle, storage
     // binding 4; the impostor programs then take the ELLIPSOID variant (impostorDefines).
     const gl::Buffer* ellipsoids = nullptr;
+    // realtime.per_set = "gpu" with droplets (particles.droplet_atoms) and spheres: the
+    // droplets' ellipsoids, a draw of their own after the spheres' with the ELLIPSOID variant
+    // (their count is the GPU's: nothing is read back to choose the programs).
+    struct Droplets {
+        const gl::Buffer* particles;   // GpuParticle[]
+        const gl::Buffer* ellipsoids;  // GpuEllipsoid[]
+        DrawList draw;
+    };
+    std::optional<Droplets> droplets;
 
     void bind() const;
+    // Draws the particles with impostor.vert and FRAGMENT (impostorDefines with `defines`),
+    // then the droplets' ellipsoids; leaves the particles' buffers bound.
+    void drawImpostors(ProgramCache& programs, const char* fragment,
+                       const std::vector<std::string>& defines) const;
 };
 
 // `defines` with the one that selects the impostor shape of impostor.vert, gbuffer.frag and

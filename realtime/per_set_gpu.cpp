@@ -37,7 +37,9 @@ constexpr std::size_t USED_LEVELS = NEAR_DISPATCH + 16;
 // Then LEVELS' least kernel coefficient per level, then (16-byte aligned) the sparse particles'
 // list's dispatch (RADIUS_WALK's, which the droplet stages take).
 constexpr std::size_t SPARSE_DISPATCH = (USED_LEVELS + 4 + 2 * MAX_LEVELS * 4 + 15) / 16 * 16;
-constexpr std::size_t HEADER_BYTES = SPARSE_DISPATCH + 16;
+// Then FINISH's draw command of the droplets drawn apart.
+constexpr std::size_t DROPLET_DRAW = SPARSE_DISPATCH + 16;
+constexpr std::size_t HEADER_BYTES = DROPLET_DRAW + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
 constexpr unsigned GROUP = 64;        // local_size_x of per_set.comp
 constexpr unsigned REDUCED = 16;      // particles per invocation of H_MIN and LEVELS
@@ -74,10 +76,12 @@ enum Binding : unsigned {
     DROPLETS = 16,
     CULL_SPHERES = 17,
     WALKS = 18,
-    BLOCK_SUMS = 19,    // scan.comp
-    BODIES = 20,        // NORMALS
-    NEAR_MASKS = 21,    // INTERIOR, CULL
-    DROPLET_WORK = 22,  // RADIUS_WALK, the droplet stages
+    BLOCK_SUMS = 19,          // scan.comp
+    BODIES = 20,              // NORMALS
+    NEAR_MASKS = 21,          // INTERIOR, CULL
+    DROPLET_WORK = 22,        // RADIUS_WALK, the droplet stages
+    DROPLET_PARTICLES = 23,   // PACK
+    DROPLET_ELLIPSOIDS = 24,  // PACK
 };
 // Texture units of the buffer textures the walks read (shaders/per_set.glsl; the render passes
 // use units 0-7).
@@ -276,7 +280,6 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
         mModelBuffer.reset();
         mEllipsoids.reset();
     }
-    mDropletCount = 0;
     resized(mDrawLists, 2 * (n + 1) * sizeof(std::uint32_t));
     resized(mParticles, n * sizeof(GpuParticle));
     resized(mKernels, n * sizeof(GpuKernel));
@@ -433,7 +436,6 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
             gl::computeBarrier();
             if (field) radiusStage("RADIUS_WALK").dispatchIndirect(mHeader, NEXT_WALK_DISPATCH);
         });
-        mDropletCount = 0;
         if (radiusSettings.dropletAtoms >= 2)
             timed("droplets", [&] { fitDroplets(programs, radiusSettings); });
         mRadiusSettings = radiusSettings;
@@ -535,7 +537,6 @@ void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
         p.dispatchIndirect(mHeader, SPARSE_DISPATCH);
         gl::computeBarrier();
     }
-    mDropletCount = mHeader.read<std::uint32_t>(DROPLET_COUNT, 1)[0];
 }
 
 void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
@@ -547,6 +548,13 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     };
     if (ellipsoidsDrawn() && !mEllipsoids)
         mEllipsoids.emplace(gl::Buffer::zeros(mCount * sizeof(GpuEllipsoid)));
+    const bool dropletsApart = this->dropletsApart();
+    if (dropletsApart) {
+        // At most one droplet per two particles (as mDroplets).
+        const std::size_t most = std::max<std::size_t>(mCount / 2, 1);
+        resized(mDropletParticles, most * sizeof(GpuParticle));
+        resized(mDropletEllipsoids, most * sizeof(GpuEllipsoid));
+    }
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
@@ -573,6 +581,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
             clearWalks();
             const gl::Program& p = stage("MARK");
             p.set("uCull", cull ? 1 : 0);
+            p.set("uDropletsApart", dropletsApart ? 1 : 0);
             p.dispatch(groups(mCount));
             gl::computeBarrier();
         }
@@ -590,10 +599,14 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         mParticles->bindStorage(PARTICLES);
         mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
+        if (dropletsApart) {
+            mDropletParticles->bindStorage(DROPLET_PARTICLES);
+            mDropletEllipsoids->bindStorage(DROPLET_ELLIPSOIDS);
+        }
         const gl::Program& p = stage("PACK");
         p.set("uCamera", frame.camera);
         p.set("uModels", mModels);
-        p.set("uEllipsoidsOut", ellipsoidsDrawn() ? 1 : 0);
+        p.set("uDropletsApart", dropletsApart ? 1 : 0);
         p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed
         if (mRequest.kernels) {
             const gl::Program& kernels = stage("PACK_KERNELS");
@@ -611,7 +624,17 @@ std::map<std::string, double> GpuPerSet::takeTimings() {
 
 std::uint32_t GpuPerSet::drawnCount() const {
     if (mCount == 0) return 0;
-    return mHeader.read<std::uint32_t>(particleDrawOffset() / 4, 1)[0] / 6;
+    const std::uint32_t particles = mHeader.read<std::uint32_t>(particleDrawOffset() / 4, 1)[0] / 6;
+    return particles + (dropletsApart() ? dropletCount() : 0);
+}
+
+std::uint32_t GpuPerSet::dropletCount() const {
+    if (mCount == 0) return 0;
+    return mHeader.read<std::uint32_t>(DROPLET_COUNT, 1)[0];
+}
+
+std::size_t GpuPerSet::dropletDrawOffset() {
+    return DROPLET_DRAW;
 }
 
 std::uint32_t GpuPerSet::kernelCount() const {
@@ -650,9 +673,10 @@ std::vector<std::uint32_t> GpuPerSet::visibleParticles() const {
 }
 
 std::vector<std::pair<std::uint32_t, Ellipsoid>> GpuPerSet::droplets() const {
-    if (mDropletCount == 0) return {};
+    const std::uint32_t count = dropletCount();
+    if (count == 0) return {};
     const std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
-    const std::vector<glm::vec4> records = mDroplets.read<glm::vec4>(0, 6 * mDropletCount);
+    const std::vector<glm::vec4> records = mDroplets.read<glm::vec4>(0, 6 * count);
     std::vector<std::pair<std::uint32_t, Ellipsoid>> out;
     for (std::size_t i = 0; i < flags.size(); ++i) {
         const std::uint32_t slot = flags[i] >> DROPLET_SHIFT;

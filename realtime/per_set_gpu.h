@@ -7,10 +7,9 @@
 // (anisotropy.h). Per frame, compute passes mark the drawn particles and the kernels whose
 // support reaches one of them (the gradient pass's), pack both (camera-relative, subtracted in
 // double) into the storage buffers the draw passes read, and write the draw counts into
-// indirect draw commands: nothing is read back (but, with droplets, a count and then the
-// radii). Sums over the grid run in a fixed order, so the results do not depend on scheduling.
-// The walks read the grid as buffer textures (per_set.glsl says why). shaders/per_set.comp,
-// per_set.glsl, scan.comp.
+// indirect draw commands: nothing is read back. Sums over the grid run in a fixed order, so the
+// results do not depend on scheduling. The walks read the grid as buffer textures (per_set.glsl
+// says why). shaders/per_set.comp, per_set.glsl, scan.comp.
 #pragma once
 
 #include <cstdint>
@@ -74,17 +73,22 @@ class GpuPerSet {
 
     const gl::Buffer& particles() const { return *mParticles; }
     const gl::Buffer& kernels() const { return *mKernels; }
-    // One GpuEllipsoid per drawn particle where ellipsoidsDrawn(): shape = "ellipsoid", or a
-    // set with droplets (spheres as round ellipsoids).
+    // One GpuEllipsoid per drawn particle where ellipsoidsDrawn() (shape = "ellipsoid", the
+    // droplets' among them).
     const gl::Buffer& ellipsoids() const { return *mEllipsoids; }
-    bool ellipsoidsDrawn() const { return mModels == 2 || mDropletCount > 0; }
-    // The droplets of the set (0 without droplets).
-    std::size_t dropletCount() const { return mDropletCount; }
+    bool ellipsoidsDrawn() const { return mModels == 2; }
+    // Spheres with droplets: the droplets are not among particles() but drawn apart, as
+    // dropletParticles() and dropletEllipsoids(), their count in the command at
+    // dropletDrawOffset() (the CPU does not learn it).
+    bool dropletsApart() const { return mRequest.droplets && mModels != 2; }
+    const gl::Buffer& dropletParticles() const { return *mDropletParticles; }
+    const gl::Buffer& dropletEllipsoids() const { return *mDropletEllipsoids; }
     // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the kernels' at
-    // kernelDrawOffset() (bytes).
+    // kernelDrawOffset(), the droplets' at dropletDrawOffset() (bytes).
     const gl::Buffer& drawCommands() const { return mHeader; }
     static std::size_t particleDrawOffset() { return 16; }
     static std::size_t kernelDrawOffset() { return 32; }
+    static std::size_t dropletDrawOffset();
     std::size_t capacity() const { return mCount; }
     // Wall-clock milliseconds of the last update's upload (0 when the set was kept): the
     // attributes copied to the device, the set's key compared and kept.
@@ -94,9 +98,11 @@ class GpuPerSet {
     // "kernels", "cull", "field_normals", "anisotropy", "pack"): wall clock from the stage's first
     // command to the end of its last (glFinish).
     std::map<std::string, double> takeTimings();
-    // Read back after the frame (waits): the drawn particles and kernels.
+    // Read back after the frame (waits): the drawn particles (droplets drawn apart among them)
+    // and kernels.
     std::uint32_t drawnCount() const;
     std::uint32_t kernelCount() const;
+    std::uint32_t dropletCount() const;  // the droplets of the set (0 without droplets)
 
     // Read back, for tests: per particle of the last set.
     std::vector<float> radii() const;
@@ -130,7 +136,6 @@ class GpuPerSet {
     bool mBuilt = false;
     // What has been built for the current set (std::nullopt: not yet).
     std::optional<ParticleSettings> mRadiusSettings;  // droplet_atoms 0 when not requested
-    std::size_t mDropletCount = 0;
     bool mCulled = false;
     // The particle normals: the set's own; or derived for none yet, for INTERIOR's list (the
     // particles it settled keep a fallback normal), for those and the settled ones that may be
@@ -143,6 +148,7 @@ class GpuPerSet {
     gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
+    std::optional<gl::Buffer> mDropletParticles, mDropletEllipsoids;  // dropletsApart()
     gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
     gl::Buffer mWalks;        // the walk list, then the next (shaders/per_set.comp)
     gl::Buffer mDropletWork;  // the sparse particles' list, their clusters (DropletWork)

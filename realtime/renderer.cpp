@@ -323,7 +323,9 @@ SceneBuffers sceneBuffers(DeviceState& d, const core::RenderInput& in, const cor
             gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
                                   gl::BufferFormat::RGB32F),
             gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
-            {}};
+            {},
+            nullptr,
+            std::nullopt};
 }
 
 // per_set = "cpu": the particles that may be seen (hidden ones culled where that is exact,
@@ -467,7 +469,6 @@ Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Came
         g.update(d.programs, ps, request,
                  in.particles.hasNormals ? std::span<const core::BodyInfo>() : in.particles.bodies);
     frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
-    frame.counters["droplets"] = static_cast<double>(g.dropletCount());
     frame.timingsMs["upload"] = g.uploadMs();
     g.pack(d.programs, {in.scene.camera.position, nearReach(camera)});
     gl::checkErrors("per-set compute passes");
@@ -479,6 +480,11 @@ Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Came
     out.scene.particles = &g.particles();
     out.scene.draw = {0, &g.drawCommands(), GpuPerSet::particleDrawOffset()};
     if (g.ellipsoidsDrawn()) out.scene.ellipsoids = &g.ellipsoids();
+    if (g.dropletsApart())
+        out.scene.droplets =
+            SceneBuffers::Droplets{&g.dropletParticles(),
+                                   &g.dropletEllipsoids(),
+                                   {0, &g.drawCommands(), GpuPerSet::dropletDrawOffset()}};
     if (request.kernels) {
         out.kernelBuffer = &g.kernels();
         out.kernelDraw = {0, &g.drawCommands(), GpuPerSet::kernelDrawOffset()};
@@ -497,6 +503,7 @@ void readGpuPerSet(DeviceState& d, const Settings& settings, core::Frame& frame)
     if (settings.perSet != PerSetDevice::Gpu) return;
     for (const auto& [stage, ms] : d.perSetGpu.takeTimings()) frame.timingsMs[stage] = ms;
     frame.counters["particles_drawn"] = d.perSetGpu.drawnCount();
+    frame.counters["droplets"] = d.perSetGpu.dropletCount();
     if (usesKernels(settings)) frame.counters["kernels_splatted"] = d.perSetGpu.kernelCount();
 }
 

@@ -12,12 +12,7 @@ gl::Texture runShadowPass(ProgramCache& programs, const SceneBuffers& scene, int
     framebuffer.clearDepth(1.0f);
     gl::setPipelineState(
         {.depthTest = gl::DepthTest::Less, .depthWrite = true, .depthClamp = true});
-    programs
-        .get("impostor.vert", "shadow.frag",
-             impostorDefines(scene.ellipsoids != nullptr, {"SHADOW_PASS"}))
-        .use();
-    scene.bind();
-    scene.draw.draw();
+    scene.drawImpostors(programs, "shadow.frag", {"SHADOW_PASS"});
     gl::setPipelineState({});
     return map;
 }

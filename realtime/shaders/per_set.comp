@@ -57,7 +57,7 @@ layout(std430, binding = 12) buffer Flags {
 // A droplet's first particle: its slot + 1 in the flags from bit 8 (0: not a droplet's), and
 // per droplet its ellipsoid (GpuEllipsoid) and field normal model (FieldNormal), 3 vec4 each.
 #if defined(CULL_SPHERES) || defined(NEAR) || defined(KERNELS) || defined(PACK) || \
-    defined(INTERIOR_DRAWN)
+    defined(INTERIOR_DRAWN) || defined(MARK)
 uint dropletSlot(uint i) { return flags[i] >> 8; }
 #endif
 #if defined(KERNELS) || defined(PACK)
@@ -1343,14 +1343,15 @@ void main() {
 #endif
 
 #ifdef MARK
-// The drawn particles are also listed, for KERNELS and PACK.
-uniform int uCull;
+// The drawn particles are also listed, for KERNELS and PACK; with uDropletsApart the droplets
+// are listed but take no slot of the particles' draw (PACK puts them in a draw of their own).
+uniform int uCull, uDropletsApart;
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
     bool hidden = uCull != 0 && nearHit == 0u && (flags[i] & HIDDEN) != 0u;
     bool drawn = radii[i] > 0.0 && !hidden;
-    drawnPrefix[i] = drawn ? 1u : 0u;
+    drawnPrefix[i] = drawn && !(uDropletsApart != 0 && dropletSlot(i) != 0u) ? 1u : 0u;
     drawnPrefix[uCount + 1u + i] = 0u;
     if (drawn) appendWalk(i);
 }
@@ -1421,8 +1422,16 @@ layout(std430, binding = 0) writeonly buffer Particles {
 layout(std430, binding = 4) writeonly buffer Ellipsoids {
     vec4 ellipsoids[];
 };
-uniform int uModels;         // 0: none, 1: field normals, 2: ellipsoids
-uniform int uEllipsoidsOut;  // ellipsoid records (uModels 2, or droplets: spheres as round ones)
+uniform int uModels;  // 0: none, 1: field normals, 2: ellipsoids (droplets' among them)
+// Spheres: the droplets (every one is drawn: they neither hide nor are hidden) in a draw of
+// their own, in the order of their slots, as particles and ellipsoids.
+uniform int uDropletsApart;
+layout(std430, binding = 23) writeonly buffer DropletParticles {
+    Particle dropletParticles[];
+};
+layout(std430, binding = 24) writeonly buffer DropletEllipsoids {
+    vec4 dropletEllipsoids[];
+};
 
 void main() {
     uint t = invocation();
@@ -1447,16 +1456,16 @@ void main() {
         p.hessianDiagonal = slot != 0u ? droplets[m + 1u] : models[m + 1u];
         p.hessianOffDiagonal = slot != 0u ? droplets[m + 2u] : models[m + 2u];
     }
-    if (uEllipsoidsOut != 0) {
-        float r = radii[i];
-        for (uint a = 0u; a < 3u; ++a) {
-            vec4 round = vec4(0.0);
-            round[a] = r;
-            ellipsoids[3u * k + a] = slot != 0u     ? droplets[6u * (slot - 1u) + a]
-                                     : uModels == 2 ? models[3u * i + a]
-                                                    : round;
-        }
+    if (uDropletsApart != 0 && slot != 0u) {
+        uint d = slot - 1u;
+        for (uint a = 0u; a < 3u; ++a) dropletEllipsoids[3u * d + a] = droplets[6u * d + a];
+        dropletParticles[d] = p;
+        return;
     }
+    if (uModels == 2)
+        for (uint a = 0u; a < 3u; ++a)
+            ellipsoids[3u * k + a] =
+                slot != 0u ? droplets[6u * (slot - 1u) + a] : models[3u * i + a];
     particles[k] = p;
 }
 #endif
@@ -1488,5 +1497,6 @@ void main() {
     if (invocation() != 0u) return;
     drawParticles = uvec4(6u * drawnPrefix[uCount], 1u, 0u, 0u);
     drawKernels = uvec4(6u * drawnPrefix[2u * uCount + 1u], 1u, 0u, 0u);
+    drawDroplets = uvec4(6u * dropletCount, 1u, 0u, 0u);
 }
 #endif

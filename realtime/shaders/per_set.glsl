@@ -102,6 +102,9 @@ layout(std430, binding = 6) coherent buffer Header {
     // RADIUS_WALK: the sparse particles' list's dispatch (work groups, 1, 1; w: its entries),
     // which the droplet stages take (per_set.comp's DROPLET_EDGES).
     uvec4 sparseDispatch;
+    // FINISH: glDrawArraysIndirect of the droplets drawn apart (PACK's uDropletsApart):
+    // 6 x droplets, 1, 0, 0.
+    uvec4 drawDroplets;
 };
 
 // A float as a uint whose order is the float's (for atomicMin / atomicMax).
