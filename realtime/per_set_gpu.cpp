@@ -530,9 +530,9 @@ void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
     for (const char* stage :
          {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"}) {
         const gl::Program& p = programs.compute("per_set.comp", {stage});
+        // A uniform a stage lacks is left alone.
         p.set("uCount", static_cast<unsigned>(mCount));
-        p.set("uLevel",
-              static_cast<float>(s.surfaceLevel));  // a uniform a stage lacks is left alone
+        p.set("uLevel", static_cast<float>(s.surfaceLevel));
         p.set("uDropletAtoms", s.dropletAtoms);
         p.dispatchIndirect(mHeader, SPARSE_DISPATCH);
         gl::computeBarrier();
