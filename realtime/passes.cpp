@@ -18,10 +18,8 @@ void SceneBuffers::drawImpostors(ProgramCache& programs, const char* fragment,
     draw.draw();
     if (!droplets) return;
     programs.get("impostor.vert", fragment, impostorDefines(true, defines)).use();
-    droplets->particles->bindStorage(0);
     droplets->ellipsoids->bindStorage(4);
     droplets->draw.draw();
-    particles->bindStorage(0);
 }
 
 void DrawList::draw() const {

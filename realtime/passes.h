@@ -44,9 +44,9 @@ struct SceneBuffers {
     const gl::Buffer* ellipsoids = nullptr;
     // realtime.per_set = "gpu" with droplets (particles.droplet_atoms) and spheres: the
     // droplets' ellipsoids, a draw of their own after the spheres' with the ELLIPSOID variant
-    // (their count is the GPU's: nothing is read back to choose the programs).
+    // (their count is the GPU's: nothing is read back to choose the programs). Their particles
+    // are the first of `particles`, their ellipsoids at the same index of `ellipsoids`.
     struct Droplets {
-        const gl::Buffer* particles;   // GpuParticle[]
         const gl::Buffer* ellipsoids;  // GpuEllipsoid[]
         DrawList draw;
     };

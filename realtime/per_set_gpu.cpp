@@ -80,8 +80,7 @@ enum Binding : unsigned {
     BODIES = 20,              // NORMALS
     NEAR_MASKS = 21,          // INTERIOR, CULL
     DROPLET_WORK = 22,        // RADIUS_WALK, the droplet stages
-    DROPLET_PARTICLES = 23,   // PACK
-    DROPLET_ELLIPSOIDS = 24,  // PACK
+    DROPLET_ELLIPSOIDS = 23,  // PACK
 };
 // Texture units of the buffer textures the walks read (shaders/per_set.glsl; the render passes
 // use units 0-7).
@@ -549,12 +548,8 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     if (ellipsoidsDrawn() && !mEllipsoids)
         mEllipsoids.emplace(gl::Buffer::zeros(mCount * sizeof(GpuEllipsoid)));
     const bool dropletsApart = this->dropletsApart();
-    if (dropletsApart) {
-        // At most one droplet per two particles (as mDroplets).
-        const std::size_t most = std::max<std::size_t>(mCount / 2, 1);
-        resized(mDropletParticles, most * sizeof(GpuParticle));
-        resized(mDropletEllipsoids, most * sizeof(GpuEllipsoid));
-    }
+    if (dropletsApart)  // at most one droplet per two particles (as mDroplets)
+        resized(mDropletEllipsoids, std::max<std::size_t>(mCount / 2, 1) * sizeof(GpuEllipsoid));
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
@@ -599,10 +594,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         mParticles->bindStorage(PARTICLES);
         mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
-        if (dropletsApart) {
-            mDropletParticles->bindStorage(DROPLET_PARTICLES);
-            mDropletEllipsoids->bindStorage(DROPLET_ELLIPSOIDS);
-        }
+        if (dropletsApart) mDropletEllipsoids->bindStorage(DROPLET_ELLIPSOIDS);
         const gl::Program& p = stage("PACK");
         p.set("uCamera", frame.camera);
         p.set("uModels", mModels);
@@ -614,7 +606,9 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
             kernels.dispatch(groups(mCount));
         }
         gl::computeBarrier();
-        stage("FINISH").dispatch(1);
+        const gl::Program& finish = stage("FINISH");
+        finish.set("uDropletsApart", dropletsApart ? 1 : 0);
+        finish.dispatch(1);
     });
 }
 

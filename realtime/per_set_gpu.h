@@ -77,11 +77,10 @@ class GpuPerSet {
     // droplets' among them).
     const gl::Buffer& ellipsoids() const { return *mEllipsoids; }
     bool ellipsoidsDrawn() const { return mModels == 2; }
-    // Spheres with droplets: the droplets are not among particles() but drawn apart, as
-    // dropletParticles() and dropletEllipsoids(), their count in the command at
-    // dropletDrawOffset() (the CPU does not learn it).
+    // Spheres with droplets: the droplets are drawn apart, the first of particles() (the
+    // particles' draw starts after them) with dropletEllipsoids(), their count in the command
+    // at dropletDrawOffset() (the CPU does not learn it).
     bool dropletsApart() const { return mRequest.droplets && mModels != 2; }
-    const gl::Buffer& dropletParticles() const { return *mDropletParticles; }
     const gl::Buffer& dropletEllipsoids() const { return *mDropletEllipsoids; }
     // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the kernels' at
     // kernelDrawOffset(), the droplets' at dropletDrawOffset() (bytes).
@@ -148,7 +147,7 @@ class GpuPerSet {
     gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
-    std::optional<gl::Buffer> mDropletParticles, mDropletEllipsoids;  // dropletsApart()
+    std::optional<gl::Buffer> mDropletEllipsoids;  // dropletsApart()
     gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
     gl::Buffer mWalks;        // the walk list, then the next (shaders/per_set.comp)
     gl::Buffer mDropletWork;  // the sparse particles' list, their clusters (DropletWork)

@@ -481,10 +481,8 @@ Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Came
     out.scene.draw = {0, &g.drawCommands(), GpuPerSet::particleDrawOffset()};
     if (g.ellipsoidsDrawn()) out.scene.ellipsoids = &g.ellipsoids();
     if (g.dropletsApart())
-        out.scene.droplets =
-            SceneBuffers::Droplets{&g.dropletParticles(),
-                                   &g.dropletEllipsoids(),
-                                   {0, &g.drawCommands(), GpuPerSet::dropletDrawOffset()}};
+        out.scene.droplets = SceneBuffers::Droplets{
+            &g.dropletEllipsoids(), {0, &g.drawCommands(), GpuPerSet::dropletDrawOffset()}};
     if (request.kernels) {
         out.kernelBuffer = &g.kernels();
         out.kernelDraw = {0, &g.drawCommands(), GpuPerSet::kernelDrawOffset()};

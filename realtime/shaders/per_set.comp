@@ -1423,13 +1423,16 @@ layout(std430, binding = 4) writeonly buffer Ellipsoids {
     vec4 ellipsoids[];
 };
 uniform int uModels;  // 0: none, 1: field normals, 2: ellipsoids (droplets' among them)
+#endif
+#if defined(PACK) || defined(FINISH)
 // Spheres: the droplets (every one is drawn: they neither hide nor are hidden) in a draw of
-// their own, in the order of their slots, as particles and ellipsoids.
+// their own, first in the particles' buffer in the order of their slots (their ellipsoids in
+// DropletEllipsoids, at the same index), the spheres after them.
 uniform int uDropletsApart;
-layout(std430, binding = 23) writeonly buffer DropletParticles {
-    Particle dropletParticles[];
-};
-layout(std430, binding = 24) writeonly buffer DropletEllipsoids {
+uint firstSphere() { return uDropletsApart != 0 ? dropletCount : 0u; }
+#endif
+#ifdef PACK
+layout(std430, binding = 23) writeonly buffer DropletEllipsoids {
     vec4 dropletEllipsoids[];
 };
 
@@ -1437,7 +1440,7 @@ void main() {
     uint t = invocation();
     if (t >= walkDispatch.w) return;
     uint i = walkList[t];
-    uint k = drawnPrefix[i];
+    uint k = firstSphere() + drawnPrefix[i];
     vec2 uv =
         vec2(attributes[ATTR_UV * uCount + 2u * i], attributes[ATTR_UV * uCount + 2u * i + 1u]);
     Particle p;
@@ -1459,7 +1462,7 @@ void main() {
     if (uDropletsApart != 0 && slot != 0u) {
         uint d = slot - 1u;
         for (uint a = 0u; a < 3u; ++a) dropletEllipsoids[3u * d + a] = droplets[6u * d + a];
-        dropletParticles[d] = p;
+        particles[d] = p;
         return;
     }
     if (uModels == 2)
@@ -1495,7 +1498,7 @@ void main() {
 #ifdef FINISH
 void main() {
     if (invocation() != 0u) return;
-    drawParticles = uvec4(6u * drawnPrefix[uCount], 1u, 0u, 0u);
+    drawParticles = uvec4(6u * drawnPrefix[uCount], 1u, 6u * firstSphere(), 0u);
     drawKernels = uvec4(6u * drawnPrefix[2u * uCount + 1u], 1u, 0u, 0u);
     drawDroplets = uvec4(6u * dropletCount, 1u, 0u, 0u);
 }

@@ -78,7 +78,7 @@ layout(std430, binding = 6) coherent buffer Header {
     uint nearHit;            // a drawn sphere reaches into the near plane's ball (this frame)
     uint totalCells;         // cells of all levels
     uint dropletCount;       // DROPLET_FIT: the droplets fitted
-    uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 0, 0
+    uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 6 x first, 0
     uvec4 drawKernels;       // the same for the kernels the gradient pass adds
     Level levels[MAX_LEVELS];
     // The walk list's glDispatchComputeIndirect (per_set.comp's appendWalk): its work groups,
@@ -102,8 +102,8 @@ layout(std430, binding = 6) coherent buffer Header {
     // RADIUS_WALK: the sparse particles' list's dispatch (work groups, 1, 1; w: its entries),
     // which the droplet stages take (per_set.comp's DROPLET_EDGES).
     uvec4 sparseDispatch;
-    // FINISH: glDrawArraysIndirect of the droplets drawn apart (PACK's uDropletsApart):
-    // 6 x droplets, 1, 0, 0.
+    // FINISH: glDrawArraysIndirect of the droplets drawn apart (PACK's uDropletsApart),
+    // the particle buffer's first: 6 x droplets, 1, 0, 0.
     uvec4 drawDroplets;
 };
 
