@@ -547,7 +547,7 @@ uniform int uDropletAtoms, uFallbackNormals, uNearMasks;
 void main() {
     uint slot = invocation();
     if (slot >= uCount) return;
-    uint i = floatBitsToUint(entryCoefficients(slot).z);
+    uint i = entryIndex(slot);
     vec3 x = entryPosition(slot).xyz;
     float h = particleH(i);
     const float PI = 3.14159265358979;
@@ -626,7 +626,6 @@ layout(std430, binding = 17) writeonly buffer CullSpheres {
 layout(binding = 10) uniform samplerBuffer uCullSphereTexels;
 vec4 cullSphere(uint k) { return texelFetch(uCullSphereTexels, int(k)); }
 #endif
-uint entryIndex(uint k) { return floatBitsToUint(entryCoefficients(k).z); }
 #endif
 
 #ifdef CULL_SPHERES
@@ -899,7 +898,7 @@ void main() {
     } else {
         uint slot = invocation();
         if (slot >= uCount) return;
-        i = floatBitsToUint(entryCoefficients(slot).z);
+        i = entryIndex(slot);
         x = entryPosition(slot).xyz;
     }
     vec3 gradient = vec3(0.0);
@@ -1077,7 +1076,7 @@ void main() {
             weight += w;                                                   \
             first += w * s;                                                \
             second += w * outerProduct(s, s);                              \
-            neighbours += floatBitsToUint(entryCoefficients(k).z) != i ? 1 : 0; \
+            neighbours += entryIndex(k) != i ? 1 : 0; \
         }                                                                  \
     }
     FOR_EACH_NEAR(centre, ballReach, GATHER_MOMENTS)
@@ -1171,7 +1170,7 @@ void main() {
     {                                                                                         \
         vec4 e = entryPosition(k);                                                            \
         vec3 d = e.xyz - x;                                                                   \
-        uint j = floatBitsToUint(entryCoefficients(k).z);                                     \
+        uint j = entryIndex(k);                                     \
         if (j != i && dot(d, d) < reach * reach && fieldAt(0.5 * (x + e.xyz)) > uLevel) {     \
             if ((flags[j] & SPARSE_BIT) == 0u)                                                \
                 joins = true;                                                                 \
@@ -1216,10 +1215,12 @@ const int MAX_DROPLET_ATOMS = 64;  // settings.cpp's limit of droplet_atoms
 // impostor_radius.cpp's fieldCrossing: the distance from CENTRE along DIRECTION to the level
 // set, 0 where the field at the centre is not above it, MAX_RADIUS where it is above at the
 // early-exit samples or at every scan sample.
+// centreAbove: whether the field at the centre is above the level (the same for every
+// direction: the caller finds it once).
 bool above(dvec3 p) { return fieldAt(vec3(p)) > uLevel; }
-double fieldCrossing(dvec3 centre, dvec3 direction, double maxRadius) {
+double fieldCrossing(dvec3 centre, bool centreAbove, dvec3 direction, double maxRadius) {
     const int SCAN_STEPS = 8, BISECTION_STEPS = 10;
-    if (!above(centre)) return 0.0LF;
+    if (!centreAbove) return 0.0LF;
     if (above(centre + maxRadius * direction) && above(centre + 0.5LF * maxRadius * direction))
         return maxRadius;
     double inside = 0.0LF, outside = -1.0LF;
@@ -1271,9 +1272,11 @@ void main() {
     symmetricEigen(covariance, values, vectors);
     dvec3 centre = mean;
     mat3 axes;
+    bool meanAbove = above(mean);
     for (int k = 0; k < 3; ++k) {
         dvec3 e = vectors[k];
-        double plus = fieldCrossing(mean, e, reach), minus = fieldCrossing(mean, -e, reach);
+        double plus = fieldCrossing(mean, meanAbove, e, reach),
+               minus = fieldCrossing(mean, meanAbove, -e, reach);
         // No surface about the mean, or none found within the cluster's reach: spheres.
         if (!(plus > 0.0LF && minus > 0.0LF) || plus >= reach || minus >= reach) return;
         centre += 0.5LF * (plus - minus) * e;
@@ -1388,7 +1391,7 @@ void main() {
         vec4 e = entryPosition(k);                                       \
         float reach = r + 2.0 / e.w;                                     \
         vec3 d = e.xyz - centre;                                         \
-        uint mark = uCount + 1u + floatBitsToUint(entryCoefficients(k).z); \
+        uint mark = uCount + 1u + entryIndex(k); \
         if (dot(d, d) < reach * reach && drawnPrefix[mark] == 0u)          \
             drawnPrefix[mark] = 1u;                                        \
     }

@@ -156,6 +156,8 @@ layout(binding = 8) uniform samplerBuffer uEntryTexels;
 layout(binding = 9) uniform usamplerBuffer uCellTexels;  // totalCells + 1 offsets into entries
 vec4 entryPosition(uint k) { return texelFetch(uEntryTexels, int(2u * k)); }
 vec4 entryCoefficients(uint k) { return texelFetch(uEntryTexels, int(2u * k + 1u)); }
+// The particle of grid entry k (GATHER stores its index's bits in coefficients.z).
+uint entryIndex(uint k) { return floatBitsToUint(entryCoefficients(k).z); }
 uint cellStart(int c) { return texelFetch(uCellTexels, c).x; }
 
 // Row r (r = SIZE z + y) of the SIZE x SIZE x SIZE cells of level g from cell `base`: the
