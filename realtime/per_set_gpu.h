@@ -25,6 +25,7 @@
 #include "realtime/anisotropy.h"
 #include "realtime/gl/buffer.h"
 #include "realtime/gl/buffer_texture.h"
+#include "realtime/gl/timer_query.h"
 #include "realtime/particle_set_key.h"
 #include "realtime/settings.h"
 #include "realtime/shader_library.h"
@@ -94,9 +95,16 @@ class GpuPerSet {
     double uploadMs() const { return mUploadMs; }
 
     // The stages run since the last call, milliseconds each ("grid", "particle_normals", "radius",
-    // "kernels", "cull", "field_normals", "anisotropy", "pack"): wall clock from the stage's first
-    // command to the end of its last (glFinish).
+    // "kernels", "cull", "field_normals", "anisotropy", "pack"), by stageClock(). With timer
+    // queries this waits for their results: call it after the frame.
     std::map<std::string, double> takeTimings();
+    // How the stages are timed: GL timer queries where the device's see compute dispatches
+    // (nothing waits between stages; found by a probe on the first update), else the wall clock
+    // from a stage's first command to a glFinish after its last (llvmpipe's queries read 0
+    // around compute).
+    enum class StageClock { Queries, Finish };
+    StageClock stageClock() const { return mStageClock.value_or(StageClock::Finish); }
+    void setStageClock(StageClock clock) { mStageClock = clock; }  // instead of the probe
     // Read back after the frame (waits): the drawn particles (droplets drawn apart among them)
     // and kernels.
     std::uint32_t drawnCount() const;
@@ -161,6 +169,8 @@ class GpuPerSet {
     // cell offsets, the culling's spheres and directions.
     gl::BufferView mEntryTexels, mCellTexels, mCullSphereTexels, mDirectionTexels;
     std::map<std::string, double> mTimings;  // since the last takeTimings()
+    std::optional<StageClock> mStageClock;
+    std::vector<std::pair<const char*, gl::TimerQuery>> mQueries;  // not yet read
 };
 
 }  // namespace twinrender::realtime

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "core/particles.h"
 #include "core/scene.h"
@@ -180,6 +183,41 @@ TEST_F(PerSetGpu, RadiiCullingAndFieldNormalsMatchTheCpu) {
             EXPECT_GT(glm::dot(a, b), std::cos(1e-3f)) << i;
         }
     }
+}
+
+// The stage clock: on llvmpipe, whose timer queries read 1 ns around compute, the probe takes
+// the wall clock; forced to timer queries, the same stages are timed (each read after the
+// work, whatever it reads) and the answers do not change.
+TEST_F(PerSetGpu, StagesAreTimedByQueriesOnlyWhereTheySeeCompute) {
+    const core::ParticleSet& ps = contact().withNormals.particles;
+    PerSetRequest request;
+    request.cull = true;
+    context.makeCurrent();
+    std::map<std::string, double> timings[2];
+    std::vector<float> radii[2];
+    std::vector<std::uint32_t> visible[2];
+    for (int queries : {0, 1}) {
+        GpuPerSet g;
+        if (queries) g.setStageClock(GpuPerSet::StageClock::Queries);
+        g.update(programs, ps, request);
+        g.pack(programs, {glm::dvec3(0.0, -50.0, 0.0), 1e-3});
+        timings[queries] = g.takeTimings();
+        radii[queries] = g.radii();
+        visible[queries] = g.visibleParticles();
+        if (!queries && context.renderer().find("llvmpipe") != std::string::npos) {
+            EXPECT_EQ(g.stageClock(), GpuPerSet::StageClock::Finish);
+            for (const char* stage : {"grid", "radius", "cull", "pack"})
+                EXPECT_GT(timings[0].at(stage), 0.0) << stage;
+        }
+        EXPECT_TRUE(g.takeTimings().empty()) << "the queries are read once";
+    }
+    ASSERT_EQ(timings[0].size(), timings[1].size());
+    for (const auto& [stage, ms] : timings[1]) {
+        EXPECT_TRUE(timings[0].contains(stage)) << stage;
+        EXPECT_GE(ms, 0.0) << stage;
+    }
+    EXPECT_EQ(radii[0], radii[1]);
+    EXPECT_EQ(visible[0], visible[1]);
 }
 
 TEST_F(PerSetGpu, EllipsoidsMatchTheCpu) {
