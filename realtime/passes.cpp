@@ -26,7 +26,7 @@ void DrawList::draw() const {
     if (commands)
         gl::drawTrianglesIndirect(commands->id(), offset);
     else
-        gl::drawTriangles(static_cast<int>(6 * count));
+        gl::drawTriangles(static_cast<int>(6 * count), static_cast<int>(6 * first));
 }
 
 std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::string> defines) {

@@ -24,10 +24,13 @@ namespace twinrender::realtime {
 
 // How many items (6 vertices each) a draw takes: `count`, or, when `commands` is set, the
 // indirect draw command a compute pass wrote there at byte `offset` (realtime/per_set_gpu.h).
+// Six vertices per particle: `count` particles from `first`, or a glDrawArraysIndirect
+// command at byte `offset` of `commands`.
 struct DrawList {
     std::size_t count = 0;
     const gl::Buffer* commands = nullptr;
     std::size_t offset = 0;
+    std::size_t first = 0;
 
     void draw() const;
 };
@@ -42,10 +45,11 @@ struct SceneBuffers {
     // realtime.particles.shape = "ellipsoid": GpuEllipsoid[], one per particle, storage
     // binding 4; the impostor programs then take the ELLIPSOID variant (impostorDefines).
     const gl::Buffer* ellipsoids = nullptr;
-    // realtime.per_set = "gpu" with droplets (particles.droplet_atoms) and spheres: the
-    // droplets' ellipsoids, a draw of their own after the spheres' with the ELLIPSOID variant
-    // (their count is the GPU's: nothing is read back to choose the programs). Their particles
-    // are the first of `particles`, their ellipsoids at the same index of `ellipsoids`.
+    // Droplets (particles.droplet_atoms) among spheres: the droplets' ellipsoids, a draw of
+    // their own after the spheres' with the ELLIPSOID variant (with realtime.per_set = "gpu"
+    // their count is the GPU's: nothing is read back to choose the programs). Their particles
+    // are the first of `particles`, their ellipsoids at the same index of `ellipsoids`, and the
+    // spheres' draw starts after them.
     struct Droplets {
         const gl::Buffer* ellipsoids;  // GpuEllipsoid[]
         DrawList draw;

@@ -225,7 +225,7 @@ PerSetRequest perSetRequest(const Settings& settings) {
 // Compiles (once per device) the programs the settings use that are not built on first use
 // inside the passes.
 void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
-    // Spheres switch to the ellipsoid programs for a particle set with droplets.
+    // A set with droplets draws them with the ellipsoid programs, apart from the spheres.
     const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
     for (const bool ellipsoids : {false, true}) {
         if (ellipsoids != anisotropic && !(ellipsoids && mayHaveDroplets(settings.particles)))
@@ -362,7 +362,9 @@ Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Came
     frame.counters["droplets"] = droplets ? static_cast<double>(droplets->firsts.size()) : 0.0;
     if (droplets) radii = droplets->radii;
     const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
-    const std::vector<Ellipsoid>* ellipsoids = droplets ? &droplets->ellipsoids : nullptr;
+    // Spheres keep the sphere programs; the droplets are drawn apart, first in the buffers.
+    const bool dropletsApart = droplets && !anisotropic;
+    const std::vector<Ellipsoid>* ellipsoids = nullptr;
     std::vector<Ellipsoid> anisotropicWithDroplets;
     if (anisotropic) {
         ellipsoids = &timed(
@@ -390,11 +392,17 @@ Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Came
     bool nothingDrawn = false;
     std::vector<std::uint32_t> drawn = withSurface(culled, cullRadii, nothingDrawn);
     if (droplets) {
-        // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly.
-        std::vector<std::uint32_t> merged;
-        std::merge(drawn.begin(), drawn.end(), droplets->firsts.begin(), droplets->firsts.end(),
-                   std::back_inserter(merged));
-        drawn = std::move(merged);
+        // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly: the droplets
+        // go first (apart) or in index order (every particle an ellipsoid).
+        std::vector<std::uint32_t> all;
+        if (dropletsApart) {
+            all = droplets->firsts;
+            all.insert(all.end(), drawn.begin(), drawn.end());
+        } else {
+            std::merge(drawn.begin(), drawn.end(), droplets->firsts.begin(), droplets->firsts.end(),
+                       std::back_inserter(all));
+        }
+        drawn = std::move(all);
         nothingDrawn = false;
     }
     frame.counters["particles_drawn"] =
@@ -423,7 +431,15 @@ Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Came
         std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuParticle>(gpuParticles)));
     out.scene.particles = out.particles.get();
     out.scene.draw.count = gpuParticles.size();
-    if (ellipsoids) {
+    if (dropletsApart) {
+        const std::size_t count = droplets->firsts.size();
+        const std::vector<GpuEllipsoid> packed =
+            packEllipsoids(droplets->ellipsoids, droplets->firsts);
+        out.ellipsoids =
+            std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuEllipsoid>(packed)));
+        out.scene.droplets = SceneBuffers::Droplets{out.ellipsoids.get(), {count}};
+        out.scene.draw = {gpuParticles.size() - count, nullptr, 0, count};
+    } else if (ellipsoids) {
         const std::vector<GpuEllipsoid> packed =
             nothingDrawn ? std::vector<GpuEllipsoid>{} : packEllipsoids(*ellipsoids, drawn);
         out.ellipsoids =

@@ -30,8 +30,8 @@ void setPipelineState(const PipelineState& state) {
     glDisable(GL_STENCIL_TEST);
 }
 
-void drawTriangles(int vertexCount) {
-    if (vertexCount > 0) glDrawArrays(GL_TRIANGLES, 0, vertexCount);
+void drawTriangles(int vertexCount, int firstVertex) {
+    if (vertexCount > 0) glDrawArrays(GL_TRIANGLES, firstVertex, vertexCount);
 }
 
 void drawTrianglesIndirect(unsigned commands, std::size_t offset) {

@@ -28,8 +28,9 @@ struct PipelineState {
 
 void setPipelineState(const PipelineState& state);
 
-// Attribute-less draws: vertex shaders fetch their data from storage buffers by gl_VertexID.
-void drawTriangles(int vertexCount);
+// Attribute-less draws: vertex shaders fetch their data from storage buffers by gl_VertexID
+// (from firstVertex up).
+void drawTriangles(int vertexCount, int firstVertex = 0);
 // The same with the vertex count in a buffer a compute shader wrote: `commands` holds
 // glDrawArraysIndirect's {count, 1, 0, 0} at byte `offset` (4-byte aligned).
 void drawTrianglesIndirect(unsigned commands, std::size_t offset);
