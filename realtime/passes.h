@@ -22,10 +22,9 @@
 
 namespace twinrender::realtime {
 
-// How many items (6 vertices each) a draw takes: `count`, or, when `commands` is set, the
-// indirect draw command a compute pass wrote there at byte `offset` (realtime/per_set_gpu.h).
-// Six vertices per particle: `count` particles from `first`, or a glDrawArraysIndirect
-// command at byte `offset` of `commands`.
+// What a draw takes (6 vertices per item): `count` items from item `first`, or, when
+// `commands` is set, the indirect draw command a compute pass wrote there at byte `offset`
+// (realtime/per_set_gpu.h).
 struct DrawList {
     std::size_t count = 0;
     const gl::Buffer* commands = nullptr;

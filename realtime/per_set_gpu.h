@@ -100,7 +100,7 @@ class GpuPerSet {
     std::map<std::string, double> takeTimings();
     // How the stages are timed: GL timer queries where the device's see compute dispatches
     // (nothing waits between stages; found by a probe on the first update), else the wall clock
-    // from a stage's first command to a glFinish after its last (llvmpipe's queries read 0
+    // from a stage's first command to a glFinish after its last (llvmpipe's queries read 1 ns
     // around compute).
     enum class StageClock { Queries, Finish };
     StageClock stageClock() const { return mStageClock.value_or(StageClock::Finish); }
