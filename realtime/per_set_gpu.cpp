@@ -53,6 +53,11 @@ std::size_t maxCells(std::size_t particles) {
     return 4 * particles + 4096 * MAX_LEVELS;
 }
 
+// At most one droplet per two particles (a droplet has two members or more).
+std::size_t maxDroplets(std::size_t particles) {
+    return std::max<std::size_t>(particles / 2, 1);
+}
+
 unsigned groups(std::size_t count, std::size_t per = GROUP) {
     return static_cast<unsigned>((count + per - 1) / per);
 }
@@ -76,11 +81,10 @@ enum Binding : unsigned {
     DROPLETS = 16,
     CULL_SPHERES = 17,
     WALKS = 18,
-    BLOCK_SUMS = 19,          // scan.comp
-    BODIES = 20,              // NORMALS
-    NEAR_MASKS = 21,          // INTERIOR, CULL
-    DROPLET_WORK = 22,        // RADIUS_WALK, the droplet stages
-    DROPLET_ELLIPSOIDS = 23,  // PACK
+    BLOCK_SUMS = 19,    // scan.comp
+    BODIES = 20,        // NORMALS
+    NEAR_MASKS = 21,    // INTERIOR, CULL
+    DROPLET_WORK = 22,  // RADIUS_WALK, the droplet stages
 };
 // Texture units of the buffer textures the walks read (shaders/per_set.glsl; the render passes
 // use units 0-7).
@@ -568,7 +572,9 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
 
 void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
     // At most one droplet per two particles, 6 vec4 each.
-    resized(mDroplets, std::max<std::size_t>(mCount / 2, 1) * 6 * sizeof(glm::vec4));
+    // The ellipsoids of the most droplets a set may hold (one per two particles), then their
+    // normal models (shaders/per_set.comp's dropletModel).
+    resized(mDroplets, maxDroplets(mCount) * 6 * sizeof(glm::vec4));
     mDroplets.bindStorage(DROPLETS);
     gl::computeBarrier();  // RADIUS_WALK's list
     for (const char* stage :
@@ -593,8 +599,6 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     if (ellipsoidsDrawn() && !mEllipsoids)
         mEllipsoids.emplace(gl::Buffer::zeros(mCount * sizeof(GpuEllipsoid)));
     const bool dropletsApart = this->dropletsApart();
-    if (dropletsApart)  // at most one droplet per two particles (as mDroplets)
-        resized(mDropletEllipsoids, std::max<std::size_t>(mCount / 2, 1) * sizeof(GpuEllipsoid));
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
@@ -639,7 +643,6 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         mParticles->bindStorage(PARTICLES);
         mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
-        if (dropletsApart) mDropletEllipsoids->bindStorage(DROPLET_ELLIPSOIDS);
         const gl::Program& p = stage("PACK");
         p.set("uCamera", frame.camera);
         p.set("uModels", mModels);
@@ -717,14 +720,14 @@ std::vector<std::pair<std::uint32_t, Ellipsoid>> GpuPerSet::droplets() const {
     const std::uint32_t count = dropletCount();
     if (count == 0) return {};
     const std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
-    const std::vector<glm::vec4> records = mDroplets.read<glm::vec4>(0, 6 * count);
+    const std::vector<glm::vec4> records = mDroplets.read<glm::vec4>(0, 3 * count);
     std::vector<std::pair<std::uint32_t, Ellipsoid>> out;
     for (std::size_t i = 0; i < flags.size(); ++i) {
         const std::uint32_t slot = flags[i] >> DROPLET_SHIFT;
         if (slot == 0) continue;
         Ellipsoid e;
         for (int a = 0; a < 3; ++a) {
-            const glm::vec4& r = records[6 * (slot - 1) + a];
+            const glm::vec4& r = records[3 * (slot - 1) + a];
             e.axes[a] = glm::vec3(r);
             e.shift[a] = r.w;
         }

@@ -82,7 +82,7 @@ class GpuPerSet {
     // particles' draw starts after them) with dropletEllipsoids(), their count in the command
     // at dropletDrawOffset() (the CPU does not learn it).
     bool dropletsApart() const { return mRequest.droplets && mModels != 2; }
-    const gl::Buffer& dropletEllipsoids() const { return *mDropletEllipsoids; }
+    const gl::Buffer& dropletEllipsoids() const { return mDroplets; }
     // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the kernels' at
     // kernelDrawOffset(), the droplets' at dropletDrawOffset() (bytes).
     const gl::Buffer& drawCommands() const { return mHeader; }
@@ -155,8 +155,9 @@ class GpuPerSet {
     gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
         mDirections;
     std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
-    std::optional<gl::Buffer> mDropletEllipsoids;  // dropletsApart()
-    gl::Buffer mDroplets;     // 6 vec4 per droplet: GpuEllipsoid, then its FieldNormal model
+    // Per droplet its GpuEllipsoid (the droplets' draw reads them), then per droplet its
+    // FieldNormal model, each region sized for the most droplets a set may hold.
+    gl::Buffer mDroplets;
     gl::Buffer mWalks;        // the walk list, then the next (shaders/per_set.comp)
     gl::Buffer mDropletWork;  // the sparse particles' list, their clusters (DropletWork)
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)

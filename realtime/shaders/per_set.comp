@@ -55,10 +55,15 @@ layout(std430, binding = 12) buffer Flags {
 #endif
 
 // A droplet's first particle: its slot + 1 in the flags from bit 8 (0: not a droplet's), and
-// per droplet its ellipsoid (GpuEllipsoid) and field normal model (FieldNormal), 3 vec4 each.
+// per droplet its ellipsoid (GpuEllipsoid, 3 vec4 from 3 slot: the droplets' draw reads them
+// there) and, after the ellipsoids of the most droplets a set may hold (one per two
+// particles), its field normal model (FieldNormal, 3 vec4 from dropletModel(slot)).
 #if defined(CULL_SPHERES) || defined(NEAR) || defined(KERNELS) || defined(PACK) || \
     defined(INTERIOR_DRAWN) || defined(MARK)
 uint dropletSlot(uint i) { return flags[i] >> 8; }
+#endif
+#if defined(PACK) || defined(DROPLET_FIT)
+uint dropletModel(uint slot) { return 3u * (max(uCount / 2u, 1u) + slot); }
 #endif
 #if defined(KERNELS) || defined(PACK)
 layout(std430, binding = 16) readonly buffer Droplets {
@@ -1209,7 +1214,7 @@ void main() {
 
 #ifdef DROPLET_FIT
 layout(std430, binding = 16) writeonly buffer Droplets {
-    vec4 droplets[];  // 6 per droplet: GpuEllipsoid (3), its FieldNormal model (3)
+    vec4 droplets[];  // the ellipsoids, then the normal models (dropletSlot above)
 };
 const int MAX_DROPLET_ATOMS = 64;  // settings.cpp's limit of droplet_atoms
 // impostor_radius.cpp's fieldCrossing: the distance from CENTRE along DIRECTION to the level
@@ -1289,11 +1294,12 @@ void main() {
     for (int k = 0; k < 3; ++k) {
         float length2 = dot(axes[k], axes[k]);
         model += outerProduct(axes[k], axes[k]) / (length2 * length2);
-        droplets[6u * slot + uint(k)] = vec4(axes[k], shift[k]);
+        droplets[3u * slot + uint(k)] = vec4(axes[k], shift[k]);
     }
-    droplets[6u * slot + 3u] = vec4(-(model * shift), 0.0);
-    droplets[6u * slot + 4u] = vec4(model[0][0], model[1][1], model[2][2], 0.0);
-    droplets[6u * slot + 5u] = vec4(model[1][0], model[2][0], model[2][1], 0.0);
+    uint m = dropletModel(slot);
+    droplets[m] = vec4(-(model * shift), 0.0);
+    droplets[m + 1u] = vec4(model[0][0], model[1][1], model[2][2], 0.0);
+    droplets[m + 2u] = vec4(model[1][0], model[2][0], model[2][1], 0.0);
     for (int k = 0; k < count; ++k) radii[members[k]] = 0.0;
     // The radius of the sphere of the ellipsoid's volume (the culling and the near test).
     radii[first] = pow(length(axes[0]) * length(axes[1]) * length(axes[2]), 1.0 / 3.0);
@@ -1379,9 +1385,9 @@ void main() {
     uint slot = dropletSlot(i);
     if (slot != 0u || uEllipsoids != 0) {
         // The ellipsoid lies within |shift| + its longest semi-axis of the particle.
-        vec4 a0 = slot != 0u ? droplets[6u * (slot - 1u)] : models[3u * i];
-        vec4 a1 = slot != 0u ? droplets[6u * (slot - 1u) + 1u] : models[3u * i + 1u];
-        vec4 a2 = slot != 0u ? droplets[6u * (slot - 1u) + 2u] : models[3u * i + 2u];
+        vec4 a0 = slot != 0u ? droplets[3u * (slot - 1u)] : models[3u * i];
+        vec4 a1 = slot != 0u ? droplets[3u * (slot - 1u) + 1u] : models[3u * i + 1u];
+        vec4 a2 = slot != 0u ? droplets[3u * (slot - 1u) + 2u] : models[3u * i + 2u];
         r = length(vec3(a0.w, a1.w, a2.w)) +
             max(length(a0.xyz), max(length(a1.xyz), length(a2.xyz)));
     }
@@ -1429,16 +1435,12 @@ uniform int uModels;  // 0: none, 1: field normals, 2: ellipsoids (droplets' amo
 #endif
 #if defined(PACK) || defined(FINISH)
 // Spheres: the droplets (every one is drawn: they neither hide nor are hidden) in a draw of
-// their own, first in the particles' buffer in the order of their slots (their ellipsoids in
-// DropletEllipsoids, at the same index), the spheres after them.
+// their own, first in the particles' buffer in the order of their slots (their ellipsoids are
+// the Droplets buffer's first records, at the same index), the spheres after them.
 uniform int uDropletsApart;
 uint firstSphere() { return uDropletsApart != 0 ? dropletCount : 0u; }
 #endif
 #ifdef PACK
-layout(std430, binding = 23) writeonly buffer DropletEllipsoids {
-    vec4 dropletEllipsoids[];
-};
-
 void main() {
     uint t = invocation();
     if (t >= walkDispatch.w) return;
@@ -1457,21 +1459,19 @@ void main() {
     uint slot = dropletSlot(i);
     if (uModels == 1) {
         // A droplet's normal is its ellipsoid's.
-        uint m = slot != 0u ? 6u * (slot - 1u) + 3u : 3u * i;
+        uint m = slot != 0u ? dropletModel(slot - 1u) : 3u * i;
         p.normalU.xyz = slot != 0u ? droplets[m].xyz : models[m].xyz;
         p.hessianDiagonal = slot != 0u ? droplets[m + 1u] : models[m + 1u];
         p.hessianOffDiagonal = slot != 0u ? droplets[m + 2u] : models[m + 2u];
     }
     if (uDropletsApart != 0 && slot != 0u) {
-        uint d = slot - 1u;
-        for (uint a = 0u; a < 3u; ++a) dropletEllipsoids[3u * d + a] = droplets[6u * d + a];
-        particles[d] = p;
+        particles[slot - 1u] = p;
         return;
     }
     if (uModels == 2)
         for (uint a = 0u; a < 3u; ++a)
             ellipsoids[3u * k + a] =
-                slot != 0u ? droplets[6u * (slot - 1u) + a] : models[3u * i + a];
+                slot != 0u ? droplets[3u * (slot - 1u) + a] : models[3u * i + a];
     particles[k] = p;
 }
 #endif
