@@ -571,9 +571,8 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
 }
 
 void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
-    // At most one droplet per two particles, 6 vec4 each.
-    // The ellipsoids of the most droplets a set may hold (one per two particles), then their
-    // normal models (shaders/per_set.comp's dropletModel).
+    // The ellipsoids of the most droplets a set may hold, 3 vec4 each, then their normal
+    // models, 3 vec4 each (shaders/per_set.comp's dropletModel).
     resized(mDroplets, maxDroplets(mCount) * 6 * sizeof(glm::vec4));
     mDroplets.bindStorage(DROPLETS);
     gl::computeBarrier();  // RADIUS_WALK's list

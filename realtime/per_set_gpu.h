@@ -79,8 +79,9 @@ class GpuPerSet {
     const gl::Buffer& ellipsoids() const { return *mEllipsoids; }
     bool ellipsoidsDrawn() const { return mModels == 2; }
     // Spheres with droplets: the droplets are drawn apart, the first of particles() (the
-    // particles' draw starts after them) with dropletEllipsoids(), their count in the command
-    // at dropletDrawOffset() (the CPU does not learn it).
+    // particles' draw starts after them) with dropletEllipsoids() (GpuEllipsoid[] from the
+    // first droplet's, then more), their count in the command at dropletDrawOffset() (the CPU
+    // does not learn it).
     bool dropletsApart() const { return mRequest.droplets && mModels != 2; }
     const gl::Buffer& dropletEllipsoids() const { return mDroplets; }
     // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the kernels' at
