@@ -8,11 +8,14 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
+#include <map>
 #include <span>
+#include <string>
 #include <utility>
 
 #include "core/derived_attributes.h"
 #include "realtime/field_normal.h"
+#include "realtime/gl/context.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gpu_scene.h"
 #include "realtime/occlusion_culling.h"
@@ -171,35 +174,16 @@ std::size_t perSetTexels(std::size_t particles) {
     return std::max(maxCells(particles) + 1, 2 * particles);
 }
 
-void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
-    for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
-    std::vector<const char*> stages = {"INIT",    "H_MIN",    "LEVELS", "LAYOUT",
-                                       "COUNT",   "SCATTER",  "SORT",   "GATHER",
-                                       "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
-                                       "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
-    if (request.kernels) stages.insert(stages.end(), {"KERNELS", "PACK_KERNELS"});
-    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR_BOUND", "NEAR"});
-    if (request.droplets)
-        stages.insert(stages.end(),
-                      {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"});
-    const int kind = modelKind(request.particles);
-    if (kind == 1) stages.push_back("FIELD_NORMAL");
-    if (kind == 2) stages.push_back("ANISOTROPY");
-    for (const char* stage : stages) programs.compute("per_set.comp", {stage});
-    if (request.cull)
-        for (const auto& [stage, variant] :
-             {std::pair{"CULL", request.particles.radius == RadiusModel::Field ? "NEAR_MASKS" : ""},
-              {"CULL_FULL", "CULL_PROBE"},
-              {"CULL_FULL", ""}})
-            cullProgram(programs, stage, variant);
-}
-
 namespace {
 // Whether GL timer queries see compute dispatches on this device: a query around a scan of a
 // million values (4 ms on llvmpipe; on a GPU at least the 3 us its 8 MB of memory traffic take)
 // reads at least 2 us and no more than the wall clock to a glFinish after it. llvmpipe reads
-// 1 ns around compute (and may answer a context's first query with a timestamp).
+// 1 ns around compute (and may answer a context's first query with a timestamp). Probed once
+// per renderer (GL_RENDERER) in a process.
 bool timerQueriesSeeCompute(ProgramCache& programs) {
+    static std::map<std::string, bool> probed;
+    const std::string renderer = gl::currentRenderer();
+    if (const auto it = probed.find(renderer); it != probed.end()) return it->second;
     constexpr std::size_t VALUES = std::size_t(1) << 20;
     const gl::Buffer data = gl::Buffer::zeros(VALUES * sizeof(std::uint32_t));
     const gl::Buffer sums = gl::Buffer::zeros(64 * sizeof(std::uint32_t));
@@ -226,9 +210,34 @@ bool timerQueriesSeeCompute(ProgramCache& programs) {
         const double ms = query.milliseconds();
         seen = ms >= 2e-3 && ms <= wall;
     }
+    probed.emplace(renderer, seen);
     return seen;
 }
 }  // namespace
+
+void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
+    for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
+    std::vector<const char*> stages = {"INIT",    "H_MIN",    "LEVELS", "LAYOUT",
+                                       "COUNT",   "SCATTER",  "SORT",   "GATHER",
+                                       "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
+                                       "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
+    if (request.kernels) stages.insert(stages.end(), {"KERNELS", "PACK_KERNELS"});
+    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR_BOUND", "NEAR"});
+    if (request.droplets)
+        stages.insert(stages.end(),
+                      {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"});
+    const int kind = modelKind(request.particles);
+    if (kind == 1) stages.push_back("FIELD_NORMAL");
+    if (kind == 2) stages.push_back("ANISOTROPY");
+    for (const char* stage : stages) programs.compute("per_set.comp", {stage});
+    if (request.cull)
+        for (const auto& [stage, variant] :
+             {std::pair{"CULL", request.particles.radius == RadiusModel::Field ? "NEAR_MASKS" : ""},
+              {"CULL_FULL", "CULL_PROBE"},
+              {"CULL_FULL", ""}})
+            cullProgram(programs, stage, variant);
+    timerQueriesSeeCompute(programs);  // set-up, not a frame's work: the stages' clock
+}
 
 void GpuPerSet::timed(const char* stage, const auto& work) {
     if (stageClock() == StageClock::Queries) {

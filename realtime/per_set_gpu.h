@@ -100,7 +100,8 @@ class GpuPerSet {
     // queries this waits for their results: call it after the frame.
     std::map<std::string, double> takeTimings();
     // How the stages are timed: GL timer queries where the device's see compute dispatches
-    // (nothing waits between stages; found by a probe on the first update), else the wall clock
+    // (nothing waits between stages; a probe once per renderer, when the programs are compiled
+    // or on the first update), else the wall clock
     // from a stage's first command to a glFinish after its last (llvmpipe's queries read 1 ns
     // around compute).
     enum class StageClock { Queries, Finish };

@@ -322,4 +322,8 @@ void Context::makeCurrent() const {
         throw std::runtime_error(eglFailure("eglMakeCurrent"));
 }
 
+std::string currentRenderer() {
+    return glString(GL_RENDERER);
+}
+
 }  // namespace twinrender::realtime::gl

@@ -50,4 +50,7 @@ class Context {
     std::unique_ptr<Impl> mImpl;
 };
 
+// GL_RENDERER of the context current on the calling thread.
+std::string currentRenderer();
+
 }  // namespace twinrender::realtime::gl
