@@ -23,6 +23,7 @@
 #include "app/sweep_command.h"
 #include "core/cancellation.h"
 #include "core/error.h"
+#include "core/write_roots.h"
 
 namespace tr = twinrender;
 using tr::app::ExitCode;
@@ -255,6 +256,30 @@ int main(int argc, char** argv) {
 
     tr::app::installInterruptHandlers();
     try {
+        // The only places this process writes: what the user named here, never a place a
+        // scene, thresholds file, baseline or manifest names (core/write_roots.h).
+        const auto allow = [](const std::string& path) {
+            if (!path.empty()) tr::core::allowWritesUnder(path);
+        };
+        if (*render) allow(renderOpts.out);
+        if (*compareCmd) allow(compareOpts.out);
+        if (*blessCmd)
+            allow(blessOut.empty() ? (std::filesystem::path(blessDir) / "baseline.json").string()
+                                   : blessOut);
+        if (*runCmd) {
+            allow(runCommon.out);
+            allow(runOpts.cache);
+            allow(runOpts.junit);
+        }
+        if (*sweepCmd) {
+            allow(sweepCommon.out);
+            allow(sweepOpts.cache);
+        }
+        if (*studyCmd) {
+            allow(studyCommon.out);
+            allow(studyOpts.cache);
+        }
+        if (*mergeCmd) allow(mergeOpts.out);
         const int requested = *runCmd     ? runCommon.threads
                               : *sweepCmd ? sweepCommon.threads
                               : *studyCmd ? studyCommon.threads

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/write_roots.h"
 
 namespace twinrender::app {
 
@@ -38,6 +39,7 @@ void removeQuietly(const fs::path& path) {
 }  // namespace
 
 void prepareOutputFolder(const fs::path& dir) {
+    core::checkWriteAllowed(dir);
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw cannotWriteIn(dir, ec.message());

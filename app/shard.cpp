@@ -18,7 +18,9 @@
 #include "compare/report_json.h"
 #include "compare/sweep_report.h"
 #include "core/error.h"
+#include "core/folder_name.h"
 #include "core/image_io.h"
+#include "core/write_roots.h"
 
 namespace twinrender::app {
 
@@ -49,7 +51,7 @@ void writeShardManifest(const Shard& shard, json manifest, const fs::path& dir) 
     manifest["version"] = 1;
     manifest["shard"] = shard.index;
     manifest["of"] = shard.count;
-    fs::create_directories(dir);
+    core::makeFolders(dir);
     core::writeTextFile(dir / "shard.json", manifest.dump(2) + "\n");
 }
 
@@ -86,13 +88,38 @@ json readShardManifest(const fs::path& dir) {
     return j;
 }
 
+namespace {
+
+// The folder `relative` (a scene's name or a combination's folder, as the manifest in `shard`
+// names it) inside `shard`; InputError naming the manifest and `key` when it would lead out.
+fs::path folderInShard(const fs::path& shard, const std::string& relative, const std::string& key) {
+    const fs::path rel(relative);
+    std::string problem = rel.is_absolute() ? "is an absolute path" : "";
+    for (const fs::path& part : rel)
+        if (problem.empty()) problem = core::folderNameProblem(part.string());
+    if (!problem.empty())
+        throw core::InputError(
+            fmt::format("{}: {} '{}' {}; a manifest names only folders inside its shard's folder",
+                        (shard / "shard.json").string(), key, core::printable(relative), problem));
+    core::requireInside(shard, shard / rel, (shard / "shard.json").string());
+    return shard / rel;
+}
+
+}  // namespace
+
 void copyTree(const fs::path& from, const fs::path& to) {
     try {
-        fs::create_directories(to);
+        core::makeFolders(to);
         for (const auto& e : fs::recursive_directory_iterator(from)) {
             const fs::path target = to / fs::relative(e.path(), from);
+            // A link could lead out of the shard's folder: merge reads only inside it.
+            if (e.is_symlink())
+                throw core::InputError(fmt::format(
+                    "{}: a symbolic link in a shard's folder; merge copies only the files "
+                    "`run --shard` and `sweep --shard` write",
+                    e.path().string()));
             if (e.is_directory()) {
-                fs::create_directories(target);
+                core::makeFolders(target);
                 continue;
             }
             if (!e.is_regular_file()) continue;
@@ -123,6 +150,7 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
         for (const json& r : manifests[i].at("reports")) {
             compare::SceneReport s =
                 compare::sceneReportFromJson(r, (dirs[i] / "shard.json").string());
+            folderInShard(dirs[i], s.name, "the scene name");
             if (reports.count(s.name))
                 throw core::InputError(
                     fmt::format("{}: scene '{}' is also in {}; the shards overlap",
@@ -150,7 +178,9 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
     // The scenes' folders and the report appear together or not at all.
     writeTogether(out, [&](const fs::path& staging) {
         for (const std::string& name : order)
-            if (fs::is_directory(from[name] / name)) copyTree(from[name] / name, staging / name);
+            if (const fs::path dir = folderInShard(from[name], name, "the scene name");
+                fs::is_directory(dir))
+                copyTree(dir, staging / name);
         compare::writeReport(run, staging);
         if (first.value("junit", false)) compare::writeJunit(run, staging / "junit.xml");
     });
@@ -177,6 +207,7 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
                 fmt::format("{}: missing or not JSON", (dirs[i] / "sweep.json").string()));
         compare::SweepReport part = compare::sweepFromJson(j, (dirs[i] / "sweep.json").string());
         for (compare::SweepRow& row : part.rows) {
+            folderInShard(dirs[i], row.dir, "the combination's folder");
             if (row.index >= total || seen.count(row.index))
                 throw core::InputError(
                     fmt::format("{}: combination {} {}", dirs[i].string(), row.index,
@@ -202,8 +233,9 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
     // The combinations' folders, the references and the report appear together or not at all.
     writeTogether(out, [&](const fs::path& staging) {
         for (const auto& row : merged->rows) {
-            const fs::path& dir = seen.at(row.index);
-            if (fs::is_directory(dir / row.dir)) copyTree(dir / row.dir, staging / row.dir);
+            const fs::path dir =
+                folderInShard(seen.at(row.index), row.dir, "the combination's folder");
+            if (fs::is_directory(dir)) copyTree(dir, staging / row.dir);
         }
         for (const fs::path& dir : dirs)
             if (fs::is_directory(dir / "reference_cache"))

@@ -1,15 +1,19 @@
 #include "app/suite_commands.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <map>
+#include <string_view>
 
 #include "app/comparison.h"
 #include "app/interruption.h"
@@ -25,6 +29,7 @@
 #include "compare/metric_table.h"
 #include "compare/report_json.h"
 #include "core/error.h"
+#include "core/folder_name.h"
 #include "core/image_io.h"
 
 namespace twinrender::app {
@@ -87,6 +92,34 @@ fs::path defaultScenesDir() {
     return fs::path(TWINRENDER_SOURCE_DIR) / "scenes";
 }
 
+// What `run` writes beside the scenes' folders, which no scene's folder may take.
+constexpr std::array<std::string_view, 8> kRunFiles = {
+    "index.html", "summary.json", "summary.md",      "junit.xml",
+    "shard.json", "studies",      "reference_cache", "baseline.json"};
+
+// Every scene has a folder of its own in the run's output folder: two names that one folder
+// would hold (equal, or equal but for case on macOS and Windows), or a name the run's own
+// files take, are bad input before anything renders.
+void checkSceneFolders(const std::vector<LoadedScene>& scenes) {
+    std::map<std::string, const core::Scene*> byKey;
+    for (const LoadedScene& s : scenes) {
+        const std::string key = core::folderNameKey(s.scene.name);
+        for (std::string_view f : kRunFiles)
+            if (key == f)
+                throw core::InputError(fmt::format(
+                    "{}: the scene name '{}' is the name of a file or folder the run writes "
+                    "beside the scenes' folders ({}); rename the scene",
+                    s.scene.file.string(), s.scene.name, fmt::join(kRunFiles, ", ")));
+        const auto [it, added] = byKey.emplace(key, &s.scene);
+        if (!added)
+            throw core::InputError(fmt::format(
+                "{} and {} are named '{}' and '{}', which name one output folder (on macOS and "
+                "Windows, names differing only in case do too); give the scenes names that "
+                "differ",
+                it->second->file.string(), s.scene.file.string(), it->second->name, s.scene.name));
+    }
+}
+
 }  // namespace
 
 ExitCode runCompare(const CompareOptions& o) {
@@ -139,13 +172,7 @@ ExitCode runSuite(const RunOptions& o) {
     const std::vector<fs::path> files = sceneFiles(inputs);
     std::vector<LoadedScene> scenes;
     for (const auto& f : files) scenes.push_back(loadScene(f, o.sets));
-    for (std::size_t i = 0; i < scenes.size(); ++i)
-        for (std::size_t j = 0; j < i; ++j)
-            if (scenes[i].scene.name == scenes[j].scene.name)
-                throw core::InputError(
-                    fmt::format("{} and {} are both named '{}'; scene names name "
-                                "the report's folders and must differ",
-                                files[j].string(), files[i].string(), scenes[i].scene.name));
+    checkSceneFolders(scenes);
     const compare::Thresholds thresholds = thresholdsFile.empty()
                                                ? compare::Thresholds::parseString("", "(none)")
                                                : compare::Thresholds::parseFile(thresholdsFile);

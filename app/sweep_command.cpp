@@ -32,6 +32,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/sequence.h"
+#include "core/write_roots.h"
 
 namespace twinrender::app {
 
@@ -402,7 +403,7 @@ ExitCode runSweep(const SweepOptions& o) {
 
             // The combination's folder: its render, the ꟻLIP map, its metrics.
             const fs::path dir = out / row.dir;
-            fs::create_directories(dir);
+            core::makeFolders(dir);
             core::writeImage(test.display, dir / (testRenderer + ".png"));
             compare::SceneReport scene;
             scene.name = job.test.scene.name;

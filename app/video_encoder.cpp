@@ -15,6 +15,7 @@
 
 #include "compare/sequence_video.h"
 #include "core/error.h"
+#include "core/write_roots.h"
 
 extern char** environ;
 
@@ -126,8 +127,8 @@ void VideoEncoder::add(const core::Image& frame) {
         if (mWidth % 2 || mHeight % 2)
             throw std::invalid_argument(
                 fmt::format("video frames of {}x{}: yuv420p needs even sizes", mWidth, mHeight));
-        fs::create_directories(mMp4.parent_path());
-        fs::create_directories(mWebm.parent_path());
+        core::makeFolders(mMp4.parent_path());
+        core::makeFolders(mWebm.parent_path());
         int fds[2];
         if (pipe(fds) != 0) throw std::runtime_error("cannot open a pipe to ffmpeg");
         // The writing end stays with this process only.

@@ -9,6 +9,7 @@
 #include "compare/json_number.h"
 #include "compare/settings_keys.h"
 #include "core/error.h"
+#include "core/folder_name.h"
 #include "core/image_io.h"
 
 namespace twinrender::compare {
@@ -58,6 +59,8 @@ Baseline bless(const json& summary, const std::string& source) {
         if (!s.is_object() || !s.contains("name") || !s["name"].is_string())
             throw bad(at + ".name", "is missing or not a string");
         const std::string name = s["name"].get<std::string>();
+        if (const std::string problem = core::folderNameProblem(name); !problem.empty())
+            throw bad(at + ".name", fmt::format("is not a scene name: it {}", problem));
         if (b.scenes.count(name)) throw bad(at + ".name", fmt::format("repeats scene '{}'", name));
         if (!s.contains("metrics") || s["metrics"].is_null()) continue;  // scene did not render
         if (!s["metrics"].is_object()) throw bad(at + ".metrics", "is not an object");
@@ -189,6 +192,10 @@ Baseline parseBaseline(const json& j, const std::string& file) {
     if (j.contains("scenes")) {
         if (!j["scenes"].is_object()) throw bad("scenes", "must be an object");
         for (const auto& [name, s] : j["scenes"].items()) {
+            // A scene's name names a folder (core/folder_name.h): a baseline names no other.
+            if (const std::string problem = core::folderNameProblem(name); !problem.empty())
+                throw bad("scenes." + core::printable(name),
+                          fmt::format("is not a scene name: it {}", problem));
             const std::string at = "scenes." + name;
             if (!s.is_object() || !s.contains("metrics") || !s["metrics"].is_object())
                 throw bad(at + ".metrics", "is missing or not an object");

@@ -10,6 +10,7 @@
 
 #include "core/image_io.h"
 #include "core/shading.h"
+#include "core/write_roots.h"
 
 namespace twinrender::compare {
 
@@ -176,7 +177,7 @@ std::map<std::string, std::string> writeBufferImages(const core::Image& aov,
                                                      const core::Image* beautyDisplay,
                                                      const fs::path& dir, const std::string& stem,
                                                      const BufferVisualSettings& settings) {
-    fs::create_directories(dir);
+    core::makeFolders(dir);
     std::map<std::string, std::string> written;
     for (const std::string& buffer : bufferNames()) {
         const std::string name = stem + "." + buffer + ".png";

@@ -75,7 +75,6 @@ core::Image colourMapped(const core::Image& map, int channel, double lo, double 
 
 void writeErrorMapPng(const core::Image& map, int channel, double lo, double hi,
                       const fs::path& png) {
-    if (png.has_parent_path()) fs::create_directories(png.parent_path());
     core::writeImage(colourMapped(map, channel, lo, hi), png);
 }
 

@@ -3,6 +3,7 @@
 #include "compare/report_html.h"
 #include "compare/report_json.h"
 #include "compare/report_markdown.h"
+#include "core/write_roots.h"
 
 namespace twinrender::compare {
 
@@ -20,7 +21,7 @@ Status RunReport::status() const {
 }
 
 void writeReport(const RunReport& run, const fs::path& dir) {
-    fs::create_directories(dir);
+    core::makeFolders(dir);
     for (const SceneReport& s : run.scenes) writeMetricsJson(s, dir / s.name / "metrics.json");
     writeSummaryJson(run, dir / "summary.json");
     writeSummaryMarkdown(run, dir / "summary.md");

@@ -15,6 +15,7 @@
 #include "compare/sequence_report.h"
 #include "compare/settings_keys.h"
 #include "core/image_io.h"
+#include "core/write_roots.h"
 
 namespace twinrender::compare {
 
@@ -598,9 +599,9 @@ std::string scenePage(const RunReport& run, const SceneReport& s) {
 }  // namespace
 
 void writeHtmlReport(const RunReport& run, const fs::path& dir) {
-    fs::create_directories(dir);
+    core::makeFolders(dir);
     for (const SceneReport& s : run.scenes) {
-        fs::create_directories(dir / s.name);
+        core::makeFolders(dir / s.name);
         core::writeTextFile(dir / s.name / "index.html", scenePage(run, s));
     }
     core::writeTextFile(dir / "index.html", indexPage(run));

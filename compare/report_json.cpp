@@ -94,12 +94,10 @@ json summaryJson(const RunReport& run) {
 }
 
 void writeMetricsJson(const SceneReport& scene, const fs::path& file) {
-    if (file.has_parent_path()) fs::create_directories(file.parent_path());
     core::writeTextFile(file, metricsJson(scene).dump(2) + "\n");
 }
 
 void writeSummaryJson(const RunReport& run, const fs::path& file) {
-    if (file.has_parent_path()) fs::create_directories(file.parent_path());
     core::writeTextFile(file, summaryJson(run).dump(2) + "\n");
 }
 

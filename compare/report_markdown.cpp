@@ -143,7 +143,6 @@ std::string summaryMarkdown(const RunReport& run) {
 }
 
 void writeSummaryMarkdown(const RunReport& run, const fs::path& file) {
-    if (file.has_parent_path()) fs::create_directories(file.parent_path());
     core::writeTextFile(file, summaryMarkdown(run));
 }
 

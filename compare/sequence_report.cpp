@@ -10,6 +10,7 @@
 #include "compare/metric_table.h"
 #include "compare/svg_chart.h"
 #include "core/image_io.h"
+#include "core/write_roots.h"
 
 namespace twinrender::compare {
 
@@ -54,7 +55,7 @@ std::map<std::string, std::string> writeSequenceCharts(const SequenceReport& q,
     std::map<std::string, std::string> charts;
     std::set<std::string> companions;
     for (const auto& [m, ref] : referenceCompanions()) companions.insert(ref);
-    fs::create_directories(dir / "charts");
+    core::makeFolders(dir / "charts");
     for (const std::string& m : frameMetrics(q)) {
         if (companions.count(m)) continue;
         LineChart c;

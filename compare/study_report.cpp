@@ -12,6 +12,7 @@
 #include "compare/markup.h"
 #include "compare/metric_table.h"
 #include "core/image_io.h"
+#include "core/write_roots.h"
 
 namespace twinrender::compare {
 
@@ -209,7 +210,7 @@ std::string studyMarkdown(const StudyResult& s, int level) {
 
 void writeStudy(const StudyResult& s, const fs::path& dir) {
     const fs::path d = dir / s.name;
-    fs::create_directories(d);
+    core::makeFolders(d);
     core::writeTextFile(d / "study.json", studyJson(s).dump(2) + "\n");
     core::writeTextFile(d / "study.csv", studyCsv(s));
     core::writeTextFile(d / "study.svg", s.scatter ? scatterSvg(*s.scatter) : lineSvg(s.chart));
@@ -333,7 +334,7 @@ void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& 
     std::string h = pageHeader(title, std::nullopt, facts) + findingsSection(studies);
     for (const auto& s : studies) h += studySection(s);
     h += "</main>\n";
-    fs::create_directories(dir);
+    core::makeFolders(dir);
     json all = json::array();
     for (const auto& s : studies) all.push_back(studySummaryJson(s));
     core::writeTextFile(dir / "studies.json", json({{"format", "twinrender-studies"},

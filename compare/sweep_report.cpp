@@ -19,6 +19,7 @@
 #include "compare/thresholds.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/write_roots.h"
 
 namespace twinrender::compare {
 
@@ -494,7 +495,7 @@ std::string sweepHtml(const SweepReport& s) {
 }
 
 void writeSweepReport(const SweepReport& s, const fs::path& dir) {
-    fs::create_directories(dir);
+    core::makeFolders(dir);
     core::writeTextFile(dir / "sweep.json", sweepJson(s).dump(2) + "\n");
     core::writeTextFile(dir / "sweep.csv", sweepCsv(s));
     core::writeTextFile(dir / "sweep.svg", sweepSvg(s));

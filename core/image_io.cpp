@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/oiio_module.h"
 #include "core/png_io.h"
+#include "core/write_roots.h"
 
 namespace twinrender::core {
 namespace fs = std::filesystem;
@@ -182,6 +183,7 @@ std::pair<Image, Image> readImages(const fs::path& first, const fs::path& second
 }
 
 void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+    checkWriteAllowed(path);
     static std::atomic<unsigned> counter{0};
     fs::path tmp = path;
     tmp.replace_filename(fmt::format(".{}.tmp{}-{}{}", path.stem().string(), getpid(), counter++,

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/folder_name.h"
 #include "core/sequence.h"
 
 namespace twinrender::core {
@@ -57,42 +58,51 @@ std::string whereOf(const std::string& file, const toml::node& node, const std::
     return originOf(file, node, fullKey, overrides).where;
 }
 
-// Flattens a TOML table into dotted keys. `fullPrefix` is the key path from the document
-// root, for locating --set overrides and for messages.
+void flatten(const toml::table& table, const std::string& prefix, const std::string& fullPrefix,
+             const std::string& file, const Overrides& overrides, ParameterTable& out);
+
+// One node under the dotted `key`: a table's keys under it, or its value. `fullPrefix` is the
+// key path from the document root to the table `key` is in, for locating --set overrides and
+// for messages.
+void flattenNode(const toml::node& node, const std::string& key, const std::string& fullPrefix,
+                 const std::string& file, const Overrides& overrides, ParameterTable& out) {
+    const std::string full = fullPrefix.empty() ? key : fullPrefix + "." + key;
+    const auto [where, shown] = originOf(file, node, full, overrides);
+    if (const auto* t = node.as_table()) {
+        flatten(*t, key, fullPrefix, file, overrides, out);
+    } else if (const auto* a = node.as_array()) {
+        std::vector<double> values;
+        for (const auto& e : *a) {
+            if (auto d = e.value<double>())
+                values.push_back(*d);
+            else
+                throw InputError(fmt::format("{}: key '{}' must be an array of numbers", where,
+                                             shown.empty() ? full : shown));
+        }
+        out.set(key, std::move(values), where, shown);
+    } else if (auto b = node.value_exact<bool>()) {
+        out.set(key, *b, where, shown);
+    } else if (auto i = node.value_exact<std::int64_t>()) {
+        out.set(key, *i, where, shown);
+    } else if (auto d = node.value_exact<double>()) {
+        out.set(key, *d, where, shown);
+    } else if (auto s = node.value_exact<std::string>()) {
+        out.set(key, *s, where, shown);
+    } else {
+        throw InputError(
+            fmt::format("{}: key '{}' has a type scenes do not use (dates and "
+                        "times); use a number, string, boolean or array",
+                        where, shown.empty() ? full : shown));
+    }
+}
+
+// Flattens a TOML table into dotted keys (flattenNode).
 void flatten(const toml::table& table, const std::string& prefix, const std::string& fullPrefix,
              const std::string& file, const Overrides& overrides, ParameterTable& out) {
-    for (const auto& [k, node] : table) {
-        const std::string key =
-            prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
-        const std::string full = fullPrefix.empty() ? key : fullPrefix + "." + key;
-        const auto [where, shown] = originOf(file, node, full, overrides);
-        if (const auto* t = node.as_table()) {
-            flatten(*t, key, fullPrefix, file, overrides, out);
-        } else if (const auto* a = node.as_array()) {
-            std::vector<double> values;
-            for (const auto& e : *a) {
-                if (auto d = e.value<double>())
-                    values.push_back(*d);
-                else
-                    throw InputError(fmt::format("{}: key '{}' must be an array of numbers", where,
-                                                 shown.empty() ? full : shown));
-            }
-            out.set(key, std::move(values), where, shown);
-        } else if (auto b = node.value_exact<bool>()) {
-            out.set(key, *b, where, shown);
-        } else if (auto i = node.value_exact<std::int64_t>()) {
-            out.set(key, *i, where, shown);
-        } else if (auto d = node.value_exact<double>()) {
-            out.set(key, *d, where, shown);
-        } else if (auto s = node.value_exact<std::string>()) {
-            out.set(key, *s, where, shown);
-        } else {
-            throw InputError(
-                fmt::format("{}: key '{}' has a type scenes do not use (dates and "
-                            "times); use a number, string, boolean or array",
-                            where, shown.empty() ? full : shown));
-        }
-    }
+    for (const auto& [k, node] : table)
+        flattenNode(node,
+                    prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str()),
+                    fullPrefix, file, overrides, out);
 }
 
 std::vector<std::string> splitDots(const std::string& key) {
@@ -399,12 +409,20 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
             if (key == "sequence")
                 throw InputError(fmt::format("{}: 'sequence' must be a table ([sequence])",
                                              whereOf(fileName, node, key, located)));
-            toml::table one;
-            one.insert(k, node);
-            flatten(one, "", "", fileName, located, top);
+            flattenNode(node, key, "", fileName, located, top);
         }
     }
     scene.name = top.getString("name", file.stem().string());
+    // The name names the scene's output folder: it must be one folder name everywhere
+    // (folder_name.h), never a path that leads out of the output folder.
+    if (const std::string problem = folderNameProblem(scene.name); !problem.empty())
+        throw InputError(
+            top.has("name")
+                ? fmt::format("{}: '{}' {}; {}", top.describe("name"), printable(scene.name),
+                              problem, folderNameRule())
+                : fmt::format("{}: the scene has no 'name', and its file's name '{}' {}; add a "
+                              "name = \"...\" line ({})",
+                              fileName, printable(scene.name), problem, folderNameRule()));
     scene.description = top.getString("description", "");
     top.checkAllRead();
 

@@ -1,8 +1,13 @@
 // Fuzz target manifest: the shard manifests `merge` reads (DIR/shard.json), merged as
 // `twinrender merge` does. Input: the manifests of the shards, separated by lines "%%".
+// Whatever the manifests name, nothing may appear outside the output folder: beside the
+// shards waits a folder that a scene named "../escaped" would lead to.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -23,8 +28,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                parts[i]);
         options.inputs.push_back(dir.string());
     }
+    fs::create_directories(root / "escaped");
+    fuzz::writeScratchFile("merge/escaped/secret.txt", "not a shard's");
     options.out = (root / "out").string();
     options.commandLine = "twinrender merge";
+    // Every path under the scratch folder but the output folder's.
+    const auto outside = [&] {
+        std::set<std::string> paths;
+        for (auto it = fs::recursive_directory_iterator(fuzz::scratchDir());
+             it != fs::recursive_directory_iterator(); ++it) {
+            if (it->path() == root / "out") {
+                it.disable_recursion_pending();
+                continue;
+            }
+            paths.insert(it->path().string());
+        }
+        return paths;
+    };
+    const std::set<std::string> before = outside();
     fuzz::expectCleanOutcome([&] { app::runMerge(options); });
+    for (const std::string& p : outside())
+        if (!before.count(p)) {
+            std::fprintf(stderr, "merge wrote %s, outside its output folder\n", p.c_str());
+            std::abort();
+        }
     return 0;
 }

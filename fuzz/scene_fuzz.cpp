@@ -1,18 +1,23 @@
 // Fuzz target scene: a scene file and its --set overrides, as `render` reads them before any
 // work (app::loadScene: the scene, both renderers' settings, [compare], the materials and,
 // for scenes of a few particles, the particles). Input: the TOML text, then optionally a line
-// "%%" and one KEY=VALUE override per line.
+// "%%" and one KEY=VALUE override per line. A scene that loads names one folder inside the
+// output folder, whatever its name.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "app/render_job.h"
 #include "compare/thresholds.h"
+#include "core/folder_name.h"
 #include "core/particle_generators.h"
 #include "core/scene.h"
+#include "core/write_roots.h"
 #include "fuzz/fuzz_support.h"
 
 namespace {
@@ -46,6 +51,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::vector<std::string> overrides = overrideLines(parts);
     fuzz::expectCleanOutcome([&] {
         core::Scene scene = core::loadScene(file, overrides);
+        const auto out = fuzz::scratchDir() / "out";
+        if (!core::folderNameProblem(scene.name).empty() || out / scene.name == out ||
+            !core::isInside(out, out / scene.name)) {
+            std::fprintf(stderr, "scene name '%s' leads out of the output folder\n",
+                         core::printable(scene.name).c_str());
+            std::abort();
+        }
         std::int64_t particles = 0;
         for (const core::BodyDesc& b : scene.bodies) {
             if (b.shape == core::Shape::File) {
