@@ -11,19 +11,8 @@
 #include <vector>
 
 #include "compare/image_pair.h"
+#include "compare/row_kernel.h"
 #include "core/error.h"
-
-// The row kernels below are compiled twice, for AVX2 and for any x86-64, and picked at load
-// time. Both clones do the same element-wise operations in the same order (no FMA), so the
-// result does not depend on the CPU.
-// (Define TWINRENDER_ROW_KERNEL empty to build without the clones.)
-#if !defined(TWINRENDER_ROW_KERNEL)
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-#define TWINRENDER_ROW_KERNEL __attribute__((target_clones("avx2", "default")))
-#else
-#define TWINRENDER_ROW_KERNEL
-#endif
-#endif
 
 namespace twinrender::compare {
 

@@ -39,8 +39,6 @@ class Camera {
     glm::dvec2 project(const glm::dvec3& p) const;
     // World-to-eye matrix (OpenGL convention: the camera looks down -z).
     glm::dmat4 viewMatrix() const;
-    // Size in pixels of one scene unit at eye depth z (for projected radii).
-    double pixelsPerUnitAt(double z) const { return 0.5 * mSettings.height / (mTanHalfFovY * z); }
 
   private:
     CameraSettings mSettings;
