@@ -14,6 +14,7 @@
 
 #include "app/exit_code.h"
 #include "app/interruption.h"
+#include "app/merge_command.h"
 #include "app/output_folder.h"
 #include "app/render_job.h"
 #include "app/sequence_run.h"

@@ -9,15 +9,37 @@
 
 #include "app/interruption.h"
 #include "app/progress.h"
-#include "app/sequence_run.h"
 #include "compare/study_summary.h"
 #include "core/error.h"
+#include "core/particle_file.h"
 #include "raymarch/embree_device.h"
 #include "raymarch/renderer.h"
 #include "realtime/gl/context.h"
 #include "realtime/renderer.h"
 
 namespace twinrender::app {
+
+namespace {
+
+// Reads every particle file of every frame of the scene's sequence but its current one (read by
+// loadScene), so that an unreadable frame is bad input before any rendering: throws
+// core::InputError naming the frame and the reader's message (which names the file).
+void checkSequenceFiles(const LoadedScene& s) {
+    if (!s.scene.sequence) return;
+    for (const core::BodyDesc& b : s.scene.bodies)
+        for (const core::FrameFile& f : b.frameFiles) {
+            if (f.number == s.scene.frame) continue;
+            try {
+                core::readParticleFile(f.path);
+            } catch (const core::InputError& e) {
+                throw core::InputError(fmt::format(
+                    "{}: body '{}': frame {} of the sequence {} cannot be read: {}", b.where,
+                    b.name, f.number, b.pattern.filename().string(), e.what()));
+            }
+        }
+}
+
+}  // namespace
 
 LoadedScene loadScene(const std::filesystem::path& file,
                       const std::vector<std::string>& overrides) {

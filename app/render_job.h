@@ -42,7 +42,7 @@ struct LoadedScene {
 
 // Reads the scene, applies the overrides, parses every renderer section (unknown keys are
 // errors), loads the textures and builds the particles (of a sequence's first frame, after
-// reading every frame's files once: app/sequence_run.h checkSequenceFiles).
+// reading every frame's files once).
 LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
 // The devices the renderers run on, each created on first use (a command that renders no

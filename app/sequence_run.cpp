@@ -18,7 +18,6 @@
 #include "compare/sequence_video.h"
 #include "compare/temporal_error.h"
 #include "core/error.h"
-#include "core/particle_file.h"
 #include "core/sequence.h"
 
 namespace twinrender::app {
@@ -75,21 +74,6 @@ void setFrame(LoadedScene& s, std::int64_t frame) {
     if (s.scene.frame == frame && !s.particles.particles.position.empty()) return;
     s.scene = core::frameScene(s.scene, frame);
     s.particles = core::buildParticles(s.scene);
-}
-
-void checkSequenceFiles(const LoadedScene& s) {
-    if (!s.scene.sequence) return;
-    for (const core::BodyDesc& b : s.scene.bodies)
-        for (const core::FrameFile& f : b.frameFiles) {
-            if (f.number == s.scene.frame) continue;
-            try {
-                core::readParticleFile(f.path);
-            } catch (const core::InputError& e) {
-                throw core::InputError(fmt::format(
-                    "{}: body '{}': frame {} of the sequence {} cannot be read: {}", b.where,
-                    b.name, f.number, b.pattern.filename().string(), e.what()));
-            }
-        }
 }
 
 void renderFrames(LoadedScene& s, const std::vector<std::string>& names, Devices& devices,

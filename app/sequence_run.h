@@ -37,11 +37,6 @@ std::string frameFolder(std::int64_t frame);
 // particles anew.
 void setFrame(LoadedScene& scene, std::int64_t frame);
 
-// Reads every particle file of every frame of the scene's sequence but its current one (read by
-// loadScene), so that an unreadable frame is bad input before any rendering: throws
-// core::InputError naming the frame and the reader's message (which names the file).
-void checkSequenceFiles(const LoadedScene& scene);
-
 // `render --frames`: every frame of the scene's range with each renderer, into
 // DIR/<frameFolder>/<renderer>.exr|png|json. Prints a line per render.
 void renderFrames(LoadedScene& scene, const std::vector<std::string>& renderers, Devices& devices,

@@ -47,15 +47,4 @@ nlohmann::json readShardManifest(const std::filesystem::path& dir);
 // replacing files that exist there.
 void copyTree(const std::filesystem::path& from, const std::filesystem::path& to);
 
-struct MergeOptions {
-    std::vector<std::string> inputs;  // shard output folders
-    std::string out;
-    std::string commandLine;
-    std::string annotations;  // for a run's shards: as RunOptions::annotations
-};
-// Checks that the shards belong together (same command, the same N, every K once, equal
-// settings) and writes what one unsharded run writes. Returns the run's exit code (the
-// worst verdict) or the sweep's (finishSweep, app/sweep_command.h).
-ExitCode runMerge(const MergeOptions& options);
-
 }  // namespace twinrender::app

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/shard.h"
+#include "app/merge_command.h"
 #include "fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

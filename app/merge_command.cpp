@@ -1,0 +1,226 @@
+#include "app/merge_command.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "app/comparison.h"
+#include "app/output_folder.h"
+#include "app/shard.h"
+#include "app/suite_commands.h"
+#include "app/sweep_command.h"
+#include "compare/junit.h"
+#include "compare/report.h"
+#include "compare/report_json.h"
+#include "compare/sweep_report.h"
+#include "core/error.h"
+#include "core/folder_name.h"
+#include "core/write_roots.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The folder `relative` (a scene's name or a combination's folder, as the manifest in `shard`
+// names it) inside `shard`; InputError naming the manifest and `key` when it would lead out.
+fs::path folderInShard(const fs::path& shard, const std::string& relative, const std::string& key) {
+    const fs::path rel(relative);
+    std::string problem = rel.is_absolute() ? "is an absolute path" : "";
+    for (const fs::path& part : rel)
+        if (problem.empty()) problem = core::folderNameProblem(part.string());
+    if (!problem.empty())
+        throw core::InputError(
+            fmt::format("{}: {} '{}' {}; a manifest names only folders inside its shard's folder",
+                        (shard / "shard.json").string(), key, core::printable(relative), problem));
+    core::requireInside(shard, shard / rel, (shard / "shard.json").string());
+    return shard / rel;
+}
+
+ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+                  const fs::path& out, const MergeOptions& o) {
+    const json& first = manifests.front();
+    const auto order = first.at("scenes").get<std::vector<std::string>>();
+    std::map<std::string, compare::SceneReport> reports;
+    std::map<std::string, fs::path> from;
+    for (std::size_t i = 0; i < dirs.size(); ++i)
+        for (const json& r : manifests[i].at("reports")) {
+            compare::SceneReport s =
+                compare::sceneReportFromJson(r, (dirs[i] / "shard.json").string());
+            folderInShard(dirs[i], s.name, "the scene name");
+            if (reports.count(s.name))
+                throw core::InputError(
+                    fmt::format("{}: scene '{}' is also in {}; the shards overlap",
+                                dirs[i].string(), s.name, from[s.name].string()));
+            from[s.name] = dirs[i];
+            reports.emplace(s.name, std::move(s));
+        }
+    compare::RunReport run;
+    run.createdAt = nowUtc();
+    run.commandLine = o.commandLine;
+    run.thresholdsFile = first.at("settings").value("thresholds", "");
+    run.baselineFile = first.at("settings").value("baseline", "");
+    for (const std::string& name : order) {
+        const auto it = reports.find(name);
+        if (it == reports.end())
+            throw core::InputError(
+                fmt::format("scene '{}' is in none of the shards; was a shard cut short?", name));
+        run.scenes.push_back(std::move(it->second));
+        reports.erase(it);
+    }
+    if (!reports.empty())
+        throw core::InputError(fmt::format("scene '{}' of {} is not in the run's list",
+                                           reports.begin()->first,
+                                           from[reports.begin()->first].string()));
+    // The scenes' folders and the report appear together or not at all.
+    writeTogether(out, [&](const fs::path& staging) {
+        for (const std::string& name : order)
+            if (const fs::path dir = folderInShard(from[name], name, "the scene name");
+                fs::is_directory(dir))
+                copyTree(dir, staging / name);
+        compare::writeReport(run, staging);
+        if (first.value("junit", false)) compare::writeJunit(run, staging / "junit.xml");
+    });
+    std::printf("merged %zu shards, %zu scenes: %s -> %s\n", dirs.size(), run.scenes.size(),
+                std::string(compare::toString(run.status())).c_str(), (out / "index.html").c_str());
+    printAnnotations(run, o.annotations);
+    return exitCodeOf(run.status());
+}
+
+ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+                    const fs::path& out, const std::string& commandLine) {
+    const std::size_t total = manifests.front().at("combinations").get<std::size_t>();
+    std::optional<compare::SweepReport> merged;
+    std::map<std::size_t, fs::path> seen;
+    for (std::size_t i = 0; i < dirs.size(); ++i) {
+        if (manifests[i].at("combinations").get<std::size_t>() != total)
+            throw core::InputError(fmt::format(
+                "{}: {} combinations, {} has {}; not shards of one sweep", dirs[i].string(),
+                manifests[i].at("combinations").get<std::size_t>(), dirs[0].string(), total));
+        std::ifstream in(dirs[i] / "sweep.json");
+        const json j = json::parse(in, nullptr, false);
+        if (!in || j.is_discarded())
+            throw core::InputError(
+                fmt::format("{}: missing or not JSON", (dirs[i] / "sweep.json").string()));
+        compare::SweepReport part = compare::sweepFromJson(j, (dirs[i] / "sweep.json").string());
+        for (compare::SweepRow& row : part.rows) {
+            folderInShard(dirs[i], row.dir, "the combination's folder");
+            if (row.index >= total || seen.count(row.index))
+                throw core::InputError(
+                    fmt::format("{}: combination {} {}", dirs[i].string(), row.index,
+                                row.index >= total ? "is beyond the sweep"
+                                                   : "is also in " + seen[row.index].string()));
+            seen[row.index] = dirs[i];
+        }
+        if (!merged) {
+            merged = std::move(part);
+        } else {
+            for (auto& row : part.rows) merged->rows.push_back(std::move(row));
+        }
+    }
+    if (seen.size() != total)
+        for (std::size_t k = 0; k < total; ++k)
+            if (!seen.count(k))
+                throw core::InputError(fmt::format(
+                    "combination {} is in none of the shards; was a shard cut short?", k));
+    std::sort(merged->rows.begin(), merged->rows.end(),
+              [](const auto& a, const auto& b) { return a.index < b.index; });
+    merged->createdAt = nowUtc();
+    merged->commandLine = commandLine;
+    // The combinations' folders, the references and the report appear together or not at all.
+    writeTogether(out, [&](const fs::path& staging) {
+        for (const auto& row : merged->rows) {
+            const fs::path dir =
+                folderInShard(seen.at(row.index), row.dir, "the combination's folder");
+            if (fs::is_directory(dir)) copyTree(dir, staging / row.dir);
+        }
+        for (const fs::path& dir : dirs)
+            if (fs::is_directory(dir / "reference_cache"))
+                copyTree(dir / "reference_cache", staging / "reference_cache");
+        compare::writeSweepReport(*merged, staging);
+    });
+    std::printf("merged %zu shards, %zu combinations -> %s, %s\n", dirs.size(), merged->rows.size(),
+                (out / "sweep.csv").c_str(), (out / "index.html").c_str());
+    return finishSweep(*merged);
+}
+
+ExitCode mergeManifests(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+                        const fs::path& out, const MergeOptions& o) {
+    // They belong together: one command, one N, every K once, the same settings.
+    const json& first = manifests.front();
+    const int n = first.at("of").get<int>();
+    std::map<int, fs::path> shards;
+    for (std::size_t i = 0; i < dirs.size(); ++i) {
+        const json& m = manifests[i];
+        if (m.at("command") != first.at("command"))
+            throw core::InputError(
+                fmt::format("{} is a shard of `{}`, {} of `{}`; merge shards of one command",
+                            dirs[i].string(), m.at("command").get<std::string>(), dirs[0].string(),
+                            first.at("command").get<std::string>()));
+        if (m.at("of").get<int>() != n)
+            throw core::InputError(
+                fmt::format("{} is shard {}/{}, {} is shard {}/{}: not shards of one run",
+                            dirs[i].string(), m.at("shard").get<int>(), m.at("of").get<int>(),
+                            dirs[0].string(), first.at("shard").get<int>(), n));
+        if (m.at("settings") != first.at("settings")) {
+            std::string diff;
+            for (const auto& [k, v] : m.at("settings").items())
+                if (!first.at("settings").contains(k) || first.at("settings").at(k) != v)
+                    diff += fmt::format("{}{}: {} vs {}", diff.empty() ? "" : "; ", k,
+                                        first.at("settings").value(k, json()).dump(), v.dump());
+            throw core::InputError(fmt::format(
+                "{} and {} were run with different settings ({}); not shards of one run",
+                dirs[0].string(), dirs[i].string(), diff));
+        }
+        const int k = m.at("shard").get<int>();
+        if (shards.count(k))
+            throw core::InputError(fmt::format("{} and {} are both shard {}/{}", shards[k].string(),
+                                               dirs[i].string(), k, n));
+        shards[k] = dirs[i];
+    }
+    for (int k = 1; k <= n; ++k)
+        if (!shards.count(k))
+            throw core::InputError(
+                fmt::format("shard {}/{} is missing; give all {} shard folders", k, n, n));
+    prepareOutputFolder(out);
+    const std::string command = first.at("command").get<std::string>();
+    if (command == "run") return mergeRun(dirs, manifests, out, o);
+    if (command == "sweep") return mergeSweep(dirs, manifests, out, o.commandLine);
+    throw core::InputError(
+        fmt::format("{}: unknown command '{}' in the manifest", dirs[0].string(), command));
+}
+
+}  // namespace
+
+ExitCode runMerge(const MergeOptions& o) {
+    if (o.inputs.empty()) throw core::InputError("merge: give the shard folders to merge");
+    std::vector<fs::path> dirs;
+    std::vector<json> manifests;
+    const fs::path out = fs::weakly_canonical(o.out);
+    for (const auto& in : o.inputs) {
+        if (!fs::is_directory(in)) throw core::InputError(fmt::format("{}: no such folder", in));
+        if (fs::weakly_canonical(in) == out)
+            throw core::InputError(
+                fmt::format("--out {}: is one of the shards; merge into a new folder", o.out));
+        dirs.emplace_back(in);
+        manifests.push_back(readShardManifest(in));
+    }
+    try {
+        return mergeManifests(dirs, manifests, out, o);
+    } catch (const json::exception& e) {
+        // A part of a manifest that is not what `run` or `sweep` wrote.
+        std::string files;
+        for (const fs::path& d : dirs)
+            files += (files.empty() ? "" : ", ") + (d / "shard.json").string();
+        throw core::InputError(
+            fmt::format("{}: a shard manifest is damaged ({})", files, e.what()));
+    }
+}
+
+}  // namespace twinrender::app
