@@ -24,93 +24,150 @@ const std::vector<MetricInfo>& metricTable() {
     using S = MetricSource;
     // Noise: 0.1 dB and 0.1 degree, 0.05 px, 1e-3 of a fraction of pixels or of SSIM and IoU,
     // 1e-4 of relative depth, uv and emission; 1 ms; half a count.
+    // A row in a few lines (clang-format would give every field a line of its own).
+    // clang-format off
     static const std::vector<MetricInfo> table = {
-        // key, unit, better, origin, noise, buffer, source, overview, machine-dependent,
-        // meaning
-        {"beauty.psnr", "dB", B::Higher, 0.0, 0.1, "beauty", S::AnyPair, true, false,
-         "peak signal-to-noise ratio of the tonemapped beauty over R, G, B, peak 1; +inf for "
-         "identical images"},
-        {"beauty.ssim", "", B::Higher, 1.0, 1e-3, "beauty", S::AnyPair, true, false,
-         "structural similarity of the tonemapped beauty, mean over R, G, B (Wang et al. 2004, "
-         "Gaussian σ 1.5)"},
-        {"beauty.flip", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, true, false,
-         "mean LDR-ꟻLIP error of the tonemapped beauty (Andersson et al. 2020), 0 to 1"},
-        {"beauty.flip_p95", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, false, false,
-         "95th percentile of the per-pixel ꟻLIP error of the tonemapped beauty over every pixel "
-         "(numpy's linear method): the error of the worst 5 % of the pixels"},
-        {"beauty.flip_p99", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, false, false,
-         "99th percentile of that error: the worst 1 %"},
-        {"beauty.flip_over", "", B::Lower, 0.0, 1e-3, "beauty", S::AnyPair, false, false,
-         "fraction of the pixels whose ꟻLIP error is above the level --flip-over (default 0.5): "
-         "rare large errors the mean hides"},
-        {"beauty.hdrflip", "", B::Lower, 0.0, 1e-3, "beauty", S::AovPair, false, false,
-         "mean HDR-ꟻLIP of the linear beauty (Andersson et al. 2021): per pixel the largest "
-         "LDR-ꟻLIP over ACES-tonemapped exposures from the reference's brightest pixel to its "
-         "median lit one, 0 to 1"},
-        {"coverage.iou", "", B::Higher, 1.0, 1e-3, "A", S::AovPair, true, false,
-         "intersection over union of the pixels each render covers"},
-        {"silhouette.mean_px", "px", B::Lower, 0.0, 0.05, "A", S::AovPair, true, false,
-         "mean distance between the two outlines; inf when only one render has one"},
-        {"depth.rel_mean", "", B::Lower, 0.0, 1e-4, "Z", S::AovPair, true, false,
-         "mean relative depth error on the pixels both renders cover with the same body"},
-        {"id.mismatch", "", B::Lower, 0.0, 1e-3, "id", S::AovPair, true, false,
-         "fraction of the pixels covered in both where another body is visible: occlusion order "
-         "errors"},
-        {"normal.mean_deg", "°", B::Lower, 0.0, 0.1, "N", S::AovPair, true, false,
-         "mean angle between the two normals on interior pixels of the same body"},
-        {"normal.p95_deg", "°", B::Lower, 0.0, 0.1, "N", S::AovPair, false, false,
-         "95th percentile of that angle"},
-        {"uv.mean", "", B::Lower, 0.0, 1e-4, "uv", S::AovPair, false, false,
-         "mean seam-aware distance between the texture coordinates on interior pixels of the "
-         "same body"},
-        {"emission.rmse", "", B::Lower, 0.0, 1e-4, "emission", S::AovPair, false, false,
-         "root mean square error of the emitted radiance on the pixels covered in both"},
-        {"smoothness.ratio", "", B::Closer, 1.0, 0.01, "N", S::AovPair, false, false,
-         "roughness of the test's normal field over the reference's: 1 as smooth, above 1 "
-         "rougher"},
-        {"shadow.iou", "", B::Higher, 1.0, 1e-3, "shadow", S::AovPair, true, false,
-         "intersection over union of the shadowed pixels that face the light"},
-        {"shadow.false_shadow", "", B::Lower, 0.0, 1e-3, "shadow", S::AovPair, false, false,
-         "fraction of the pixels facing the light lit in the reference but shadowed in the "
-         "test: acne"},
-        {"shadow.missed_shadow", "", B::Lower, 0.0, 1e-3, "shadow", S::AovPair, false, false,
-         "fraction shadowed in the reference but lit in the test: leaks, peter-panning"},
-        {"occlusion.error", "", B::Lower, 0.0, 1e-3, "id", S::Study, false, false,
-         "fraction of the reference's covered pixels where the test shows another body or none"},
-        {"contact.uv_mean", "", B::Lower, 0.0, 1e-4, "uv", S::Study, false, false,
-         "mean uv distance in the band along the boundary between two bodies: bleeding"},
-        {"contact.emission_rmse", "", B::Lower, 0.0, 1e-4, "emission", S::Study, false, false,
-         "root mean square emission error in that band"},
-        {"contact.pixels", "", B::Higher, 0.0, 0.5, "id", S::Study, false, false,
-         "pixels in that band: the sample the contact metrics are taken over"},
-        {"temporal.frame_flip", "", B::Lower, 0.0, 1e-3, "beauty", S::Study, false, false,
-         "mean ꟻLIP between a real-time frame and the previous one of its series or sequence"},
-        {"temporal.reference_frame_flip", "", B::Lower, 0.0, 1e-3, "beauty", S::Study, false, false,
-         "the same between consecutive reference frames: what the motion itself changes"},
-        {"temporal.flicker", "", B::Lower, 0.0, 1e-3, "beauty", S::Sequence, false, false,
-         "per frame of a sequence: the real-time renders' frame-to-frame ꟻLIP minus the "
-         "reference's, the change the truth does not have (motion is not counted)"},
-        {"temporal.flicker_mean", "", B::Lower, 0.0, 1e-3, "beauty", S::Sequence, true, false,
-         "temporal.flicker, mean over the frames of a sequence"},
-        {"temporal.flicker_max", "", B::Lower, 0.0, 1e-3, "beauty", S::Sequence, false, false,
-         "temporal.flicker, largest over the frames of a sequence"},
-        {"temporal.normal_change_deg", "°", B::Lower, 0.0, 0.1, "N", S::Sequence, false, false,
-         "mean angle between a real-time frame's normals and the previous frame's, over the "
-         "pixels covered in both frames of both renders"},
-        {"temporal.reference_normal_change_deg", "°", B::Lower, 0.0, 0.1, "N", S::Sequence, false,
-         false, "the same between consecutive reference frames"},
-        {"temporal.normal_flicker_deg", "°", B::Lower, 0.0, 0.1, "N", S::Sequence, false, false,
-         "per frame: the real-time normal change minus the reference's"},
-        {"temporal.normal_flicker_mean_deg", "°", B::Lower, 0.0, 0.1, "N", S::Sequence, false,
-         false, "temporal.normal_flicker_deg, mean over the frames of a sequence"},
-        {"temporal.normal_flicker_max_deg", "°", B::Lower, 0.0, 0.1, "N", S::Sequence, false, false,
-         "temporal.normal_flicker_deg, largest over the frames of a sequence"},
-        {"time.<renderer>_ms", "ms", B::Lower, 0.0, 1.0, "", S::Render, false, true,
-         "the renderer's time for the frame, without start-up and file I/O"},
-        {"count.<counter>", "", B::Lower, 0.0, 0.5, "", S::Render, false, false,
-         "a counter of the test render: work done (particles_drawn, field_evaluations) or rays "
-         "given up (unbracketed_rays)"},
+        {.key = "beauty.psnr", .unit = "dB", .better = B::Higher, .origin = 0.0, .noise = 0.1,
+         .buffer = "beauty", .source = S::AnyPair, .overview = true, .machineDependent = false,
+         .meaning = "peak signal-to-noise ratio of the tonemapped beauty over R, G, B, peak 1; "
+                    "+inf for identical images"},
+        {.key = "beauty.ssim", .unit = "", .better = B::Higher, .origin = 1.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::AnyPair, .overview = true, .machineDependent = false,
+         .meaning = "structural similarity of the tonemapped beauty, mean over R, G, B (Wang et"
+                    " al. 2004, Gaussian σ 1.5)"},
+        {.key = "beauty.flip", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::AnyPair, .overview = true, .machineDependent = false,
+         .meaning = "mean LDR-ꟻLIP error of the tonemapped beauty (Andersson et al. 2020), 0 to"
+                    " 1"},
+        {.key = "beauty.flip_p95", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::AnyPair, .overview = false, .machineDependent = false,
+         .meaning = "95th percentile of the per-pixel ꟻLIP error of the tonemapped beauty over "
+                    "every pixel (numpy's linear method): the error of the worst 5 % of the "
+                    "pixels"},
+        {.key = "beauty.flip_p99", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::AnyPair, .overview = false, .machineDependent = false,
+         .meaning = "99th percentile of that error: the worst 1 %"},
+        {.key = "beauty.flip_over", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::AnyPair, .overview = false, .machineDependent = false,
+         .meaning = "fraction of the pixels whose ꟻLIP error is above the level --flip-over "
+                    "(default 0.5): rare large errors the mean hides"},
+        {.key = "beauty.hdrflip", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "mean HDR-ꟻLIP of the linear beauty (Andersson et al. 2021): per pixel the "
+                    "largest LDR-ꟻLIP over ACES-tonemapped exposures from the reference's "
+                    "brightest pixel to its median lit one, 0 to 1"},
+        {.key = "coverage.iou", .unit = "", .better = B::Higher, .origin = 1.0, .noise = 1e-3,
+         .buffer = "A", .source = S::AovPair, .overview = true, .machineDependent = false,
+         .meaning = "intersection over union of the pixels each render covers"},
+        {.key = "silhouette.mean_px", .unit = "px", .better = B::Lower, .origin = 0.0,
+         .noise = 0.05, .buffer = "A", .source = S::AovPair, .overview = true,
+         .machineDependent = false,
+         .meaning = "mean distance between the two outlines; inf when only one render has one"},
+        {.key = "depth.rel_mean", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-4,
+         .buffer = "Z", .source = S::AovPair, .overview = true, .machineDependent = false,
+         .meaning = "mean relative depth error on the pixels both renders cover with the same "
+                    "body"},
+        {.key = "id.mismatch", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "id", .source = S::AovPair, .overview = true, .machineDependent = false,
+         .meaning = "fraction of the pixels covered in both where another body is visible: "
+                    "occlusion order errors"},
+        {.key = "normal.mean_deg", .unit = "°", .better = B::Lower, .origin = 0.0, .noise = 0.1,
+         .buffer = "N", .source = S::AovPair, .overview = true, .machineDependent = false,
+         .meaning = "mean angle between the two normals on interior pixels of the same body"},
+        {.key = "normal.p95_deg", .unit = "°", .better = B::Lower, .origin = 0.0, .noise = 0.1,
+         .buffer = "N", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "95th percentile of that angle"},
+        {.key = "uv.mean", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-4,
+         .buffer = "uv", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "mean seam-aware distance between the texture coordinates on interior "
+                    "pixels of the same body"},
+        {.key = "emission.rmse", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-4,
+         .buffer = "emission", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "root mean square error of the emitted radiance on the pixels covered in "
+                    "both"},
+        {.key = "smoothness.ratio", .unit = "", .better = B::Closer, .origin = 1.0, .noise = 0.01,
+         .buffer = "N", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "roughness of the test's normal field over the reference's: 1 as smooth, "
+                    "above 1 rougher"},
+        {.key = "shadow.iou", .unit = "", .better = B::Higher, .origin = 1.0, .noise = 1e-3,
+         .buffer = "shadow", .source = S::AovPair, .overview = true, .machineDependent = false,
+         .meaning = "intersection over union of the shadowed pixels that face the light"},
+        {.key = "shadow.false_shadow", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "shadow", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "fraction of the pixels facing the light lit in the reference but shadowed "
+                    "in the test: acne"},
+        {.key = "shadow.missed_shadow", .unit = "", .better = B::Lower, .origin = 0.0,
+         .noise = 1e-3, .buffer = "shadow", .source = S::AovPair, .overview = false,
+         .machineDependent = false,
+         .meaning = "fraction shadowed in the reference but lit in the test: leaks, peter-"
+                    "panning"},
+        {.key = "occlusion.error", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "id", .source = S::Study, .overview = false, .machineDependent = false,
+         .meaning = "fraction of the reference's covered pixels where the test shows another "
+                    "body or none"},
+        {.key = "contact.uv_mean", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-4,
+         .buffer = "uv", .source = S::Study, .overview = false, .machineDependent = false,
+         .meaning = "mean uv distance in the band along the boundary between two bodies: "
+                    "bleeding"},
+        {.key = "contact.emission_rmse", .unit = "", .better = B::Lower, .origin = 0.0,
+         .noise = 1e-4, .buffer = "emission", .source = S::Study, .overview = false,
+         .machineDependent = false,
+         .meaning = "root mean square emission error in that band"},
+        {.key = "contact.pixels", .unit = "", .better = B::Higher, .origin = 0.0, .noise = 0.5,
+         .buffer = "id", .source = S::Study, .overview = false, .machineDependent = false,
+         .meaning = "pixels in that band: the sample the contact metrics are taken over"},
+        {.key = "temporal.frame_flip", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::Study, .overview = false, .machineDependent = false,
+         .meaning = "mean ꟻLIP between a real-time frame and the previous one of its series or "
+                    "sequence"},
+        {.key = "temporal.reference_frame_flip", .unit = "", .better = B::Lower, .origin = 0.0,
+         .noise = 1e-3, .buffer = "beauty", .source = S::Study, .overview = false,
+         .machineDependent = false,
+         .meaning = "the same between consecutive reference frames: what the motion itself "
+                    "changes"},
+        {.key = "temporal.flicker", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::Sequence, .overview = false, .machineDependent = false,
+         .meaning = "per frame of a sequence: the real-time renders' frame-to-frame ꟻLIP minus "
+                    "the reference's, the change the truth does not have (motion is not "
+                    "counted)"},
+        {.key = "temporal.flicker_mean", .unit = "", .better = B::Lower, .origin = 0.0,
+         .noise = 1e-3, .buffer = "beauty", .source = S::Sequence, .overview = true,
+         .machineDependent = false,
+         .meaning = "temporal.flicker, mean over the frames of a sequence"},
+        {.key = "temporal.flicker_max", .unit = "", .better = B::Lower, .origin = 0.0,
+         .noise = 1e-3, .buffer = "beauty", .source = S::Sequence, .overview = false,
+         .machineDependent = false,
+         .meaning = "temporal.flicker, largest over the frames of a sequence"},
+        {.key = "temporal.normal_change_deg", .unit = "°", .better = B::Lower, .origin = 0.0,
+         .noise = 0.1, .buffer = "N", .source = S::Sequence, .overview = false,
+         .machineDependent = false,
+         .meaning = "mean angle between a real-time frame's normals and the previous frame's, "
+                    "over the pixels covered in both frames of both renders"},
+        {.key = "temporal.reference_normal_change_deg", .unit = "°", .better = B::Lower,
+         .origin = 0.0, .noise = 0.1, .buffer = "N", .source = S::Sequence, .overview = false,
+         .machineDependent = false,
+         .meaning = "the same between consecutive reference frames"},
+        {.key = "temporal.normal_flicker_deg", .unit = "°", .better = B::Lower, .origin = 0.0,
+         .noise = 0.1, .buffer = "N", .source = S::Sequence, .overview = false,
+         .machineDependent = false,
+         .meaning = "per frame: the real-time normal change minus the reference's"},
+        {.key = "temporal.normal_flicker_mean_deg", .unit = "°", .better = B::Lower, .origin = 0.0,
+         .noise = 0.1, .buffer = "N", .source = S::Sequence, .overview = false,
+         .machineDependent = false,
+         .meaning = "temporal.normal_flicker_deg, mean over the frames of a sequence"},
+        {.key = "temporal.normal_flicker_max_deg", .unit = "°", .better = B::Lower, .origin = 0.0,
+         .noise = 0.1, .buffer = "N", .source = S::Sequence, .overview = false,
+         .machineDependent = false,
+         .meaning = "temporal.normal_flicker_deg, largest over the frames of a sequence"},
+        {.key = "time.<renderer>_ms", .unit = "ms", .better = B::Lower, .origin = 0.0, .noise = 1.0,
+         .buffer = "", .source = S::Render, .overview = false, .machineDependent = true,
+         .meaning = "the renderer's time for the frame, without start-up and file I/O"},
+        {.key = "count.<counter>", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 0.5,
+         .buffer = "", .source = S::Render, .overview = false, .machineDependent = false,
+         .meaning = "a counter of the test render: work done (particles_drawn, "
+                    "field_evaluations) or rays given up (unbracketed_rays)"},
     };
+    // clang-format on
     return table;
 }
 
