@@ -18,10 +18,11 @@ def help_text(tool, *args):
 
 
 def sections(page):
-    """{heading line: its text up to the next heading of the same level}."""
-    out, heading = {}, None
+    """{heading line: its text up to the next heading of the same level}; code blocks are text."""
+    out, heading, fenced = {}, None, False
     for line in page.splitlines():
-        if line.startswith("## "):
+        fenced ^= line.startswith("```")
+        if line.startswith("## ") and not fenced:
             heading = line
             out[heading] = ""
         elif heading:
