@@ -1,5 +1,4 @@
-// The exit codes of every twinrender command, as OpenImageIO's idiff gives them (DESIGN.md,
-// "Command line").
+// The exit codes of every twinrender command, as OpenImageIO's idiff gives them (docs/cli.md).
 #pragma once
 
 #include "compare/thresholds.h"

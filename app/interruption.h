@@ -5,8 +5,8 @@
 // its own on an exception, and main exits with 128 + the signal (130, 143). A second signal
 // ends the process at once, as the default action would.
 //
-// The flag is the process's one mutable global (STYLE.md 6): a signal handler can reach no
-// other state.
+// The flag is the process's one mutable global (CONTRIBUTING.md, "House style"): a signal handler
+// can reach no other state.
 #pragma once
 
 #include <atomic>

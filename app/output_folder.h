@@ -1,7 +1,7 @@
 // The folders a command writes into. Every command that writes checks its output folder
 // before any work starts (a folder that refuses writes is exit 4 at once, not after minutes
 // of rendering), and writes each report as a whole or not at all: a full disk or a signal
-// never leaves half a report (DESIGN.md, "Nothing is lost").
+// never leaves half a report (docs/design.md, "Principles").
 #pragma once
 
 #include <filesystem>

@@ -1,10 +1,11 @@
-// Sequences in the commands that render (README, "Sequences"): `render SCENE --frames A:B`
-// writes each frame's renders into a numbered folder, and `run` renders every frame of a
-// sequence scene with both renderers (the reference through the cache of app/reference_cache.h,
-// keyed by the frame), compares each pair, measures the temporal error of each consecutive
-// pair against the truth (compare/temporal_error.h), and writes the charts, the side-by-side
-// video (app/video_encoder.h) and the scene's report, whose metrics summarise the frames
-// (compare/sequence_summary.h). Every frame is a new particle set for the real-time renderer.
+// Sequences in the commands that render (docs/cli.md; docs/design.md, "Sequences"): `render SCENE
+// --frames A:B` writes each frame's renders into a numbered folder, and `run` renders every frame
+// of a sequence scene with both renderers (the reference through the cache of
+// app/reference_cache.h, keyed by the frame), compares each pair, measures the temporal error of
+// each consecutive pair against the truth (compare/temporal_error.h), and writes the charts, the
+// side-by-side video (app/video_encoder.h) and the scene's report, whose metrics summarise the
+// frames (compare/sequence_summary.h). Every frame is a new particle set for the real-time
+// renderer.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Scale-out (DESIGN.md, "Command line"): `run` and `sweep` take --shard K/N and do every N-th
+// Scale-out (docs/cli.md): `run` and `sweep` take --shard K/N and do every N-th
 // item of their work starting at the (K-1)-th, so N machines (a CI matrix, a Slurm array job)
 // share it; each shard's output folder carries a manifest, shard.json, from which
 // `twinrender merge` rebuilds the report one unsharded run gives.

@@ -344,7 +344,8 @@ ExitCode runSweep(const SweepOptions& o) {
     if (pooledMetric && !sequence)
         throw core::InputError(fmt::format(
             "--metric {}: a sequence's metric, pooled over its frames, and {} renders one frame; "
-            "give a scene with a [sequence] table or a sequence body (README, \"Sequences\"), or "
+            "give a scene with a [sequence] table or a sequence body (docs/scenes.md, "
+            "\"Sequences\"), or "
             "one of {}",
             o.metric, o.scene, compare::metricNames(true)));
     if (sequence) {

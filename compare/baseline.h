@@ -1,5 +1,5 @@
 // Baselines: the metrics of a blessed run, and the check that no metric got worse than it
-// (DESIGN.md, "Thresholds and baselines"). Absolute bounds catch a bad render; the baseline
+// (docs/design.md, "Thresholds and baselines"). Absolute bounds catch a bad render; the baseline
 // catches a regression that is still inside them.
 //
 // A metric fails its baseline check when it got worse than the blessed value by more than

@@ -1,4 +1,4 @@
-// Display images of the buffers of an AOV image (DESIGN.md, "Frame"): what a scene page
+// Display images of the buffers of an AOV image (docs/design.md, "The frame"): what a scene page
 // shows for each buffer of both renders, so that a person can see where they differ.
 #pragma once
 
@@ -30,7 +30,7 @@ struct BufferVisualSettings {
 std::pair<double, double> depthRange(const core::Image& a, const core::Image& b);
 
 // An R, G, B display image in [0, 1] of one buffer of an AOV image (channel names of
-// DESIGN.md): beauty -> tonemapped R,G,B; normal -> 0.5 + 0.5 n; uv -> (u, v, 0); depth ->
+// docs/design.md): beauty -> tonemapped R,G,B; normal -> 0.5 + 0.5 n; uv -> (u, v, 0); depth ->
 // log-scaled grey; id -> one distinct colour per body (the same in every image); shadow ->
 // white lit, grey occluded; emission -> tonemapped. Pixels without coverage (A = 0, or
 // Z = inf without A) are a dark slate, except for beauty. Throws core::NotComparableError

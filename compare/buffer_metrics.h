@@ -1,4 +1,4 @@
-// The per-buffer metrics of DESIGN.md ("Metric names"): how far the test's AOV buffers are from
+// The per-buffer metrics of docs/design.md ("Metrics"): how far the test's AOV buffers are from
 // the reference's, each taken only over the mask where it means something (masks.h). Each is a
 // pure function of (reference, test, masks) returning its value(s) and, where a pixel has an
 // error of its own, a one-channel error map (0 outside the pixels named for it). Pooling is the

@@ -1,5 +1,5 @@
 // beauty.flip: LDR-FLIP, the perceptual difference an observer sees when flipping between the
-// reference and the test image (DESIGN.md, "Metric names").
+// reference and the test image (docs/design.md, "Metrics").
 //
 // P. Andersson, J. Nilsson, T. Akenine-Moeller, M. Oskarsson, K. Astrom, M. D. Fairchild,
 // "FLIP: A Difference Evaluator for Alternating Images", Proceedings of the ACM on Computer

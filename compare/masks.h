@@ -1,4 +1,4 @@
-// The masks of DESIGN.md ("Metric names"): the per-buffer metrics are taken only where they mean
+// The masks of docs/design.md ("Metrics"): the per-buffer metrics are taken only where they mean
 // something. Every mask is derived from the two AOV images (core/frame.h) alone, pixel by pixel:
 //  - covered: A > 0.5 (the coverage channel; partial coverage at an anti-aliased edge counts
 //    when the surface fills more than half the pixel);
@@ -24,7 +24,7 @@
 
 namespace twinrender::compare {
 
-// A pixel is covered when its A channel exceeds this (DESIGN.md: A is 1 where a surface is hit).
+// A pixel is covered when its A channel exceeds this (docs/design.md: A is 1 where hit).
 constexpr float COVERED_ALPHA = 0.5f;
 
 // A binary image: 1 inside, 0 outside, one byte a pixel, row-major like core::Image

@@ -1,4 +1,4 @@
-// Every metric twinrender reports, in one table (DESIGN.md, "Metric names"): its key, the
+// Every metric twinrender reports, in one table (docs/design.md, "Metrics"): its key, the
 // unit it is shown in, which way is better, the AOV buffer it reads, which code writes it and
 // what it means. The metrics, thresholds, baselines, reports, sweeps and studies all read it;
 // its order is the order of every metric table and column list.
@@ -42,8 +42,8 @@ struct MetricInfo {
     // About the rounding noise of the metric, in its unit: a change smaller than this is not
     // a regression anyone could see (a baseline's absolute tolerance).
     double noise;
-    // The AOV buffer it reads (DESIGN.md, "Frame"): "beauty" (R, G, B tonemapped), "A", "Z",
-    // "N", "uv", "id", "emission", "shadow"; "" for none (times, counters).
+    // The AOV buffer it reads (docs/design.md, "The frame"): "beauty" (R, G, B tonemapped), "A",
+    // "Z", "N", "uv", "id", "emission", "shadow"; "" for none (times, counters).
     std::string_view buffer;
     MetricSource source;
     bool overview;             // a column of the run's index page

@@ -1,4 +1,4 @@
-// Every metric of a pair of frames, by the names of DESIGN.md ("Metric names"): the one call
+// Every metric of a pair of frames, by the names of docs/design.md ("Metrics"): the one call
 // `twinrender compare` and `run` make.
 //
 // Two AOV images (every channel of core::aov::channelNames()): the beauty metrics on the

@@ -1,7 +1,7 @@
-// beauty.psnr: peak signal-to-noise ratio of the tonemapped beauty image (DESIGN.md, "Metric
-// names"). PSNR = 10 log10(peak^2 / MSE), the MSE taken over all pixels and the R, G, B
-// channels together, as scikit-image's peak_signal_noise_ratio(ref, test, data_range=1) does
-// on an H x W x 3 array. Reference: any signal-processing text; no paper constants.
+// beauty.psnr: peak signal-to-noise ratio of the tonemapped beauty image (docs/design.md,
+// "Metrics"). PSNR = 10 log10(peak^2 / MSE), the MSE taken over all pixels and the R, G, B channels
+// together, as scikit-image's peak_signal_noise_ratio(ref, test, data_range=1) does on an H x W x 3
+// array. Reference: any signal-processing text; no paper constants.
 #pragma once
 
 #include <array>

@@ -1,7 +1,7 @@
-// What a run leaves for people and for CI (DESIGN.md, "Command line" and "Thresholds and
-// baselines"): per-scene metrics.json, summary.json, summary.md, JUnit XML, and an HTML report
-// that works offline (one folder, no network: CSS and JavaScript inline, images as files
-// beside it).
+// What a run leaves for people and for CI (docs/cli.md; docs/design.md,
+// "Thresholds and baselines"): per-scene metrics.json, summary.json, summary.md, JUnit XML, and an
+// HTML report that works offline (one folder, no network: CSS and JavaScript inline, images as
+// files beside it).
 //
 // This header holds the report's data; its files are written by report_json.h (metrics.json,
 // summary.json, and the scene reports `merge` reads back), report_markdown.h (summary.md),

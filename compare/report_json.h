@@ -1,4 +1,4 @@
-// The JSON files of a run (DESIGN.md, "Thresholds and baselines"): per-scene metrics.json and
+// The JSON files of a run (docs/design.md, "Thresholds and baselines"): per-scene metrics.json and
 // summary.json, and the whole scene report that `merge` reads back from the shards of a run.
 // Non-finite metric values as json_number.h writes them.
 #pragma once

@@ -1,4 +1,4 @@
-// beauty.ssim: structural similarity of the tonemapped beauty image (DESIGN.md, "Metric names").
+// beauty.ssim: structural similarity of the tonemapped beauty image (docs/design.md, "Metrics").
 //
 // Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli, "Image quality assessment: from error
 // visibility to structural similarity", IEEE Transactions on Image Processing 13(4), 600-612,

@@ -1,6 +1,6 @@
 // A scatter chart as standalone SVG: cost (x) against error (y), one labelled marker per point,
 // the Pareto front as a line through the points no other point beats in both. Written for
-// `twinrender sweep` (DESIGN.md, "Command line"); no library, the SVG is plain text.
+// `twinrender sweep` (docs/cli.md); no library, the SVG is plain text.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// What `twinrender sweep` leaves (DESIGN.md, "Command line"): one row per combination of the
+// What `twinrender sweep` leaves (docs/cli.md): one row per combination of the
 // varied settings with its cost (median time per stage) and every metric, as
 // DIR/sweep.json, DIR/sweep.csv, the chart DIR/sweep.svg (time against one metric, Pareto
 // front marked) and DIR/index.html (the chart, the table, the command line). A sweep held to

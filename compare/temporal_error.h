@@ -1,4 +1,4 @@
-// Temporal error against the truth (DESIGN.md, "Sequences"): what the real-time sequence
+// Temporal error against the truth (docs/design.md, "Sequences"): what the real-time sequence
 // changes from one frame to the next that the reference does not. Motion the truth has changes
 // both alike and is not counted; what only the real-time renders change (particles that pop,
 // smoothing that follows the particles' order rather than the surface) is flicker.

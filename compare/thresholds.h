@@ -1,4 +1,4 @@
-// Metric thresholds: the absolute bounds a CI run holds each metric to (DESIGN.md, "Thresholds
+// Metric thresholds: the absolute bounds a CI run holds each metric to (docs/design.md, "Thresholds
 // and baselines"), and the verdict they give.
 //
 // A thresholds file (TOML) names metrics and their bounds, with per-scene overrides:
@@ -34,7 +34,7 @@
 
 namespace twinrender::compare {
 
-// Metric name -> value, as computed (DESIGN.md, "Metric names"). NaN: not computable.
+// Metric name -> value, as computed (docs/design.md, "Metrics"). NaN: not computable.
 using MetricValues = std::map<std::string, double>;
 
 // Ordered from best to worst, so the verdict of several checks is the largest.

@@ -12,7 +12,7 @@
 namespace twinrender::compare {
 namespace {
 
-// DESIGN.md's example.
+// docs/design.md's example.
 const char* EXAMPLE = R"("beauty.flip" = { max = 0.15, warn_max = 0.10 }
 "shadow.iou" = { min = 0.90 }
 [scenes.ringworld]

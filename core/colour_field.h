@@ -1,6 +1,6 @@
 // The colour field c(x) = sum_j v_j W(|x - x_j|, h_j) (M4 kernel, sph_kernel.h) over every
 // particle of a set whose support covers x, all bodies included: the field whose level set the
-// raymarcher renders (DESIGN.md) and whose gradient gives the particle normals
+// raymarcher renders (docs/design.md) and whose gradient gives the particle normals
 // (derived_attributes.h). Evaluated at arbitrary points for the real-time renderer's models of
 // the surface (realtime/field_normal.h, realtime/impostor_radius.h). Each point's sum runs in
 // a fixed order, so results do not depend on the thread count.

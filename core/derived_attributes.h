@@ -1,8 +1,8 @@
-// Per-particle attributes derived once in core/ and shared by both renderers (DESIGN.md, "The
-// two renderers"): texture coordinates and their gradient, the colour-field normal, the
-// blackbody glow. Everything is a pure function of the particle set: parallel over particles
-// (oneTBB), each particle computed by one task with a fixed summation order, so the results
-// are bit-identical for any thread count.
+// Per-particle attributes derived once in core/ and shared by both renderers (docs/design.md, "Data
+// flow"): texture coordinates and their gradient, the colour-field normal, the blackbody glow.
+// Everything is a pure function of the particle set: parallel over particles (oneTBB), each
+// particle computed by one task with a fixed summation order, so the results are bit-identical for
+// any thread count.
 #pragma once
 
 #include <glm/mat3x3.hpp>

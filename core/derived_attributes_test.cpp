@@ -484,7 +484,7 @@ TEST(BuildParticles, FileValuesBeyondTheFloatRangeAreRejected) {
     std::filesystem::remove_all(dir);
 }
 
-// The real OpenSPH output beside the project (SCENES.md): one body, volumes m/rho capped.
+// The real OpenSPH output (data/opensph_ball/): one body, volumes m/rho capped.
 TEST(BuildParticles, OpenSphBall) {
     const std::filesystem::path path = std::filesystem::path(TWINRENDER_SOURCE_DIR) / ".." /
                                        "shared" / "data" / "opensph" / "ball.ssf";

@@ -1,4 +1,4 @@
-// Errors that carry their context. Only app/ maps them to exit codes (DESIGN.md):
+// Errors that carry their context. Only app/ maps them to exit codes (docs/design.md):
 // InputError (and OutputError) -> 4 (bad input or environment), NotComparableError -> 3.
 #pragma once
 

@@ -1,4 +1,4 @@
-// What a renderer returns (core/renderer.h): the AOV image of DESIGN.md, the image a person
+// What a renderer returns (core/renderer.h): the AOV image of docs/design.md, the image a person
 // looks at, and the facts the JSON beside them records (settings, device, counters, stage
 // timings).
 #pragma once

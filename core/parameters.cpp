@@ -157,7 +157,7 @@ void ParameterTable::checkAllRead() const {
         if (!e.read)
             throw InputError(
                 fmt::format("{}: unknown key '{}'; check its spelling against "
-                            "SCENES.md and the renderer's settings",
+                            "docs/scenes.md",
                             e.where, shownKey(k)));
 }
 

@@ -1,5 +1,5 @@
 // Procedural particle sets: the shapes ball, shell and ring filled with a hcp, cubic or random
-// lattice (SCENES.md, [[bodies]]). Generators work in the body's local frame (z = the pole
+// lattice (docs/scenes.md, "Bodies"). Generators work in the body's local frame (z = the pole
 // axis BodyDesc::normal) and return scene-space positions; they are deterministic and give
 // bit-identical sets on every platform (plain IEEE arithmetic and sqrt only, an own PRNG).
 //

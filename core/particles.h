@@ -1,5 +1,5 @@
 // The particles of a scene and their derived attributes, computed once in core/ and shared
-// by both renderers (DESIGN.md, "The two renderers"), except the particle normals: only the
+// by both renderers (docs/design.md, "Data flow"), except the particle normals: only the
 // real-time renderer uses them, and it derives them as a stage of its per-set work (on the GPU
 // with realtime.per_set = "gpu"). Structure of arrays, float32: what a GPU buffer and Embree
 // want.

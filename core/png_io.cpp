@@ -118,9 +118,8 @@ bool encode(png_structp png, png_infop info, std::FILE* file, int width, int hei
                  channels == 4 ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_compression_level(png, 1);
-    // No row filter: libpng's adaptive choice tries all five per row; on a 1920x1080 error map
-    // it took 110 ms to no filter's 80 ms (fastest of 5, under load), the file 7 % smaller,
-    // and on the default scenes' renders and maps sizes stay within 3 %, maps smaller.
+    // No row filter: faster than libpng's adaptive choice for files of about the same size
+    // (docs/performance.md, "Writing PNGs").
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
     png_write_info(png, info);
     png_write_image(png, rows);

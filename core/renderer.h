@@ -1,7 +1,7 @@
-// The one interface of a renderer (STYLE.md 15): the reference raymarcher, the real-time
-// renderer and any third one take the same inputs and return the same Frame, so the commands,
-// sweeps and studies treat them alike. A renderer is constructed with its device and its typed
-// settings; everything a render reads about the scene comes in through RenderInput.
+// The one interface of a renderer (CONTRIBUTING.md, "House style"): the reference raymarcher, the
+// real-time renderer and any third one take the same inputs and return the same Frame, so the
+// commands, sweeps and studies treat them alike. A renderer is constructed with its device and its
+// typed settings; everything a render reads about the scene comes in through RenderInput.
 #pragma once
 
 #include <atomic>

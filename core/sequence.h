@@ -1,6 +1,6 @@
 // Sequences: a scene whose particles change from frame to frame (file bodies naming a
 // sequence of files, generated bodies that move and churn) seen by a camera that may move.
-// The [sequence] table (README, "Sequences"):
+// The [sequence] table (docs/scenes.md, "Sequences"):
 //
 //   [sequence]
 //   first = 0                 # frame numbers; default: the lowest and highest of the first

@@ -34,7 +34,7 @@ TEST(ParticleFile, SsfBallCountExtentsAndSmoothingLength) {
     EXPECT_NEAR(maxRadius, 1000.0, 75.0);
     // Centred at the origin: a lattice offset of at most a spacing.
     EXPECT_LT(glm::length(mean), 75.0);
-    // SCENES.md gives h ~ 97 m, rounded to metres.
+    // The file's h is about 97 m, rounded to metres.
     EXPECT_NEAR(median(d.h), 97.0, 1.0);
     for (double h : d.h) ASSERT_GT(h, 0.0);
 }

@@ -1,4 +1,4 @@
-// What the fuzz targets share (README, "Fuzzing"): each target is the body of
+// What the fuzz targets share (CONTRIBUTING.md, "Fuzzing"): each target is the body of
 // LLVMFuzzerTestOneInput, linked either with libFuzzer (scripts/fuzz, clang) or with
 // replay_main.cpp, which feeds it the files of fuzz/regressions/ and fuzz/corpus/ under ctest.
 // The readers take paths, so an input goes through a file, as a user's would.

@@ -1,4 +1,4 @@
-// Replays inputs through a fuzz target without libFuzzer (README, "Fuzzing"): every file
+// Replays inputs through a fuzz target without libFuzzer (CONTRIBUTING.md, "Fuzzing"): every file
 // named, or found under a folder named, in sorted order. Under ctest this keeps the inputs
 // that once crashed or hung a target (fuzz/regressions/TARGET/) and the seed corpus
 // (fuzz/corpus/TARGET/) passing: a crash fails the test, a hang runs into its timeout.

@@ -1,6 +1,6 @@
-// One pixel of the reference on its way into the AOV image (DESIGN.md, "Frame"): each sample's
-// hit shaded with the shared model (core/shading.h), the samples of the pixel gathered, then
-// the pixel written. Beauty, coverage, emission and shadow are averaged over the samples; the
+// One pixel of the reference on its way into the AOV image (docs/design.md, "The frame"): each
+// sample's hit shaded with the shared model (core/shading.h), the samples of the pixel gathered,
+// then the pixel written. Beauty, coverage, emission and shadow are averaged over the samples; the
 // geometric channels (depth, normal, uv, id) are not filtered: they come from the hit sample
 // nearest the pixel centre.
 #pragma once

@@ -1,6 +1,6 @@
 // The colour field along one ray segment, in the layout the field loops want.
 //
-// phi(x) = sum_j v_j W(|x - x_j|, h_j) (DESIGN.md), W the M4 spline (core/sph_kernel.h).
+// phi(x) = sum_j v_j W(|x - x_j|, h_j) (docs/design.md), W the M4 spline (core/sph_kernel.h).
 // Along a ray x(t) = o + t d, particle j contributes f_j(t) = c_j w(q_j(t)) with
 // c_j = v_j / (pi h_j^3), q_j = sqrt((t - tc_j)^2 + d2_j) / h_j, tc_j its closest-approach
 // parameter and d2_j its squared distance from the ray; it is non-zero only on its support

@@ -1,4 +1,4 @@
-// The reference raymarcher (DESIGN.md, "Reference raymarcher"): the exact level set of the
+// The reference raymarcher (docs/design.md, "The reference raymarcher"): the exact level set of the
 // particles' colour field (surface_tracer.h), shaded with the shared model, written as the
 // AOV image. Tiles run in parallel on the caller's oneTBB arena; every pixel is computed on
 // its own, so the image is bit-identical for any thread count.

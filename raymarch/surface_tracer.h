@@ -1,6 +1,6 @@
-// Finding the implicit surface along rays, a pixel block at a time (DESIGN.md: "Embree finds
-// the candidate particles along each ray segment ... then evaluate phi and dphi/dt along the
-// ray").
+// Finding the implicit surface along rays, a pixel block at a time (docs/design.md,
+// "The reference raymarcher": Embree finds the candidate particles along each ray segment,
+// then phi and dphi/dt are evaluated along the ray).
 //
 // A block's rays advance together in rounds: each round, every unfinished ray takes its next
 // segment (a few h long), one bundle gather (bundle_gather.h) finds the support spheres that

@@ -1,6 +1,7 @@
-// The depth encodings of realtime.depth (DESIGN.md, "Depth"), as window-space values in [0, 1]
-// from eye depth z in [near, far], and their inverses. shaders/common.glsl (windowDepth) writes
-// the same values on the GPU; these are the C++ reference for tests and for reading depth back.
+// The depth encodings of realtime.depth (docs/scenes.md, realtime.depth), as window-space values in
+// [0, 1] from eye depth z in [near, far], and their inverses. shaders/common.glsl (windowDepth)
+// writes the same values on the GPU; these are the C++ reference for tests and for reading depth
+// back.
 #pragma once
 
 #include "realtime/settings.h"

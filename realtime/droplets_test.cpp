@@ -16,7 +16,7 @@ namespace {
 constexpr float H = 1.0f;
 constexpr double LEVEL = 0.13;
 
-// Particles of smoothing length H at the given positions, with the volume cap of DESIGN.md
+// Particles of smoothing length H at the given positions, with the volume cap of docs/design.md
 // (0.1 (4/3) pi h^3, a lone particle's droplet about 0.13 h across at LEVEL) and field radii.
 struct Set {
     core::ParticleSet ps;

@@ -1,5 +1,5 @@
 // The last step of a real-time frame: the buffers read back from GL become the AOV image of
-// DESIGN.md and the display image. Pure CPU, no GL: the renderer reads the textures, this
+// docs/design.md and the display image. Pure CPU, no GL: the renderer reads the textures, this
 // turns OpenGL's bottom-up rows of RGBA floats into the images' top-down channels.
 #pragma once
 

@@ -1,7 +1,7 @@
 // The real-time renderer: sphere impostors, Screen-Space Surface Smoothing, logarithmic or
-// reversed depth, shadow maps (DESIGN.md, "Real-time"). A frame is five steps: check the
-// device's limits, compile the programs, upload the scene, run the passes (passes.h), read
-// back the AOV image.
+// reversed depth, shadow maps (docs/design.md, "The real-time renderer"). A frame is five steps:
+// check the device's limits, compile the programs, upload the scene, run the passes (passes.h),
+// read back the AOV image.
 #pragma once
 
 #include <memory>

@@ -10,7 +10,7 @@
 
 namespace twinrender::realtime {
 
-// How the depth buffer stores depth (DESIGN.md, "Depth"). The Z channel of the frame is
+// How the depth buffer stores depth (docs/scenes.md, realtime.depth). The Z channel of the frame is
 // linear eye depth in every mode.
 enum class DepthMode {
     Standard,  // "standard": the perspective z/w in a 24-bit fixed-point buffer (GL's default)

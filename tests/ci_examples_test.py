@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The CI files users copy (ci/examples/): each parses as YAML, shards the run over a matrix
-and merges the shards, uploads the report, and runs exactly the twinrender commands the README
+and merges the shards, uploads the report, and runs exactly the twinrender commands docs/cli.md
 shows (and scripts/setup), with options twinrender has. Run by ctest as
 CiExamples.ParseAndRunTheReadmesCommands."""
 import argparse
@@ -19,7 +19,7 @@ TOOL = "build/app/twinrender"
 
 
 def readme_lines(readme: Path) -> set:
-    """Every line inside the README's ```sh blocks, stripped."""
+    """Every line inside the page's ```sh blocks, stripped."""
     lines, inside = set(), False
     for line in readme.read_text().splitlines():
         if line.startswith("```"):
@@ -78,7 +78,7 @@ def main() -> int:
     parser.add_argument("--source", required=True, type=Path)
     parser.add_argument("--twinrender", required=True)
     args = parser.parse_args()
-    readme = readme_lines(args.source / "README.md")
+    readme = readme_lines(args.source / "docs" / "cli.md")
     readme_tool = {line for line in readme if line.startswith(TOOL + " ")}
     problems = []
     examples = {"github-actions.yml": github_scripts, "gitlab-ci.yml": gitlab_scripts}
@@ -97,14 +97,14 @@ def main() -> int:
         problems += [f"{path}: {p}" for p in local]
         for line in commands:
             if line not in readme:
-                problems.append(f"{path}: runs a command the README does not show: {line}")
+                problems.append(f"{path}: runs a command docs/cli.md does not show: {line}")
             if line.startswith(TOOL + " "):
                 check_options(line, args.twinrender, problems, str(path))
         if "scripts/setup" not in commands:
             problems.append(f"{path}: does not set up with scripts/setup")
         missing = readme_tool - set(commands)
         for line in sorted(missing):
-            problems.append(f"{path}: does not run the README's {line}")
+            problems.append(f"{path}: does not run docs/cli.md's {line}")
         if not any(" run " in c and "--shard" in c for c in commands):
             problems.append(f"{path}: no `twinrender run --shard`")
         if not any(c.startswith(TOOL + " merge ") for c in commands):

@@ -41,7 +41,7 @@ std::vector<std::string> temporaryFiles(const fs::path& dir) {
     return found;
 }
 
-// The report files of `run` under `dir` (DESIGN.md): all of them or none may be there.
+// The report files of `run` under `dir` (docs/design.md): all of them or none may be there.
 const std::vector<std::string> RUN_REPORT = {"summary.json", "summary.md", "index.html",
                                              "slab/metrics.json", "slab/index.html"};
 

@@ -1,4 +1,4 @@
-// The render command end to end: the AOV EXR, the PNG and the JSON of DESIGN.md.
+// The render command end to end: the AOV EXR, the PNG and the JSON of docs/design.md.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -21,7 +21,7 @@
 namespace twinrender::core::particle_file_testing {
 namespace fs = std::filesystem;
 
-// The real OpenSPH output beside the checkout (SCENES.md): a basalt ball, 10,648 particles.
+// The real OpenSPH output (data/opensph_ball/): a basalt ball, 10,648 particles.
 inline fs::path ballPath() {
     return fs::path(TWINRENDER_SOURCE_DIR) / ".." / "shared" / "data" / "opensph" / "ball.ssf";
 }
