@@ -2,8 +2,8 @@
 
 #include <ctime>
 
-#include "compare/buffer_display.h"
 #include "compare/error_maps.h"
+#include "report/buffer_display.h"
 
 namespace twinrender::app {
 
@@ -23,20 +23,20 @@ void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
     metrics["time." + ref.renderer + "_ms"] = ref.timingsMs.at("total");
 }
 
-compare::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
-                                  const core::Frame& test, const compare::Bounds& bounds,
-                                  const compare::Baseline* baseline, double ppd, double flipOver,
-                                  const std::filesystem::path& dir) {
+report::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
+                                 const core::Frame& test, const compare::Bounds& bounds,
+                                 const compare::Baseline* baseline, double ppd, double flipOver,
+                                 const std::filesystem::path& dir) {
     const compare::MetricResult result =
         compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd, flipOver));
     return sceneReport(s, ref, test, result, bounds, baseline, dir);
 }
 
-compare::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
-                                 const core::Frame& test, const compare::MetricResult& result,
-                                 const compare::Bounds& bounds, const compare::Baseline* baseline,
-                                 const std::filesystem::path& dir) {
-    compare::SceneReport report;
+report::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
+                                const core::Frame& test, const compare::MetricResult& result,
+                                const compare::Bounds& bounds, const compare::Baseline* baseline,
+                                const std::filesystem::path& dir) {
+    report::SceneReport report;
     report.name = s.scene.name;
     report.description = s.scene.description;
     report.metrics = result.values;
@@ -48,22 +48,22 @@ compare::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
     if (result.hdrExposures) report.settings["compare"] = hdrExposuresJson(*result.hdrExposures);
     checkReport(report, bounds, baseline);
 
-    compare::BufferVisualSettings visual;
+    report::BufferVisualSettings visual;
     visual.exposure = static_cast<float>(s.scene.camera.exposure);
-    visual.depthRange = compare::depthRange(ref.image, test.image);
+    visual.depthRange = report::depthRange(ref.image, test.image);
     for (const core::Frame* r : {&ref, &test}) {
-        compare::RendererReport rr;
+        report::RendererReport rr;
         rr.timingsMs = r->timingsMs;
         rr.device = r->device;
         rr.counters = r->counters;
-        rr.images = compare::writeBufferImages(r->image, &r->display, dir, r->renderer, visual);
+        rr.images = report::writeBufferImages(r->image, &r->display, dir, r->renderer, visual);
         report.renderers[r->renderer] = std::move(rr);
     }
     report.errorMaps = compare::writeErrorMapImages(result.errorMaps, dir);
     return report;
 }
 
-void checkReport(compare::SceneReport& report, const compare::Bounds& bounds,
+void checkReport(report::SceneReport& report, const compare::Bounds& bounds,
                  const compare::Baseline* baseline) {
     report.checks = compare::evaluate(report.metrics, bounds);
     if (baseline) {

@@ -8,8 +8,8 @@
 #include "app/render_job.h"
 #include "compare/baseline.h"
 #include "compare/metrics.h"
-#include "compare/report.h"
 #include "compare/thresholds.h"
+#include "report/report.h"
 
 namespace twinrender::app {
 
@@ -21,22 +21,22 @@ compare::MetricSettings metricSettings(const LoadedScene& scene, double ppd,
 // Compares the real-time render (test) with the reference (ref), writes the scene folder's
 // images (per-buffer PNGs of both renders, colour-mapped error maps) and returns the scene's
 // report with its checks. `bounds` from the thresholds; `baseline` may be null.
-compare::SceneReport compareScene(const LoadedScene& scene, const core::Frame& ref,
-                                  const core::Frame& test, const compare::Bounds& bounds,
-                                  const compare::Baseline* baseline, double ppd, double flipOver,
-                                  const std::filesystem::path& sceneDir);
+report::SceneReport compareScene(const LoadedScene& scene, const core::Frame& ref,
+                                 const core::Frame& test, const compare::Bounds& bounds,
+                                 const compare::Baseline* baseline, double ppd, double flipOver,
+                                 const std::filesystem::path& sceneDir);
 
 // The same for metrics already computed (compare::computeMetrics of the pair): the report,
 // its checks, and the scene folder's images.
-compare::SceneReport sceneReport(const LoadedScene& scene, const core::Frame& ref,
-                                 const core::Frame& test, const compare::MetricResult& result,
-                                 const compare::Bounds& bounds, const compare::Baseline* baseline,
-                                 const std::filesystem::path& sceneDir);
+report::SceneReport sceneReport(const LoadedScene& scene, const core::Frame& ref,
+                                const core::Frame& test, const compare::MetricResult& result,
+                                const compare::Bounds& bounds, const compare::Baseline* baseline,
+                                const std::filesystem::path& sceneDir);
 
 // Sets the report's checks: its metrics against `bounds`, and against the baseline's metrics
 // of the scene when `baseline` is not null (also setting report.baseline). The report's name
 // and settings must be set.
-void checkReport(compare::SceneReport& report, const compare::Bounds& bounds,
+void checkReport(report::SceneReport& report, const compare::Bounds& bounds,
                  const compare::Baseline* baseline);
 
 // The exposures beauty.hdrflip was taken over, as a report's settings show them:

@@ -13,13 +13,13 @@
 #include "app/shard.h"
 #include "app/suite_commands.h"
 #include "app/sweep_command.h"
-#include "compare/junit.h"
-#include "compare/report.h"
-#include "compare/report_json.h"
-#include "compare/sweep_report.h"
 #include "core/error.h"
 #include "core/folder_name.h"
 #include "core/write_roots.h"
+#include "report/junit.h"
+#include "report/report.h"
+#include "report/report_json.h"
+#include "report/sweep_report.h"
 
 namespace twinrender::app {
 
@@ -47,12 +47,12 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
                   const fs::path& out, const MergeOptions& o) {
     const json& first = manifests.front();
     const auto order = first.at("scenes").get<std::vector<std::string>>();
-    std::map<std::string, compare::SceneReport> reports;
+    std::map<std::string, report::SceneReport> reports;
     std::map<std::string, fs::path> from;
     for (std::size_t i = 0; i < dirs.size(); ++i)
         for (const json& r : manifests[i].at("reports")) {
-            compare::SceneReport s =
-                compare::sceneReportFromJson(r, (dirs[i] / "shard.json").string());
+            report::SceneReport s =
+                report::sceneReportFromJson(r, (dirs[i] / "shard.json").string());
             folderInShard(dirs[i], s.name, "the scene name");
             if (reports.count(s.name))
                 throw core::InputError(
@@ -61,7 +61,7 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
             from[s.name] = dirs[i];
             reports.emplace(s.name, std::move(s));
         }
-    compare::RunReport run;
+    report::RunReport run;
     run.createdAt = nowUtc();
     run.commandLine = o.commandLine;
     run.thresholdsFile = first.at("settings").value("thresholds", "");
@@ -84,8 +84,8 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
             if (const fs::path dir = folderInShard(from[name], name, "the scene name");
                 fs::is_directory(dir))
                 copyTree(dir, staging / name);
-        compare::writeReport(run, staging);
-        if (first.value("junit", false)) compare::writeJunit(run, staging / "junit.xml");
+        report::writeReport(run, staging);
+        if (first.value("junit", false)) report::writeJunit(run, staging / "junit.xml");
     });
     std::printf("merged %zu shards, %zu scenes: %s -> %s\n", dirs.size(), run.scenes.size(),
                 std::string(compare::toString(run.status())).c_str(), (out / "index.html").c_str());
@@ -96,7 +96,7 @@ ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& ma
 ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
                     const fs::path& out, const std::string& commandLine) {
     const std::size_t total = manifests.front().at("combinations").get<std::size_t>();
-    std::optional<compare::SweepReport> merged;
+    std::optional<report::SweepReport> merged;
     std::map<std::size_t, fs::path> seen;
     for (std::size_t i = 0; i < dirs.size(); ++i) {
         if (manifests[i].at("combinations").get<std::size_t>() != total)
@@ -108,8 +108,8 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
         if (!in || j.is_discarded())
             throw core::InputError(
                 fmt::format("{}: missing or not JSON", (dirs[i] / "sweep.json").string()));
-        compare::SweepReport part = compare::sweepFromJson(j, (dirs[i] / "sweep.json").string());
-        for (compare::SweepRow& row : part.rows) {
+        report::SweepReport part = report::sweepFromJson(j, (dirs[i] / "sweep.json").string());
+        for (report::SweepRow& row : part.rows) {
             folderInShard(dirs[i], row.dir, "the combination's folder");
             if (row.index >= total || seen.count(row.index))
                 throw core::InputError(
@@ -143,7 +143,7 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
         for (const fs::path& dir : dirs)
             if (fs::is_directory(dir / "reference_cache"))
                 copyTree(dir / "reference_cache", staging / "reference_cache");
-        compare::writeSweepReport(*merged, staging);
+        report::writeSweepReport(*merged, staging);
     });
     std::printf("merged %zu shards, %zu combinations -> %s, %s\n", dirs.size(), merged->rows.size(),
                 (out / "sweep.csv").c_str(), (out / "index.html").c_str());

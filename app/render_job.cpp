@@ -9,13 +9,13 @@
 
 #include "app/interruption.h"
 #include "app/progress.h"
-#include "compare/study_summary.h"
 #include "core/error.h"
 #include "core/particle_file.h"
 #include "raymarch/embree_device.h"
 #include "raymarch/renderer.h"
 #include "realtime/gl/context.h"
 #include "realtime/renderer.h"
+#include "report/study_summary.h"
 
 namespace twinrender::app {
 
@@ -127,7 +127,7 @@ std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& device
         }
     for (std::size_t i = 0; i < scenes.size(); ++i)
         for (const auto& [stage, v] : times[i]) {
-            timed[i].medianMs[stage] = compare::median(v);
+            timed[i].medianMs[stage] = report::median(v);
             timed[i].fastestMs[stage] = *std::min_element(v.begin(), v.end());
         }
     return timed;

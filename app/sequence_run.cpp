@@ -13,12 +13,12 @@
 #include "app/video_encoder.h"
 #include "compare/flip.h"
 #include "compare/metrics.h"
-#include "compare/sequence_report.h"
-#include "compare/sequence_summary.h"
-#include "compare/sequence_video.h"
 #include "compare/temporal_error.h"
 #include "core/error.h"
 #include "core/sequence.h"
+#include "report/sequence_report.h"
+#include "report/sequence_summary.h"
+#include "report/sequence_video.h"
 
 namespace twinrender::app {
 
@@ -34,7 +34,7 @@ std::optional<std::int64_t> integer(const std::string& text) {
 }
 
 // A frame's images prefixed with its folder, so that the scene page (one folder up) finds them.
-void prefixImages(compare::SceneReport& report, const std::string& prefix) {
+void prefixImages(report::SceneReport& report, const std::string& prefix) {
     for (auto& [name, r] : report.renderers)
         for (auto& [buffer, path] : r.images) path = prefix + path;
     for (auto& [buffer, m] : report.errorMaps) m.path = prefix + m.path;
@@ -104,12 +104,12 @@ nlohmann::json sequenceSettings(const core::SequenceSettings& q, std::size_t fra
             {"fps", q.fps},     {"camera", camera}, {"frames", frames}};
 }
 
-std::vector<compare::SequenceFrame> compareSequenceFrames(
+std::vector<report::SequenceFrame> compareSequenceFrames(
     LoadedScene& s, LoadedScene& referenceScene, const std::vector<std::string>& referenceOverrides,
     core::Renderer& renderer, std::string_view rendererName, ReferenceCache& cache, double ppd,
     double flipOver, const std::function<void(const SequenceStep&)>& visit) {
     const std::vector<std::int64_t> frames = core::sequenceFrames(s.scene);
-    std::vector<compare::SequenceFrame> out;
+    std::vector<report::SequenceFrame> out;
     std::optional<std::pair<core::Frame, core::Frame>> previous;  // reference, real-time
     compare::FlipSettings flip;
     flip.ppd = ppd;
@@ -144,27 +144,27 @@ std::vector<compare::SequenceFrame> compareSequenceFrames(
     return out;
 }
 
-compare::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache& cache,
-                                 const SequenceRun& run, const fs::path& dir) {
+report::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache& cache,
+                                const SequenceRun& run, const fs::path& dir) {
     const double fps = s.scene.sequence->fps;
     auto realtime = makeRenderer("realtime", devices, s);
     VideoEncoder video(dir / "sequence.mp4", dir / "sequence.webm", fps);
-    compare::SequenceReport sequence;
+    report::SequenceReport sequence;
     sequence.fps = fps;
-    std::vector<compare::SceneReport> frameReports;
+    std::vector<report::SceneReport> frameReports;
     sequence.frames = compareSequenceFrames(
         s, s, run.overrides, *realtime, "realtime", cache, run.ppd, run.flipOver,
         [&](const SequenceStep& step) {
             const std::string folder = "frames/" + frameFolder(step.frame) + "/";
             writeRender(s, step.reference, dir / folder);
             writeRender(s, step.test, dir / folder);
-            compare::SceneReport report = sceneReport(s, step.reference, step.test, step.result,
-                                                      run.bounds, nullptr, dir / folder);
+            report::SceneReport report = sceneReport(s, step.reference, step.test, step.result,
+                                                     run.bounds, nullptr, dir / folder);
             report.metrics = step.metrics;
             const std::string flicker =
                 step.change ? fmt::format("{:+.4f}", step.change->flicker()) : "-";
             const double flipMean = step.result.values.at("beauty.flip");
-            video.add(compare::sideBySideFrame(
+            video.add(report::sideBySideFrame(
                 step.test.display, step.reference.display, step.result.errorMaps.at("beauty.flip"),
                 fmt::format("FRAME {}  FLIP {:.4f}  FLICKER {}", step.frame, flipMean, flicker)));
             std::printf(
@@ -179,12 +179,12 @@ compare::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCach
         });
     video.finish();
     sequence.videos = {{"video/webm", "sequence.webm"}, {"video/mp4", "sequence.mp4"}};
-    sequence.charts = compare::writeSequenceCharts(sequence, dir);
-    sequence.shownFrame = compare::worstFrame(sequence.frames);
+    sequence.charts = report::writeSequenceCharts(sequence, dir);
+    sequence.shownFrame = report::worstFrame(sequence.frames);
     std::size_t shown = 0;
     while (sequence.frames.at(shown).frame != sequence.shownFrame) ++shown;
-    compare::SceneReport report = std::move(frameReports.at(shown));
-    report.metrics = compare::summariseSequence(sequence.frames);
+    report::SceneReport report = std::move(frameReports.at(shown));
+    report.metrics = report::summariseSequence(sequence.frames);
     report.settings["sequence"] = sequenceSettings(*s.scene.sequence, sequence.frames.size());
     checkReport(report, run.bounds, run.baseline);
     report.sequence = std::move(sequence);

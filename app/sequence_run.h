@@ -4,7 +4,7 @@
 // app/reference_cache.h, keyed by the frame), compares each pair, measures the temporal error of
 // each consecutive pair against the truth (compare/temporal_error.h), and writes the charts, the
 // side-by-side video (app/video_encoder.h) and the scene's report, whose metrics summarise the
-// frames (compare/sequence_summary.h). Every frame is a new particle set for the real-time
+// frames (report/sequence_summary.h). Every frame is a new particle set for the real-time
 // renderer.
 #pragma once
 
@@ -21,9 +21,9 @@
 #include "app/render_job.h"
 #include "compare/baseline.h"
 #include "compare/metrics.h"
-#include "compare/report.h"
 #include "compare/temporal_error.h"
 #include "compare/thresholds.h"
+#include "report/report.h"
 
 namespace twinrender::app {
 
@@ -64,8 +64,8 @@ struct SequenceStep {
 // a new particle set: its per-set work is part of the frame's time), the metrics (with `ppd` and
 // `flipOver`) and the change from the previous frame (compare/temporal_error.h). `visit` sees
 // each step before the next frame renders. Returns the frames' metrics, for
-// compare::summariseSequence.
-std::vector<compare::SequenceFrame> compareSequenceFrames(
+// report::summariseSequence.
+std::vector<report::SequenceFrame> compareSequenceFrames(
     LoadedScene& test, LoadedScene& reference, const std::vector<std::string>& referenceOverrides,
     core::Renderer& renderer, std::string_view rendererName, ReferenceCache& cache, double ppd,
     double flipOver, const std::function<void(const SequenceStep&)>& visit);
@@ -85,7 +85,7 @@ struct SequenceRun {
 // `run` on a sequence scene: see above. Writes DIR/frames/<frameFolder>/ (both renders, their
 // buffers and error maps), DIR/charts/, DIR/sequence.mp4 and DIR/sequence.webm. The report's
 // images are those of the frame with the largest beauty.flip.
-compare::SceneReport runSequence(LoadedScene& scene, Devices& devices, ReferenceCache& cache,
-                                 const SequenceRun& run, const std::filesystem::path& dir);
+report::SceneReport runSequence(LoadedScene& scene, Devices& devices, ReferenceCache& cache,
+                                const SequenceRun& run, const std::filesystem::path& dir);
 
 }  // namespace twinrender::app

@@ -12,16 +12,16 @@
 #include <stdexcept>
 
 #include "compare/metric_table.h"
-#include "compare/study_summary.h"
 #include "compare/thresholds.h"
+#include "report/study_summary.h"
 
 namespace twinrender::app {
 
 namespace {
 
-using compare::StudyResult;
-using compare::StudyRow;
 using nlohmann::json;
+using report::StudyResult;
+using report::StudyRow;
 
 double metricOf(const StudyRow& r, const std::string& metric) {
     const auto it = r.metrics.find(metric);
@@ -500,7 +500,7 @@ void temporalConclude(StudyResult& s) {
     s.chart = seriesChart(s, "temporal.frame_flip");
     for (auto& line : s.chart.series) line.name = "real-time, " + line.name;
     if (!all.empty()) {
-        compare::LineSeries ref{"reference", {}, true};
+        report::LineSeries ref{"reference", {}, true};
         for (const StudyRow* r : all.front().second)
             ref.points.push_back({r->x, metricOf(*r, "temporal.reference_frame_flip"), ""});
         s.chart.series.push_back(std::move(ref));
@@ -598,20 +598,20 @@ std::vector<StudyPoint> flickerPoints(bool quick) {
 void flickerConclude(StudyResult& s) {
     const auto all = bySeries(s);
     const std::string metric = "temporal.flicker", normal = "temporal.normal_flicker_deg";
-    compare::LineChart empty = seriesChart(s, metric);
+    report::LineChart empty = seriesChart(s, metric);
     empty.series.clear();
     s.chart = empty;
     s.chart.title = s.title + ", churning ball: " + metric;
     s.chart.width = 960;  // room in the legend for "curvature_flow (impostors)"
-    compare::StudyTable table{"summary",
-                              "Per group and method, the mean over the frames after the first of "
-                              "temporal.flicker and temporal.normal_flicker_deg.",
-                              {"group", "method"},
-                              {metric, normal},
-                              {}};
+    report::StudyTable table{"summary",
+                             "Per group and method, the mean over the frames after the first of "
+                             "temporal.flicker and temporal.normal_flicker_deg.",
+                             {"group", "method"},
+                             {metric, normal},
+                             {}};
     std::string parts, agree;
     for (const FlickerGroup& g : flickerGroups()) {
-        compare::LineChart chart = empty;
+        report::LineChart chart = empty;
         chart.title = fmt::format("{}, {}: {}", s.title, g.name, metric);
         std::string least, most;
         double lo = INFINITY, hi = -INFINITY, loNormal = NAN, hiNormal = NAN;
@@ -625,7 +625,7 @@ void flickerConclude(StudyResult& s) {
             table.lines.push_back({{g.name, method}, {{metric, v}, {normal, n}}});
             if (std::isfinite(v) && v < lo) lo = v, loNormal = n, least = method;
             if (std::isfinite(v) && v > hi) hi = v, hiNormal = n, most = method;
-            compare::LineSeries line{
+            report::LineSeries line{
                 g.legend.empty() ? method : fmt::format("{} ({})", method, g.legend),
                 {},
                 !g.legend.empty()};
@@ -994,15 +994,15 @@ std::string angleFinding(const std::vector<const StudyRow*>& rows, json& facts) 
            fmt::format("; face-on → {}°: {}", num(last), growth);
 }
 
-compare::LineChart alongChart(const std::vector<const StudyRow*>& rows, const std::string& title,
-                              const std::string& xLabel, bool xLog) {
-    compare::LineChart c;
+report::LineChart alongChart(const std::vector<const StudyRow*>& rows, const std::string& title,
+                             const std::string& xLabel, bool xLog) {
+    report::LineChart c;
     c.title = title;
     c.xLabel = xLabel;
     c.yLabel = "normal.mean_deg (°)";
-    c.xScale = xLog ? compare::AxisScale::Log : compare::AxisScale::Linear;
+    c.xScale = xLog ? report::AxisScale::Log : report::AxisScale::Linear;
     for (const auto& [series, errors] : normalBySeries(rows)) {
-        compare::LineSeries line{series, {}, false};
+        report::LineSeries line{series, {}, false};
         for (const auto& [x, e] : errors) line.points.push_back({x, e, ""});
         c.series.push_back(std::move(line));
     }
@@ -1010,7 +1010,7 @@ compare::LineChart alongChart(const std::vector<const StudyRow*>& rows, const st
 }
 
 // Stages in the order a frame runs them (realtime/README.md); others after them by name.
-std::vector<std::string> stageOrder(const std::vector<compare::SettingMedians>& settings) {
+std::vector<std::string> stageOrder(const std::vector<report::SettingMedians>& settings) {
     std::vector<std::string> order = {"total",   "radius",  "cull",    "upload",
                                       "shadow",  "gbuffer", "normals", "ssss",
                                       "surface", "shade",   "post",    "readback"};
@@ -1026,22 +1026,22 @@ std::vector<std::string> stageOrder(const std::vector<compare::SettingMedians>& 
     return out;
 }
 
-double timeOf(const compare::SettingMedians& s) {
+double timeOf(const report::SettingMedians& s) {
     const auto it = s.timingsMs.find("total");
     return it == s.timingsMs.end() ? NAN : it->second;
 }
-double normalOf(const compare::SettingMedians& s) {
+double normalOf(const report::SettingMedians& s) {
     const auto it = s.metrics.find("normal.mean_deg");
     return it == s.metrics.end() ? NAN : it->second;
 }
 
 // The tables of the default scenes: the medians of every column and the frame time, the
 // stages, the normal error per scene.
-void suiteTables(StudyResult& s, const std::vector<compare::SettingMedians>& settings,
+void suiteTables(StudyResult& s, const std::vector<report::SettingMedians>& settings,
                  const std::vector<std::size_t>& front, const std::vector<const StudyRow*>& rows,
                  const std::vector<std::string>& scenes) {
     const std::vector<std::string> labels = {"method", "parameter", "shape"};
-    compare::StudyTable summary{
+    report::StudyTable summary{
         "summary",
         fmt::format("Per setting, the median over the {} default scenes of each metric and of the "
                     "real-time frame time (each point's time: the fastest of its frames); front: "
@@ -1053,7 +1053,7 @@ void suiteTables(StudyResult& s, const std::vector<compare::SettingMedians>& set
     for (const auto& c : s.columns)
         if (c != "count.unbracketed_rays") summary.columns.push_back(c);
     summary.columns.push_back("time.total_ms");
-    compare::StudyTable stages{
+    report::StudyTable stages{
         "stages",
         "Per setting, the median over the default scenes of each stage's time of the real-time "
         "frame (the fastest of the point's frames), ms; stages under 0.1 ms in every setting, the "
@@ -1061,28 +1061,28 @@ void suiteTables(StudyResult& s, const std::vector<compare::SettingMedians>& set
         labels,
         stageOrder(settings),
         {}};
-    compare::StudyTable byScene{"normal_by_scene",
-                                "normal.mean_deg (°) per setting and default scene.",
-                                labels,
-                                scenes,
-                                {}};
+    report::StudyTable byScene{"normal_by_scene",
+                               "normal.mean_deg (°) per setting and default scene.",
+                               labels,
+                               scenes,
+                               {}};
     for (std::size_t i = 0; i < settings.size(); ++i) {
         const auto& st = settings[i];
         const auto [method, shape] = methodAndShape(st.series);
         const std::vector<std::string> l = {method, parameterText(st.series, st.x), shape};
-        compare::StudyTable::Line line{l, {}};
+        report::StudyTable::Line line{l, {}};
         for (const auto& c : summary.columns)
             if (const auto it = st.metrics.find(c); it != st.metrics.end())
                 line.values[c] = it->second;
         line.values["time.total_ms"] = timeOf(st);
         line.labels.push_back(std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
         summary.lines.push_back(std::move(line));
-        compare::StudyTable::Line times{l, {}};
+        report::StudyTable::Line times{l, {}};
         for (const auto& stage : stages.columns)
             if (const auto it = st.timingsMs.find(stage); it != st.timingsMs.end())
                 times.values[stage] = it->second;
         stages.lines.push_back(std::move(times));
-        compare::StudyTable::Line perScene{l, {}};
+        report::StudyTable::Line perScene{l, {}};
         for (const StudyRow* r : rows)
             if (r->series == st.series && r->x == st.x && r->error.empty())
                 perScene.values[r->scene] = metricOf(*r, "normal.mean_deg");
@@ -1092,16 +1092,16 @@ void suiteTables(StudyResult& s, const std::vector<compare::SettingMedians>& set
 }
 
 // normal.mean_deg along a study scene's x: a line per method, a column per x.
-compare::StudyTable alongTable(const std::string& file, const std::string& caption,
-                               const std::vector<const StudyRow*>& rows,
-                               const std::function<std::string(double)>& column) {
-    compare::StudyTable t{file, caption, {"method", "shape"}, {}, {}};
+report::StudyTable alongTable(const std::string& file, const std::string& caption,
+                              const std::vector<const StudyRow*>& rows,
+                              const std::function<std::string(double)>& column) {
+    report::StudyTable t{file, caption, {"method", "shape"}, {}, {}};
     std::set<double> xs;
     for (const StudyRow* r : rows) xs.insert(r->x);
     for (double x : xs) t.columns.push_back(column(x));
     for (const auto& [series, errors] : normalBySeries(rows)) {
         const auto [method, shape] = methodAndShape(series);
-        compare::StudyTable::Line line{{method, shape}, {}};
+        report::StudyTable::Line line{{method, shape}, {}};
         for (const auto& [x, e] : errors) line.values[column(x)] = e;
         t.lines.push_back(std::move(line));
     }
@@ -1109,7 +1109,7 @@ compare::StudyTable alongTable(const std::string& file, const std::string& capti
 }
 
 // The front, each step along it against the one before.
-std::string frontFinding(const std::vector<compare::SettingMedians>& settings,
+std::string frontFinding(const std::vector<report::SettingMedians>& settings,
                          const std::vector<std::size_t>& front, json& facts) {
     std::string text;
     facts = json::array();
@@ -1131,8 +1131,8 @@ std::string frontFinding(const std::vector<compare::SettingMedians>& settings,
 
 // Each method at its default against none of its shape: its error and time over none's, and a
 // depth filter's error over its control's.
-std::string againstNoneFinding(const std::vector<compare::SettingMedians>& settings, json& facts) {
-    auto find = [&](const std::string& series) -> const compare::SettingMedians* {
+std::string againstNoneFinding(const std::vector<report::SettingMedians>& settings, json& facts) {
+    auto find = [&](const std::string& series) -> const report::SettingMedians* {
         for (const auto& o : settings)
             if (o.series == series) return &o;
         return nullptr;
@@ -1165,10 +1165,10 @@ std::string againstNoneFinding(const std::vector<compare::SettingMedians>& setti
 
 // The chart of the default scenes: a point per setting, a colour per method and shape; and
 // the settings as facts.
-compare::ScatterChart frontChart(const std::vector<compare::SettingMedians>& settings,
-                                 const std::vector<std::size_t>& front, std::size_t scenes,
-                                 json& facts) {
-    compare::ScatterChart chart;
+report::ScatterChart frontChart(const std::vector<report::SettingMedians>& settings,
+                                const std::vector<std::size_t>& front, std::size_t scenes,
+                                json& facts) {
+    report::ScatterChart chart;
     chart.title =
         fmt::format("Surface methods: time against normal error, median over {} scenes", scenes);
     chart.xLabel = "real-time frame (ms): the fastest of its frames, median over the scenes";
@@ -1222,8 +1222,8 @@ void methodsConclude(StudyResult& s) {
     for (const StudyRow* r : suite)
         if (std::find(scenes.begin(), scenes.end(), r->scene) == scenes.end())
             scenes.push_back(r->scene);
-    const auto settings = compare::mediansOverScenes(suite);
-    const auto front = compare::settingsFront(settings, "normal.mean_deg");
+    const auto settings = report::mediansOverScenes(suite);
+    const auto front = report::settingsFront(settings, "normal.mean_deg");
     s.facts["scenes"] = scenes;
     s.facts["shapes"] = SHAPES;
     s.facts["aggregate"] = "median over the default scenes";
@@ -1254,17 +1254,17 @@ void methodsConclude(StudyResult& s) {
 
 }  // namespace
 
-compare::LineChart seriesChart(const StudyResult& s, const std::string& metric) {
-    compare::LineChart c;
+report::LineChart seriesChart(const StudyResult& s, const std::string& metric) {
+    report::LineChart c;
     // The x axis carries its own label: the title names the study and the metric only, so that
     // it fits over the plot.
     c.title = fmt::format("{}: {}", s.title, metric);
     c.xLabel = s.xLabel;
     const std::string unit = compare::metricUnit(metric);
     c.yLabel = unit.empty() ? metric : fmt::format("{} ({})", metric, unit);
-    c.xScale = s.xLog ? compare::AxisScale::Log : compare::AxisScale::Linear;
+    c.xScale = s.xLog ? report::AxisScale::Log : report::AxisScale::Linear;
     for (const auto& [name, rows] : bySeries(s)) {
-        compare::LineSeries line{name, {}, false};
+        report::LineSeries line{name, {}, false};
         for (const StudyRow* r : rows) line.points.push_back({r->x, metricOf(*r, metric), ""});
         c.series.push_back(std::move(line));
     }

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/render_job.h"
-#include "compare/study_report.h"
+#include "report/study_report.h"
 
 namespace twinrender::app {
 
@@ -51,13 +51,13 @@ struct StudyDef {
     std::function<std::vector<StudyPoint>(bool quick)> points;
     std::function<double(const LoadedScene&)> xOf;  // for points without an x
     // Fills finding, facts and chart from the rows (and the fields above).
-    std::function<void(compare::StudyResult&)> conclude;
+    std::function<void(report::StudyResult&)> conclude;
 };
 
 // Every study, in the order `twinrender study` runs them.
 const std::vector<StudyDef>& studies();
 
 // The lines of a chart: one per series (in order of first appearance) of `metric` against x.
-compare::LineChart seriesChart(const compare::StudyResult& study, const std::string& metric);
+report::LineChart seriesChart(const report::StudyResult& study, const std::string& metric);
 
 }  // namespace twinrender::app

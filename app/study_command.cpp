@@ -169,12 +169,12 @@ ExitCode runStudies(const StudyOptions& o) {
     prepareOutputFolder(cacheDir);
     ReferenceCache cache(cacheDir, devices);
 
-    std::vector<compare::StudyResult> results;
+    std::vector<report::StudyResult> results;
     bool anyError = false;
     for (Planned& plan : plans) {
         const StudyDef& d = *plan.def;
         const auto start = std::chrono::steady_clock::now();
-        compare::StudyResult s;
+        report::StudyResult s;
         s.name = d.name;
         s.title = d.title;
         s.question = d.question;
@@ -195,7 +195,7 @@ ExitCode runStudies(const StudyOptions& o) {
             // The point's scene, and those of the points whose frames are timed with it.
             if (!plan.points[i].loaded) loadPoints(plan, i, timedTogetherEnd(plan, i));
             const Point& pt = plan.points[i];
-            compare::StudyRow row;
+            report::StudyRow row;
             if (!pt.point.scene.empty()) row.scene = pt.scene.scene.name;
             row.series = pt.point.series;
             row.x = pt.point.x;
@@ -284,7 +284,7 @@ ExitCode runStudies(const StudyOptions& o) {
         writeTogether(out, [&](const fs::path& staging) {
             for (const auto& [path, image] : images)
                 core::writeImage(image, staging / d.name / path);
-            compare::writeStudy(s, staging);
+            report::writeStudy(s, staging);
         });
         std::printf("%s: %s [reference: %s unbracketed rays in %zu renders; %.1f s]\n",
                     d.name.c_str(), s.finding.c_str(),
@@ -293,7 +293,7 @@ ExitCode runStudies(const StudyOptions& o) {
         results.push_back(std::move(s));
     }
     writeTogether(out, [&](const fs::path& staging) {
-        compare::writeStudiesIndex(results, staging, nowUtc(), o.commandLine);
+        report::writeStudiesIndex(results, staging, nowUtc(), o.commandLine);
     });
     std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies",
                 (out / "index.html").c_str());

@@ -1,6 +1,6 @@
 // `twinrender study [NAME...]`: the stability studies of app/studies.h. Each study renders its
 // points with the real-time renderer against a cached reference (app/reference_cache.h),
-// measures every metric, and writes compare/study_report.h's outputs with its finding.
+// measures every metric, and writes report/study_report.h's outputs with its finding.
 #pragma once
 
 #include <string>

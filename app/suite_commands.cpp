@@ -23,14 +23,14 @@
 #include "app/sequence_run.h"
 #include "app/shard.h"
 #include "app/video_encoder.h"
-#include "compare/annotations.h"
 #include "compare/error_maps.h"
-#include "compare/junit.h"
 #include "compare/metric_table.h"
-#include "compare/report_json.h"
 #include "core/error.h"
 #include "core/folder_name.h"
 #include "core/image_io.h"
+#include "report/annotations.h"
+#include "report/junit.h"
+#include "report/report_json.h"
 
 namespace twinrender::app {
 
@@ -128,7 +128,7 @@ ExitCode runCompare(const CompareOptions& o) {
     settings.ppd = o.ppd;
     settings.flipOver = o.flipOver;
     const compare::MetricResult result = compare::computeMetrics(ref, test, settings);
-    compare::SceneReport report;
+    report::SceneReport report;
     report.name = fs::path(o.test).stem().string();
     report.metrics = result.values;
     if (!o.thresholds.empty()) {
@@ -142,7 +142,7 @@ ExitCode runCompare(const CompareOptions& o) {
     const fs::path out(o.out);
     writeTogether(out, [&](const fs::path& staging) {
         report.errorMaps = compare::writeErrorMapImages(result.errorMaps, staging);
-        compare::writeMetricsJson(report, staging / "metrics.json");
+        report::writeMetricsJson(report, staging / "metrics.json");
     });
     printMetricTable(report.metrics, report.checks);
     if (result.hdrExposures)
@@ -216,7 +216,7 @@ ExitCode runSuite(const RunOptions& o) {
     const fs::path out(o.out);
     prepareOutputFolder(out);
 
-    compare::RunReport run;
+    report::RunReport run;
     run.createdAt = nowUtc();
     run.commandLine = o.commandLine;
     run.thresholdsFile = thresholdsFile;
@@ -228,7 +228,7 @@ ExitCode runSuite(const RunOptions& o) {
         LoadedScene& s = scenes[i];
         const fs::path dir = out / s.scene.name;
         if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", ++done, count, s.scene.name.c_str());
-        compare::SceneReport report;
+        report::SceneReport report;
         try {
             if (s.scene.sequence) {
                 const SequenceRun sequence{o.sets, bounds[i], baseline ? &*baseline : nullptr,
@@ -251,7 +251,7 @@ ExitCode runSuite(const RunOptions& o) {
             throw;  // every later write would fail alike
         } catch (const std::exception& e) {
             // One scene that cannot be rendered or compared fails; the others still run.
-            report = compare::SceneReport{};
+            report = report::SceneReport{};
             report.name = s.scene.name;
             report.description = s.scene.description;
             report.settings = {{"scene_file", s.scene.file.string()}};
@@ -272,7 +272,7 @@ ExitCode runSuite(const RunOptions& o) {
             names.push_back(s.scene.name);
             files.push_back(fs::absolute(s.scene.file).lexically_normal().string());
         }
-        for (const auto& r : run.scenes) reports.push_back(compare::sceneReportJson(r));
+        for (const auto& r : run.scenes) reports.push_back(report::sceneReportJson(r));
         const nlohmann::json settings = {
             {"scenes", files},          {"sets", o.sets}, {"thresholds", thresholdsFile},
             {"baseline", o.baseline},   {"ppd", o.ppd},   {"flip_over", o.flipOver},
@@ -286,10 +286,10 @@ ExitCode runSuite(const RunOptions& o) {
                     {"command_line", o.commandLine}};
     }
     writeTogether(out, [&](const fs::path& staging) {
-        compare::writeReport(run, staging);
+        report::writeReport(run, staging);
         if (shard) writeShardManifest(*shard, manifest, staging);
     });
-    if (!o.junit.empty()) compare::writeJunit(run, o.junit);
+    if (!o.junit.empty()) report::writeJunit(run, o.junit);
 
     // One screen: a row per scene. printf pads bytes, not columns: the widths of the two
     // headers with multi-byte characters are widened by their extra bytes (ꟻ 3, ° 2).
@@ -323,14 +323,14 @@ ExitCode runSuite(const RunOptions& o) {
     return exitCodeOf(status);
 }
 
-void printAnnotations(const compare::RunReport& run, const std::string& format) {
+void printAnnotations(const report::RunReport& run, const std::string& format) {
     const char* actions = std::getenv("GITHUB_ACTIONS");
     const bool github =
         format == "github" || (format.empty() && actions && std::string(actions) == "true");
     if (!github) return;
     const char* workspace = std::getenv("GITHUB_WORKSPACE");
     const fs::path root = workspace && *workspace ? fs::path(workspace) : fs::current_path();
-    std::fputs(compare::githubAnnotations(run, root).c_str(), stdout);
+    std::fputs(report::githubAnnotations(run, root).c_str(), stdout);
     std::fflush(stdout);
 }
 

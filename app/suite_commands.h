@@ -8,7 +8,7 @@
 
 #include "app/exit_code.h"
 #include "compare/flip_pooling.h"
-#include "compare/report.h"
+#include "report/report.h"
 
 namespace twinrender::app {
 
@@ -45,11 +45,11 @@ struct RunOptions {
 };
 ExitCode runSuite(const RunOptions& options);
 
-// Prints the run's checks that did not pass as CI annotations (compare/annotations.h) in
+// Prints the run's checks that did not pass as CI annotations (report/annotations.h) in
 // `format`: "github", "none", or "" for "github" when the environment has GITHUB_ACTIONS=true
 // (as GitHub Actions sets it), else none. Paths are relative to GITHUB_WORKSPACE when set,
 // else to the working folder.
-void printAnnotations(const compare::RunReport& run, const std::string& format);
+void printAnnotations(const report::RunReport& run, const std::string& format);
 
 // Writes the baseline of RUN_DIR (its summary.json) to `out` (default RUN_DIR/baseline.json).
 ExitCode runBless(const std::string& runDir, const std::string& out);

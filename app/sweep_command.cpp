@@ -25,14 +25,14 @@
 #include "app/shard.h"
 #include "compare/error_maps.h"
 #include "compare/metric_table.h"
-#include "compare/report_json.h"
-#include "compare/sequence_summary.h"
-#include "compare/study_summary.h"
-#include "compare/sweep_report.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/sequence.h"
 #include "core/write_roots.h"
+#include "report/report_json.h"
+#include "report/sequence_summary.h"
+#include "report/study_summary.h"
+#include "report/sweep_report.h"
 
 namespace twinrender::app {
 
@@ -67,14 +67,14 @@ struct Job {
     compare::Bounds bounds;  // the scene's, with --thresholds
 };
 
-bool anyRowError(const compare::SweepReport& report) {
+bool anyRowError(const report::SweepReport& report) {
     return std::any_of(report.rows.begin(), report.rows.end(),
-                       [](const compare::SweepRow& r) { return !r.error.empty(); });
+                       [](const report::SweepRow& r) { return !r.error.empty(); });
 }
 
 // After a combination's line: ", pass", ", warn (smoothness.ratio)" or
 // ", fail (normal.mean_deg; warned: normal.p95_deg)"; "" when it is not checked.
-std::string verdictSuffix(const compare::SweepRow& row) {
+std::string verdictSuffix(const report::SweepRow& row) {
     if (!row.status) return "";
     std::string metrics = fmt::format("{}", fmt::join(row.failed, ", "));
     if (!row.warned.empty())
@@ -90,7 +90,7 @@ struct Measured {
     core::Frame shown;  // the test render in the folder (a sequence's: its worst frame)
     std::map<std::string, core::Image> flipMap;  // that render's beauty.flip error map
     compare::MetricValues checked;               // the row's metrics and the times
-    std::optional<compare::SequenceReport> sequence;
+    std::optional<report::SequenceReport> sequence;
 };
 
 // The test render's counters as count.* metrics of the row.
@@ -100,7 +100,7 @@ void addCounters(const core::Frame& test, compare::MetricValues& metrics) {
 
 // A still scene: the reference, then `frames` timed test renders (the real-time renderer first
 // renders one frame untimed: renderTimed), their median times.
-Measured measureStill(const Job& job, compare::SweepRow& row, const std::string& testRenderer,
+Measured measureStill(const Job& job, report::SweepRow& row, const std::string& testRenderer,
                       int frames, const SweepOptions& o, Devices& devices, ReferenceCache& cache) {
     const bool convergence = testRenderer == "raymarch";
     const LoadedScene& refScene = convergence ? *job.tight : job.test;
@@ -129,10 +129,10 @@ Measured measureStill(const Job& job, compare::SweepRow& row, const std::string&
 // A sequence scene, as `run` renders one (compareSequenceFrames): every frame of its range,
 // each once, the real-time renderer getting each as a new particle set, so that a frame's time
 // includes the per-set work; the reference per frame from the cache. The row holds the
-// summary over the frames (compare::summariseSequence: each metric at its worst frame, the
+// summary over the frames (report::summariseSequence: each metric at its worst frame, the
 // flicker's mean and largest) and each stage's median over the frames; the folder, the frame
 // with the largest beauty.flip.
-Measured measureSequence(Job& job, compare::SweepRow& row, const std::string& testRenderer,
+Measured measureSequence(Job& job, report::SweepRow& row, const std::string& testRenderer,
                          const SweepOptions& o, Devices& devices, ReferenceCache& cache) {
     const bool convergence = testRenderer == "raymarch";
     // The shader variants compile on their first use in the driver: one untimed frame by a
@@ -144,7 +144,7 @@ Measured measureSequence(Job& job, compare::SweepRow& row, const std::string& te
     m.sequence.emplace();
     m.sequence->fps = job.test.scene.sequence->fps;
     std::map<std::string, std::vector<double>> times;
-    double worst = -INFINITY;  // as compare::worstFrame picks the shown frame
+    double worst = -INFINITY;  // as report::worstFrame picks the shown frame
     m.sequence->frames = compareSequenceFrames(
         job.test, convergence ? *job.tight : job.test,
         convergence ? job.tightOverrides : job.testOverrides, *renderer, testRenderer, cache, o.ppd,
@@ -158,9 +158,9 @@ Measured measureSequence(Job& job, compare::SweepRow& row, const std::string& te
             m.flipMap = {{"beauty.flip", step.result.errorMaps.at("beauty.flip")}};
             row.referenceKey = step.referenceKey;
         });
-    m.sequence->shownFrame = compare::worstFrame(m.sequence->frames);
-    for (const auto& [stage, v] : times) row.timingsMs[stage] = compare::median(v);
-    m.checked = compare::summariseSequence(m.sequence->frames);
+    m.sequence->shownFrame = report::worstFrame(m.sequence->frames);
+    for (const auto& [stage, v] : times) row.timingsMs[stage] = report::median(v);
+    m.checked = report::summariseSequence(m.sequence->frames);
     m.checked["time." + testRenderer + "_ms"] = row.timingsMs.at("total");
     // The row's times are its stages (time.* columns), as a still scene's row.
     for (const auto& [key, v] : m.checked)
@@ -253,7 +253,7 @@ ExitCode runSweep(const SweepOptions& o) {
     int frames = o.frames > 0 ? o.frames : (convergence ? 1 : 5);
     // The metric must be one the comparison computes (compare/metric_table.h), or on a
     // sequence scene one its summary pools over the frames (checked below).
-    const std::vector<std::string> pooled = compare::pooledTemporalMetrics();
+    const std::vector<std::string> pooled = report::pooledTemporalMetrics();
     const bool pooledMetric = std::find(pooled.begin(), pooled.end(), o.metric) != pooled.end();
     if (!compare::computedByComparison(o.metric) && !pooledMetric)
         throw core::InputError(
@@ -368,7 +368,7 @@ ExitCode runSweep(const SweepOptions& o) {
     prepareOutputFolder(cacheDir);
     ReferenceCache cache(cacheDir, devices);
 
-    compare::SweepReport report;
+    report::SweepReport report;
     report.scene =
         jobs.empty() ? loadScene(o.scene, o.sets).scene.name : jobs.front().test.scene.name;
     report.sceneFile = o.scene;
@@ -389,7 +389,7 @@ ExitCode runSweep(const SweepOptions& o) {
 
     for (std::size_t j = 0; j < jobs.size(); ++j) {
         Job& job = jobs[j];
-        compare::SweepRow row;
+        report::SweepRow row;
         row.index = job.index;
         for (std::size_t k = 0; k < vary.size(); ++k)
             row.settings.emplace_back(vary[k].first,
@@ -406,11 +406,11 @@ ExitCode runSweep(const SweepOptions& o) {
             const fs::path dir = out / row.dir;
             core::makeFolders(dir);
             core::writeImage(test.display, dir / (testRenderer + ".png"));
-            compare::SceneReport scene;
+            report::SceneReport scene;
             scene.name = job.test.scene.name;
             scene.description = row.label();
             scene.metrics = row.metrics;
-            compare::RendererReport rr;
+            report::RendererReport rr;
             rr.timingsMs = row.timingsMs;
             rr.device = test.device;
             rr.counters = test.counters;
@@ -419,7 +419,7 @@ ExitCode runSweep(const SweepOptions& o) {
             scene.errorMaps = compare::writeErrorMapImages(measured.flipMap, dir);
             if (thresholds) {
                 scene.checks = compare::evaluate(measured.checked, job.bounds);
-                compare::recordChecks(row, scene.checks);
+                report::recordChecks(row, scene.checks);
             }
             json settings = json::object();
             for (const auto& [k, v] : row.settings) settings[k] = v;
@@ -432,7 +432,7 @@ ExitCode runSweep(const SweepOptions& o) {
                     sequenceSettings(*job.test.scene.sequence, measured.sequence->frames.size());
                 scene.sequence = std::move(measured.sequence);
             }
-            compare::writeMetricsJson(scene, dir / "metrics.json");
+            report::writeMetricsJson(scene, dir / "metrics.json");
             const auto m = row.metrics.find(o.metric);
             std::printf("[%zu/%zu] %s: %s %.2f ms, %s %s%s\n", j + 1, jobs.size(),
                         row.label().c_str(), testRenderer.c_str(), row.timingsMs.at("total"),
@@ -444,7 +444,7 @@ ExitCode runSweep(const SweepOptions& o) {
         } catch (const std::exception& e) {
             // One combination that cannot be rendered fails; the others still run.
             row.error = e.what();
-            if (thresholds) compare::recordChecks(row, {});
+            if (thresholds) report::recordChecks(row, {});
             std::printf("[%zu/%zu] %s: error: %s\n", j + 1, jobs.size(), row.label().c_str(),
                         e.what());
         }
@@ -470,7 +470,7 @@ ExitCode runSweep(const SweepOptions& o) {
                     {"created", report.createdAt}, {"command_line", o.commandLine}};
     }
     writeTogether(out, [&](const fs::path& staging) {
-        compare::writeSweepReport(report, staging);
+        report::writeSweepReport(report, staging);
         if (shard) writeShardManifest(*shard, manifest, staging);
     });
     std::printf("%zu combinations -> %s, %s\n", report.rows.size(), (out / "sweep.csv").c_str(),
@@ -478,14 +478,14 @@ ExitCode runSweep(const SweepOptions& o) {
     if (!shard) return finishSweep(report);
     // A shard holds part of the combinations: whether one passes is for the merged sweep to
     // say, so a shard fails only when a combination could not be rendered.
-    for (const auto& line : compare::verdictLines(report))
+    for (const auto& line : report::verdictLines(report))
         std::printf("shard %d/%d: %s\n", shard->index, shard->count, line.c_str());
     return anyRowError(report) ? ExitCode::Fail : ExitCode::Pass;
 }
 
-ExitCode finishSweep(const compare::SweepReport& report) {
-    for (const auto& line : compare::verdictLines(report)) std::printf("%s\n", line.c_str());
-    if (!report.thresholdsFile.empty()) return exitCodeOf(compare::sweepStatus(report));
+ExitCode finishSweep(const report::SweepReport& report) {
+    for (const auto& line : report::verdictLines(report)) std::printf("%s\n", line.c_str());
+    if (!report.thresholdsFile.empty()) return exitCodeOf(report::sweepStatus(report));
     return anyRowError(report) ? ExitCode::Fail : ExitCode::Pass;
 }
 

@@ -7,7 +7,7 @@
 // as `run` holds a scene, and the cheapest that passes is named. On a sequence scene each
 // combination renders every frame of the range, as `run` does (app/sequence_run.h), its row
 // the summary over the frames and its time the median frame's. Writes
-// compare/sweep_report.h's outputs.
+// report/sweep_report.h's outputs.
 #pragma once
 
 #include <cstddef>
@@ -17,7 +17,7 @@
 
 #include "app/exit_code.h"
 #include "compare/flip_pooling.h"
-#include "compare/sweep_report.h"
+#include "report/sweep_report.h"
 
 namespace twinrender::app {
 
@@ -38,10 +38,10 @@ struct SweepOptions {
 };
 ExitCode runSweep(const SweepOptions& options);
 
-// How a sweep ends, whole or merged from its shards: prints compare::verdictLines and returns
+// How a sweep ends, whole or merged from its shards: prints report::verdictLines and returns
 // the exit code. Held to thresholds, the best combination's verdict (Pass when one passes);
 // else Fail when a combination could not be rendered, and Pass otherwise.
-ExitCode finishSweep(const compare::SweepReport& report);
+ExitCode finishSweep(const report::SweepReport& report);
 
 // "KEY=V1,V2,..." -> key and values. Commas inside [...] or quotes do not split (TOML arrays:
 // camera.position=[0,-4,1],[0,-8,1]). Throws core::InputError naming the argument.

@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "compare/sequence_video.h"
 #include "core/error.h"
 #include "core/write_roots.h"
+#include "report/sequence_video.h"
 
 extern char** environ;
 
@@ -161,7 +161,7 @@ void VideoEncoder::add(const core::Image& frame) {
     if (frame.width() != mWidth || frame.height() != mHeight)
         throw std::invalid_argument(fmt::format("a video frame of {}x{} after frames of {}x{}",
                                                 frame.width(), frame.height(), mWidth, mHeight));
-    const std::vector<std::uint8_t> bytes = compare::rgb8(frame);
+    const std::vector<std::uint8_t> bytes = report::rgb8(frame);
     if (std::fwrite(bytes.data(), 1, bytes.size(), mPipe) != bytes.size()) {
         const std::string log = readLog(mLog);
         abandon();

@@ -5,7 +5,7 @@ if(NOT CLANG_FORMAT)
   message(FATAL_ERROR "clang-format was not found when configuring; install the Debian package "
                       "clang-format (scripts/setup does) and re-run cmake")
 endif()
-set(dirs app bench compare core fuzz raymarch realtime tests)
+set(dirs app bench compare core fuzz raymarch realtime report tests)
 set(files)
 foreach(dir IN LISTS dirs)
   file(GLOB_RECURSE found "${SOURCE_DIR}/${dir}/*.cpp" "${SOURCE_DIR}/${dir}/*.h")

@@ -9,7 +9,7 @@
 #include "compare/colour_map.h"
 #include "compare/hdr_flip.h"
 #include "compare/metrics.h"
-#include "compare/testdata/synthetic_report.h"
+#include "compare/testdata/synthetic_aov.h"
 #include "core/image_io.h"
 #include "tests/scratch_dir.h"
 

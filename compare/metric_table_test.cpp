@@ -6,7 +6,7 @@
 #include <set>
 
 #include "compare/metrics.h"
-#include "compare/testdata/synthetic_report.h"
+#include "compare/testdata/synthetic_aov.h"
 
 namespace twinrender::compare {
 namespace {

@@ -1,6 +1,6 @@
 // The HTML report in a real browser: Debian's headless Chromium opens the index and the scene
 // pages of a small report built from synthetic images (no renderer needed) and each page's
-// self-test (compare/report_assets/selftest.js) must find no script error, no console.error
+// self-test (report/report_assets/selftest.js) must find no script error, no console.error
 // and no image that failed to load. Pages with a broken image path, a script error and a
 // reference to the network are opened too and must be reported as failing, so the check is
 // known to be able to fail.
@@ -14,15 +14,15 @@
 #include <sstream>
 #include <string>
 
-#include "compare/report.h"
-#include "compare/report_html.h"
-#include "compare/testdata/synthetic_report.h"
+#include "report/report.h"
+#include "report/report_html.h"
+#include "report/testdata/synthetic_report.h"
 #include "tests/cli_harness.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-namespace tc = twinrender::compare;
+namespace tc = twinrender::report;
 namespace tt = twinrender::test;
 using tt::readText;
 

@@ -13,8 +13,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "compare/svg_chart.h"
-#include "compare/testdata/xml_check.h"
+#include "report/svg_chart.h"
+#include "report/testdata/xml_check.h"
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
@@ -349,7 +349,7 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
     const auto defaults = [&](const json& r) {
         return r["scene"] == "planet" || r["scene"] == "splash_sheet";
     };
-    std::vector<twinrender::compare::ChartPoint> points;
+    std::vector<twinrender::report::ChartPoint> points;
     std::vector<std::string> labels;
     for (const json& setting : s["facts"]["settings"]) {
         double time = 0.0, normal = 0.0;
@@ -368,7 +368,7 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
     }
     EXPECT_EQ(labels.size(), 10u * shapes);
     json front = json::array();
-    for (std::size_t i : twinrender::compare::paretoFront(points, true)) front.push_back(labels[i]);
+    for (std::size_t i : twinrender::report::paretoFront(points, true)) front.push_back(labels[i]);
     EXPECT_EQ(s["facts"]["front"], front);
     const std::string finding = s["finding"];
     for (const json& label : front) {

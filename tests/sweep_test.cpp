@@ -14,8 +14,8 @@
 #include <sstream>
 #include <vector>
 
-#include "compare/svg_chart.h"
-#include "compare/testdata/xml_check.h"
+#include "report/svg_chart.h"
+#include "report/testdata/xml_check.h"
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
@@ -23,7 +23,7 @@ using tt::count;
 using tt::readJson;
 using tt::readText;
 using tt::selftestInBrowser;
-namespace tc = twinrender::compare;
+namespace tc = twinrender::report;
 namespace fs = std::filesystem;
 
 namespace {
@@ -277,7 +277,7 @@ TEST(Sweep, ThresholdsMarkThePassingCombinationsAndNameTheCheapest) {
     EXPECT_NE(r.output.find(", fail (beauty.flip; warned: smoothness.ratio)"), std::string::npos)
         << r.output;
 
-    // CSV: the verdict beside the settings (its columns: compare/sweep_report_test.cpp).
+    // CSV: the verdict beside the settings (its columns: report/sweep_report_test.cpp).
     EXPECT_NE(readText(out / "sweep.csv").find("\n2,false,256,fail,beauty.flip,smoothness.ratio,"),
               std::string::npos);
     // The page: the verdict of every row, and the cheapest with its --set line.

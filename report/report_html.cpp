@@ -1,0 +1,627 @@
+#include "report/report_html.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "compare/baseline.h"
+#include "compare/colour_map.h"
+#include "compare/metric_table.h"
+#include "compare/settings_keys.h"
+#include "core/image_io.h"
+#include "core/write_roots.h"
+#include "report/buffer_display.h"
+#include "report/html_page.h"
+#include "report/markup.h"
+#include "report/sequence_report.h"
+
+namespace twinrender::report {
+
+using compare::BaselinePolicy;
+using compare::Better;
+using compare::changeText;
+using compare::Check;
+using compare::defaultPolicy;
+using compare::ErrorMapImage;
+using compare::flattenSettings;
+using compare::formatValue;
+using compare::inMetricOrder;
+using compare::magmaCssGradient;
+using compare::MetricInfo;
+using compare::metricTable;
+using compare::metricUnit;
+using compare::Status;
+using compare::toString;
+using compare::worst;
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The two renderers in the order the pages show them.
+constexpr const char* RENDERERS[] = {"realtime", "raymarch"};
+
+std::string rendererLabel(const std::string& renderer) {
+    if (renderer == "realtime") return "Real-time";
+    if (renderer == "raymarch") return "Reference";
+    return renderer;
+}
+
+std::string formatMs(double ms) {
+    if (!std::isfinite(ms)) return formatValue(ms);
+    if (ms < 1.0) return fmt::format("{:.2f} ms", ms);
+    if (ms < 1000.0) return fmt::format("{:.1f} ms", ms);
+    if (ms < 60000.0) return fmt::format("{:.2f} s", ms / 1000.0);
+    return fmt::format("{:.0f} min {:.0f} s", std::floor(ms / 60000.0),
+                       std::fmod(ms, 60000.0) / 1000.0);
+}
+
+std::optional<double> totalMs(const SceneReport& s, const std::string& renderer) {
+    auto r = s.renderers.find(renderer);
+    if (r == s.renderers.end()) return std::nullopt;
+    auto t = r->second.timingsMs.find("total");
+    if (t == r->second.timingsMs.end()) return std::nullopt;
+    return t->second;
+}
+
+std::string speedRatio(const SceneReport& s) {
+    auto rt = totalMs(s, "realtime"), ref = totalMs(s, "raymarch");
+    if (!rt || !ref || !(*rt > 0.0) || !std::isfinite(*ref)) return "";
+    const double r = *ref / *rt;
+    return r >= 100  ? fmt::format("{:.0f}×", r)
+           : r >= 10 ? fmt::format("{:.1f}×", r)
+                     : fmt::format("{:.2f}×", r);
+}
+
+// Metrics of a scene with their values, and the checked ones that are missing, in order.
+std::vector<std::string> sceneMetricNames(const SceneReport& s) {
+    std::vector<std::string> names;
+    for (const auto& [k, v] : s.metrics) names.push_back(k);
+    for (const Check& c : s.checks)
+        if (!s.metrics.count(c.metric) &&
+            std::find(names.begin(), names.end(), c.metric) == names.end())
+            names.push_back(c.metric);
+    return inMetricOrder(std::move(names));
+}
+
+std::optional<Status> metricStatus(const SceneReport& s, const std::string& metric) {
+    std::optional<Status> st;
+    for (const Check& c : s.checks)
+        if (c.metric == metric) st = st ? worst(*st, c.status) : c.status;
+    return st;
+}
+
+// A metric's value coloured by its checks, their messages as the tooltip.
+std::string valueCell(const SceneReport& s, const std::string& metric) {
+    auto st = metricStatus(s, metric);
+    auto it = s.metrics.find(metric);
+    const std::string text = it == s.metrics.end() ? "—" : formatValue(it->second);
+    std::string title;
+    for (const Check& c : s.checks)
+        if (c.metric == metric) title += (title.empty() ? "" : "\n") + c.message;
+    return fmt::format("<td class=\"num{}\"{}>{}</td>", st ? " " + std::string(toString(*st)) : "",
+                       title.empty() ? "" : " title=\"" + htmlEscape(title) + "\"",
+                       htmlEscape(text));
+}
+
+std::string countsText(const std::vector<Status>& statuses, std::string_view noun) {
+    int n[3] = {0, 0, 0};
+    for (Status s : statuses) ++n[static_cast<int>(s)];
+    std::string t = fmt::format("{} {}{}", statuses.size(), noun, statuses.size() == 1 ? "" : "s");
+    t += fmt::format(": {} pass", n[0]);
+    if (n[1]) t += fmt::format(", {} warn", n[1]);
+    if (n[2]) t += fmt::format(", {} fail", n[2]);
+    return t;
+}
+
+// The failed and warned checks' messages, failures first; an error that stopped the scene
+// before them.
+std::vector<std::pair<Status, std::string>> problemsOf(const SceneReport& s) {
+    std::vector<std::pair<Status, std::string>> problems;
+    if (!s.error.empty()) problems.emplace_back(Status::Fail, s.error);
+    for (Status want : {Status::Fail, Status::Warn})
+        for (const Check& c : s.checks)
+            if (c.status == want) problems.emplace_back(want, c.message);
+    return problems;
+}
+
+// ---- index.html --------------------------------------------------------------------------
+
+// Key metrics: the overview metrics of the table that any scene has, in its order.
+std::vector<std::string> indexColumns(const RunReport& run) {
+    std::vector<std::string> columns;
+    for (const MetricInfo& info : metricTable()) {
+        if (!info.overview) continue;
+        const std::string m(info.key);
+        bool any = false;
+        for (const auto& s : run.scenes) {
+            any = any || s.metrics.count(m);
+            for (const Check& c : s.checks) any = any || c.metric == m;
+        }
+        if (any) columns.push_back(m);
+    }
+    return columns;
+}
+
+std::string indexHeader(const RunReport& run) {
+    std::vector<Status> sceneStatuses;
+    for (const auto& s : run.scenes) sceneStatuses.push_back(s.status());
+    std::vector<std::string> facts = {htmlEscape(countsText(sceneStatuses, "scene"))};
+    if (!run.createdAt.empty()) facts.push_back(htmlEscape(run.createdAt));
+    if (!run.thresholdsFile.empty())
+        facts.push_back("thresholds <code>" + htmlEscape(run.thresholdsFile) + "</code>");
+    facts.push_back(run.baselineFile.empty()
+                        ? std::string("no baseline")
+                        : "baseline <code>" + htmlEscape(run.baselineFile) + "</code>");
+    for (const auto& [text, href] : run.links)
+        facts.push_back("<a href=\"" + urlPath(href) + "\">" + htmlEscape(text) + "</a>");
+    return pageHeader(run.title, run.status(), facts);
+}
+
+// The first beauty render of the scene, linked to its page; empty when it has none.
+std::string thumbnail(const SceneReport& s, const std::string& page) {
+    for (const char* r : RENDERERS) {
+        auto it = s.renderers.find(r);
+        if (it == s.renderers.end()) continue;
+        auto img = it->second.images.find("beauty");
+        if (img == it->second.images.end()) continue;
+        return fmt::format("<a href=\"{}\"><img class=\"thumb\" src=\"{}\" alt=\"{} {}\"></a>",
+                           page, urlPath(s.name + "/" + img->second), htmlEscape(s.name),
+                           htmlEscape(rendererLabel(r)));
+    }
+    return "";
+}
+
+// A scene's row, and the row of its problems under it (across the metric columns) if any.
+std::string sceneRow(const SceneReport& s, const std::vector<std::string>& columns) {
+    const std::string page = urlPath(s.name) + "/index.html";
+    const auto problems = problemsOf(s);
+    std::string h = fmt::format(
+        "<tr{}><td>{}</td>", problems.empty() ? "" : " class=\"has-problems\"", thumbnail(s, page));
+    h += fmt::format(
+        "<td class=\"scene\"><a href=\"{}\">{}</a>{}</td>", page, htmlEscape(s.name),
+        s.description.empty() ? "" : "<div class=\"desc\">" + htmlEscape(s.description) + "</div>");
+    h += "<td>" + badge(s.status()) + "</td>";
+    for (const auto& m : columns) h += valueCell(s, m);
+    auto rt = totalMs(s, "realtime"), ref = totalMs(s, "raymarch");
+    h += fmt::format(
+        "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>\n",
+        rt ? fmt::format("{:.1f}", *rt) : "—", ref ? fmt::format("{:.1f}", *ref) : "—",
+        htmlEscape(speedRatio(s)));
+    if (problems.empty()) return h;
+    h += fmt::format("<tr class=\"problems\"><td colspan=\"2\"></td><td colspan=\"{}\"><ul>",
+                     columns.size() + 4);
+    const std::size_t shown = problems.size() > 4 ? 3 : problems.size();
+    for (std::size_t i = 0; i < shown; ++i)
+        h += fmt::format("<li class=\"{}\">{}</li>", toString(problems[i].first),
+                         htmlEscape(problems[i].second));
+    if (problems.size() > shown)
+        h += fmt::format("<li><a href=\"{}\">{} more on the scene page</a></li>", page,
+                         problems.size() - shown);
+    return h + "</ul></td></tr>\n";
+}
+
+std::string scenesTable(const RunReport& run) {
+    const std::vector<std::string> columns = indexColumns(run);
+    std::string h =
+        "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr><th></th><th>Scene</th>"
+        "<th>Verdict</th>";
+    for (const auto& m : columns) h += metricHeaderCell(m);
+    h += "<th class=\"num\">Real-time <span class=\"unit\">ms</span></th>"
+         "<th class=\"num\">Reference <span class=\"unit\">ms</span></th>"
+         "<th class=\"num\" title=\"reference time over real-time time\">Speed-up</th>"
+         "</tr></thead>\n<tbody>\n";
+    for (const SceneReport& s : run.scenes) h += sceneRow(s, columns);
+    h += "</tbody></table></div>\n";
+    h += "<div class=\"legend-row\"><span><span class=\"swatch pass\"></span>within its "
+         "bounds</span><span><span class=\"swatch warn\"></span>beyond a warn bound</span>"
+         "<span><span class=\"swatch fail\"></span>beyond a fail bound or the baseline</span>"
+         "<span>uncoloured: no bound set. Times: total render, without start-up and file "
+         "I/O.</span></div>\n";
+    return h;
+}
+
+std::string indexPage(const RunReport& run) {
+    std::string h = pageHead(run.title) + indexHeader(run) + "<section>\n";
+    h += run.scenes.empty() ? "<p class=\"muted\">No scenes were run.</p>\n" : scenesTable(run);
+    h += "</section>\n</main>\n";
+    return h + pageFooter(run.createdAt, run.commandLine);
+}
+
+// ---- scene page: metrics, timings, devices, settings ---------------------------------------
+
+std::string boundsText(const std::vector<const Check*>& checks, bool warn) {
+    std::optional<double> lo, hi;
+    for (const Check* c : checks) {
+        if (c->bound == (warn ? "warn_min" : "min")) lo = c->limit;
+        if (c->bound == (warn ? "warn_max" : "max")) hi = c->limit;
+    }
+    if (lo && hi) return formatValue(*lo) + " … " + formatValue(*hi);
+    if (lo) return "≥ " + formatValue(*lo);
+    if (hi) return "≤ " + formatValue(*hi);
+    return "";
+}
+
+// The baseline and the delta cells of a metric, the delta coloured by whether it got better
+// or worse.
+std::string baselineCells(const SceneReport& s, const std::string& m,
+                          const std::vector<const Check*>& checks) {
+    std::optional<double> base;
+    if (auto b = s.baseline.find(m); b != s.baseline.end()) base = b->second;
+    for (const Check* c : checks)
+        if (c->baseline) base = *c->baseline;
+    std::string delta;
+    auto it = s.metrics.find(m);
+    if (base && it != s.metrics.end()) {
+        const double d = it->second - *base;
+        const BaselinePolicy p = defaultPolicy(m);
+        const double worsening = p.better == Better::Higher ? -d
+                                 : p.better == Better::Lower
+                                     ? d
+                                     : std::abs(it->second - p.origin) - std::abs(*base - p.origin);
+        const char* cls = worsening > 0 ? "delta-worse" : worsening < 0 ? "delta-better" : "";
+        delta = fmt::format("<span class=\"{}\">{}</span>", cls,
+                            htmlEscape(changeText(it->second, *base)));
+    }
+    return "<td class=\"num\">" + (base ? htmlEscape(formatValue(*base)) : std::string("—")) +
+           "</td><td class=\"num\">" + (delta.empty() ? std::string("—") : delta) + "</td>";
+}
+
+std::string metricTable(const SceneReport& s) {
+    const bool hasBaseline =
+        !s.baseline.empty() || std::any_of(s.checks.begin(), s.checks.end(),
+                                           [](const Check& c) { return c.baseline.has_value(); });
+    std::string h =
+        "<div class=\"scroll\"><table class=\"metrics\">\n<thead><tr><th>Metric</th>"
+        "<th class=\"num\">Value</th><th>Unit</th><th class=\"num\">Fail unless</th>"
+        "<th class=\"num\">Warn unless</th>";
+    if (hasBaseline) h += "<th class=\"num\">Baseline</th><th class=\"num\">Δ</th>";
+    h += "<th>Status</th></tr></thead>\n<tbody>\n";
+    for (const std::string& m : sceneMetricNames(s)) {
+        std::vector<const Check*> checks;
+        for (const Check& c : s.checks)
+            if (c.metric == m) checks.push_back(&c);
+        auto st = metricStatus(s, m);
+        // The row's id is what summary.md links to (report_markdown.h).
+        h += fmt::format("<tr id=\"metric-{}\"><td class=\"mono\"{}>{}</td>", htmlEscape(m),
+                         metricTitle(m), htmlEscape(m));
+        h += valueCell(s, m);
+        h += "<td class=\"unit\">" + htmlEscape(metricUnit(m)) + "</td>";
+        h += "<td class=\"num\">" + htmlEscape(boundsText(checks, false)) + "</td>";
+        h += "<td class=\"num\">" + htmlEscape(boundsText(checks, true)) + "</td>";
+        if (hasBaseline) h += baselineCells(s, m, checks);
+        h += "<td>" +
+             (st ? badge(*st) : std::string("<span class=\"muted small\">not checked</span>")) +
+             "</td></tr>\n";
+    }
+    h += "</tbody></table></div>\n";
+    std::vector<const Check*> notable;
+    for (Status want : {Status::Fail, Status::Warn})
+        for (const Check& c : s.checks)
+            if (c.status == want) notable.push_back(&c);
+    if (!notable.empty()) {
+        h += "<ul class=\"messages\">\n";
+        for (const Check* c : notable)
+            h += fmt::format("<li class=\"{}\">{}</li>\n", toString(c->status),
+                             htmlEscape(c->message));
+        h += "</ul>\n";
+    }
+    return h;
+}
+
+const std::vector<std::string>& stageOrder() {
+    static const std::vector<std::string> order = {"shadow", "gbuffer", "ssss", "shade",
+                                                   "post",   "build",   "trace"};
+    return order;
+}
+
+// A stage's time, with a bar of its share of the renderer's total.
+std::string stageCell(const std::map<std::string, double>& t, const std::string& stage) {
+    auto it = t.find(stage);
+    if (it == t.end()) return std::string("<td class=\"num muted\">—</td>");
+    std::string bar;
+    auto total = t.find("total");
+    if (stage != "total" && total != t.end() && total->second > 0.0 && std::isfinite(it->second)) {
+        const double share = std::clamp(it->second / total->second, 0.0, 1.0);
+        bar = fmt::format(
+            "<span class=\"bar\" style=\"width:{:.1f}px\" title=\"{:.0f} % of the "
+            "total\"></span>",
+            48.0 * share, 100.0 * share);
+    }
+    return fmt::format("<td class=\"num\">{:.2f}{}</td>", it->second, bar);
+}
+
+std::string timingTable(const SceneReport& s) {
+    std::vector<std::string> renderers;
+    for (const char* r : RENDERERS)
+        if (s.renderers.count(r)) renderers.push_back(r);
+    for (const auto& [r, rr] : s.renderers)
+        if (r != "realtime" && r != "raymarch") renderers.push_back(r);
+    if (renderers.empty()) return "<p class=\"muted\">No timings.</p>\n";
+    std::vector<std::string> stages;
+    for (const auto& r : renderers)
+        for (const auto& [stage, ms] : s.renderers.at(r).timingsMs)
+            if (stage != "total" && std::find(stages.begin(), stages.end(), stage) == stages.end())
+                stages.push_back(stage);
+    std::stable_sort(stages.begin(), stages.end(), [](const std::string& a, const std::string& b) {
+        const auto& o = stageOrder();
+        const auto ia = std::find(o.begin(), o.end(), a) - o.begin();
+        const auto ib = std::find(o.begin(), o.end(), b) - o.begin();
+        return ia != ib ? ia < ib : a < b;
+    });
+    std::string h = "<table class=\"timings\">\n<thead><tr><th>Stage</th>";
+    for (const auto& r : renderers)
+        h += "<th class=\"num\">" + htmlEscape(rendererLabel(r)) +
+             " <span class=\"unit\">ms</span></th>";
+    h += "</tr></thead>\n<tbody>\n";
+    for (const auto& stage : stages) {
+        h += "<tr><td>" + htmlEscape(stage) + "</td>";
+        for (const auto& r : renderers) h += stageCell(s.renderers.at(r).timingsMs, stage);
+        h += "</tr>\n";
+    }
+    h += "<tr class=\"total\"><td>total</td>";
+    for (const auto& r : renderers) h += stageCell(s.renderers.at(r).timingsMs, "total");
+    h += "</tr>\n</tbody></table>\n";
+    const std::string ratio = speedRatio(s);
+    if (!ratio.empty())
+        h += "<p class=\"small muted\">The reference takes " + htmlEscape(ratio) +
+             " the real-time renderer's time. Stage times: GL timer queries (real-time), wall "
+             "clock (reference).</p>\n";
+    return h;
+}
+
+std::string settingsTable(const SceneReport& s) {
+    std::vector<std::pair<std::string, std::string>> rows;
+    if (!s.settings.is_null())
+        for (const auto& [key, value] : flattenSettings(s.settings))
+            rows.emplace_back(key.empty() ? std::string("(value)") : key,
+                              value.is_string() ? value.get<std::string>() : value.dump());
+    if (rows.empty()) return "<p class=\"muted\">No settings recorded.</p>\n";
+    std::string h = fmt::format(
+        "<details open><summary>{} settings, by the dotted keys of the "
+        "scene file and <code>--set</code></summary>\n"
+        "<table class=\"settings\"><tbody>\n",
+        rows.size());
+    for (const auto& [k, v] : rows)
+        h += "<tr><td>" + htmlEscape(k) + "</td><td>" + htmlEscape(v) + "</td></tr>\n";
+    h += "</tbody></table></details>\n";
+    return h;
+}
+
+std::string devicesTable(const SceneReport& s) {
+    std::string h =
+        "<table class=\"devices\">\n<thead><tr><th>Renderer</th><th>Device</th>"
+        "<th>Counters</th></tr></thead>\n<tbody>\n";
+    for (const auto& [r, rr] : s.renderers) {
+        std::string counters;
+        for (const auto& [k, v] : rr.counters)
+            counters += (counters.empty() ? "" : ", ") + k + " = " + formatValue(v);
+        h += "<tr><td>" + htmlEscape(rendererLabel(r)) + "</td><td>" +
+             htmlEscape(rr.device.empty() ? "—" : rr.device) + "</td><td class=\"small\">" +
+             htmlEscape(counters.empty() ? "—" : counters) + "</td></tr>\n";
+    }
+    h += "</tbody></table>\n";
+    return h;
+}
+
+// ---- scene page: images ------------------------------------------------------------------
+
+// A panel's placeholder where there is no image: for `buffer` (none when empty), `hidden`
+// being "" or " hidden".
+std::string panelNote(const std::string& buffer, const std::string& hidden,
+                      const std::string& text) {
+    return "<div" + (buffer.empty() ? "" : " data-buffer=\"" + htmlEscape(buffer) + "\"") +
+           " class=\"note\" style=\"line-height:1.5;padding:2rem;color:#afb8c1\"" + hidden + ">" +
+           text + "</div>";
+}
+
+// Buffers any renderer wrote, in the switch's order.
+std::vector<std::string> sceneBuffers(const SceneReport& s) {
+    std::vector<std::string> buffers;
+    auto add = [&](const std::string& b) {
+        if (std::find(buffers.begin(), buffers.end(), b) == buffers.end()) buffers.push_back(b);
+    };
+    for (const auto& b : bufferNames())
+        for (const auto& [r, rr] : s.renderers)
+            if (rr.images.count(b)) add(b);
+    for (const auto& [r, rr] : s.renderers)
+        for (const auto& [b, path] : rr.images) add(b);
+    return buffers;
+}
+
+std::string sceneHeader(const SceneReport& s) {
+    std::vector<std::string> facts;
+    for (const char* r : RENDERERS)
+        if (auto t = totalMs(s, r))
+            facts.push_back(htmlEscape(rendererLabel(r)) + " " + htmlEscape(formatMs(*t)));
+    if (const std::string ratio = speedRatio(s); !ratio.empty())
+        facts.push_back("reference/real-time " + htmlEscape(ratio));
+    if (!s.checks.empty()) {
+        std::vector<Status> st;
+        for (const Check& c : s.checks) st.push_back(c.status);
+        facts.push_back(htmlEscape(countsText(st, "check")));
+    }
+    return pageHeader(s.name, s.status(), facts,
+                      "<a class=\"back\" href=\"../index.html\">← All scenes</a>");
+}
+
+// The buttons that switch the shown buffer (keys 1, 2, ...).
+std::string bufferSwitch(const std::vector<std::string>& buffers) {
+    std::string h =
+        "<div class=\"toolbar\">\n<div class=\"seg\" role=\"group\" aria-label=\"Buffer\">";
+    for (std::size_t i = 0; i < buffers.size(); ++i)
+        h += fmt::format(
+            "<button type=\"button\" data-buffer=\"{0}\" aria-pressed=\"{1}\" "
+            "title=\"key {2}\">{0}</button>",
+            htmlEscape(buffers[i]), i == 0 ? "true" : "false", i + 1);
+    return h + "</div>\n<span class=\"note\" id=\"buffer-note\"></span>\n</div>\n";
+}
+
+// One renderer's figure: an image per buffer, only the initial one shown.
+std::string rendererPanel(const SceneReport& s, const std::string& r,
+                          const std::vector<std::string>& buffers, const std::string& initial) {
+    auto it = s.renderers.find(r);
+    std::string h = fmt::format("<figure data-panel=\"{}\"><div class=\"frame\">", r);
+    for (const auto& b : buffers) {
+        const std::string hidden = b == initial ? "" : " hidden";
+        if (it != s.renderers.end() && it->second.images.count(b))
+            h += fmt::format("<img data-buffer=\"{}\" src=\"{}\" alt=\"{} {}\"{}>", htmlEscape(b),
+                             urlPath(it->second.images.at(b)), htmlEscape(rendererLabel(r)),
+                             htmlEscape(b), hidden);
+        else
+            h += panelNote(b, hidden,
+                           htmlEscape(rendererLabel(r)) + " wrote no " + htmlEscape(b) + " buffer");
+    }
+    auto t = totalMs(s, r);
+    return h + fmt::format("</div><figcaption><b>{}</b><span>{}</span></figcaption></figure>\n",
+                           htmlEscape(rendererLabel(r)), t ? htmlEscape(formatMs(*t)) : "");
+}
+
+// A map keyed BUFFER.NAME is a second map of BUFFER (error_maps.h), shown beside its first.
+bool isSecondMap(const std::string& key) {
+    return key.find('.') != std::string::npos;
+}
+
+// What a map's caption says beside its label: the exposures of HDR-ꟻLIP (the scene's
+// compare.hdrflip settings), else the colour map.
+std::string mapNote(const SceneReport& s, const std::string& key) {
+    if (key == "beauty.hdrflip" && s.settings.is_object() && s.settings.contains("compare")) {
+        const json& c = s.settings["compare"];
+        if (c.is_object() && c.contains("hdrflip")) {
+            const json& e = c["hdrflip"];
+            return fmt::format("{} exposures, {} to {} stops", e.value("exposures", 0),
+                               formatValue(e.value("start_exposure", 0.0)),
+                               formatValue(e.value("stop_exposure", 0.0)));
+        }
+    }
+    return "magma colour map";
+}
+
+// One error map with its caption and colour bar.
+std::string errorMapFigure(const ErrorMapImage& m, const std::string& note) {
+    const std::string unit = m.unit.empty() ? "" : " " + m.unit;
+    return fmt::format(
+        "<div class=\"frame\"><img src=\"{}\" alt=\"{}\"></div>"
+        "<figcaption><b>{}</b><span>{}</span></figcaption>"
+        "<div class=\"colourbar\" style=\"background:{}\"></div>"
+        "<div class=\"colourbar-labels\"><span>{}{}</span><span>{}{}</span></div>",
+        urlPath(m.path), htmlEscape(m.label), htmlEscape(m.label), htmlEscape(note),
+        magmaCssGradient(), htmlEscape(formatValue(m.lo)), htmlEscape(unit),
+        htmlEscape(formatValue(m.hi)), htmlEscape(unit));
+}
+
+// The error panel: the map of the current buffer (and its second maps, as HDR-ꟻLIP's beside
+// ꟻLIP's), else the beauty (ꟻLIP) map, with their colour bars. Sets the fallback in the page's
+// data.
+std::string errorPanel(const SceneReport& s, const std::string& initial, json& data) {
+    std::string fallback;
+    if (s.errorMaps.count("beauty"))
+        fallback = "beauty";
+    else
+        for (const auto& [b, m] : s.errorMaps)
+            if (!isSecondMap(b) && fallback.empty()) fallback = b;
+    data["errorFallback"] = fallback;
+    data["errorLabel"] = fallback.empty() ? "" : s.errorMaps.at(fallback).label;
+    const std::string shownMap = s.errorMaps.count(initial) ? initial : fallback;
+    std::string h = "<figure data-panel=\"error\">";
+    if (fallback.empty())
+        h += "<div class=\"frame\">" + panelNote("", "", "No error map was written.") + "</div>";
+    for (const auto& [b, m] : s.errorMaps) {
+        if (isSecondMap(b)) continue;
+        h += fmt::format("<div data-buffer=\"{}\"{}>", htmlEscape(b),
+                         b == shownMap ? "" : " hidden");
+        h += errorMapFigure(m, mapNote(s, b));
+        for (const auto& [k, second] : s.errorMaps)
+            if (k.starts_with(b + "."))
+                h +=
+                    "<div class=\"second-map\">" + errorMapFigure(second, mapNote(s, k)) + "</div>";
+        h += "</div>";
+    }
+    return h + "</figure>\n";
+}
+
+// Swap view: the reference below, the real-time render above, clipped at the split. Puts
+// every buffer's pair of images into the page's data.
+std::string swapView(const SceneReport& s, const std::vector<std::string>& buffers,
+                     const std::string& initial, json& data) {
+    auto rt = s.renderers.find("realtime");
+    auto ref = s.renderers.find("raymarch");
+    for (const auto& b : buffers) {
+        json pair = json::object();
+        if (rt != s.renderers.end() && rt->second.images.count(b))
+            pair["realtime"] = urlPath(rt->second.images.at(b));
+        if (ref != s.renderers.end() && ref->second.images.count(b))
+            pair["raymarch"] = urlPath(ref->second.images.at(b));
+        data["buffers"][b] = pair;
+    }
+    if (rt == s.renderers.end() || ref == s.renderers.end()) return "";
+    const json& first = data["buffers"][initial];
+    const bool both = first.contains("realtime") && first.contains("raymarch");
+    std::string h = "<h2 style=\"margin-top:1.4rem\">Swap</h2>\n";
+    h += fmt::format(
+        "<div class=\"swap\" id=\"swap\"{}><img id=\"swap-under\" src=\"{}\" "
+        "alt=\"Reference\">"
+        "<div class=\"over\"><img id=\"swap-over\" src=\"{}\" alt=\"Real-time\"></div>"
+        "<div class=\"split\"></div><span class=\"tag left\">Real-time</span>"
+        "<span class=\"tag right\">Reference</span></div>\n",
+        both ? "" : " hidden", both ? first["raymarch"].get<std::string>() : "",
+        both ? first["realtime"].get<std::string>() : "");
+    h += "<div class=\"swap-controls\"><span>Real-time</span><input type=\"range\" "
+         "id=\"swap-range\" min=\"0\" max=\"100\" value=\"50\" aria-label=\"Split between "
+         "the real-time and the reference render\"><span>Reference</span>"
+         "<label><input type=\"checkbox\" id=\"swap-follow\" checked> follow the "
+         "mouse</label><span id=\"swap-note\"></span></div>\n";
+    return h;
+}
+
+std::string imagesSection(const SceneReport& s, const std::vector<std::string>& buffers,
+                          json& data) {
+    const std::string& initial = buffers.front();
+    std::string h = "<section>\n<h2>Images</h2>\n" + bufferSwitch(buffers);
+    h += "<div class=\"panels\">\n";
+    for (const char* r : RENDERERS) h += rendererPanel(s, r, buffers, initial);
+    h += errorPanel(s, initial, data) + "</div>\n";
+    h += swapView(s, buffers, initial, data);
+    h += "<p class=\"note\">Buffers: beauty tonemapped as displayed; normal as 0.5 + 0.5 n; "
+         "uv as (u, v, 0); depth log-scaled, near white to far grey, the same range for both "
+         "renders; id one colour per body; shadow white where lit; emission tonemapped. "
+         "Slate: no surface. Keys 1–" +
+         std::to_string(buffers.size()) + " switch buffers.</p>\n</section>\n";
+    return h;
+}
+
+std::string scenePage(const RunReport& run, const SceneReport& s) {
+    const std::vector<std::string> buffers = sceneBuffers(s);
+    std::string h = pageHead(s.name + " — " + run.title) + sceneHeader(s);
+    if (!s.description.empty()) h += "<p class=\"lead\">" + htmlEscape(s.description) + "</p>\n";
+    if (!s.error.empty())
+        h += "<section><div class=\"error-box\">" + htmlEscape(s.error) + "</div></section>\n";
+    // What scene.js needs: every buffer's pair of images and the error map to fall back to.
+    json data = {{"initial", buffers.empty() ? "" : buffers.front()},
+                 {"buffers", json::object()},
+                 {"errorFallback", ""},
+                 {"errorLabel", ""}};
+    h += sequenceSection(s);
+    if (!buffers.empty()) h += imagesSection(s, buffers, data);
+    h += "<section>\n<h2>Metrics</h2>\n" + metricTable(s) + "</section>\n";
+    h += "<section class=\"grid2\">\n<div>\n<h2>Timings</h2>\n" + timingTable(s) + "</div>\n";
+    h += "<div>\n<h2>Devices</h2>\n" + devicesTable(s) + "</div>\n</section>\n";
+    h += "<section>\n<h2>Settings</h2>\n" + settingsTable(s) + "</section>\n</main>\n";
+    return h + pageFooter(run.createdAt, run.commandLine, "scene.js", data.dump());
+}
+
+}  // namespace
+
+void writeHtmlReport(const RunReport& run, const fs::path& dir) {
+    core::makeFolders(dir);
+    for (const SceneReport& s : run.scenes) {
+        core::makeFolders(dir / s.name);
+        core::writeTextFile(dir / s.name / "index.html", scenePage(run, s));
+    }
+    core::writeTextFile(dir / "index.html", indexPage(run));
+}
+
+}  // namespace twinrender::report
