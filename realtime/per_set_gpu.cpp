@@ -6,6 +6,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 #include <map>
@@ -16,6 +17,7 @@
 #include "core/derived_attributes.h"
 #include "realtime/field_normal.h"
 #include "realtime/gl/context.h"
+#include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gpu_scene.h"
 #include "realtime/occlusion_culling.h"
@@ -263,8 +265,46 @@ std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request) {
     return out;
 }
 
+void checkPerSetLayouts(const gl::Program& program) {
+    struct Expected {
+        const char* name;
+        std::size_t offset, stride;
+    };
+    static const Expected EXPECTED[] = {
+        {"nearHit", 4, 0},
+        {"dropletCount", DROPLET_COUNT * 4, 0},
+        {"drawParticles", GpuPerSet::particleDrawOffset(), 0},
+        {"drawKernels", GpuPerSet::kernelDrawOffset(), 0},
+        {"levels[0].minKey", 48, 64},
+        {"walkDispatch", WALK_DISPATCH, 0},
+        {"nextWalkDispatch", NEXT_WALK_DISPATCH, 0},
+        {"scanDispatch", SCAN_DISPATCH, 0},
+        {"sortDispatch", SORT_DISPATCH, 0},
+        {"nearDispatch", NEAR_DISPATCH, 0},
+        {"usedLevels", USED_LEVELS, 0},
+        {"levelList[0]", USED_LEVELS + 4, 0},
+        {"levelCoefficientMin[0]", USED_LEVELS + 4 + MAX_LEVELS * 4, 0},
+        {"sparseDispatch", SPARSE_DISPATCH, 0},
+        {"drawDroplets", DROPLET_DRAW, 0},
+        {"particles[0].positionRadius", 0, sizeof(GpuParticle)},
+        {"particles[0].hessianOffDiagonal", offsetof(GpuParticle, hessianOffDiagonal),
+         sizeof(GpuParticle)},
+        {"kernels[0].coefficients", offsetof(GpuKernel, coefficients), sizeof(GpuKernel)},
+    };
+    for (const Expected& e : EXPECTED) {
+        const auto found = program.bufferVariable(e.name);
+        if (!found) continue;  // not active in this stage
+        if (found->offset != static_cast<long long>(e.offset) ||
+            (e.stride != 0 && found->topLevelStride != static_cast<long long>(e.stride)))
+            throw gl::Error(fmt::format(
+                "program '{}': the driver lays out '{}' at byte {} (array stride {}), "
+                "per_set_gpu.cpp expects byte {} (stride {})",
+                program.name(), e.name, found->offset, found->topLevelStride, e.offset, e.stride));
+    }
+}
+
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
-    for (const ProgramVariant& v : perSetPrograms(request)) v.build(programs);
+    for (const ProgramVariant& v : perSetPrograms(request)) checkPerSetLayouts(v.build(programs));
     timerQueriesSeeCompute(programs);  // set-up, not a frame's work: the stages' clock
 }
 

@@ -56,7 +56,12 @@ PerSetRequest perSetRequest(const Settings& settings);
 
 // The compute programs GpuPerSet uses for `request`.
 std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request);
-// Compiles them (set-up, like the passes') and probes the stages' clock (stageClock()).
+// Throws gl::Error where the driver lays out a variable of a per-set program's blocks (the
+// Header's commands and counters, the packed particles and kernels) at another byte or
+// stride than per_set_gpu.cpp writes and reads it (std430 as the C++ structs mirror it).
+void checkPerSetLayouts(const gl::Program& program);
+// Compiles them (set-up, like the passes'), checks their layouts and probes the stages' clock
+// (stageClock()).
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request);
 
 class GpuPerSet {

@@ -170,7 +170,8 @@ std::vector<CompileFailure> compileEach(ProgramCache& programs,
     std::vector<CompileFailure> failures;
     for (const ProgramVariant& v : variants) {
         try {
-            v.build(programs, user);
+            const gl::Program& program = v.build(programs, user);
+            if (v.compute == "per_set.comp") checkPerSetLayouts(program);
         } catch (const gl::Error& e) {
             failures.push_back({v.name(), e.what()});
         }

@@ -46,7 +46,8 @@ IncludedFile passThroughSurfaceFilter();
 struct CompileFailure {
     std::string program, log;  // the program's name; the driver's log, named by file and line
 };
-// Compiles every variant and returns every failure (not only the first).
+// Compiles every variant (and checks the per-set programs' layouts, checkPerSetLayouts) and
+// returns every failure (not only the first).
 std::vector<CompileFailure> compileEach(ProgramCache& programs,
                                         std::span<const ProgramVariant> variants,
                                         const IncludedFile* user = nullptr);
