@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "app/doctor_command.h"
 #include "app/exit_code.h"
 #include "app/interruption.h"
 #include "app/merge_command.h"
@@ -91,7 +92,7 @@ void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
 }
 
 ExitCode runRender(const std::string& scenePath, const std::string& renderer,
-                   const std::string& frames, const CommonOptions& o) {
+                   const std::string& frames, const CommonOptions& o, bool selfCheck) {
     std::vector<std::string> sets = o.sets;
     if (!frames.empty()) {
         const auto range = tr::app::framesOverrides(frames);
@@ -104,6 +105,8 @@ ExitCode runRender(const std::string& scenePath, const std::string& renderer,
     // Every renderer first: without a GL context there is nothing to render in real time, and
     // the error should come before minutes of raymarching.
     tr::app::Devices devices(o.requireGpu);
+    if (selfCheck && tr::app::selfCheckScene(loaded, devices) != ExitCode::Pass)
+        return ExitCode::Fail;
     if (!frames.empty()) {
         if (std::find(names.begin(), names.end(), "realtime") != names.end()) devices.realtime();
         tr::app::renderFrames(loaded, names, devices, dir);
@@ -146,6 +149,10 @@ int main(int argc, char** argv) {
                      "OUT/<scene>/<frame>/")
         ->type_name("A:B");
     addCommon(render, renderOpts);
+    bool renderSelfCheck = false;
+    render->add_flag("--self-check", renderSelfCheck,
+                     "first render the scene through both per-set paths (cpu, gpu) and compare "
+                     "them; exit 2 without rendering when they disagree");
 
     tr::app::CompareOptions compareOpts;
     auto* compareCmd =
@@ -156,6 +163,17 @@ int main(int argc, char** argv) {
     compareCmd->add_option("--thresholds", compareOpts.thresholds, "thresholds file (TOML)");
     addPpd(compareCmd, compareOpts.ppd);
     addFlipOver(compareCmd, compareOpts.flipOver);
+
+    tr::app::DoctorOptions doctorOpts;
+    auto* doctorCmd = app.add_subcommand(
+        "doctor",
+        "check this machine: GL device and limits, every program variant, the per-set self-check");
+    doctorCmd->add_option("--scene", doctorOpts.scene, "the self-check's scene")
+        ->capture_default_str();
+    doctorCmd->add_option("--set", doctorOpts.sets, "KEY=VALUE overrides of that scene")
+        ->type_name("KEY=VALUE");
+    doctorCmd->add_flag("--require-gpu", doctorOpts.requireGpu,
+                        "fail when the GL device is a software rasteriser");
 
     tr::app::RunOptions runOpts;
     CommonOptions runCommon;
@@ -169,6 +187,9 @@ int main(int argc, char** argv) {
     runCmd->add_option("--cache", runOpts.cache,
                        "reference cache folder for every scene (default: sequences only, in "
                        "OUT/reference_cache)");
+    runCmd->add_flag("--self-check", runOpts.selfCheck,
+                     "first render each scene through both per-set paths (cpu, gpu) and compare "
+                     "them; exit 2 without a report when they disagree");
     addPpd(runCmd, runOpts.ppd);
     addFlipOver(runCmd, runOpts.flipOver);
     runCmd
@@ -291,7 +312,9 @@ int main(int argc, char** argv) {
         tbb::task_arena arena(threads);
         ExitCode rc = ExitCode::Pass;
         arena.execute([&] {
-            if (*render) rc = runRender(scenePath, rendererName, renderFrames, renderOpts);
+            if (*render)
+                rc = runRender(scenePath, rendererName, renderFrames, renderOpts, renderSelfCheck);
+            if (*doctorCmd) rc = tr::app::runDoctor(doctorOpts);
             if (*compareCmd) rc = tr::app::runCompare(compareOpts);
             if (*blessCmd) rc = tr::app::runBless(blessDir, blessOut);
             if (*runCmd) {

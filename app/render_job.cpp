@@ -77,6 +77,11 @@ realtime::Device& Devices::realtime() {
     return *mRealtime;
 }
 
+const realtime::gl::Context& Devices::glContext() {
+    realtime();
+    return *mContext;
+}
+
 const std::vector<std::string>& rendererNames() {
     static const std::vector<std::string> names = {"raymarch", "realtime"};
     return names;

@@ -58,6 +58,8 @@ class Devices {
     // The GL context (throws core::InputError when none can be had) and the compiled programs
     // and caches that the real-time renderers made on it share.
     realtime::Device& realtime();
+    // The GL context realtime() made (made by it when there is none yet).
+    const realtime::gl::Context& glContext();
 
   private:
     bool mRequireGpu;

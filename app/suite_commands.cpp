@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "app/comparison.h"
+#include "app/doctor_command.h"
 #include "app/interruption.h"
 #include "app/output_folder.h"
 #include "app/progress.h"
@@ -213,6 +214,10 @@ ExitCode runSuite(const RunOptions& o) {
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
         if (selected[i]) makeRenderer("realtime", devices, scenes[i]);
+    if (o.selfCheck)
+        for (std::size_t i = 0; i < scenes.size(); ++i)
+            if (selected[i] && selfCheckScene(scenes[i], devices) != ExitCode::Pass)
+                return ExitCode::Fail;
     const fs::path out(o.out);
     prepareOutputFolder(out);
 

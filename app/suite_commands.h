@@ -42,6 +42,9 @@ struct RunOptions {
     // the scenes: `run --studies`).
     bool linkStudies = false;
     std::string annotations;  // "github" | "none"; "": printAnnotations decides
+    // Each scene first rendered through both per-set paths and compared (app/doctor_command.h):
+    // a disagreement fails the run before any report is written.
+    bool selfCheck = false;
 };
 ExitCode runSuite(const RunOptions& options);
 

@@ -39,7 +39,9 @@ function(twinrender_library name)
     add_executable(${name}_gl_tests ${_gl_tests})
     twinrender_test_scratch(${name}_gl_tests)
     target_link_libraries(${name}_gl_tests PRIVATE ${name} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main)
-    gtest_discover_tests(${name}_gl_tests DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "gl")
+    # The GL tests run in poison mode (realtime/gl/poison.h): memory nobody wrote is not zero.
+    gtest_discover_tests(${name}_gl_tests DISCOVERY_TIMEOUT 60
+                         PROPERTIES LABELS "gl" ENVIRONMENT "TWINRENDER_GL_POISON=1")
   endif()
 endfunction()
 

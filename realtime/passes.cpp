@@ -1,6 +1,8 @@
 // Helpers shared by the passes (passes.h).
 #include "realtime/passes.h"
 
+#include <cctype>
+
 namespace twinrender::realtime {
 
 void SceneBuffers::bind() const {
@@ -44,6 +46,13 @@ const char* depthDefine(DepthMode mode) {
             return "DEPTH_REVERSED";
     }
     return "DEPTH_LOG";
+}
+
+std::string shadowDefine(ShadowMode mode) {
+    std::string define = "SHADOWS_";
+    for (const char c : toString(mode))
+        define += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return define;
 }
 
 gl::PipelineState coveredOnlyState(DepthMode mode) {

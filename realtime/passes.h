@@ -68,6 +68,8 @@ std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::strin
 
 // The #define selecting the depth encoding in common.glsl.
 const char* depthDefine(DepthMode mode);
+// The shade pass's define for the shadows: SHADOWS_ and the mode's name in capitals.
+std::string shadowDefine(ShadowMode mode);
 
 // shadow: the impostors seen from the light into a resolution^2 float depth map holding
 // linear light depth in [0, 1].

@@ -6,6 +6,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 #include <map>
@@ -16,6 +17,7 @@
 #include "core/derived_attributes.h"
 #include "realtime/field_normal.h"
 #include "realtime/gl/context.h"
+#include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gpu_scene.h"
 #include "realtime/occlusion_culling.h"
@@ -96,6 +98,7 @@ enum TextureUnit : unsigned {
     CELL_TEXELS = 9,
     CULL_SPHERE_TEXELS = 10,
     DIRECTION_TEXELS = 11,
+    ENTRY_WORD_TEXELS = 12,
 };
 
 // shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
@@ -129,7 +132,7 @@ int modelKind(const ParticleSettings& p) {
 
 // A culling stage (CULL, CULL_FULL), the coarse grid's directions compiled in, and a variant's
 // define (CULL: NEAR_MASKS, INTERIOR's near shells; CULL_FULL: CULL_PROBE, the probe) or "".
-const gl::Program& cullProgram(ProgramCache& programs, const char* stage, const char* variant) {
+std::vector<std::string> cullDefines(const char* stage, const char* variant) {
     // The grid is symmetric: the 21 directions whose antipode comes later, then those
     // antipodes in the same order, so that one dot product tests a direction and its opposite.
     static const std::string directions = [] {
@@ -151,19 +154,27 @@ const gl::Program& cullProgram(ProgramCache& programs, const char* stage, const 
     }();
     std::vector<std::string> defines = {stage, "COARSE_DIRECTION_VALUES " + directions};
     if (*variant) defines.emplace_back(variant);
-    return programs.compute("per_set.comp", defines);
+    return defines;
+}
+const gl::Program& cullProgram(ProgramCache& programs, const char* stage, const char* variant) {
+    return programs.compute("per_set.comp", cullDefines(stage, variant));
 }
 
-// `buffer` kept where it has `bytes` already, else a new zero-filled one.
+// `buffer` kept where it has `bytes` already, else a new one; its contents mean nothing (every
+// stage writes what it reads), so in poison mode (gl/poison.h) a kept buffer is poisoned again:
+// what the last set left must not stand in for what this one's stages write.
 enum class Resized { Kept, New };
 Resized resized(gl::Buffer& buffer, std::size_t bytes) {
-    if (buffer.size() == std::max<std::size_t>(bytes, 16)) return Resized::Kept;
-    buffer = gl::Buffer::zeros(bytes);
+    if (buffer.size() == std::max<std::size_t>(bytes, 16)) {
+        buffer.poison();
+        return Resized::Kept;
+    }
+    buffer = gl::Buffer::storage(bytes);
     return Resized::New;
 }
 Resized resized(std::optional<gl::Buffer>& buffer, std::size_t bytes) {
     if (buffer) return resized(*buffer, bytes);
-    buffer.emplace(gl::Buffer::zeros(bytes));
+    buffer.emplace(gl::Buffer::storage(bytes));
     return Resized::New;
 }
 
@@ -215,8 +226,23 @@ bool timerQueriesSeeCompute(ProgramCache& programs) {
 }
 }  // namespace
 
-void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
-    for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) programs.compute("scan.comp", {stage});
+PerSetRequest perSetRequest(const Settings& settings) {
+    PerSetRequest request;
+    request.particles = settings.particles;
+    request.kernels = usesKernels(settings);
+    // The culling test is exact for spheres only (renderer.cpp's uploadCpu says why).
+    request.cull =
+        settings.particles.cullHidden && settings.particles.shape == ParticleShape::Sphere;
+    request.droplets = mayHaveDroplets(settings.particles);
+    return request;
+}
+
+std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request) {
+    std::vector<ProgramVariant> out;
+    auto add = [&](const char* file, std::vector<std::string> defines) {
+        out.push_back(ProgramVariant::computeProgram(file, std::move(defines)));
+    };
+    for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) add("scan.comp", {stage});
     std::vector<const char*> stages = {"INIT",    "H_MIN",    "LEVELS", "LAYOUT",
                                        "COUNT",   "SCATTER",  "SORT",   "GATHER",
                                        "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
@@ -229,13 +255,56 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
-    for (const char* stage : stages) programs.compute("per_set.comp", {stage});
+    for (const char* stage : stages) add("per_set.comp", {stage});
     if (request.cull)
         for (const auto& [stage, variant] :
              {std::pair{"CULL", request.particles.radius == RadiusModel::Field ? "NEAR_MASKS" : ""},
               {"CULL_FULL", "CULL_PROBE"},
               {"CULL_FULL", ""}})
-            cullProgram(programs, stage, variant);
+            add("per_set.comp", cullDefines(stage, variant));
+    return out;
+}
+
+void checkPerSetLayouts(const gl::Program& program) {
+    struct Expected {
+        const char* name;
+        std::size_t offset, stride;
+    };
+    static const Expected EXPECTED[] = {
+        {"nearHit", 4, 0},
+        {"dropletCount", DROPLET_COUNT * 4, 0},
+        {"drawParticles", GpuPerSet::particleDrawOffset(), 0},
+        {"drawKernels", GpuPerSet::kernelDrawOffset(), 0},
+        {"levels[0].minKey", 48, 64},
+        {"walkDispatch", WALK_DISPATCH, 0},
+        {"nextWalkDispatch", NEXT_WALK_DISPATCH, 0},
+        {"scanDispatch", SCAN_DISPATCH, 0},
+        {"sortDispatch", SORT_DISPATCH, 0},
+        {"nearDispatch", NEAR_DISPATCH, 0},
+        {"usedLevels", USED_LEVELS, 0},
+        {"levelList[0]", USED_LEVELS + 4, 0},
+        {"levelCoefficientMin[0]", USED_LEVELS + 4 + MAX_LEVELS * 4, 0},
+        {"sparseDispatch", SPARSE_DISPATCH, 0},
+        {"drawDroplets", DROPLET_DRAW, 0},
+        {"particles[0].positionRadius", 0, sizeof(GpuParticle)},
+        {"particles[0].hessianOffDiagonal", offsetof(GpuParticle, hessianOffDiagonal),
+         sizeof(GpuParticle)},
+        {"kernels[0].coefficients", offsetof(GpuKernel, coefficients), sizeof(GpuKernel)},
+    };
+    for (const Expected& e : EXPECTED) {
+        const auto found = program.bufferVariable(e.name);
+        if (!found) continue;  // not active in this stage
+        if (found->offset != static_cast<long long>(e.offset) ||
+            (e.stride != 0 && found->topLevelStride != static_cast<long long>(e.stride)))
+            throw gl::Error(fmt::format(
+                "program '{}': the driver lays out '{}' at byte {} (array stride {}), "
+                "per_set_gpu.cpp expects byte {} (stride {})",
+                program.name(), e.name, found->offset, found->topLevelStride, e.offset, e.stride));
+    }
+}
+
+void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
+    for (const ProgramVariant& v : perSetPrograms(request)) checkPerSetLayouts(v.build(programs));
     timerQueriesSeeCompute(programs);  // set-up, not a frame's work: the stages' clock
 }
 
@@ -273,15 +342,22 @@ void GpuPerSet::bindStorage() const {
     mRadii.bindStorage(RADII);
     mWalks.bindStorage(WALKS);
     mFlags.bindStorage(FLAGS);
-    if (mModelBuffer) mModelBuffer->bindStorage(MODELS);
+    // Every block a stage declares is backed by a buffer, a placeholder where the set has
+    // none: a driver may fetch from a block a branch does not take.
+    auto orPlaceholder = [&](const gl::Buffer& b) -> const gl::Buffer& {
+        return b.size() > 0 ? b : mPlaceholder;
+    };
+    (mModelBuffer ? *mModelBuffer : mPlaceholder).bindStorage(MODELS);
     if (mDrawLists) mDrawLists->bindStorage(DRAW_LISTS);
     mDirections.bindStorage(DIRECTIONS);
-    if (mDroplets.size() > 0) mDroplets.bindStorage(DROPLETS);
-    if (mCullSpheres.size() > 0) mCullSpheres.bindStorage(CULL_SPHERES);
-    if (mBodies.size() > 0) mBodies.bindStorage(BODIES);
-    if (mNearMasks.size() > 0) mNearMasks.bindStorage(NEAR_MASKS);
+    orPlaceholder(mDroplets).bindStorage(DROPLETS);
+    orPlaceholder(mCullSpheres).bindStorage(CULL_SPHERES);
+    orPlaceholder(mBodies).bindStorage(BODIES);
+    orPlaceholder(mNearMasks).bindStorage(NEAR_MASKS);
+    (mEllipsoids ? *mEllipsoids : mPlaceholder).bindStorage(ELLIPSOIDS);
     mDropletWork.bindStorage(DROPLET_WORK);
     mEntryTexels.bind(ENTRY_TEXELS);
+    mEntryWordTexels.bind(ENTRY_WORD_TEXELS);
     mCellTexels.bind(CELL_TEXELS);
     mCullSphereTexels.bind(CULL_SPHERE_TEXELS);
     mDirectionTexels.bind(DIRECTION_TEXELS);
@@ -298,7 +374,7 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     const bool complete = ps.h.size() == n && ps.volume.size() == n && ps.normal.size() == n &&
                           ps.body.size() == n && ps.uv.size() == n && ps.dudx.size() == n &&
                           ps.dvdx.size() == n && ps.glow.size() == n && ps.material.size() == n;
-    if (kept && !complete) mAttributes.clear();  // the attributes a set lacks read as 0
+    if (!complete) mAttributes.clear();  // the attributes a set lacks read as 0
     writeAttribute(mAttributes, 0, n, ps.position);
     writeAttribute(mAttributes, 3, n, ps.h);
     writeAttribute(mAttributes, 4, n, ps.volume);
@@ -316,12 +392,14 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     resized(mEntries, n * GRID_ENTRY_BYTES);
     mCellTexels.view(mCells, gl::BufferFormat::R32UI);
     mEntryTexels.view(mEntries, gl::BufferFormat::RGBA32F);
+    mEntryWordTexels.view(mEntries, gl::BufferFormat::RGBA32UI);
     resized(mRadii, n * sizeof(float));
     resized(mWalks, 2 * n * sizeof(std::uint32_t));  // the walk list, the next
     resized(mFlags, n * sizeof(std::uint32_t));
     resized(mDropletWork, 4 * n * sizeof(std::uint32_t));  // per_set.comp's DropletWork
     resized(mBlockSums,
             (groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) * sizeof(std::uint32_t));
+    if (mPlaceholder.size() == 0) mPlaceholder = gl::Buffer::zeros(16);
     if (mDirections.size() == 0) {
         assert(cullingDirections().coarseCount == COARSE_DIRECTIONS);
         std::vector<glm::vec4> directions;
@@ -334,6 +412,10 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
         mCullSpheres = gl::Buffer();
         mModelBuffer.reset();
         mEllipsoids.reset();
+    } else {
+        mCullSpheres.poison();
+        if (mModelBuffer) mModelBuffer->poison();
+        if (mEllipsoids) mEllipsoids->poison();
     }
     resized(mDrawLists, 2 * (n + 1) * sizeof(std::uint32_t));
     resized(mParticles, n * sizeof(GpuParticle));
@@ -503,7 +585,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     if (request.cull && !mCulled) {
         timed("cull", [&] {
             if (mCullSpheres.size() == 0) {
-                mCullSpheres = gl::Buffer::zeros(mCount * sizeof(glm::vec4));
+                mCullSpheres = gl::Buffer::storage(mCount * sizeof(glm::vec4));
                 mCullSpheres.bindStorage(CULL_SPHERES);
                 mCullSphereTexels.view(mCullSpheres, gl::BufferFormat::RGBA32F);
                 mCullSphereTexels.bind(CULL_SPHERE_TEXELS);
@@ -555,7 +637,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
                             (kind != 2 || sameAnisotropy(mModelSettings->anisotropy, s.anisotropy));
     if (kind != 0 && !sameModels) {
         if (!mModelBuffer) {
-            mModelBuffer.emplace(gl::Buffer::zeros(3 * mCount * sizeof(glm::vec4)));
+            mModelBuffer.emplace(gl::Buffer::storage(3 * mCount * sizeof(glm::vec4)));
             mModelBuffer->bindStorage(MODELS);
         }
         if (kind == 1) {
@@ -605,7 +687,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         return p;
     };
     if (ellipsoidsDrawn() && !mEllipsoids)
-        mEllipsoids.emplace(gl::Buffer::zeros(mCount * sizeof(GpuEllipsoid)));
+        mEllipsoids.emplace(gl::Buffer::storage(mCount * sizeof(GpuEllipsoid)));
     const bool dropletsApart = this->dropletsApart();
     timed("pack", [&] {
         bindStorage();

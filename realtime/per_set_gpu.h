@@ -27,6 +27,7 @@
 #include "realtime/gl/buffer_texture.h"
 #include "realtime/gl/timer_query.h"
 #include "realtime/particle_set_key.h"
+#include "realtime/program_variants.h"
 #include "realtime/settings.h"
 #include "realtime/shader_library.h"
 
@@ -50,7 +51,17 @@ struct FrameRequest {
 // cells), for the device's GL_MAX_TEXTURE_BUFFER_SIZE.
 std::size_t perSetTexels(std::size_t particles);
 
-// Compiles the compute programs GpuPerSet will use for `request` (set-up, like the passes').
+// What a frame with these settings asks of the per-set work (per_set = "gpu").
+PerSetRequest perSetRequest(const Settings& settings);
+
+// The compute programs GpuPerSet uses for `request`.
+std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request);
+// Throws gl::Error where the driver lays out a variable of a per-set program's blocks (the
+// Header's commands and counters, the packed particles and kernels) at another byte or
+// stride than per_set_gpu.cpp writes and reads it (std430 as the C++ structs mirror it).
+void checkPerSetLayouts(const gl::Program& program);
+// Compiles them (set-up, like the passes'), checks their layouts and probes the stages' clock
+// (stageClock()).
 void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request);
 
 class GpuPerSet {
@@ -167,10 +178,11 @@ class GpuPerSet {
     // Per grid slot, the culling's near shell as INTERIOR found it (shaders/per_set.comp), for
     // the radii of the current settings when mNearMasksFound.
     gl::Buffer mNearMasks;
+    gl::Buffer mPlaceholder;  // 16 bytes, bound where a stage's block has no buffer
     bool mNearMasksFound = false;
-    // What the walks read as buffer textures (shaders/per_set.glsl): the grid's entries and
-    // cell offsets, the culling's spheres and directions.
-    gl::BufferView mEntryTexels, mCellTexels, mCullSphereTexels, mDirectionTexels;
+    // What the walks read as buffer textures (shaders/per_set.glsl): the grid's entries (as
+    // floats, and as words for the indices), cell offsets, the culling's spheres and directions.
+    gl::BufferView mEntryTexels, mEntryWordTexels, mCellTexels, mCullSphereTexels, mDirectionTexels;
     std::map<std::string, double> mTimings;  // since the last takeTimings()
     std::optional<StageClock> mStageClock;
     std::vector<std::pair<const char*, gl::TimerQuery>> mQueries;  // not yet read

@@ -31,6 +31,7 @@
 #include "realtime/occlusion_culling.h"
 #include "realtime/passes.h"
 #include "realtime/per_set_gpu.h"
+#include "realtime/program_variants.h"
 #include "realtime/surface_kernels.h"
 
 namespace twinrender::realtime {
@@ -85,6 +86,10 @@ Device::Device(const gl::Context& context) : mState(std::make_unique<DeviceState
 
 Device::~Device() = default;
 
+std::vector<std::string> Device::programNames() const {
+    return mState->programs.names();
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -96,10 +101,6 @@ constexpr const char* PER_SET_STAGES[] = {"grid",    "particle_normals", "radius
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-bool usesShadowMap(ShadowMode mode) {
-    return mode == ShadowMode::Map || mode == ShadowMode::Pcf;
 }
 
 FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
@@ -153,15 +154,6 @@ bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera,
     return true;
 }
 
-// Whether the surface pass replaces the normals by those of its depth (a depth filter, or the
-// user's shader with surface.shader_normals): the gradient pass's would be thrown away.
-bool rebuildsNormals(const Settings& s) {
-    const SurfaceMethod m = s.surface.method;
-    return m == SurfaceMethod::Bilateral || m == SurfaceMethod::NarrowRange ||
-           m == SurfaceMethod::CurvatureFlow ||
-           (m == SurfaceMethod::Shader && s.surface.shaderNormals);
-}
-
 bool sceneEmits(const core::ParticleSet& ps, const std::vector<core::Material>& materials) {
     for (const auto& m : materials)
         for (float v : m.emission.image().pixels())
@@ -200,55 +192,17 @@ void checkLimits(const core::RenderInput& in, const Settings& settings, const De
 
 // ---- Compile ----
 
-// Whether small droplets may be drawn as ellipsoids (realtime/droplets.h).
-bool mayHaveDroplets(const ParticleSettings& p) {
-    return p.radius == RadiusModel::Field && p.dropletAtoms >= 2;
-}
-
-// Whether the gradient pass runs (and needs the kernels that reach the surface).
-bool usesKernels(const Settings& s) {
-    return s.particles.normal == NormalModel::Gradient && !rebuildsNormals(s);
-}
-
-// What per_set = "gpu" computes for these settings.
-PerSetRequest perSetRequest(const Settings& settings) {
-    PerSetRequest request;
-    request.particles = settings.particles;
-    request.kernels = usesKernels(settings);
-    // The culling test is exact for spheres only (see uploadCpu).
-    request.cull =
-        settings.particles.cullHidden && settings.particles.shape == ParticleShape::Sphere;
-    request.droplets = mayHaveDroplets(settings.particles);
-    return request;
-}
-
-// Compiles (once per device) the programs the settings use that are not built on first use
-// inside the passes.
+// Compiles (once per device) every program a frame with these settings builds
+// (program_variants.h), so that none is compiled inside a frame.
 void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
-    // A set with droplets draws them with the ellipsoid programs, apart from the spheres.
-    const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
-    for (const bool ellipsoids : {false, true}) {
-        if (ellipsoids != anisotropic && !(ellipsoids && mayHaveDroplets(settings.particles)))
-            continue;
-        if (usesShadowMap(settings.shadows))
-            programs.get("impostor.vert", "shadow.frag",
-                         impostorDefines(ellipsoids, {"SHADOW_PASS"}));
-        programs.get("impostor.vert", "gbuffer.frag",
-                     impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
+    for (const ProgramVariant& v : programVariants(settings, emits)) {
+        if (v.userShader)
+            userSurfaceProgram(programs, settings.surface);  // its errors are bad input
+        else
+            v.build(programs);
     }
-    if (usesSsss(settings)) {
-        std::vector<std::string> defines;
-        if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
-        if (emits) defines.emplace_back("EMISSION");
-        programs.get("fullscreen.vert", "ssss.frag", defines);
-    }
-    if (settings.particles.normal == NormalModel::Gradient) {
-        programs.get("support.vert", "gradient_splat.frag", {depthDefine(settings.depth)});
-        programs.get("fullscreen.vert", "gradient_resolve.frag");
-    }
-    compileSurfacePrograms(programs, settings.surface);
     if (settings.perSet == PerSetDevice::Gpu)
-        compilePerSetPrograms(programs, perSetRequest(settings));
+        compilePerSetPrograms(programs, perSetRequest(settings));  // and the stage clock
     gl::finish();
 }
 

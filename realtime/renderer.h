@@ -5,6 +5,8 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/renderer.h"
 #include "realtime/settings.h"
@@ -30,6 +32,9 @@ class Device {
     ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
+
+    // The names of the programs compiled on it so far (program_variants.h names them alike).
+    std::vector<std::string> programNames() const;
 
   private:
     friend class Renderer;

@@ -178,6 +178,25 @@ bool usesSurfaceFilter(const Settings& s) {
     return s.surface.method != SurfaceMethod::Ssss && s.surface.method != SurfaceMethod::None;
 }
 
+bool rebuildsNormals(const Settings& s) {
+    const SurfaceMethod m = s.surface.method;
+    return m == SurfaceMethod::Bilateral || m == SurfaceMethod::NarrowRange ||
+           m == SurfaceMethod::CurvatureFlow ||
+           (m == SurfaceMethod::Shader && s.surface.shaderNormals);
+}
+
+bool usesKernels(const Settings& s) {
+    return s.particles.normal == NormalModel::Gradient && !rebuildsNormals(s);
+}
+
+bool mayHaveDroplets(const ParticleSettings& p) {
+    return p.radius == RadiusModel::Field && p.dropletAtoms >= 2;
+}
+
+bool usesShadowMap(ShadowMode mode) {
+    return mode == ShadowMode::Map || mode == ShadowMode::Pcf;
+}
+
 Settings parseSettings(const core::ParameterTable& t) {
     const Settings d;  // defaults
     Settings s;

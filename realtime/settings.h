@@ -261,6 +261,15 @@ struct Settings {
 bool usesSsss(const Settings& settings);
 // Whether a depth filter or the user's shader runs (the "surface" pass).
 bool usesSurfaceFilter(const Settings& settings);
+// Whether the surface pass replaces the normals by those of its depth (a depth filter, or the
+// user's shader with surface.shader_normals): the gradient pass's would be thrown away.
+bool rebuildsNormals(const Settings& settings);
+// Whether the gradient pass runs (and needs the kernels that reach the surface).
+bool usesKernels(const Settings& settings);
+// Whether small droplets may be drawn as ellipsoids (realtime/droplets.h).
+bool mayHaveDroplets(const ParticleSettings& particles);
+// Whether the shadow map is drawn (shadows = "map" or "pcf").
+bool usesShadowMap(ShadowMode mode);
 
 // Reads every key of the table (the scene's [realtime] section with --set overrides applied)
 // and then calls table.checkAllRead(): an unknown key, a wrong type or an out-of-range value

@@ -20,21 +20,7 @@ gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& in) {
     framebuffer.clearColor(0, glm::vec4(0.0f));  // the background: black, visibility 0
     gl::setPipelineState(coveredOnlyState(in.depthMode));
 
-    std::vector<std::string> defines;
-    switch (in.shadows) {
-        case ShadowMode::None:
-            defines.emplace_back("SHADOWS_NONE");
-            break;
-        case ShadowMode::Map:
-            defines.emplace_back("SHADOWS_MAP");
-            break;
-        case ShadowMode::Pcf:
-            defines.emplace_back("SHADOWS_PCF");
-            break;
-        case ShadowMode::Spheres:
-            defines.emplace_back("SHADOWS_SPHERES");
-            break;
-    }
+    std::vector<std::string> defines = {shadowDefine(in.shadows)};
     if (in.emission) defines.emplace_back("EMISSION");
     const gl::Program& program = programs.get("fullscreen.vert", "shade.frag", defines);
     program.use();

@@ -80,8 +80,7 @@ gl::ShaderSource composeShader(std::string_view file, std::span<const std::strin
 const gl::Program& ProgramCache::get(std::string_view vertexFile, std::string_view fragmentFile,
                                      const std::vector<std::string>& defines,
                                      const IncludedFile* user) {
-    std::string key = fmt::format("{}+{}", vertexFile, fragmentFile);
-    for (const auto& d : defines) key += " -D" + d;
+    std::string key = drawName(vertexFile, fragmentFile, defines);
     if (user)
         key += fmt::format(" {}={} ({:016x})", user->include, user->shownName,
                            std::hash<std::string>{}(user->text));
@@ -96,12 +95,30 @@ const gl::Program& ProgramCache::get(std::string_view vertexFile, std::string_vi
 
 const gl::Program& ProgramCache::compute(std::string_view file,
                                          const std::vector<std::string>& defines) {
-    std::string key(file);
-    for (const auto& d : defines) key += " -D" + d;
+    const std::string key = computeName(file, defines);
     auto it = mPrograms.find(key);
     if (it == mPrograms.end())
         it = mPrograms.emplace(key, gl::Program(key, composeShader(file, defines))).first;
     return it->second;
+}
+
+std::vector<std::string> ProgramCache::names() const {
+    std::vector<std::string> out;
+    for (const auto& [name, program] : mPrograms) out.push_back(name);
+    return out;
+}
+
+std::string ProgramCache::drawName(std::string_view vertexFile, std::string_view fragmentFile,
+                                   std::span<const std::string> defines) {
+    std::string name = fmt::format("{}+{}", vertexFile, fragmentFile);
+    for (const auto& d : defines) name += " -D" + d;
+    return name;
+}
+
+std::string ProgramCache::computeName(std::string_view file, std::span<const std::string> defines) {
+    std::string name(file);
+    for (const auto& d : defines) name += " -D" + d;
+    return name;
 }
 
 }  // namespace twinrender::realtime

@@ -46,6 +46,13 @@ class ProgramCache {
     const gl::Program& compute(std::string_view file, const std::vector<std::string>& defines = {});
 
     std::size_t size() const { return mPrograms.size(); }
+    // The names of the programs compiled so far (as their errors name them).
+    std::vector<std::string> names() const;
+
+    // A program's name: "VERTEX+FRAGMENT -DNAME..." or "COMPUTE -DNAME...".
+    static std::string drawName(std::string_view vertexFile, std::string_view fragmentFile,
+                                std::span<const std::string> defines);
+    static std::string computeName(std::string_view file, std::span<const std::string> defines);
 
   private:
     std::map<std::string, gl::Program, std::less<>> mPrograms;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "realtime/gl/poison.h"
+
 namespace twinrender::realtime::gl {
 
 namespace {
@@ -34,6 +36,17 @@ Buffer Buffer::zeros(std::size_t bytes) {
     glNamedBufferStorage(id, static_cast<GLsizeiptr>(b.mSize), nullptr, GL_DYNAMIC_STORAGE_BIT);
     b.clear();
     return b;
+}
+
+Buffer Buffer::storage(std::size_t bytes) {
+    Buffer b = zeros(bytes);
+    b.poison();
+    return b;
+}
+
+void Buffer::poison() {
+    if (!poisonMode() || !mHandle) return;
+    glClearNamedBufferData(mHandle.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &POISON_WORD);
 }
 
 void Buffer::write(std::size_t offset, std::span<const std::byte> data) {

@@ -24,6 +24,12 @@ class Buffer {
     // A buffer of `bytes` zero bytes (at least 16) that shaders fill; write() and clear() may
     // change it later.
     static Buffer zeros(std::size_t bytes);
+    // A buffer of `bytes` (at least 16) whose contents mean nothing until shaders or write()
+    // set them: zeros, or the poison pattern in poison mode (poison.h).
+    static Buffer storage(std::size_t bytes);
+    // Fills it with the poison pattern in poison mode (a buffer kept for new contents); else
+    // nothing.
+    void poison();
     // Sets bytes [offset, offset + data.size()) (a buffer made by zeros() only).
     void write(std::size_t offset, std::span<const std::byte> data);
     template <typename T>

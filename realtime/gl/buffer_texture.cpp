@@ -21,6 +21,8 @@ GLenum internalFormat(BufferFormat format) {
             return GL_RGB32F;
         case BufferFormat::RGBA32F:
             return GL_RGBA32F;
+        case BufferFormat::RGBA32UI:
+            return GL_RGBA32UI;
         case BufferFormat::R32UI:
             return GL_R32UI;
     }

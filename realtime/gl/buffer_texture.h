@@ -10,9 +10,10 @@
 namespace twinrender::realtime::gl {
 
 enum class BufferFormat {
-    RGB32F,   // one vec3 texel per 12 bytes
-    RGBA32F,  // one vec4 texel per 16 bytes
-    R32UI,    // one uint texel per 4 bytes (usamplerBuffer)
+    RGB32F,    // one vec3 texel per 12 bytes
+    RGBA32F,   // one vec4 texel per 16 bytes
+    RGBA32UI,  // one uvec4 texel per 16 bytes (usamplerBuffer)
+    R32UI,     // one uint texel per 4 bytes (usamplerBuffer)
 };
 
 class BufferTexture {

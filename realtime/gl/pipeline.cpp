@@ -71,6 +71,12 @@ Limits queryLimits() {
     glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
     l.maxViewportWidth = viewport[0];
     l.maxViewportHeight = viewport[1];
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &l.maxStorageBindings);
+    glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &l.maxComputeStorageBlocks);
+    glGetIntegerv(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, &l.maxComputeTextureUnits);
+    glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &l.maxComputeInvocations);
+    glGetIntegerv(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, &l.maxComputeSharedBytes);
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &l.maxDrawBuffers);
     return l;
 }
 

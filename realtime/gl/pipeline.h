@@ -50,6 +50,14 @@ struct Limits {
     int maxTextureSize = 0;                // GL_MAX_TEXTURE_SIZE
     long long maxTextureBufferTexels = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
     int maxViewportWidth = 0, maxViewportHeight = 0;
+    // What the per-set compute passes and the passes' targets need (`twinrender doctor` lists
+    // them against what the renderer uses).
+    int maxStorageBindings = 0;       // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS
+    int maxComputeStorageBlocks = 0;  // GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS
+    int maxComputeTextureUnits = 0;   // GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS
+    int maxComputeInvocations = 0;    // GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS
+    int maxComputeSharedBytes = 0;    // GL_MAX_COMPUTE_SHARED_MEMORY_SIZE
+    int maxDrawBuffers = 0;           // GL_MAX_DRAW_BUFFERS
 };
 Limits queryLimits();
 

@@ -174,4 +174,13 @@ void Program::set(std::string_view u, std::span<const glm::vec4> v) const {
                             glm::value_ptr(v[0]));
 }
 
+std::optional<Program::BufferVariable> Program::bufferVariable(const std::string& name) const {
+    const GLuint index = glGetProgramResourceIndex(id(), GL_BUFFER_VARIABLE, name.c_str());
+    if (index == GL_INVALID_INDEX) return std::nullopt;
+    const GLenum properties[2] = {GL_OFFSET, GL_TOP_LEVEL_ARRAY_STRIDE};
+    GLint values[2] = {0, 0};
+    glGetProgramResourceiv(id(), GL_BUFFER_VARIABLE, index, 2, properties, 2, nullptr, values);
+    return BufferVariable{values[0], values[1]};
+}
+
 }  // namespace twinrender::realtime::gl

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -62,6 +63,14 @@ class Program {
     void set(std::string_view uniform, const glm::mat3& value) const;
     void set(std::string_view uniform, const glm::mat4& value) const;
     void set(std::string_view uniform, std::span<const glm::vec4> values) const;
+
+    // Where the driver put buffer variable `name` ("walkDispatch", "particles[0].normalU"):
+    // its byte offset in its block and, for a member of an array of structs, that array's stride
+    // (0 otherwise); std::nullopt where the variable is not active in this program.
+    struct BufferVariable {
+        long long offset = 0, topLevelStride = 0;
+    };
+    std::optional<BufferVariable> bufferVariable(const std::string& name) const;
 
   private:
     int location(std::string_view uniform) const;

@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "realtime/gl/error.h"
+#include "realtime/gl/poison.h"
 
 namespace twinrender::realtime::gl {
 
@@ -48,6 +50,21 @@ Texture::Texture(int width, int height, Format format, Filter filter, int levels
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    if (poisonMode()) {
+        // Depth targets are cleared before use by every pass; colour targets may be read
+        // where a pass drew nothing (poison.h).
+        const bool depth = format == Format::Depth24 || format == Format::Depth32F;
+        const float nan = [] {
+            float f;
+            static_assert(sizeof(f) == sizeof(POISON_WORD));
+            std::memcpy(&f, &POISON_WORD, sizeof(f));
+            return f;
+        }();
+        const float colour[4] = {nan, nan, nan, nan};
+        for (int level = 0; level < levels; ++level)
+            glClearTexImage(id, level, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT,
+                            depth ? &POISON_DEPTH : colour);
+    }
     checkErrors(fmt::format("texture {}x{}", width, height));
 }
 

@@ -254,7 +254,10 @@ void main() {
 void main() {
     uint i = invocation();
     if (i >= uCount) return;
-    uint c = uint(cellIndex(levels[levelOf(particleH(i))], particlePosition(i)));
+    // A local copy: a member of the coherent Header block passed to a parameter without that
+    // qualifier is a compile error on NVIDIA's compiler (C1317).
+    Level g = levels[levelOf(particleH(i))];
+    uint c = uint(cellIndex(g, particlePosition(i)));
     cellOf[i] = c;
     atomicAdd(cellStart[c], 1u);
 }
@@ -295,20 +298,18 @@ void main() {
 #endif
 
 #ifdef GATHER
-struct GridEntry {
-    vec4 positionInvH;
-    vec4 coefficients;
-};
+// Two uvec4 per entry (per_set.glsl): the floats' bits, then the index and body as they are.
 layout(std430, binding = 9) writeonly buffer Entries {
-    GridEntry entries[];
+    uvec4 entryWords[];
 };
 void main() {
     uint k = invocation();
     if (k >= uCount) return;
     uint i = sorted[k];
-    entries[k].positionInvH = vec4(particlePosition(i), float(1.0LF / double(particleH(i))));
-    entries[k].coefficients =
-        vec4(kernelCoefficients(i), uintBitsToFloat(i), attributes[ATTR_BODY * uCount + i]);
+    entryWords[2u * k] = floatBitsToUint(
+        vec4(particlePosition(i), float(1.0LF / double(particleH(i)))));
+    entryWords[2u * k + 1u] =
+        uvec4(floatBitsToUint(kernelCoefficients(i)), i, attributeBits(ATTR_BODY, i));
 }
 #endif
 
@@ -688,7 +689,7 @@ void main() {
     if (!(ri > 0.0)) return;
     uint i = entryIndex(slot);
     vec3 xi = self.xyz;
-    uint body = floatBitsToUint(entryCoefficients(slot).w);
+    uint body = entryBody(slot);
     bool hidden = false;
     cullReach_ri = ri;
     float nearLimit2 = NEAR_SHELL * NEAR_SHELL * ri * ri;
@@ -703,7 +704,7 @@ void main() {
     float dist2_ = dot(d_, d_);                                                                 \
     float reach_ = ri + rj_;                                                                    \
     if (k != slot && rj_ > 0.0 && dist2_ < reach_ * reach_ && (!NEAR_ONLY || dist2_ <= nearLimit2) && \
-        floatBitsToUint(entryCoefficients(k).w) == body) {                                      \
+        entryBody(k) == body) {                                                                 \
         float dist_ = sqrt(dist2_);                                                             \
         if (rj_ >= ri && dist_ + ri <= rj_) {                                                   \
             if (dist2_ > 0.0 || rj_ > ri || entryIndex(k) < i) hidden = true;                   \
@@ -1384,10 +1385,20 @@ void main() {
     vec3 centre = particlePosition(i);
     uint slot = dropletSlot(i);
     if (slot != 0u || uEllipsoids != 0) {
-        // The ellipsoid lies within |shift| + its longest semi-axis of the particle.
-        vec4 a0 = slot != 0u ? droplets[3u * (slot - 1u)] : models[3u * i];
-        vec4 a1 = slot != 0u ? droplets[3u * (slot - 1u) + 1u] : models[3u * i + 1u];
-        vec4 a2 = slot != 0u ? droplets[3u * (slot - 1u) + 2u] : models[3u * i + 2u];
+        // The ellipsoid lies within |shift| + its longest semi-axis of the particle. Branches,
+        // not ?: selects, which a compiler may evaluate on both sides (the droplets' index is
+        // out of range for slot 0).
+        vec4 a0, a1, a2;
+        if (slot != 0u) {
+            uint d = 3u * (slot - 1u);
+            a0 = droplets[d];
+            a1 = droplets[d + 1u];
+            a2 = droplets[d + 2u];
+        } else {
+            a0 = models[3u * i];
+            a1 = models[3u * i + 1u];
+            a2 = models[3u * i + 2u];
+        }
         r = length(vec3(a0.w, a1.w, a2.w)) +
             max(length(a0.xyz), max(length(a1.xyz), length(a2.xyz)));
     }
@@ -1447,7 +1458,7 @@ void main() {
     uint i = walkList[t];
     uint k = firstSphere() + drawnPrefix[i];
     vec2 uv =
-        vec2(attributes[ATTR_UV * uCount + 2u * i], attributes[ATTR_UV * uCount + 2u * i + 1u]);
+        vec2(attributeFloat(ATTR_UV * uCount + 2u * i), attributeFloat(ATTR_UV * uCount + 2u * i + 1u));
     Particle p;
     p.positionRadius = vec4(vec3(dvec3(particlePosition(i)) - uCamera), radii[i]);
     p.normalU = vec4(attribute3(ATTR_NORMAL, i), uv.x);
@@ -1457,21 +1468,27 @@ void main() {
     p.hessianDiagonal = vec4(0.0);
     p.hessianOffDiagonal = vec4(0.0);
     uint slot = dropletSlot(i);
-    if (uModels == 1) {
+    // Branches rather than ?: selects (KERNELS says why).
+    if (uModels == 1 && slot != 0u) {
         // A droplet's normal is its ellipsoid's.
-        uint m = slot != 0u ? dropletModel(slot - 1u) : 3u * i;
-        p.normalU.xyz = slot != 0u ? droplets[m].xyz : models[m].xyz;
-        p.hessianDiagonal = slot != 0u ? droplets[m + 1u] : models[m + 1u];
-        p.hessianOffDiagonal = slot != 0u ? droplets[m + 2u] : models[m + 2u];
+        uint m = dropletModel(slot - 1u);
+        p.normalU.xyz = droplets[m].xyz;
+        p.hessianDiagonal = droplets[m + 1u];
+        p.hessianOffDiagonal = droplets[m + 2u];
+    } else if (uModels == 1) {
+        p.normalU.xyz = models[3u * i].xyz;
+        p.hessianDiagonal = models[3u * i + 1u];
+        p.hessianOffDiagonal = models[3u * i + 2u];
     }
     if (uDropletsApart != 0 && slot != 0u) {
         particles[slot - 1u] = p;
         return;
     }
-    if (uModels == 2)
-        for (uint a = 0u; a < 3u; ++a)
-            ellipsoids[3u * k + a] =
-                slot != 0u ? droplets[3u * (slot - 1u) + a] : models[3u * i + a];
+    if (uModels == 2 && slot != 0u) {
+        for (uint a = 0u; a < 3u; ++a) ellipsoids[3u * k + a] = droplets[3u * (slot - 1u) + a];
+    } else if (uModels == 2) {
+        for (uint a = 0u; a < 3u; ++a) ellipsoids[3u * k + a] = models[3u * i + a];
+    }
     particles[k] = p;
 }
 #endif

@@ -32,16 +32,20 @@ uniform uint uCount;  // particles in the set
 #else
 #define ATTRIBUTES_ACCESS readonly
 #endif
+// Words, not floats: the body and material indices are uint bits, which as floats are
+// denormals, and GLSL lets any float operation (a load or store among them) flush a denormal
+// to zero. Floats are taken from their bits (uintBitsToFloat of a normal float is exact).
 layout(std430, binding = 5) ATTRIBUTES_ACCESS buffer Attributes {
-    float attributes[];
+    uint attributeWords[];
 };
 
+float attributeFloat(uint k) { return uintBitsToFloat(attributeWords[k]); }
 vec3 attribute3(uint offset, uint i) {
     uint k = offset * uCount + 3u * i;
-    return vec3(attributes[k], attributes[k + 1u], attributes[k + 2u]);
+    return vec3(attributeFloat(k), attributeFloat(k + 1u), attributeFloat(k + 2u));
 }
-float attribute1(uint offset, uint i) { return attributes[offset * uCount + i]; }
-uint attributeBits(uint offset, uint i) { return floatBitsToUint(attributes[offset * uCount + i]); }
+float attribute1(uint offset, uint i) { return attributeFloat(offset * uCount + i); }
+uint attributeBits(uint offset, uint i) { return attributeWords[offset * uCount + i]; }
 
 #if defined(NORMALS) || defined(INTERIOR)
 layout(std430, binding = 20) readonly buffer Bodies {
@@ -57,9 +61,9 @@ vec3 fallbackNormal(uint i, vec3 x) {
 }
 void writeNormal(uint i, vec3 n) {
     uint k = ATTR_NORMAL * uCount + 3u * i;
-    attributes[k] = n.x;
-    attributes[k + 1u] = n.y;
-    attributes[k + 2u] = n.z;
+    attributeWords[k] = floatBitsToUint(n.x);
+    attributeWords[k + 1u] = floatBitsToUint(n.y);
+    attributeWords[k + 2u] = floatBitsToUint(n.z);
 }
 #endif
 
@@ -147,17 +151,21 @@ int cellIndex(Level g, vec3 p) {
 
 #ifdef GRID_READ
 // The particles sorted by cell (index order within a cell), GATHER's GridEntry records: two
-// texels each, the position and 1 / h; v / (pi h^4), v / (pi h^3) (W(0) = that), the uint
-// bits of the particle's index and of its body. The stages that walk the grid read it, and the
+// texels each, the position and 1 / h; v / (pi h^4), v / (pi h^3) (W(0) = that), the
+// particle's index and its body (uint). The stages that walk the grid read it, and the
 // cells' offsets, as buffer textures (per_set_gpu.cpp's texture units): Mesa's llvmpipe loads
 // from a storage buffer lane by lane, a branch per lane and component, where a texel fetch is
 // one gather, and a walk's loads are most of its time (NORMALS at 1M particles: 758 -> 304 ms).
+// The index and body are read through an integer view of the same buffer: as float bits they
+// are denormals, which a float fetch may flush to zero.
 layout(binding = 8) uniform samplerBuffer uEntryTexels;
 layout(binding = 9) uniform usamplerBuffer uCellTexels;  // totalCells + 1 offsets into entries
+layout(binding = 12) uniform usamplerBuffer uEntryWords;  // the entries as uvec4 texels
 vec4 entryPosition(uint k) { return texelFetch(uEntryTexels, int(2u * k)); }
 vec4 entryCoefficients(uint k) { return texelFetch(uEntryTexels, int(2u * k + 1u)); }
-// The particle of grid entry k (GATHER stores its index's bits in coefficients.z).
-uint entryIndex(uint k) { return floatBitsToUint(entryCoefficients(k).z); }
+// The particle of grid entry k and its body (GATHER's words z and w of the second texel).
+uint entryIndex(uint k) { return texelFetch(uEntryWords, int(2u * k + 1u)).z; }
+uint entryBody(uint k) { return texelFetch(uEntryWords, int(2u * k + 1u)).w; }
 uint cellStart(int c) { return texelFetch(uCellTexels, c).x; }
 
 // Row r (r = SIZE z + y) of the SIZE x SIZE x SIZE cells of level g from cell `base`: the

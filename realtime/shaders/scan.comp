@@ -26,23 +26,31 @@ uint count() { return uCells != 0 ? totalCells : uCount; }
 const uint PER_THREAD = 64u, BLOCK = 256u * PER_THREAD;
 shared uint partial[256];
 
+// Every invocation of the work group past this point sees the shared writes before it:
+// barrier() orders execution, memoryBarrierShared() makes the writes visible (GLSL 4.50 asks
+// for both; a driver that runs a work group in order, as llvmpipe does, needs neither).
+void sharedBarrier() {
+    memoryBarrierShared();
+    barrier();
+}
+
 // Exclusive scan of partial[] (one value per invocation), by Hillis and Steele; returns the
 // total.
 uint scanShared(uint own) {
     uint t = gl_LocalInvocationID.x;
     partial[t] = own;
-    barrier();
+    sharedBarrier();
     for (uint stride = 1u; stride < 256u; stride *= 2u) {
         uint add = t >= stride ? partial[t - stride] : 0u;
-        barrier();
+        sharedBarrier();
         partial[t] += add;
-        barrier();
+        sharedBarrier();
     }
     uint total = partial[255];
     uint exclusive = partial[t] - own;
-    barrier();
+    sharedBarrier();
     partial[t] = exclusive;
-    barrier();
+    sharedBarrier();
     return total;
 }
 

@@ -1,0 +1,182 @@
+#include "realtime/program_variants.h"
+
+#include <map>
+#include <utility>
+
+#include "realtime/gl/error.h"
+#include "realtime/passes.h"
+#include "realtime/per_set_gpu.h"
+
+namespace twinrender::realtime {
+
+ProgramVariant ProgramVariant::draw(std::string vertex, std::string fragment,
+                                    std::vector<std::string> defines) {
+    ProgramVariant v;
+    v.vertex = std::move(vertex);
+    v.fragment = std::move(fragment);
+    v.defines = std::move(defines);
+    return v;
+}
+
+ProgramVariant ProgramVariant::computeProgram(std::string file, std::vector<std::string> defines) {
+    ProgramVariant v;
+    v.compute = std::move(file);
+    v.defines = std::move(defines);
+    return v;
+}
+
+ProgramVariant ProgramVariant::userSurface() {
+    ProgramVariant v = draw("fullscreen.vert", "user_surface.frag");
+    v.userShader = true;
+    return v;
+}
+
+std::string ProgramVariant::name() const {
+    return compute.empty() ? ProgramCache::drawName(vertex, fragment, defines)
+                           : ProgramCache::computeName(compute, defines);
+}
+
+const gl::Program& ProgramVariant::build(ProgramCache& programs, const IncludedFile* user) const {
+    if (!compute.empty()) return programs.compute(compute, defines);
+    const IncludedFile fallback = passThroughSurfaceFilter();
+    return programs.get(vertex, fragment, defines,
+                        userShader ? (user ? user : &fallback) : nullptr);
+}
+
+IncludedFile passThroughSurfaceFilter() {
+    return {"user_surface.glsl", "surface_pass_through.glsl",
+            std::string(shaderFile("surface_pass_through.glsl"))};
+}
+
+namespace {
+
+void surfaceVariants(const SurfaceSettings& s, std::vector<ProgramVariant>& out) {
+    auto add = [&](const char* fragment, std::vector<std::string> defines = {}) {
+        out.push_back(ProgramVariant::draw("fullscreen.vert", fragment, std::move(defines)));
+    };
+    switch (s.method) {
+        case SurfaceMethod::Bilateral:
+            add("bilateral.frag", s.bilateral.separable ? std::vector<std::string>{"SEPARABLE"}
+                                                        : std::vector<std::string>{});
+            break;
+        case SurfaceMethod::NarrowRange:
+            add("narrow_range.frag");
+            if (s.narrowRange.separable) add("narrow_range.frag", {"SEPARABLE"});
+            break;
+        case SurfaceMethod::CurvatureFlow:
+            add("curvature_flow.frag");
+            break;
+        case SurfaceMethod::Shader:
+            out.push_back(ProgramVariant::userSurface());
+            break;
+        case SurfaceMethod::Ssss:
+        case SurfaceMethod::None:
+            return;
+    }
+    if (s.method != SurfaceMethod::Shader || s.shaderNormals) add("depth_normals.frag");
+}
+
+}  // namespace
+
+std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits) {
+    std::vector<ProgramVariant> out;
+    auto add = [&](const char* vertex, const char* fragment, std::vector<std::string> defines) {
+        out.push_back(ProgramVariant::draw(vertex, fragment, std::move(defines)));
+    };
+    // A set with droplets draws them with the ellipsoid programs, apart from the spheres.
+    const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
+    for (const bool ellipsoids : {false, true}) {
+        if (ellipsoids != anisotropic && !(ellipsoids && mayHaveDroplets(settings.particles)))
+            continue;
+        if (usesShadowMap(settings.shadows))
+            add("impostor.vert", "shadow.frag", impostorDefines(ellipsoids, {"SHADOW_PASS"}));
+        add("impostor.vert", "gbuffer.frag",
+            impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
+    }
+    if (settings.particles.normal == NormalModel::Gradient) {
+        add("support.vert", "gradient_splat.frag", {depthDefine(settings.depth)});
+        add("fullscreen.vert", "gradient_resolve.frag", {});
+    }
+    if (usesSsss(settings)) {
+        std::vector<std::string> defines;
+        if (settings.ssss.separable) defines.emplace_back("SEPARABLE");
+        if (emits) defines.emplace_back("EMISSION");
+        add("fullscreen.vert", "ssss.frag", defines);
+    }
+    if (usesSurfaceFilter(settings)) surfaceVariants(settings.surface, out);
+    std::vector<std::string> shade = {shadowDefine(settings.shadows)};
+    if (emits) shade.emplace_back("EMISSION");
+    add("fullscreen.vert", "shade.frag", shade);
+    // The bloom's levels exist where the image is large enough; the composite without them
+    // either way.
+    if (settings.bloom.enabled && settings.bloom.strength > 0.0) {
+        add("fullscreen.vert", "bloom_bright.frag", {});
+        add("fullscreen.vert", "bloom_down.frag", {});
+        add("fullscreen.vert", "bloom_up.frag", {});
+        add("fullscreen.vert", "composite.frag", {"BLOOM"});
+    }
+    add("fullscreen.vert", "composite.frag", {});
+    if (settings.perSet == PerSetDevice::Gpu)
+        for (ProgramVariant& v : perSetPrograms(perSetRequest(settings)))
+            out.push_back(std::move(v));
+    return out;
+}
+
+std::vector<ProgramVariant> allProgramVariants() {
+    std::map<std::string, ProgramVariant> all;
+    Settings s;
+    for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed})
+        for (ShadowMode shadows :
+             {ShadowMode::None, ShadowMode::Map, ShadowMode::Pcf, ShadowMode::Spheres})
+            for (ParticleShape shape : {ParticleShape::Sphere, ParticleShape::Ellipsoid})
+                for (NormalModel normal : {NormalModel::Sphere, NormalModel::Field,
+                                           NormalModel::Blend, NormalModel::Gradient})
+                    for (RadiusModel radius : {RadiusModel::Field, RadiusModel::Fixed})
+                        for (int atoms : {0, 8})
+                            for (SurfaceMethod method :
+                                 {SurfaceMethod::Ssss, SurfaceMethod::Bilateral,
+                                  SurfaceMethod::NarrowRange, SurfaceMethod::CurvatureFlow,
+                                  SurfaceMethod::None, SurfaceMethod::Shader})
+                                // The flags each apply to one method: all on, then all off.
+                                for (bool flags : {true, false})
+                                    for (bool emits : {false, true})
+                                        for (bool cull : {false, true})
+                                            for (PerSetDevice where :
+                                                 {PerSetDevice::Gpu, PerSetDevice::Cpu}) {
+                                                s.depth = depth;
+                                                s.shadows = shadows;
+                                                s.particles.shape = shape;
+                                                s.particles.normal = normal;
+                                                s.particles.radius = radius;
+                                                s.particles.dropletAtoms = atoms;
+                                                s.particles.cullHidden = cull;
+                                                s.surface.method = method;
+                                                s.ssss.separable = flags;
+                                                s.surface.bilateral.separable = flags;
+                                                s.surface.narrowRange.separable = flags;
+                                                s.surface.shaderNormals = flags;
+                                                s.perSet = where;
+                                                for (ProgramVariant& v : programVariants(s, emits))
+                                                    all.try_emplace(v.name(), std::move(v));
+                                            }
+    std::vector<ProgramVariant> out;
+    for (auto& [name, v] : all) out.push_back(std::move(v));
+    return out;
+}
+
+std::vector<CompileFailure> compileEach(ProgramCache& programs,
+                                        std::span<const ProgramVariant> variants,
+                                        const IncludedFile* user) {
+    std::vector<CompileFailure> failures;
+    for (const ProgramVariant& v : variants) {
+        try {
+            const gl::Program& program = v.build(programs, user);
+            if (v.compute == "per_set.comp") checkPerSetLayouts(program);
+        } catch (const gl::Error& e) {
+            failures.push_back({v.name(), e.what()});
+        }
+    }
+    return failures;
+}
+
+}  // namespace twinrender::realtime

@@ -1,0 +1,51 @@
+// The per-set self-check: a scene rendered through both per-set paths (per_set = "cpu" and
+// "gpu", every other setting the same) on one device, their counters and images compared, so
+// that a driver bug or a new shader bug shows as a failed check, never as a silently wrong
+// report. `twinrender doctor` runs it, and `render` / `run` with --self-check.
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <string>
+#include <vector>
+
+#include "core/renderer.h"
+#include "realtime/renderer.h"
+#include "realtime/settings.h"
+
+namespace twinrender::realtime {
+
+struct SelfCheck {
+    struct Check {
+        std::string name{};  // "particles_drawn", "coverage_or_body_apart", ...
+        double cpu = 0.0;    // the value on the CPU path (for the counters)
+        double gpu = 0.0;    // the value on the GPU path; for the images, the measure itself
+        double bound = 0.0;  // the largest difference (or measure) that passes
+        bool pass = false;
+        std::string why{};  // what the bound allows, in words
+    };
+    std::vector<Check> checks;
+    bool passed() const;
+    // One line per check.
+    std::string table() const;
+};
+
+// Renders `input` with `settings` through both per-set paths on `device` and compares:
+// particles_drawn within 3 (the radii agree within 3e-4 h, so a sphere or two may change sides
+// of the culling test), droplets equal, kernels_splatted on the GPU at least the CPU's (the
+// GPU marks every kernel that reaches a drawn impostor, the CPU's probes a subset) and at most
+// 4 times it; pixels whose coverage or body differ, and covered pixels whose red differs by
+// more than 1e-2, each at most 1 in 200 of the covered pixels (outline pixels of spheres whose
+// radius moved, as per_set_gpu_gl_test.cpp measures).
+SelfCheck selfCheck(Device& device, const Settings& settings, const core::RenderInput& input);
+
+// The per-set stages alone (GpuPerSet, as BM_PerSet1MGpu runs them, no render passes) against
+// the CPU functions on the same particles (their normals derived on the CPU first, droplets
+// left out): radii within 3e-4 h (no particle beyond), the spheres the culling leaves visible
+// (at most 1 in 200 hidden on the GPU only, 1 in 100 on the CPU only: both tests are exact with
+// a margin), and the drawn count after pack() within 1 in 100. Twice: with the stage clock the
+// device takes, then with a glFinish after every stage; a check that fails only the first way
+// points at a missing barrier or a race, not at the arithmetic. A GL context must be current.
+SelfCheck perSetStageCheck(const core::SceneParticles& particles, const Settings& settings,
+                           const glm::dvec3& camera);
+
+}  // namespace twinrender::realtime
