@@ -484,11 +484,11 @@ TEST(BuildParticles, FileValuesBeyondTheFloatRangeAreRejected) {
     std::filesystem::remove_all(dir);
 }
 
-// The real OpenSPH output beside the project (SCENES.md): one body, volumes m/rho capped.
+// The real OpenSPH output in data/opensph_ball/: one body, volumes m/rho capped.
 TEST(BuildParticles, OpenSphBall) {
-    const std::filesystem::path path = std::filesystem::path(TWINRENDER_SOURCE_DIR) / ".." /
-                                       "shared" / "data" / "opensph" / "ball.ssf";
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not there";
+    const std::filesystem::path path =
+        std::filesystem::path(TWINRENDER_SOURCE_DIR) / "data" / "opensph_ball" / "ball.ssf";
+    ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing";
     BodyDesc b;
     b.name = "ball";
     b.shape = Shape::File;

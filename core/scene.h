@@ -1,4 +1,4 @@
-// The scene model (../shared/SCENES.md) and its parser. A scene is one TOML file; every key
+// The scene model (README.md, "Scenes") and its parser. A scene is one TOML file; every key
 // is read in exactly one place (scene.cpp) and any unknown key is an error naming the file,
 // line and key. Renderer sections ([realtime], [raymarch]) stay as parameter tables: each
 // renderer parses its own settings from them and reports the keys it did not read.
