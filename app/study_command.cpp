@@ -25,6 +25,7 @@
 #include "compare/temporal_error.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/install_layout.h"
 
 namespace twinrender::app {
 
@@ -38,7 +39,7 @@ constexpr int CONTACT_BAND_PX = 3;
 
 fs::path defaultStudyScenes() {
     if (fs::is_directory("scenes/studies")) return "scenes/studies";
-    return fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies";
+    return core::resourceDir() / "scenes" / "studies";
 }
 
 struct Point {

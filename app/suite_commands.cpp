@@ -26,6 +26,7 @@
 #include "compare/report_json.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/install_layout.h"
 
 namespace twinrender::app {
 
@@ -84,7 +85,7 @@ std::vector<fs::path> sceneFiles(const std::vector<std::string>& inputs) {
 
 fs::path defaultScenesDir() {
     if (fs::is_directory("scenes")) return "scenes";
-    return fs::path(TWINRENDER_SOURCE_DIR) / "scenes";
+    return core::resourceDir() / "scenes";
 }
 
 }  // namespace
