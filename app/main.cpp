@@ -185,8 +185,8 @@ int main(int argc, char** argv) {
     runCmd->add_option("--baseline", runOpts.baseline, "baseline from `twinrender bless`");
     runCmd->add_option("--junit", runOpts.junit, "also write JUnit XML here");
     runCmd->add_option("--cache", runOpts.cache,
-                       "reference cache folder for every scene (default: sequences only, in "
-                       "OUT/reference_cache)");
+                       "reference cache folder for every scene and --studies (default: "
+                       "sequences only, in OUT/reference_cache)");
     runCmd->add_flag("--self-check", runOpts.selfCheck,
                      "first render each scene through both per-set paths (cpu, gpu) and compare "
                      "them; exit 2 without a report when they disagree");
@@ -336,6 +336,9 @@ int main(int argc, char** argv) {
                     so.quick = runStudies == "quick";
                     so.requireGpu = runCommon.requireGpu;
                     so.ppd = runOpts.ppd;
+                    // One reference cache for the suite and its studies (scripts/run keeps it
+                    // across runs).
+                    so.cache = runOpts.cache;
                     so.commandLine = commandLine;
                     rc = std::max(rc, tr::app::runStudies(so));
                 }

@@ -14,6 +14,7 @@
 #include "compare/metric_table.h"
 #include "compare/thresholds.h"
 #include "report/study_summary.h"
+#include "core/install_layout.h"
 
 namespace twinrender::app {
 
@@ -697,7 +698,9 @@ std::vector<MethodSweep> methodSweeps() {
         {DEPTH_NORMALS,
          {method(SurfaceMethod::Shader),
           set("realtime.surface.shader",
-              fmt::format("\"{}/examples/surface_pass_through.glsl\"", TWINRENDER_SOURCE_DIR)),
+              fmt::format(
+                  "\"{}\"",
+                  (core::resourceDir() / "examples" / "surface_pass_through.glsl").string())),
           "realtime.surface.shader_normals=true"},
          nullptr,
          0.0,

@@ -25,6 +25,7 @@
 #include "compare/temporal_error.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/install_layout.h"
 
 namespace twinrender::app {
 
@@ -36,9 +37,28 @@ namespace {
 // the footprint mixes.
 constexpr int CONTACT_BAND_PX = 3;
 
+// What is left of a run of studies, said on the line each point prints: the points done of
+// all the studies' points, and the time left at the pace so far.
+class Remaining {
+  public:
+    explicit Remaining(std::size_t total) : mTotal(total) {}
+    std::string pointDone() {
+        ++mDone;
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - mStart).count();
+        const double left = elapsed / static_cast<double>(mDone) *
+                            static_cast<double>(mTotal - std::min(mDone, mTotal));
+        return fmt::format("{}/{} points, about {:.0f} s left", mDone, mTotal, left);
+    }
+
+  private:
+    std::size_t mTotal, mDone = 0;
+    std::chrono::steady_clock::time_point mStart = std::chrono::steady_clock::now();
+};
+
 fs::path defaultStudyScenes() {
     if (fs::is_directory("scenes/studies")) return "scenes/studies";
-    return fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies";
+    return core::resourceDir() / "scenes" / "studies";
 }
 
 struct Point {
@@ -171,6 +191,9 @@ ExitCode runStudies(const StudyOptions& o) {
 
     std::vector<report::StudyResult> results;
     bool anyError = false;
+    std::size_t totalPoints = 0;
+    for (const Planned& plan : plans) totalPoints += plan.points.size();
+    Remaining remaining(totalPoints);
     for (Planned& plan : plans) {
         const StudyDef& d = *plan.def;
         const auto start = std::chrono::steady_clock::now();
@@ -253,21 +276,21 @@ ExitCode runStudies(const StudyOptions& o) {
                 images.try_emplace(refPng, ref.display);
                 row.images["reference"] = refPng;
                 const auto y = row.metrics.find(d.metric);
-                std::printf("[%s %zu/%zu] %s%s%s, x = %g: %s %s (real-time %.1f ms)\n",
-                            d.name.c_str(), i + 1, plan.points.size(), row.scene.c_str(),
-                            row.scene.empty() ? "" : ": ", row.series.c_str(), row.x,
-                            d.metric.c_str(),
-                            y == row.metrics.end() ? "-" : compare::formatValue(y->second).c_str(),
-                            row.timingsMs.count("total") ? row.timingsMs.at("total") : NAN);
+                std::printf(
+                    "[%s %zu/%zu; %s] %s%s%s, x = %g: %s %s (real-time %.1f ms)\n", d.name.c_str(),
+                    i + 1, plan.points.size(), remaining.pointDone().c_str(), row.scene.c_str(),
+                    row.scene.empty() ? "" : ": ", row.series.c_str(), row.x, d.metric.c_str(),
+                    y == row.metrics.end() ? "-" : compare::formatValue(y->second).c_str(),
+                    row.timingsMs.count("total") ? row.timingsMs.at("total") : NAN);
             } catch (const core::InputError&) {
                 throw;
             } catch (const std::exception& e) {
                 // One point that cannot be rendered fails; the others still run.
                 row.error = e.what();
                 anyError = true;
-                std::printf("[%s %zu/%zu] %s%s%s, x = %g: error: %s\n", d.name.c_str(), i + 1,
-                            plan.points.size(), row.scene.c_str(), row.scene.empty() ? "" : ": ",
-                            row.series.c_str(), row.x, e.what());
+                std::printf("[%s %zu/%zu; %s] %s%s%s, x = %g: error: %s\n", d.name.c_str(), i + 1,
+                            plan.points.size(), remaining.pointDone().c_str(), row.scene.c_str(),
+                            row.scene.empty() ? "" : ": ", row.series.c_str(), row.x, e.what());
             }
             std::fflush(stdout);
             s.rows.push_back(std::move(row));

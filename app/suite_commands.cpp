@@ -32,6 +32,7 @@
 #include "report/annotations.h"
 #include "report/junit.h"
 #include "report/report_json.h"
+#include "core/install_layout.h"
 
 namespace twinrender::app {
 
@@ -90,7 +91,7 @@ std::vector<fs::path> sceneFiles(const std::vector<std::string>& inputs) {
 
 fs::path defaultScenesDir() {
     if (fs::is_directory("scenes")) return "scenes";
-    return fs::path(TWINRENDER_SOURCE_DIR) / "scenes";
+    return core::resourceDir() / "scenes";
 }
 
 // What `run` writes beside the scenes' folders, which no scene's folder may take.

@@ -486,9 +486,9 @@ TEST(BuildParticles, FileValuesBeyondTheFloatRangeAreRejected) {
 
 // The real OpenSPH output (data/opensph_ball/): one body, volumes m/rho capped.
 TEST(BuildParticles, OpenSphBall) {
-    const std::filesystem::path path = std::filesystem::path(TWINRENDER_SOURCE_DIR) / ".." /
-                                       "shared" / "data" / "opensph" / "ball.ssf";
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not there";
+    const std::filesystem::path path =
+        std::filesystem::path(TWINRENDER_SOURCE_DIR) / "data" / "opensph_ball" / "ball.ssf";
+    ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing";
     BodyDesc b;
     b.name = "ball";
     b.shape = Shape::File;

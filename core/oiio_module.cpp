@@ -4,22 +4,23 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/install_layout.h"
 
 namespace twinrender::core::oiio {
 
 namespace {
 
 const Api& load() {
-    // The module as this build made it (core/CMakeLists.txt).
-    const char* path = TWINRENDER_OIIO_MODULE;
+    // Beside the program, as installed or built (install_layout.h).
+    const std::string path = oiioModulePath().string();
     // RTLD_LOCAL: OpenImageIO's symbols stay out of the program's way; the module is never
     // unloaded.
-    void* handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle)
         throw InputError(fmt::format(
             "cannot load the OpenImageIO module {} ({}), which reads and writes every image "
-            "other than PNG; rebuild twinrender (cmake --build) and check that OpenImageIO is "
-            "installed (scripts/setup)",
+            "other than PNG; rebuild twinrender (cmake --build) or reinstall it, and check that "
+            "OpenImageIO is installed (scripts/setup)",
             path, dlerror()));
     auto entry = reinterpret_cast<EntryPoint>(dlsym(handle, ENTRY_POINT));
     if (!entry)

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using namespace particle_file_testing;
 
 TEST(ParticleFile, SsfBallCountExtentsAndSmoothingLength) {
-    ASSERT_TRUE(fs::exists(ballPath())) << ballPath() << " is missing (shared data)";
+    ASSERT_TRUE(fs::exists(ballPath())) << ballPath() << " is missing (data/opensph_ball/)";
     const ParticleFileData d = readParticleFile(ballPath());
     EXPECT_EQ(d.size(), 10648u);
     ASSERT_EQ(d.h.size(), d.size());

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the small seed inputs of fuzz/corpus/ (CONTRIBUTING.md, "Fuzzing"). Larger real files
-(scenes/, ../shared/data/) are given to the fuzzer by path by scripts/fuzz, not copied."""
+(scenes/, data/) are given to the fuzzer by path by scripts/fuzz, not copied."""
 import math
 import os
 import struct

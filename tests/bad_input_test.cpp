@@ -52,9 +52,9 @@ Rejected renderBroken(const std::string& name, const std::string& scene,
     return {r.output, tt::countFiles(out)};
 }
 
-constexpr const char* BALL_SSF = TWINRENDER_SOURCE_DIR "/../shared/data/opensph/ball.ssf";
+constexpr const char* BALL_SSF = TWINRENDER_SOURCE_DIR "/data/opensph_ball/ball.ssf";
 
-// The shared OpenSPH file's bytes (empty when it is missing).
+// The OpenSPH ball's bytes (empty when it is missing).
 std::string readBall() {
     std::ifstream in(BALL_SSF, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
@@ -120,7 +120,7 @@ TEST(BadInput, NanAndNegativeSmoothingLengthInAFileNameTheLine) {
 
 TEST(BadInput, TruncatedSsfNamesTheFile) {
     const std::string ball = readBall();
-    ASSERT_FALSE(ball.empty()) << "the shared OpenSPH file is missing";
+    ASSERT_FALSE(ball.empty()) << "data/opensph_ball/ball.ssf is missing";
     expectRejected(renderFileBody("truncated_ssf", "cut.ssf", ball.substr(0, 200000)),
                    "cut.ssf: truncated");
 }
@@ -137,7 +137,7 @@ TEST(BadInput, PositionBeyondTheFloatRangeNamesTheParticle) {
 // float 0): rejected naming the file, the particle and the value, before any work.
 TEST(BadInput, SsfWithAFlippedSmoothingLengthNamesTheParticle) {
     std::string bytes = readBall();
-    ASSERT_FALSE(bytes.empty()) << "the shared OpenSPH file is missing";
+    ASSERT_FALSE(bytes.empty()) << "data/opensph_ball/ball.ssf is missing";
     // Particle 0's (x, y, z, h): found by the values the reader gives.
     const auto ball = twinrender::core::readParticleFile(BALL_SSF);
     const double first[4] = {ball.position[0].x, ball.position[0].y, ball.position[0].z, ball.h[0]};

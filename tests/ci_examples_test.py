@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""The CI files users copy (ci/examples/): each parses as YAML, shards the run over a matrix
-and merges the shards, uploads the report, and runs exactly the twinrender commands docs/cli.md
-shows (and scripts/setup), with options twinrender has. Run by ctest as
+"""The CI files users copy (ci/examples/): each parses as YAML and shows both ways. Built from
+source: it shards the run over a matrix and merges the shards, uploads the report, and runs
+exactly the twinrender commands docs/cli.md shows (and scripts/setup). Installed: it builds the
+Debian package (scripts/package), installs it with apt-get and runs the installed `twinrender`.
+Every twinrender command has the options it gives. Run by ctest as
 CiExamples.ParseAndRunTheReadmesCommands."""
 import argparse
 import re
@@ -16,6 +18,8 @@ except ImportError:
     sys.exit("python3-yaml is not installed (scripts/setup installs it)")
 
 TOOL = "build/app/twinrender"
+# The command as the Debian package installs it, on the PATH.
+INSTALLED = "twinrender"
 
 
 def readme_lines(readme: Path) -> set:
@@ -56,9 +60,9 @@ def gitlab_scripts(doc: dict, problems: list) -> list:
 
 
 def command_lines(scripts: list) -> list:
-    """The lines that run scripts/ or the tool."""
+    """The lines that run scripts/, the tool or the installed tool, or install a package."""
     return [line.strip() for script in scripts for line in str(script).splitlines()
-            if line.strip().startswith(("scripts/", TOOL))]
+            if line.strip().startswith(("scripts/", TOOL, INSTALLED + " ", "apt-get install"))]
 
 
 def check_options(line: str, twinrender: str, problems: list, where: str):
@@ -96,6 +100,11 @@ def main() -> int:
         commands = command_lines(scripts_of(doc, local))
         problems += [f"{path}: {p}" for p in local]
         for line in commands:
+            if line.startswith(INSTALLED + " "):
+                check_options(line, args.twinrender, problems, str(path))
+                continue
+            if line.startswith("apt-get"):
+                continue
             if line not in readme:
                 problems.append(f"{path}: runs a command docs/cli.md does not show: {line}")
             if line.startswith(TOOL + " "):
@@ -109,6 +118,12 @@ def main() -> int:
             problems.append(f"{path}: no `twinrender run --shard`")
         if not any(c.startswith(TOOL + " merge ") for c in commands):
             problems.append(f"{path}: no `twinrender merge`")
+        if "scripts/package" not in commands:
+            problems.append(f"{path}: does not build the Debian package with scripts/package")
+        if not any(re.match(r"apt-get install .*\./\S*twinrender_\*\.deb$", c) for c in commands):
+            problems.append(f"{path}: does not install the package with apt-get install ./...deb")
+        if not any(c.startswith(INSTALLED + " run ") for c in commands):
+            problems.append(f"{path}: does not run the installed `twinrender run`")
     for p in problems:
         print(p)
     print(f"{len(examples)} CI examples checked, {len(problems)} problems")

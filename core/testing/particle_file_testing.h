@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 // The real OpenSPH output (data/opensph_ball/): a basalt ball, 10,648 particles.
 inline fs::path ballPath() {
-    return fs::path(TWINRENDER_SOURCE_DIR) / ".." / "shared" / "data" / "opensph" / "ball.ssf";
+    return fs::path(TWINRENDER_SOURCE_DIR) / "data" / "opensph_ball" / "ball.ssf";
 }
 
 // A path in the test temp dir, unique per test so that parallel ctest runs do not collide.

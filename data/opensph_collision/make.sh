@@ -18,17 +18,7 @@ JOBS="${JOBS:-2}"
 KEEP_SSF=(0000 0012)
 
 PACKAGES=(build-essential cmake git ca-certificates libtbb-dev python3-numpy)
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "make.sh: installing ${missing[*]}"
-  SUDO=""
-  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+"$HERE/../../scripts/install-packages" "${PACKAGES[@]}"
 
 mkdir -p "$WORK"
 SRC="$WORK/opensph"

@@ -1,0 +1,27 @@
+// Where twinrender finds what it ships beside the program: its default scenes, their particle
+// files, the example shaders and the docs (the resource folder), and the OpenImageIO module.
+// Both are found from the program's own location, so an installed tree (`cmake --install`,
+// the Debian package) works from any working folder and wherever its prefix is:
+//   PREFIX/bin/twinrender
+//   PREFIX/share/twinrender/{scenes,data,examples,docs,ci}   (the resource folder)
+//   PREFIX/lib/twinrender/twinrender_oiio.so                 (lib/<multiarch>/ on Debian)
+// A build tree keeps the same shape below the build folder for the module (every program is
+// one folder deep: build/app/twinrender, build/lib/twinrender/), and takes the source folder
+// it was built from as its resource folder.
+#pragma once
+
+#include <filesystem>
+
+namespace twinrender::core {
+
+// The folder of the running program (/proc/self/exe, links resolved).
+std::filesystem::path programDir();
+
+// The resource folder: PREFIX/share/twinrender beside an installed program when it holds
+// scenes/, else the source folder of this build.
+std::filesystem::path resourceDir();
+
+// The OpenImageIO module's path, beside the program as installed or built.
+std::filesystem::path oiioModulePath();
+
+}  // namespace twinrender::core
