@@ -13,8 +13,8 @@
 
 #include "compare/metric_table.h"
 #include "compare/thresholds.h"
-#include "report/study_summary.h"
 #include "core/install_layout.h"
+#include "report/study_summary.h"
 
 namespace twinrender::app {
 

@@ -29,10 +29,10 @@
 #include "core/error.h"
 #include "core/folder_name.h"
 #include "core/image_io.h"
+#include "core/install_layout.h"
 #include "report/annotations.h"
 #include "report/junit.h"
 #include "report/report_json.h"
-#include "core/install_layout.h"
 
 namespace twinrender::app {
 
