@@ -19,6 +19,7 @@
 #include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
+#include "realtime/gl/poison.h"
 #include "realtime/gpu_scene.h"
 #include "realtime/occlusion_culling.h"
 
@@ -308,6 +309,40 @@ void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request)
     timerQueriesSeeCompute(programs);  // set-up, not a frame's work: the stages' clock
 }
 
+void GpuPerSet::checkOverruns(const char* stage) const {
+    if (!gl::poisonMode()) return;
+    const std::pair<const char*, const gl::Buffer*> buffers[] = {
+        {"attributes", &mAttributes},
+        {"header", &mHeader},
+        {"cells", &mCells},
+        {"cell_of", &mCellOf},
+        {"sorted", &mSorted},
+        {"entries", &mEntries},
+        {"radii", &mRadii},
+        {"flags", &mFlags},
+        {"block_sums", &mBlockSums},
+        {"directions", &mDirections},
+        {"models", mModelBuffer ? &*mModelBuffer : nullptr},
+        {"draw_lists", mDrawLists ? &*mDrawLists : nullptr},
+        {"particles", mParticles ? &*mParticles : nullptr},
+        {"kernels", mKernels ? &*mKernels : nullptr},
+        {"ellipsoids", mEllipsoids ? &*mEllipsoids : nullptr},
+        {"droplets", &mDroplets},
+        {"walks", &mWalks},
+        {"droplet_work", &mDropletWork},
+        {"cull_spheres", &mCullSpheres},
+        {"bodies", &mBodies},
+        {"near_masks", &mNearMasks},
+        {"placeholder", &mPlaceholder},
+    };
+    for (const auto& [name, buffer] : buffers)
+        if (buffer && buffer->overrun())
+            throw gl::Error(fmt::format(
+                "per-set stage '{}' wrote past the end of the '{}' buffer ({} bytes): a GPU "
+                "would have written into other memory",
+                stage, name, buffer->size()));
+}
+
 void GpuPerSet::timed(const char* stage, const auto& work) {
     if (stageClock() == StageClock::Queries) {
         const gl::TimerQuery& query = mQueries.emplace_back(stage, gl::TimerQuery()).second;
@@ -315,6 +350,7 @@ void GpuPerSet::timed(const char* stage, const auto& work) {
         work();
         gl::computeBarrier();
         query.end();
+        checkOverruns(stage);
         return;
     }
     // Wall clock to the end of the stage's commands: the next stage waits for this one anyway.
@@ -324,6 +360,7 @@ void GpuPerSet::timed(const char* stage, const auto& work) {
     gl::finish();
     mTimings[stage] +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    checkOverruns(stage);
 }
 
 void GpuPerSet::clearWalks() {

@@ -149,6 +149,9 @@ class GpuPerSet {
     void bindStorage() const;
     void clearWalks();  // empties the walk list (shaders/per_set.comp's appendWalk)
     void timed(const char* stage, const auto& work);
+    // Poison mode: throws gl::Error naming the stage and the buffer where a stage wrote past a
+    // buffer's end (gl::Buffer::overrun); nothing outside it.
+    void checkOverruns(const char* stage) const;
 
     std::size_t mCount = 0, mMaxCells = 0;
     double mUploadMs = 0.0;

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "realtime/gl/poison.h"
@@ -13,27 +14,58 @@ namespace {
 void deleteBuffer(unsigned id) {
     glDeleteBuffers(1, &id);
 }
+
+// Poison mode: the bytes of poison after every buffer's own. A shader that reads past the end
+// of a buffer reads zero on llvmpipe (its accesses are bounds-checked) and, on a GPU without
+// robust access, whatever lies after it; with the tail it reads POISON_WORD, on any driver.
+// Shaders here never take a buffer's length(), so the tail changes nothing else.
+std::size_t poisonTail() {
+    return poisonMode() ? 4096 : 0;
+}
+
+// Where the tail starts: the poison pattern is written in whole words.
+std::size_t wordsEnd(std::size_t bytes) {
+    return (bytes + 3) / 4 * 4;
+}
+
+void fillPoison(unsigned id, std::size_t offset, std::size_t bytes) {
+    if (bytes > 0)
+        glClearNamedBufferSubData(id, GL_R32UI, static_cast<GLintptr>(offset),
+                                  static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                  &POISON_WORD);
+}
+
+// A new buffer of `bytes` (and the poison tail), its contents `data` where given.
+Handle makeBuffer(std::size_t bytes, const void* data, unsigned flags) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    Handle handle(id, deleteBuffer);
+    const std::size_t tail = poisonTail();
+    if (tail == 0) {
+        glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
+        return handle;
+    }
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(wordsEnd(bytes) + tail), nullptr,
+                         flags | GL_DYNAMIC_STORAGE_BIT);
+    if (data) glNamedBufferSubData(id, 0, static_cast<GLsizeiptr>(bytes), data);
+    fillPoison(id, wordsEnd(bytes), tail);
+    return handle;
+}
 }  // namespace
 
 Buffer::Buffer(std::span<const std::byte> data) : mSize(data.size()) {
-    GLuint id = 0;
-    glCreateBuffers(1, &id);
-    mHandle = Handle(id, deleteBuffer);
     if (data.empty()) {
         const std::vector<std::byte> zeros(16);
-        glNamedBufferStorage(id, static_cast<GLsizeiptr>(zeros.size()), zeros.data(), 0);
+        mHandle = makeBuffer(zeros.size(), zeros.data(), 0);
     } else {
-        glNamedBufferStorage(id, static_cast<GLsizeiptr>(data.size()), data.data(), 0);
+        mHandle = makeBuffer(data.size(), data.data(), 0);
     }
 }
 
 Buffer Buffer::zeros(std::size_t bytes) {
     Buffer b;
     b.mSize = std::max<std::size_t>(bytes, 16);
-    GLuint id = 0;
-    glCreateBuffers(1, &id);
-    b.mHandle = Handle(id, deleteBuffer);
-    glNamedBufferStorage(id, static_cast<GLsizeiptr>(b.mSize), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    b.mHandle = makeBuffer(b.mSize, nullptr, GL_DYNAMIC_STORAGE_BIT);
     b.clear();
     return b;
 }
@@ -46,7 +78,7 @@ Buffer Buffer::storage(std::size_t bytes) {
 
 void Buffer::poison() {
     if (!poisonMode() || !mHandle) return;
-    glClearNamedBufferData(mHandle.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &POISON_WORD);
+    fillPoison(mHandle.id(), 0, wordsEnd(mSize) + poisonTail());
 }
 
 void Buffer::write(std::size_t offset, std::span<const std::byte> data) {
@@ -56,7 +88,8 @@ void Buffer::write(std::size_t offset, std::span<const std::byte> data) {
 }
 
 void Buffer::clear() {
-    glClearNamedBufferData(mHandle.id(), GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, nullptr);
+    glClearNamedBufferSubData(mHandle.id(), GL_R8UI, 0, static_cast<GLintptr>(mSize),
+                              GL_RED_INTEGER, GL_UNSIGNED_BYTE, nullptr);
 }
 
 void Buffer::read(std::size_t offset, std::span<std::byte> out) const {
@@ -64,6 +97,16 @@ void Buffer::read(std::size_t offset, std::span<std::byte> out) const {
     if (!out.empty())
         glGetNamedBufferSubData(mHandle.id(), static_cast<GLintptr>(offset),
                                 static_cast<GLsizeiptr>(out.size()), out.data());
+}
+
+bool Buffer::overrun() const {
+    const std::size_t tail = poisonTail();
+    if (tail == 0 || !mHandle) return false;
+    std::vector<std::uint32_t> words(tail / 4);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(mHandle.id(), static_cast<GLintptr>(wordsEnd(mSize)),
+                            static_cast<GLsizeiptr>(tail), words.data());
+    return std::ranges::any_of(words, [](std::uint32_t w) { return w != POISON_WORD; });
 }
 
 void Buffer::bindStorage(unsigned binding) const {

@@ -47,6 +47,11 @@ class Buffer {
         return out;
     }
 
+    // Poison mode: whether a shader wrote past the buffer's end, into the poison tail that
+    // follows it there (buffer.cpp); a GPU would have written into whatever lies after it.
+    // Always false outside poison mode.
+    bool overrun() const;
+
     // glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding): layout(std430, binding = N).
     void bindStorage(unsigned binding) const;
     // glBindBufferBase(GL_UNIFORM_BUFFER, binding): layout(std140, binding = N).

@@ -9,6 +9,8 @@
 #include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/framebuffer.h"
+#include "realtime/gl/poison.h"
+#include "realtime/gl/program.h"
 #include "realtime/gl/texture.h"
 #include "realtime/gl/timer_query.h"
 
@@ -39,6 +41,31 @@ TEST(Context, ClearsAnRgba32fFramebufferAndReadsItBack) {
         EXPECT_EQ(pixels[i + 3], value.w);
     }
     checkErrors("test");
+}
+
+// Poison mode (CTest runs the GL tests in it): a write past a storage buffer's end lands in the
+// poison tail, where overrun() sees it; on a GPU it would land in other memory. A read past the
+// end reads the poison word, not llvmpipe's zero.
+TEST(Context, PoisonModeSeesAccessPastABuffersEnd) {
+    if (!poisonMode()) GTEST_SKIP() << "needs TWINRENDER_GL_POISON=1; CTest runs it that way";
+    Context context(ContextOptions{.debug = true});
+    const Program program("past_the_end", ShaderSource{.text = R"(#version 450
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) buffer Data { uint data[]; };
+uniform uint uWrites;
+void main() {
+    uint beyond = data[4];  // the word after the buffer's 4
+    for (uint k = 0u; k < uWrites; ++k) data[k] = k;
+    data[0] = beyond;
+})"});
+    for (const unsigned writes : {4u, 5u}) {
+        const Buffer data = Buffer::storage(4 * sizeof(std::uint32_t));
+        data.bindStorage(0);
+        program.set("uWrites", writes);
+        program.dispatch(1);
+        EXPECT_EQ(data.overrun(), writes > 4) << writes << " writes";
+        EXPECT_EQ(data.read<std::uint32_t>(0, 1)[0], POISON_WORD);
+    }
 }
 
 TEST(Context, HandlesAreMoveOnlyAndMovingEmptiesTheSource) {
