@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <chrono>
 #include <cmath>
@@ -861,6 +862,31 @@ std::vector<std::pair<std::uint32_t, Ellipsoid>> GpuPerSet::droplets() const {
         out.emplace_back(static_cast<std::uint32_t>(i), e);
     }
     return out;
+}
+
+GpuPerSet::Grid GpuPerSet::grid() const {
+    Grid g;
+    if (mCount == 0) return g;
+    g.totalCells = mHeader.read<std::uint32_t>(2, 1)[0];  // the Header's totalCells
+    g.sorted = mSorted.read<std::uint32_t>(0, mCount);
+    g.cellStart = mCells.read<std::uint32_t>(0, std::min<std::size_t>(g.totalCells, mMaxCells) + 1);
+    const std::vector<glm::uvec4> words = mEntries.read<glm::uvec4>(0, 2 * mCount);
+    for (std::size_t k = 0; k < mCount; ++k) {
+        const glm::uvec4& p = words[2 * k];
+        g.entryPosition.emplace_back(std::bit_cast<float>(p.x), std::bit_cast<float>(p.y),
+                                     std::bit_cast<float>(p.z));
+        g.entryIndex.push_back(words[2 * k + 1].z);
+    }
+    return g;
+}
+
+std::vector<std::uint32_t> GpuPerSet::flags() const {
+    return mFlags.read<std::uint32_t>(0, mCount);
+}
+
+std::vector<std::uint32_t> GpuPerSet::drawnPrefix() const {
+    if (!mDrawLists || mCount == 0) return {};
+    return mDrawLists->read<std::uint32_t>(0, mCount + 1);
 }
 
 std::vector<glm::vec4> GpuPerSet::models() const {

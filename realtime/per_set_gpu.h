@@ -134,6 +134,19 @@ class GpuPerSet {
     std::vector<glm::vec4> models() const;                // 3 per particle
     // The droplets' first particles (ascending) and their ellipsoids (droplets.h).
     std::vector<std::pair<std::uint32_t, Ellipsoid>> droplets() const;
+    // The stages' own records, for the doctor's stage checks (self_check.h): the grid
+    // (GATHER's order), each particle's flags (shaders/per_set.comp's bits) and, after pack(),
+    // the exclusive prefix of the drawn particles (n + 1).
+    struct Grid {
+        std::uint32_t totalCells = 0;
+        std::vector<std::uint32_t> sorted;     // particle per grid slot
+        std::vector<std::uint32_t> cellStart;  // per cell its first slot, then the count
+        std::vector<std::uint32_t> entryIndex;
+        std::vector<glm::vec3> entryPosition;
+    };
+    Grid grid() const;
+    std::vector<std::uint32_t> flags() const;
+    std::vector<std::uint32_t> drawnPrefix() const;
 
   private:
     void upload(const core::ParticleSet& particles);

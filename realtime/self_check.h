@@ -24,8 +24,10 @@ struct SelfCheck {
         std::string why{};  // what the bound allows, in words
     };
     std::vector<Check> checks;
+    // What a failed check found, for whoever mends it (the first particles apart, ...).
+    std::vector<std::string> notes;
     bool passed() const;
-    // One line per check.
+    // One line per check, then the notes.
     std::string table() const;
 };
 
@@ -42,9 +44,17 @@ SelfCheck selfCheck(Device& device, const Settings& settings, const core::Render
 // the CPU functions on the same particles (their normals derived on the CPU first, droplets
 // left out): radii within 3e-4 h (no particle beyond), the spheres the culling leaves visible
 // (at most 1 in 200 hidden on the GPU only, 1 in 100 on the CPU only: both tests are exact with
-// a margin), and the drawn count after pack() within 1 in 100. Twice: with the stage clock the
-// device takes, then with a glFinish after every stage; a check that fails only the first way
-// points at a missing barrier or a race, not at the arithmetic. A GL context must be current.
+// a margin), and the drawn count after pack() within 1 in 100. Before those, each stage's own
+// records, which need no CPU answer: the grid (its slots a permutation of the particles, each
+// cell's in index order, the cells' offsets rising to the count, each entry its particle's
+// index and position) and the draw list (the prefix of the drawn particles rises by one exactly
+// where a particle's radius and flags say it is drawn, to the draw command's count); a stage
+// whose records fail is where the fault lies. Three runs: with the stage clock the device
+// takes; with a glFinish after every stage (a check that fails only the first way points at a
+// missing barrier or a race, not at the arithmetic); and on the first run's buffers again, for
+// the set moved by one ulp (as BM_PerSet1MGpu runs it: a check that fails only on fresh
+// buffers points at a read of memory no stage wrote, or wrote too late). The first particles
+// whose radius is apart go to the notes. A GL context must be current.
 SelfCheck perSetStageCheck(const core::SceneParticles& particles, const Settings& settings,
                            const glm::dvec3& camera);
 

@@ -18,6 +18,12 @@ TEST(DoctorCommand, CompilesEveryVariantAndPassesTheSelfCheck) {
     EXPECT_NE(r.output.find(" 0 failed"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("particles_drawn"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("self-check: pass"), std::string::npos) << r.output;
+    // The stages' own records, on fresh buffers, after a glFinish per stage and on kept ones.
+    for (const char* check :
+         {"grid_slots_not_a_permutation", "grid_cells_out_of_order", "grid_entries_wrong",
+          "draw_list_wrong", "draw_list_wrong (glFinish)", "radii_apart (kept buffers)"})
+        EXPECT_NE(r.output.find(check), std::string::npos) << check << "\n" << r.output;
+    EXPECT_NE(r.output.find("per-set stages: pass"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("verdict: pass"), std::string::npos) << r.output;
 }
 
