@@ -38,7 +38,7 @@ std::vector<Limit> limits(const realtime::gl::Limits& l, const LoadedScene& s) {
         {"GL_MAX_TEXTURE_BUFFER_SIZE", l.maxTextureBufferTexels,
          static_cast<long long>(realtime::perSetTexels(n)), "the scene's per-set grid"},
         {"GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS", l.maxStorageBindings, 23,
-         "per_set.comp's bindings 0-22"},
+         "the per-set stages' bindings 0-22"},
         {"GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS", l.maxComputeStorageBlocks, 10,
          "PACK's storage blocks"},
         {"GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS", l.maxComputeTextureUnits, 13,

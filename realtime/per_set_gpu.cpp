@@ -10,9 +10,11 @@
 #include <cstddef>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
+#include <initializer_list>
 #include <map>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "core/derived_attributes.h"
@@ -48,10 +50,10 @@ constexpr std::size_t SPARSE_DISPATCH = (USED_LEVELS + 4 + 2 * MAX_LEVELS * 4 + 
 constexpr std::size_t DROPLET_DRAW = SPARSE_DISPATCH + 16;
 constexpr std::size_t HEADER_BYTES = DROPLET_DRAW + 16;
 constexpr std::size_t GRID_ENTRY_BYTES = 32;
-constexpr unsigned GROUP = 64;        // local_size_x of per_set.comp
+constexpr unsigned GROUP = 64;        // local_size_x of the per_set_*.comp stages
 constexpr unsigned REDUCED = 16;      // particles per invocation of H_MIN and LEVELS
 constexpr std::size_t BLOCK = 16384;  // values per work group of scan.comp
-// The coarse culling grid's directions (CullingDirections::coarseCount), per_set.comp's
+// The coarse culling grid's directions (CullingDirections::coarseCount), per_set_cull.comp's
 // COARSE_DIRECTIONS.
 constexpr std::size_t COARSE_DIRECTIONS = 42;
 
@@ -69,7 +71,7 @@ unsigned groups(std::size_t count, std::size_t per = GROUP) {
     return static_cast<unsigned>((count + per - 1) / per);
 }
 
-// Binding points of shaders/per_set.comp.
+// Binding points of the per-set stages (shaders/per_set_stages.glsl, per_set.glsl).
 enum Binding : unsigned {
     PARTICLES = 0,
     KERNELS = 3,
@@ -103,8 +105,8 @@ enum TextureUnit : unsigned {
     ENTRY_WORD_TEXELS = 12,
 };
 
-// shaders/per_set.comp: a droplet's first particle holds its droplet's slot + 1 in the flags'
-// bits from DROPLET_SHIFT up.
+// shaders/per_set_stages.glsl: a droplet's first particle holds its droplet's slot + 1 in the
+// flags' bits from DROPLET_SHIFT up.
 constexpr unsigned DROPLET_SHIFT = 8;
 // The Header block's count of droplets (uint index).
 constexpr std::size_t DROPLET_COUNT = 3;
@@ -126,10 +128,38 @@ bool sameAnisotropy(const AnisotropySettings& a, const AnisotropySettings& b) {
            a.minNeighbours == b.minNeighbours && a.anchor == b.anchor;
 }
 
-// 0: no per-particle models, 1: field normals, 2: ellipsoids (shaders/per_set.comp, PACK).
+// 0: no per-particle models, 1: field normals, 2: ellipsoids (shaders/per_set_pack.comp, PACK).
 int modelKind(const ParticleSettings& p) {
     if (p.shape == ParticleShape::Ellipsoid) return 2;
     return p.normal == NormalModel::Field ? 1 : 0;
+}
+
+// The file of shaders/ that holds a per-set stage (one #define each): per_set_<group>.comp.
+const char* stageFile(std::string_view stage) {
+    struct Group {
+        const char* file;
+        std::initializer_list<std::string_view> stages;
+    };
+    static const Group GROUPS[] = {
+        {"per_set_grid.comp",
+         {"INIT", "H_MIN", "LEVELS", "LAYOUT", "COUNT", "SCATTER", "SORT", "GATHER"}},
+        {"per_set_radius.comp", {"INTERIOR", "RADIUS", "RADIUS_WALK", "INTERIOR_DRAWN"}},
+        {"per_set_cull.comp", {"CULL_SPHERES", "CULL", "CULL_FULL"}},
+        {"per_set_models.comp", {"NORMALS", "FIELD_NORMAL", "ANISOTROPY"}},
+        {"per_set_droplets.comp",
+         {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"}},
+        {"per_set_pack.comp",
+         {"NEAR_BOUND", "NEAR", "MARK", "KERNELS", "PACK", "PACK_KERNELS", "FINISH"}},
+    };
+    for (const Group& g : GROUPS)
+        if (std::ranges::find(g.stages, stage) != g.stages.end()) return g.file;
+    assert(false && "a per-set stage without a file");
+    return "per_set_grid.comp";
+}
+
+// Stage `stage` of the per-set work, compiled on first use.
+const gl::Program& stageProgram(ProgramCache& programs, const char* stage) {
+    return programs.compute(stageFile(stage), {stage});
 }
 
 // A culling stage (CULL, CULL_FULL), the coarse grid's directions compiled in, and a variant's
@@ -159,7 +189,7 @@ std::vector<std::string> cullDefines(const char* stage, const char* variant) {
     return defines;
 }
 const gl::Program& cullProgram(ProgramCache& programs, const char* stage, const char* variant) {
-    return programs.compute("per_set.comp", cullDefines(stage, variant));
+    return programs.compute("per_set_cull.comp", cullDefines(stage, variant));
 }
 
 // `buffer` kept where it has `bytes` already, else a new one; its contents mean nothing (every
@@ -257,13 +287,13 @@ std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request) {
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");
-    for (const char* stage : stages) add("per_set.comp", {stage});
+    for (const char* stage : stages) add(stageFile(stage), {stage});
     if (request.cull)
         for (const auto& [stage, variant] :
              {std::pair{"CULL", request.particles.radius == RadiusModel::Field ? "NEAR_MASKS" : ""},
               {"CULL_FULL", "CULL_PROBE"},
               {"CULL_FULL", ""}})
-            add("per_set.comp", cullDefines(stage, variant));
+            add("per_set_cull.comp", cullDefines(stage, variant));
     return out;
 }
 
@@ -434,7 +464,7 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     resized(mRadii, n * sizeof(float));
     resized(mWalks, 2 * n * sizeof(std::uint32_t));  // the walk list, the next
     resized(mFlags, n * sizeof(std::uint32_t));
-    resized(mDropletWork, 4 * n * sizeof(std::uint32_t));  // per_set.comp's DropletWork
+    resized(mDropletWork, 4 * n * sizeof(std::uint32_t));  // per_set_stages.glsl's DropletWork
     resized(mBlockSums,
             (groups(std::max(mMaxCells, 2 * n + 2), BLOCK) + 1) * sizeof(std::uint32_t));
     if (mPlaceholder.size() == 0) mPlaceholder = gl::Buffer::zeros(16);
@@ -482,7 +512,7 @@ void GpuPerSet::scan(ProgramCache& programs, const gl::Buffer& data, std::size_t
 
 void GpuPerSet::buildGrid(ProgramCache& programs) {
     auto run = [&](const char* stage, unsigned count) {
-        const gl::Program& p = programs.compute("per_set.comp", {stage});
+        const gl::Program& p = stageProgram(programs, stage);
         p.set("uCount", static_cast<unsigned>(mCount));
         p.dispatch(count);
         gl::computeBarrier();
@@ -498,7 +528,7 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
     scan(programs, mCells, 0, mMaxCells, true);  // the cells LAYOUT made
     run("SCATTER", groups(mCount));
     {
-        const gl::Program& p = programs.compute("per_set.comp", {"SORT"});
+        const gl::Program& p = stageProgram(programs, "SORT");
         p.dispatchIndirect(mHeader, SORT_DISPATCH);
         gl::computeBarrier();
     }
@@ -517,7 +547,7 @@ void GpuPerSet::uploadBodies(std::span<const core::BodyInfo> bodies) {
 }
 
 void GpuPerSet::deriveNormals(ProgramCache& programs, bool listed) {
-    const gl::Program& p = programs.compute("per_set.comp", {"NORMALS"});
+    const gl::Program& p = stageProgram(programs, "NORMALS");
     p.set("uCount", static_cast<unsigned>(mCount));
     p.set("uFallbackRatio", static_cast<float>(core::NORMAL_FALLBACK_RATIO));
     p.set("uFromList", listed ? 1 : 0);
@@ -563,7 +593,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     ParticleSettings radiusSettings = s;
     radiusSettings.dropletAtoms = request.droplets ? s.dropletAtoms : 0;
     auto stage = [&](const char* name) -> const gl::Program& {
-        const gl::Program& p = programs.compute("per_set.comp", {name});
+        const gl::Program& p = stageProgram(programs, name);
         p.set("uCount", static_cast<unsigned>(mCount));
         return p;
     };
@@ -701,13 +731,13 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
 
 void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
     // The ellipsoids of the most droplets a set may hold, 3 vec4 each, then their normal
-    // models, 3 vec4 each (shaders/per_set.comp's dropletModel).
+    // models, 3 vec4 each (shaders/per_set_stages.glsl's dropletModel).
     resized(mDroplets, maxDroplets(mCount) * 6 * sizeof(glm::vec4));
     mDroplets.bindStorage(DROPLETS);
     gl::computeBarrier();  // RADIUS_WALK's list
     for (const char* stage :
          {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"}) {
-        const gl::Program& p = programs.compute("per_set.comp", {stage});
+        const gl::Program& p = stageProgram(programs, stage);
         // A uniform a stage lacks is left alone.
         p.set("uCount", static_cast<unsigned>(mCount));
         p.set("uLevel", static_cast<float>(s.surfaceLevel));
@@ -720,7 +750,7 @@ void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
 void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     if (mCount == 0) return;
     auto stage = [&](const char* name) -> const gl::Program& {
-        const gl::Program& p = programs.compute("per_set.comp", {name});
+        const gl::Program& p = stageProgram(programs, name);
         p.set("uCount", static_cast<unsigned>(mCount));
         return p;
     };
@@ -760,7 +790,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     });
     if (mRequest.kernels)
         timed("kernels", [&] {
-            const gl::Program& p = programs.compute("per_set.comp", {"KERNELS"});
+            const gl::Program& p = stageProgram(programs, "KERNELS");
             p.set("uCount", static_cast<unsigned>(mCount));
             p.set("uEllipsoids", mModels == 2 ? 1 : 0);
             p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed

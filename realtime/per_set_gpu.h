@@ -9,7 +9,8 @@
 // double) into the storage buffers the draw passes read, and write the draw counts into
 // indirect draw commands: nothing is read back. Sums over the grid run in a fixed order, so the
 // results do not depend on scheduling. The walks read the grid as buffer textures (per_set.glsl
-// says why). shaders/per_set.comp, per_set.glsl, scan.comp.
+// says why). shaders/per_set_*.comp (a file per group of stages), per_set_stages.glsl,
+// per_set.glsl, scan.comp.
 #pragma once
 
 #include <cstdint>
@@ -135,8 +136,8 @@ class GpuPerSet {
     // The droplets' first particles (ascending) and their ellipsoids (droplets.h).
     std::vector<std::pair<std::uint32_t, Ellipsoid>> droplets() const;
     // The stages' own records, for the doctor's stage checks (self_check.h): the grid
-    // (GATHER's order), each particle's flags (shaders/per_set.comp's bits) and, after pack(),
-    // the exclusive prefix of the drawn particles (n + 1).
+    // (GATHER's order), each particle's flags (shaders/per_set_stages.glsl's bits) and, after
+    // pack(), the exclusive prefix of the drawn particles (n + 1).
     struct Grid {
         std::uint32_t totalCells = 0;
         std::vector<std::uint32_t> sorted;     // particle per grid slot
@@ -160,7 +161,7 @@ class GpuPerSet {
     void scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset, std::size_t count,
               bool cells = false);
     void bindStorage() const;
-    void clearWalks();  // empties the walk list (shaders/per_set.comp's appendWalk)
+    void clearWalks();  // empties the walk list (shaders/per_set_stages.glsl's appendWalk)
     void timed(const char* stage, const auto& work);
     // Poison mode: throws gl::Error naming the stage and the buffer where a stage wrote past a
     // buffer's end (gl::Buffer::overrun); nothing outside it.
@@ -187,12 +188,12 @@ class GpuPerSet {
     // Per droplet its GpuEllipsoid (the droplets' draw reads them), then per droplet its
     // FieldNormal model, each region sized for the most droplets a set may hold.
     gl::Buffer mDroplets;
-    gl::Buffer mWalks;        // the walk list, then the next (shaders/per_set.comp)
+    gl::Buffer mWalks;        // the walk list, then the next (shaders/per_set_stages.glsl)
     gl::Buffer mDropletWork;  // the sparse particles' list, their clusters (DropletWork)
     gl::Buffer mCullSpheres;  // per grid slot: position, radius (culling)
     gl::Buffer mBodies;       // deriveNormals: 2 vec4 per body, its centre and pole axis
-    // Per grid slot, the culling's near shell as INTERIOR found it (shaders/per_set.comp), for
-    // the radii of the current settings when mNearMasksFound.
+    // Per grid slot, the culling's near shell as INTERIOR found it (shaders/per_set_radius.comp),
+    // for the radii of the current settings when mNearMasksFound.
     gl::Buffer mNearMasks;
     gl::Buffer mPlaceholder;  // 16 bytes, bound where a stage's block has no buffer
     bool mNearMasksFound = false;

@@ -171,7 +171,7 @@ std::vector<CompileFailure> compileEach(ProgramCache& programs,
     for (const ProgramVariant& v : variants) {
         try {
             const gl::Program& program = v.build(programs, user);
-            if (v.compute == "per_set.comp") checkPerSetLayouts(program);
+            if (v.compute.starts_with("per_set_")) checkPerSetLayouts(program);
         } catch (const gl::Error& e) {
             failures.push_back({v.name(), e.what()});
         }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "realtime/gl/context.h"
+#include "realtime/gl/pipeline.h"
 #include "realtime/program_variants.h"
 #include "realtime/testing/gl_test_scene.h"
 
@@ -21,6 +22,23 @@ TEST(ProgramVariants, EveryVariantCompiles) {
     for (const CompileFailure& f : compileEach(programs, variants))
         ADD_FAILURE() << f.program << "\n" << f.log;
     EXPECT_EQ(programs.size(), variants.size());
+}
+
+// The per-set stages declare every shared storage block (shaders/per_set_stages.glsl); a stage
+// uses at most 10 of them (doctor's GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS line), within NVIDIA's
+// 16 and the device's limit: a block declared and not used must not count.
+TEST(ProgramVariants, PerSetStagesUseAtMostTenStorageBlocks) {
+    gl::Context context;
+    ProgramCache programs;
+    int most = 0;
+    for (const ProgramVariant& v : allProgramVariants()) {
+        if (!v.compute.starts_with("per_set_")) continue;
+        const int blocks = v.build(programs).activeStorageBlocks();
+        EXPECT_LE(blocks, 10) << v.name();
+        most = std::max(most, blocks);
+    }
+    EXPECT_LE(most, gl::queryLimits().maxComputeStorageBlocks);
+    EXPECT_EQ(most, 10) << "doctor's line names the most a stage uses";
 }
 
 using testing::RendererTest;

@@ -100,7 +100,7 @@ SelfCheck selfCheck(Device& device, const Settings& settings, const core::Render
 
 namespace {
 
-// shaders/per_set.comp's flag bits.
+// shaders/per_set_stages.glsl's flag bits.
 constexpr std::uint32_t HIDDEN = 2, INTERIOR = 4, SPARSE = 8;
 
 // The CPU's answers for one set: radii, the spheres left visible, and those drawn.

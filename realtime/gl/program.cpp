@@ -174,6 +174,12 @@ void Program::set(std::string_view u, std::span<const glm::vec4> v) const {
                             glm::value_ptr(v[0]));
 }
 
+int Program::activeStorageBlocks() const {
+    GLint count = 0;
+    glGetProgramInterfaceiv(mHandle.id(), GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &count);
+    return count;
+}
+
 std::optional<Program::BufferVariable> Program::bufferVariable(const std::string& name) const {
     const GLuint index = glGetProgramResourceIndex(id(), GL_BUFFER_VARIABLE, name.c_str());
     if (index == GL_INVALID_INDEX) return std::nullopt;

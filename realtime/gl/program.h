@@ -71,6 +71,9 @@ class Program {
         long long offset = 0, topLevelStride = 0;
     };
     std::optional<BufferVariable> bufferVariable(const std::string& name) const;
+    // The storage blocks the program uses (GL_ACTIVE_RESOURCES of GL_SHADER_STORAGE_BLOCK): what
+    // GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS limits. A block declared but not used is not active.
+    int activeStorageBlocks() const;
 
   private:
     int location(std::string_view uniform) const;

@@ -25,9 +25,10 @@ const int MAX_LEVELS = 32;
 
 uniform uint uCount;  // particles in the set
 
-// NORMALS writes the normals (derived_attributes.h's, where the set came without them), and
-// INTERIOR the fallback normals of those it settles.
-#if defined(NORMALS) || defined(INTERIOR)
+// WRITES_ATTRIBUTES, defined by the stages that write normals (NORMALS: derived_attributes.h's,
+// where the set came without them; INTERIOR: the fallback normals of those it settles); the
+// others read the attributes only.
+#ifdef WRITES_ATTRIBUTES
 #define ATTRIBUTES_ACCESS
 #else
 #define ATTRIBUTES_ACCESS readonly
@@ -47,7 +48,7 @@ vec3 attribute3(uint offset, uint i) {
 float attribute1(uint offset, uint i) { return attributeFloat(offset * uCount + i); }
 uint attributeBits(uint offset, uint i) { return attributeWords[offset * uCount + i]; }
 
-#if defined(NORMALS) || defined(INTERIOR)
+#ifdef WRITES_ATTRIBUTES
 layout(std430, binding = 20) readonly buffer Bodies {
     vec4 bodies[];  // 2 per body: the centre; the pole axis
 };
@@ -85,7 +86,7 @@ layout(std430, binding = 6) coherent buffer Header {
     uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 6 x first, 0
     uvec4 drawKernels;       // the same for the kernels the gradient pass adds
     Level levels[MAX_LEVELS];
-    // The walk list's glDispatchComputeIndirect (per_set.comp's appendWalk): its work groups,
+    // The walk list's glDispatchComputeIndirect (per_set_stages.glsl's appendWalk): its work groups,
     // 1, 1; w: its entries. The next list's, which a pass over the walk list fills.
     uvec4 walkDispatch;
     uvec4 nextWalkDispatch;
@@ -104,7 +105,7 @@ layout(std430, binding = 6) coherent buffer Header {
     // kernel's own).
     uint levelCoefficientMin[MAX_LEVELS];
     // RADIUS_WALK: the sparse particles' list's dispatch (work groups, 1, 1; w: its entries),
-    // which the droplet stages take (per_set.comp's DROPLET_EDGES).
+    // which the droplet stages take (per_set_droplets.comp's DROPLET_EDGES).
     uvec4 sparseDispatch;
     // FINISH: glDrawArraysIndirect of the droplets drawn apart (PACK's uDropletsApart),
     // the particle buffer's first: 6 x droplets, 1, 0, 0.
@@ -149,7 +150,6 @@ int cellIndex(Level g, vec3 p) {
     return g.dims.w + (iz * g.dims.y + iy) * g.dims.x + ix;
 }
 
-#ifdef GRID_READ
 // The particles sorted by cell (index order within a cell), GATHER's GridEntry records: two
 // texels each, the position and 1 / h; v / (pi h^4), v / (pi h^3) (W(0) = that), the
 // particle's index and its body (uint). The stages that walk the grid read it, and the
@@ -242,5 +242,3 @@ float m4ShapeSecondDerivative(float q) {
 }
 
 float supportReach(float hMax) { return 2.0 * hMax; }
-
-#endif
