@@ -71,11 +71,23 @@ void writeNormal(uint i, vec3 n) {
 vec3 particlePosition(uint i) { return attribute3(ATTR_POSITION, i); }
 float particleH(uint i) { return attribute1(ATTR_H, i); }
 
+// Members that LEVELS updates by atomics are scalars, not components of a vector: GLSL names a
+// variable, an array element or a structure member as an atomic's operand, and a swizzle is
+// none of them (glslang and Mesa take one, a driver need not).
 struct Level {
-    uvec4 minKey;     // ordered keys of the smallest x, y, z; w: particles
-    uvec4 maxKey;     // ordered keys of the largest x, y, z; w: bits of the largest h
-    vec4 originCell;  // the grid's corner; cell size
-    ivec4 dims;       // cells along x, y, z; the level's first cell in the cell array
+    uint minX, minY, minZ;  // ordered keys of the smallest x, y, z
+    uint count;             // particles
+    uint maxX, maxY, maxZ;  // ordered keys of the largest x, y, z
+    uint hMaxBits;          // bits of the largest h
+    vec4 originCell;        // the grid's corner; cell size
+    ivec4 dims;             // cells along x, y, z; the level's first cell in the cell array
+};
+
+// An indirect dispatch that a list's appends build (per_set_stages.glsl's APPEND): its work
+// groups, 1, 1 (glDispatchComputeIndirect's), then the list's entries.
+struct Dispatch {
+    uint groups, one, alsoOne;
+    uint entries;
 };
 
 layout(std430, binding = 6) coherent buffer Header {
@@ -86,10 +98,10 @@ layout(std430, binding = 6) coherent buffer Header {
     uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 6 x first, 0
     uvec4 drawKernels;       // the same for the kernels the gradient pass adds
     Level levels[MAX_LEVELS];
-    // The walk list's glDispatchComputeIndirect (per_set_stages.glsl's appendWalk): its work groups,
-    // 1, 1; w: its entries. The next list's, which a pass over the walk list fills.
-    uvec4 walkDispatch;
-    uvec4 nextWalkDispatch;
+    // The walk list's dispatch (per_set_stages.glsl's appendWalk). The next list's, which a pass
+    // over the walk list fills.
+    Dispatch walkDispatch;
+    Dispatch nextWalkDispatch;
     // LAYOUT: the work groups of the scan of the cells (scan.comp's blocks) and of SORT, 1, 1.
     uvec4 scanDispatch;
     uvec4 sortDispatch;
@@ -104,9 +116,10 @@ layout(std430, binding = 6) coherent buffer Header {
     // takes for every kernel of the level (a lower bound of the field without reading each
     // kernel's own).
     uint levelCoefficientMin[MAX_LEVELS];
-    // RADIUS_WALK: the sparse particles' list's dispatch (work groups, 1, 1; w: its entries),
-    // which the droplet stages take (per_set_droplets.comp's DROPLET_EDGES).
-    uvec4 sparseDispatch;
+    uint padding[3];  // to the 16-byte boundary per_set_gpu.cpp's SPARSE_DISPATCH keeps
+    // RADIUS_WALK: the sparse particles' list's dispatch, which the droplet stages take
+    // (per_set_droplets.comp's DROPLET_EDGES).
+    Dispatch sparseDispatch;
     // FINISH: glDrawArraysIndirect of the droplets drawn apart (PACK's uDropletsApart),
     // the particle buffer's first: 6 x droplets, 1, 0, 0.
     uvec4 drawDroplets;
@@ -136,10 +149,10 @@ float levelInvCell(Level g) { return 1.0 / g.originCell.w; }
 
 // The box of the level's particles' positions (LEVELS' ordered keys).
 vec3 levelLow(Level g) {
-    return vec3(fromOrderedKey(g.minKey.x), fromOrderedKey(g.minKey.y), fromOrderedKey(g.minKey.z));
+    return vec3(fromOrderedKey(g.minX), fromOrderedKey(g.minY), fromOrderedKey(g.minZ));
 }
 vec3 levelHigh(Level g) {
-    return vec3(fromOrderedKey(g.maxKey.x), fromOrderedKey(g.maxKey.y), fromOrderedKey(g.maxKey.z));
+    return vec3(fromOrderedKey(g.maxX), fromOrderedKey(g.maxY), fromOrderedKey(g.maxZ));
 }
 
 int cellIndex(Level g, vec3 p) {
@@ -194,7 +207,7 @@ uvec2 blockRow(Level g, ivec3 base, int size, int r) {
 #define FOR_EACH_NEAR(POINT, REACH, VISIT)                                                     \
     for (uint u_ = 0u; u_ < usedLevels; ++u_) {                                             \
         Level g_ = levels[levelList[u_]];                                                    \
-        float reach_ = REACH(uintBitsToFloat(g_.maxKey.w));                                  \
+        float reach_ = REACH(uintBitsToFloat(g_.hMaxBits));                                   \
         float inv_ = levelInvCell(g_);                                                       \
         float cell_ = g_.originCell.w;                                                       \
         int z0_ = int(floor((POINT.z - reach_ - g_.originCell.z) * inv_));                   \

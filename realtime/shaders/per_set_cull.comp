@@ -63,11 +63,11 @@ float probeReach(float hMax) { return uRadiusScale * hMax; }
 void main() {
 #if defined(CULL_FULL) && defined(CULL_PROBE)
     // The probe (below) over the walk list; the spheres it leaves are appended to the next list.
-    if (invocation() >= walkDispatch.w) return;
+    if (invocation() >= walkDispatch.entries) return;
     uint slot = walkList[invocation()];
 #elif defined(CULL_FULL)
     // The full test over the next list.
-    if (invocation() >= nextWalkDispatch.w) return;
+    if (invocation() >= nextWalkDispatch.entries) return;
     uint slot = walkList[uCount + invocation()];
 #else
     uint slot = invocation();

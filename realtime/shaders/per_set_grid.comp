@@ -29,8 +29,9 @@ void main() {
         nearHit = 0u;
     }
     if (L < uint(MAX_LEVELS)) {
-        levels[L].minKey = uvec4(0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu, 0u);
-        levels[L].maxKey = uvec4(0u);
+        levels[L].minX = levels[L].minY = levels[L].minZ = 0xFFFFFFFFu;
+        levels[L].count = 0u;
+        levels[L].maxX = levels[L].maxY = levels[L].maxZ = levels[L].hMaxBits = 0u;
         levelCoefficientMin[L] = 0x7F800000u;  // +inf
     }
 }
@@ -65,14 +66,14 @@ vec2 kernelCoefficients(uint i) {
 
 #ifdef LEVELS
 void addToLevel(int L, uvec4 lo, uvec4 hi, uint coefficientMin) {
-    atomicMin(levels[L].minKey.x, lo.x);
-    atomicMin(levels[L].minKey.y, lo.y);
-    atomicMin(levels[L].minKey.z, lo.z);
-    atomicAdd(levels[L].minKey.w, lo.w);
-    atomicMax(levels[L].maxKey.x, hi.x);
-    atomicMax(levels[L].maxKey.y, hi.y);
-    atomicMax(levels[L].maxKey.z, hi.z);
-    atomicMax(levels[L].maxKey.w, hi.w);
+    atomicMin(levels[L].minX, lo.x);
+    atomicMin(levels[L].minY, lo.y);
+    atomicMin(levels[L].minZ, lo.z);
+    atomicAdd(levels[L].count, lo.w);
+    atomicMax(levels[L].maxX, hi.x);
+    atomicMax(levels[L].maxY, hi.y);
+    atomicMax(levels[L].maxZ, hi.z);
+    atomicMax(levels[L].hMaxBits, hi.w);
     atomicMin(levelCoefficientMin[L], coefficientMin);
 }
 void main() {
@@ -108,15 +109,15 @@ void main() {
     uint used = 0u;
     for (int L = 0; L < MAX_LEVELS; ++L) {
         Level g = levels[L];
-        if (g.minKey.w == 0u) {
+        if (g.count == 0u) {
             levels[L].dims = ivec4(1, 1, 1, first);
             continue;
         }
         levelList[used++] = uint(L);
         vec3 lo = levelLow(g), hi = levelHigh(g);
         vec3 extent = hi - lo;
-        float maxCells = max(4.0 * float(g.minKey.w), 4096.0);
-        float cell = uintBitsToFloat(g.maxKey.w);
+        float maxCells = max(4.0 * float(g.count), 4096.0);
+        float cell = uintBitsToFloat(g.hMaxBits);
         vec3 n;
         for (int k = 0; k < 200; ++k) {
             n = floor(extent / cell) + 1.0;

@@ -24,7 +24,7 @@ void main() {
     vec3 x;
     if (uFromList != 0) {
         uint t = invocation();
-        if (t >= walkDispatch.w) return;
+        if (t >= walkDispatch.entries) return;
         i = walkList[t];
         x = particlePosition(i);
     } else {

@@ -42,7 +42,7 @@ void main() {
         Level g = levels[levelList[u]];
         dvec3 lo = dvec3(levelLow(g)), hi = dvec3(levelHigh(g));
         dvec3 outside = max(max(lo - uCamera, uCamera - hi), dvec3(0.0));
-        double radius = double(uRadiusScale) * double(uintBitsToFloat(g.maxKey.w));
+        double radius = double(uRadiusScale) * double(uintBitsToFloat(g.hMaxBits));
         mayReach = mayReach || length(outside) - radius <= uNearReach;
     }
     nearDispatch = uvec4(mayReach ? (uCount + 63u) / 64u : 0u, 1u, 1u, 0u);
@@ -85,7 +85,7 @@ uniform int uEllipsoids;
 float kernelReach_r;
 float kernelReach(float hMax) { return kernelReach_r + 2.0 * hMax; }
 void main() {
-    if (invocation() >= walkDispatch.w) return;
+    if (invocation() >= walkDispatch.entries) return;
     uint i = walkList[invocation()];  // a drawn particle
     float r = radii[i];
     vec3 centre = particlePosition(i);
@@ -160,7 +160,7 @@ uint firstSphere() { return uDropletsApart != 0 ? dropletCount : 0u; }
 #ifdef PACK
 void main() {
     uint t = invocation();
-    if (t >= walkDispatch.w) return;
+    if (t >= walkDispatch.entries) return;
     uint i = walkList[t];
     uint k = firstSphere() + drawnPrefix[i];
     vec2 uv =

@@ -76,7 +76,7 @@ float walkReach(float hMax) { return max(supportReach(hMax), countReach_) + half
 void main() {
 #ifdef RADIUS_WALK
     uint t = invocation();
-    if (t >= nextWalkDispatch.w) return;
+    if (t >= nextWalkDispatch.entries) return;
     uint i = walkList[uCount + t];  // left by RADIUS's early exit
 #else
     // "fixed": every particle; "field": those INTERIOR left, its list.
@@ -86,7 +86,7 @@ void main() {
         if (i >= uCount) return;
     } else {
         uint t = invocation();
-        if (t >= walkDispatch.w) return;
+        if (t >= walkDispatch.entries) return;
         i = walkList[t];
     }
 #endif

@@ -64,8 +64,8 @@ layout(std430, binding = 13) buffer Models {
 // 1, 1, entries). A macro: GLSL hands no buffer member to an atomic through a parameter.
 #define APPEND(DISPATCH, LIST, AT, VALUE)                               \
     {                                                                   \
-        uint entry_ = atomicAdd(DISPATCH.w, 1u);                        \
-        if (entry_ % gl_WorkGroupSize.x == 0u) atomicAdd(DISPATCH.x, 1u); \
+        uint entry_ = atomicAdd(DISPATCH.entries, 1u);                  \
+        if (entry_ % gl_WorkGroupSize.x == 0u) atomicAdd(DISPATCH.groups, 1u); \
         LIST[(AT) + entry_] = (VALUE);                                  \
     }
 #ifdef USES_WALKS
@@ -98,7 +98,7 @@ void appendSparse(uint i) {
 }
 // The sparse particle of this invocation (NO_MEMBER past the list).
 uint sparseParticle() {
-    return invocation() < sparseDispatch.w ? dropletWork[invocation()] : NO_MEMBER;
+    return invocation() < sparseDispatch.entries ? dropletWork[invocation()] : NO_MEMBER;
 }
 #endif
 
