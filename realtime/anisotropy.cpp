@@ -123,19 +123,8 @@ std::vector<Ellipsoid> anisotropicEllipsoids(const core::ParticleSet& ps,
 const std::vector<Ellipsoid>& AnisotropyCache::ellipsoids(const core::ParticleSet& ps,
                                                           std::span<const float> radii,
                                                           const AnisotropySettings& settings) {
-    const AnisotropySettings& o = mSettings;
-    const bool sameSettings =
-        settings.smoothing == o.smoothing && settings.maxAxisRatio == o.maxAxisRatio &&
-        settings.minNeighbours == o.minNeighbours && settings.anchor == o.anchor;
-    mReused = sameSettings && mKey.matches(ps) && sameValues(radii, mRadii);
-    if (!mReused) {
-        mKey.clear();
-        mEllipsoids = anisotropicEllipsoids(ps, radii, settings);
-        mRadii.assign(radii.begin(), radii.end());
-        mSettings = settings;
-        mKey.assign(ps);
-    }
-    return mEllipsoids;
+    return mCache.get(
+        ps, [&] { return anisotropicEllipsoids(ps, radii, settings); }, radii, settings);
 }
 
 }  // namespace twinrender::realtime

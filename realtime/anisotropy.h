@@ -65,14 +65,10 @@ class AnisotropyCache {
     const std::vector<Ellipsoid>& ellipsoids(const core::ParticleSet& particles,
                                              std::span<const float> radii,
                                              const AnisotropySettings& settings);
-    bool reused() const { return mReused; }
+    bool reused() const { return mCache.reused(); }
 
   private:
-    bool mReused = false;
-    ParticleSetKey mKey;
-    std::vector<float> mRadii;
-    AnisotropySettings mSettings;
-    std::vector<Ellipsoid> mEllipsoids;
+    SetCache<std::vector<Ellipsoid>, std::span<const float>, AnisotropySettings> mCache;
 };
 
 }  // namespace twinrender::realtime

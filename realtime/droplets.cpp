@@ -197,17 +197,8 @@ Droplets fitDroplets(const core::ParticleSet& ps, std::span<const float> radii, 
 
 const Droplets& DropletCache::droplets(const core::ParticleSet& ps, std::span<const float> radii,
                                        double level, int maxAtoms) {
-    mReused =
-        level == mLevel && maxAtoms == mMaxAtoms && mKey.matches(ps) && sameValues(radii, mRadii);
-    if (!mReused) {
-        mKey.clear();
-        mDroplets = fitDroplets(ps, radii, level, maxAtoms);
-        mRadii.assign(radii.begin(), radii.end());
-        mLevel = level;
-        mMaxAtoms = maxAtoms;
-        mKey.assign(ps);
-    }
-    return mDroplets;
+    return mCache.get(
+        ps, [&] { return fitDroplets(ps, radii, level, maxAtoms); }, radii, level, maxAtoms);
 }
 
 }  // namespace twinrender::realtime

@@ -62,15 +62,10 @@ class DropletCache {
   public:
     const Droplets& droplets(const core::ParticleSet& particles, std::span<const float> radii,
                              double level, int maxAtoms);
-    bool reused() const { return mReused; }
+    bool reused() const { return mCache.reused(); }
 
   private:
-    bool mReused = false;
-    ParticleSetKey mKey;
-    std::vector<float> mRadii;
-    double mLevel = 0.0;
-    int mMaxAtoms = 0;
-    Droplets mDroplets;
+    SetCache<Droplets, std::span<const float>, double, int> mCache;
 };
 
 }  // namespace twinrender::realtime

@@ -40,15 +40,8 @@ std::vector<FieldNormal> fieldNormals(const core::ParticleSet& ps, std::span<con
 const std::vector<FieldNormal>& FieldNormalCache::normals(const core::ParticleSet& ps,
                                                           std::span<const float> radii,
                                                           std::span<const std::uint32_t> indices) {
-    mReused = mKey.matches(ps) && sameValues(radii, mRadii) && sameValues(indices, mIndices);
-    if (!mReused) {
-        mKey.clear();
-        mNormals = fieldNormals(ps, radii, indices);
-        mRadii.assign(radii.begin(), radii.end());
-        mIndices.assign(indices.begin(), indices.end());
-        mKey.assign(ps);
-    }
-    return mNormals;
+    return mCache.get(
+        ps, [&] { return fieldNormals(ps, radii, indices); }, radii, indices);
 }
 
 }  // namespace twinrender::realtime

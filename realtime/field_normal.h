@@ -45,14 +45,11 @@ class FieldNormalCache {
     const std::vector<FieldNormal>& normals(const core::ParticleSet& particles,
                                             std::span<const float> radii,
                                             std::span<const std::uint32_t> indices);
-    bool reused() const { return mReused; }
+    bool reused() const { return mCache.reused(); }
 
   private:
-    bool mReused = false;
-    ParticleSetKey mKey;
-    std::vector<float> mRadii;
-    std::vector<std::uint32_t> mIndices;
-    std::vector<FieldNormal> mNormals;
+    SetCache<std::vector<FieldNormal>, std::span<const float>, std::span<const std::uint32_t>>
+        mCache;
 };
 
 }  // namespace twinrender::realtime

@@ -74,19 +74,10 @@ std::vector<float> impostorRadii(const core::ParticleSet& ps, const ParticleSett
 
 const std::vector<float>& ImpostorRadiusCache::radii(const core::ParticleSet& ps,
                                                      const ParticleSettings& settings) {
-    const ParticleSettings& o = mSettings;
-    const bool sameSettings =
-        settings.radius == o.radius && settings.radiusScale == o.radiusScale &&
-        settings.surfaceLevel == o.surfaceLevel && settings.crossingScale == o.crossingScale &&
-        settings.interiorLevel == o.interiorLevel;
-    mReused = sameSettings && mKey.matches(ps);
-    if (!mReused) {
-        mKey.clear();
-        mRadii = impostorRadii(ps, settings);
-        mSettings = settings;
-        mKey.assign(ps);
-    }
-    return mRadii;
+    const RadiusSettings key{settings.radius, settings.radiusScale, settings.surfaceLevel,
+                             settings.crossingScale, settings.interiorLevel};
+    return mCache.get(
+        ps, [&] { return impostorRadii(ps, settings); }, key);
 }
 
 }  // namespace twinrender::realtime

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <glm/vec3.hpp>
+#include <tuple>
 #include <vector>
 
 #include "core/colour_field.h"
@@ -40,13 +41,13 @@ class ImpostorRadiusCache {
   public:
     const std::vector<float>& radii(const core::ParticleSet& particles,
                                     const ParticleSettings& settings);
-    bool reused() const { return mReused; }
+    bool reused() const { return mCache.reused(); }
 
   private:
-    bool mReused = false;
-    ParticleSettings mSettings;
-    ParticleSetKey mKey;
-    std::vector<float> mRadii;
+    // The settings the radii depend on: radius, radius_scale, surface_level, crossing_scale,
+    // interior_level.
+    using RadiusSettings = std::tuple<RadiusModel, double, double, double, double>;
+    SetCache<std::vector<float>, RadiusSettings> mCache;
 };
 
 }  // namespace twinrender::realtime

@@ -328,14 +328,8 @@ std::vector<std::uint32_t> unoccludedParticles(const core::ParticleSet& ps,
 
 const std::vector<std::uint32_t>& OcclusionCuller::unoccluded(const core::ParticleSet& ps,
                                                               std::span<const float> radii) {
-    mReused = mKey.matches(ps) && sameValues(radii, mRadii);
-    if (!mReused) {
-        mKey.clear();
-        mUnoccluded = unoccludedParticles(ps, radii);
-        mRadii.assign(radii.begin(), radii.end());
-        mKey.assign(ps);
-    }
-    return mUnoccluded;
+    return mCache.get(
+        ps, [&] { return unoccludedParticles(ps, radii); }, radii);
 }
 
 }  // namespace twinrender::realtime

@@ -53,13 +53,10 @@ class OcclusionCuller {
     const std::vector<std::uint32_t>& unoccluded(const core::ParticleSet& particles,
                                                  std::span<const float> radii);
     // Whether the last call reused the previous answer.
-    bool reused() const { return mReused; }
+    bool reused() const { return mCache.reused(); }
 
   private:
-    bool mReused = false;
-    ParticleSetKey mKey;
-    std::vector<float> mRadii;
-    std::vector<std::uint32_t> mUnoccluded;
+    SetCache<std::vector<std::uint32_t>, std::span<const float>> mCache;
 };
 
 }  // namespace twinrender::realtime

@@ -1,11 +1,15 @@
 // What the real-time renderer's per-particle-set answers (occlusion culling, impostor radii,
-// field normal models) depend on, kept to tell a new particle set from the last one.
+// field normal models, ellipsoids, droplets, surface kernels, derived normals) depend on, kept
+// to tell a new particle set from the last one, and SetCache: such an answer kept while its
+// inputs are unchanged.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/particles.h"
@@ -45,5 +49,55 @@ template <typename T>
 bool sameValues(std::span<const T> values, const std::vector<T>& kept) {
     return std::equal(values.begin(), values.end(), kept.begin(), kept.end());
 }
+
+namespace detail {
+// One input of a SetCache answer besides the set: a value compared with ==, kept as it is.
+template <typename T>
+struct KeptInput {
+    T value{};
+    bool same(const T& v) const { return value == v; }
+    void keep(const T& v) { value = v; }
+};
+// A span (radii, indices) compared element by element, kept as a vector.
+template <typename T>
+struct KeptInput<std::span<const T>> {
+    std::vector<T> value;
+    bool same(std::span<const T> v) const { return sameValues(v, value); }
+    void keep(std::span<const T> v) { value.assign(v.begin(), v.end()); }
+};
+}  // namespace detail
+
+// The last answer of a per-particle-set computation, kept while its inputs are unchanged: the
+// set (ParticleSetKey, compared exactly) and `Inputs` (settings and the like with ==, spans
+// element by element). The CPU path's caches are each one of these; the frames of an unchanged
+// set reuse their answers.
+template <typename Answer, typename... Inputs>
+class SetCache {
+  public:
+    // The answer for `particles` and `inputs`: compute()'s, unless the last call's inputs were
+    // the same. An exception from compute() leaves nothing kept.
+    template <typename Compute>
+    const Answer& get(const core::ParticleSet& particles, Compute&& compute,
+                      const Inputs&... inputs) {
+        mReused =
+            mKey.matches(particles) &&
+            std::apply([&](const auto&... kept) { return (kept.same(inputs) && ...); }, mInputs);
+        if (!mReused) {
+            mKey.clear();
+            mAnswer = std::forward<Compute>(compute)();
+            std::apply([&](auto&... kept) { (kept.keep(inputs), ...); }, mInputs);
+            mKey.assign(particles);
+        }
+        return mAnswer;
+    }
+    // Whether the last get() returned the kept answer.
+    bool reused() const { return mReused; }
+
+  private:
+    bool mReused = false;
+    ParticleSetKey mKey;
+    std::tuple<detail::KeptInput<Inputs>...> mInputs;
+    Answer mAnswer{};
+};
 
 }  // namespace twinrender::realtime

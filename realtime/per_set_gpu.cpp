@@ -123,11 +123,6 @@ bool sameRadiusSettings(const ParticleSettings& a, const ParticleSettings& b) {
            a.interiorLevel == b.interiorLevel && a.dropletAtoms == b.dropletAtoms;
 }
 
-bool sameAnisotropy(const AnisotropySettings& a, const AnisotropySettings& b) {
-    return a.smoothing == b.smoothing && a.maxAxisRatio == b.maxAxisRatio &&
-           a.minNeighbours == b.minNeighbours && a.anchor == b.anchor;
-}
-
 // 0: no per-particle models, 1: field normals, 2: ellipsoids (shaders/per_set_pack.comp, PACK).
 int modelKind(const ParticleSettings& p) {
     if (p.shape == ParticleShape::Ellipsoid) return 2;
@@ -704,7 +699,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     }
     const int kind = modelKind(s);
     const bool sameModels = mModelSettings && mModels == kind &&
-                            (kind != 2 || sameAnisotropy(mModelSettings->anisotropy, s.anisotropy));
+                            (kind != 2 || mModelSettings->anisotropy == s.anisotropy);
     if (kind != 0 && !sameModels) {
         if (!mModelBuffer) {
             mModelBuffer.emplace(gl::Buffer::storage(3 * mCount * sizeof(glm::vec4)));

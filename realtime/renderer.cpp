@@ -41,23 +41,19 @@ namespace twinrender::realtime {
 class DerivedNormalsCache {
   public:
     const core::ParticleSet& particles(const core::SceneParticles& in) {
-        mReused = true;
-        if (in.hasNormals) return in.particles;
-        mReused = mKey.matches(in.particles);
-        if (!mReused) {
-            mKey.clear();
-            mSet = in.particles;
-            core::deriveNormals(mSet, in.bodies);
-            mKey.assign(in.particles);
-        }
-        return mSet;
+        mGiven = in.hasNormals;
+        if (mGiven) return in.particles;
+        return mCache.get(in.particles, [&] {
+            core::ParticleSet out = in.particles;
+            core::deriveNormals(out, in.bodies);
+            return out;
+        });
     }
-    bool reused() const { return mReused; }
+    bool reused() const { return mGiven || mCache.reused(); }
 
   private:
-    bool mReused = false;
-    ParticleSetKey mKey;
-    core::ParticleSet mSet;
+    bool mGiven = false;
+    SetCache<core::ParticleSet> mCache;
 };
 
 struct DeviceState {

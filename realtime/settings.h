@@ -75,6 +75,7 @@ struct AnisotropySettings {
     // along the particle's normal until it reaches as far as the sphere (the smoothing then
     // acts along the surface only): 0.981, depth error 1.2x (realtime/README.md).
     EllipsoidAnchor anchor = EllipsoidAnchor::Surface;
+    bool operator==(const AnisotropySettings&) const = default;
 };
 
 struct ParticleSettings {

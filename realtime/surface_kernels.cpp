@@ -72,14 +72,8 @@ std::vector<std::uint32_t> surfaceKernels(const core::ParticleSet& ps, double le
 
 const std::vector<std::uint32_t>& SurfaceKernelCache::kernels(const core::ParticleSet& ps,
                                                               double level) {
-    mReused = level == mLevel && mKey.matches(ps);
-    if (!mReused) {
-        mKey.clear();
-        mKernels = surfaceKernels(ps, level);
-        mLevel = level;
-        mKey.assign(ps);
-    }
-    return mKernels;
+    return mCache.get(
+        ps, [&] { return surfaceKernels(ps, level); }, level);
 }
 
 }  // namespace twinrender::realtime

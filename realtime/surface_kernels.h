@@ -25,13 +25,10 @@ std::vector<std::uint32_t> surfaceKernels(const core::ParticleSet& particles, do
 class SurfaceKernelCache {
   public:
     const std::vector<std::uint32_t>& kernels(const core::ParticleSet& particles, double level);
-    bool reused() const { return mReused; }
+    bool reused() const { return mCache.reused(); }
 
   private:
-    bool mReused = false;
-    double mLevel = 0.0;
-    ParticleSetKey mKey;
-    std::vector<std::uint32_t> mKernels;
+    SetCache<std::vector<std::uint32_t>, double> mCache;
 };
 
 }  // namespace twinrender::realtime
