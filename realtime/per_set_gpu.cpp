@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 #include <initializer_list>
@@ -577,6 +578,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
     mUploadMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (built && mCount > 0) timed("grid", [&] { buildGrid(programs); });
+    if (built) mLevelBoxes.reset();
     const bool derive = !deriveNormalsOf.empty();
     if (built) {
         mNormals = derive ? Normals::None : Normals::Given;
@@ -723,6 +725,7 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
         built = true;
     }
     if (kind == 0) mModels = 0;
+    if (built) mMarks.reset();
     return built;
 }
 
@@ -744,16 +747,12 @@ void GpuPerSet::fitDroplets(ProgramCache& programs, const ParticleSettings& s) {
     }
 }
 
-void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
-    if (mCount == 0) return;
+void GpuPerSet::mark(ProgramCache& programs, const FrameRequest& frame, const Marks& marks) {
     auto stage = [&](const char* name) -> const gl::Program& {
         const gl::Program& p = stageProgram(programs, name);
         p.set("uCount", static_cast<unsigned>(mCount));
         return p;
     };
-    if (ellipsoidsDrawn() && !mEllipsoids)
-        mEllipsoids.emplace(gl::Buffer::storage(mCount * sizeof(GpuEllipsoid)));
-    const bool dropletsApart = this->dropletsApart();
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
@@ -761,8 +760,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
         const std::uint32_t zero = 0;
         mHeader.write(4, std::span<const std::uint32_t>(&zero, 1));  // nearHit
-        const bool cull = mRequest.cull && mCulled;
-        if (cull) {
+        if (marks.cull) {
             // NEAR over every particle, where NEAR_BOUND finds the camera near enough.
             const gl::Program& bound = stage("NEAR_BOUND");
             bound.set("uCamera", frame.camera);
@@ -779,8 +777,8 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         {
             clearWalks();
             const gl::Program& p = stage("MARK");
-            p.set("uCull", cull ? 1 : 0);
-            p.set("uDropletsApart", dropletsApart ? 1 : 0);
+            p.set("uCull", marks.cull ? 1 : 0);
+            p.set("uDropletsApart", marks.dropletsApart ? 1 : 0);
             p.dispatch(groups(mCount));
             gl::computeBarrier();
         }
@@ -795,6 +793,78 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     timed("pack", [&] {
         scan(programs, *mDrawLists, 0, mCount);
         scan(programs, *mDrawLists, mCount + 1, mCount);
+    });
+    mMarks = marks;
+}
+
+namespace {
+// NEAR_BOUND on the CPU: whether a sphere of a level (radius at most radius_scale times its
+// largest h) may reach into the near plane's ball about the camera.
+bool mayReachNearPlane(std::span<const GpuPerSet::LevelBox> boxes, const FrameRequest& frame,
+                       double radiusScale) {
+    for (const GpuPerSet::LevelBox& b : boxes) {
+        const glm::dvec3 outside =
+            glm::max(glm::max(b.low - frame.camera, frame.camera - b.high), glm::dvec3(0.0));
+        // NEAR_BOUND's test with a margin for the GPU's rounding of the same doubles.
+        const double distance = glm::length(outside);
+        if (distance - radiusScale * b.hMax <= frame.nearReach + 1e-9 * (1.0 + distance))
+            return true;
+    }
+    return false;
+}
+}  // namespace
+
+void GpuPerSet::afterFrame() {
+    if (mCount == 0) return;
+    // Marks made where NEAR found no sphere in the near plane's ball hold for every frame whose
+    // camera cannot reach one.
+    if (mMarks && mMarks->cull && !mMarks->nearFree)
+        mMarks->nearFree = mHeader.read<std::uint32_t>(1, 1)[0] == 0;  // the Header's nearHit
+    if (mLevelBoxes) return;
+    const std::uint32_t used = mHeader.read<std::uint32_t>(USED_LEVELS / 4, 1)[0];
+    const std::vector<std::uint32_t> list = mHeader.read<std::uint32_t>(USED_LEVELS / 4 + 1, used);
+    // Level: ordered keys of the smallest x, y, z, the count, of the largest x, y, z, the bits
+    // of the largest h (per_set.glsl), 16 words each from byte 48.
+    const std::vector<std::uint32_t> levels = mHeader.read<std::uint32_t>(12, 16 * MAX_LEVELS);
+    auto fromOrderedKey = [](std::uint32_t k) {
+        return std::bit_cast<float>((k & 0x80000000u) ? (k & 0x7FFFFFFFu) : ~k);
+    };
+    std::vector<LevelBox> boxes;
+    for (const std::uint32_t level : list) {
+        const std::uint32_t* w = &levels[16 * level];
+        boxes.push_back(
+            {glm::dvec3(fromOrderedKey(w[0]), fromOrderedKey(w[1]), fromOrderedKey(w[2])),
+             glm::dvec3(fromOrderedKey(w[4]), fromOrderedKey(w[5]), fromOrderedKey(w[6])),
+             std::bit_cast<float>(w[7])});
+    }
+    mLevelBoxes = std::move(boxes);
+}
+
+void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
+    if (mCount == 0) return;
+    auto stage = [&](const char* name) -> const gl::Program& {
+        const gl::Program& p = stageProgram(programs, name);
+        p.set("uCount", static_cast<unsigned>(mCount));
+        return p;
+    };
+    if (ellipsoidsDrawn() && !mEllipsoids)
+        mEllipsoids.emplace(gl::Buffer::storage(mCount * sizeof(GpuEllipsoid)));
+    const bool dropletsApart = this->dropletsApart();
+    const bool cull = mRequest.cull && mCulled;
+    // The marks of the last frame hold where nothing they depend on changed: the set's answers
+    // (update() built nothing), what is drawn apart, the kernels asked for, and, with culling,
+    // NEAR's answer, which the camera decides. NEAR_BOUND's test on the CPU, over the levels'
+    // boxes read after an earlier frame, tells a camera from which no sphere can reach into the
+    // near plane's ball (the usual view: at 1M particles the per-frame marks took 341 ms of
+    // a 573 ms frame on an H200).
+    const bool nearFree =
+        mLevelBoxes && !mayReachNearPlane(*mLevelBoxes, frame, mRequest.particles.radiusScale);
+    const Marks marks{cull, dropletsApart, mRequest.kernels, nearFree};
+    mMarksReused = mMarks && mMarks->cull == cull && mMarks->dropletsApart == dropletsApart &&
+                   mMarks->kernels == mRequest.kernels && (!cull || (mMarks->nearFree && nearFree));
+    if (!mMarksReused) mark(programs, frame, marks);
+    timed("pack", [&] {
+        bindStorage();
         mParticles->bindStorage(PARTICLES);
         mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);

@@ -84,6 +84,18 @@ class GpuPerSet {
     // the kernels as GpuKernel[], and their indirect draw commands. Timed as "pack".
     void pack(ProgramCache& programs, const FrameRequest& frame);
 
+    // Whether the last pack() kept the marks of the frame before (the drawn particles, the
+    // kernels and their prefixes: nothing they depend on changed) and redid only the records.
+    bool marksReused() const { return mMarksReused; }
+    // After a frame has been drawn (the renderer's read-back): reads what later frames decide
+    // with, once per set (the levels' boxes, for the marks' reuse). Waits for the frame.
+    void afterFrame();
+    // A level's box and largest h (LAYOUT's), as NEAR_BOUND reads them.
+    struct LevelBox {
+        glm::dvec3 low, high;
+        double hMax = 0.0;
+    };
+
     const gl::Buffer& particles() const { return *mParticles; }
     const gl::Buffer& kernels() const { return *mKernels; }
     // One GpuEllipsoid per drawn particle where ellipsoidsDrawn() (shape = "ellipsoid", the
@@ -163,6 +175,15 @@ class GpuPerSet {
     void bindStorage() const;
     void clearWalks();  // empties the walk list (shaders/per_set_stages.glsl's appendWalk)
     void timed(const char* stage, const auto& work);
+    // What the marks were made with (pack()).
+    struct Marks {
+        bool cull = false, dropletsApart = false, kernels = false;
+        // No sphere reached into the near plane's ball (NEAR_BOUND's bound on the CPU, or NEAR's
+        // answer read by afterFrame()).
+        bool nearFree = false;
+    };
+    // NEAR, MARK, KERNELS and the scans of the draw lists.
+    void mark(ProgramCache& programs, const FrameRequest& frame, const Marks& marks);
     // Poison mode: throws gl::Error naming the stage and the buffer where a stage wrote past a
     // buffer's end (gl::Buffer::overrun); nothing outside it.
     void checkOverruns(const char* stage) const;
@@ -200,7 +221,10 @@ class GpuPerSet {
     // What the walks read as buffer textures (shaders/per_set.glsl): the grid's entries (as
     // floats, and as words for the indices), cell offsets, the culling's spheres and directions.
     gl::BufferView mEntryTexels, mEntryWordTexels, mCellTexels, mCullSphereTexels, mDirectionTexels;
-    std::map<std::string, double> mTimings;  // since the last takeTimings()
+    std::optional<Marks> mMarks;  // the marks in the buffers, for the current set's answers
+    bool mMarksReused = false;
+    std::optional<std::vector<LevelBox>> mLevelBoxes;  // read by afterFrame()
+    std::map<std::string, double> mTimings;            // since the last takeTimings()
     std::optional<StageClock> mStageClock;
     std::vector<std::pair<const char*, gl::TimerQuery>> mQueries;  // not yet read
 };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <map>
@@ -16,6 +17,7 @@
 #include "realtime/droplets.h"
 #include "realtime/field_normal.h"
 #include "realtime/gl/context.h"
+#include "realtime/gpu_scene.h"
 #include "realtime/impostor_radius.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/per_set_gpu.h"
@@ -286,6 +288,55 @@ TEST_F(PerSetGpu, CullingIsOffForFramesWhoseNearPlaneCutsASphere) {
     EXPECT_EQ(g.drawnCount(), withSurface) << "inside a sphere";
     g.pack(programs, {glm::dvec3(0.0, -50.0, 0.0), reach});
     EXPECT_EQ(g.drawnCount(), visible) << "far again";
+}
+
+// A steady frame keeps the marks (drawn particles, kernels) of the frame before where nothing
+// they depend on changed, and its records equal those of marks made anew; a camera whose near
+// plane's ball may reach a sphere makes them anew, and so does every frame until the levels'
+// boxes are known (afterFrame) and after a new set.
+TEST_F(PerSetGpu, SteadyFramesKeepTheMarksAndDrawTheSame) {
+    const core::ParticleSet& ps = contact().particles.particles;
+    PerSetRequest request;
+    request.cull = true;
+    request.kernels = true;
+    const FrameRequest far{glm::dvec3(0.0, -50.0, 0.0), 1e-3};
+    const FrameRequest farther{glm::dvec3(3.0, -60.0, 1.0), 1e-3};
+    GpuPerSet fresh = built(ps, request);
+    fresh.pack(programs, farther);
+    const std::uint32_t drawn = fresh.drawnCount();
+    const std::vector<GpuParticle> expected = fresh.particles().read<GpuParticle>(0, drawn);
+    const std::vector<std::uint32_t> kernels = fresh.kernelParticles();
+    ASSERT_GT(drawn, 0u);
+    ASSERT_FALSE(kernels.empty());
+
+    GpuPerSet g = built(ps, request);
+    g.pack(programs, far);
+    EXPECT_FALSE(g.marksReused()) << "the boxes are not known before a frame is done";
+    g.afterFrame();
+    g.pack(programs, farther);
+    EXPECT_TRUE(g.marksReused());
+    EXPECT_EQ(g.drawnCount(), drawn);
+    EXPECT_EQ(g.kernelParticles(), kernels);
+    const std::vector<GpuParticle> kept = g.particles().read<GpuParticle>(0, drawn);
+    EXPECT_EQ(std::memcmp(kept.data(), expected.data(), drawn * sizeof(GpuParticle)), 0)
+        << "the records are relative to this frame's camera";
+
+    // Inside the body: NEAR decides, the marks are made anew (culling off).
+    g.pack(programs, {glm::dvec3(ps.position[0]), 1e-3});
+    EXPECT_FALSE(g.marksReused());
+    EXPECT_GT(g.drawnCount(), drawn);
+    g.pack(programs, far);
+    EXPECT_FALSE(g.marksReused()) << "marks made near are not a far frame's";
+    EXPECT_EQ(g.drawnCount(), drawn);
+    g.pack(programs, far);
+    EXPECT_TRUE(g.marksReused());
+
+    // A new set (one particle moved by an ulp): everything anew.
+    core::ParticleSet moved = ps;
+    moved.position[0].x = std::nextafter(moved.position[0].x, 1e30f);
+    g.update(programs, moved, request);
+    g.pack(programs, far);
+    EXPECT_FALSE(g.marksReused());
 }
 
 TEST_F(PerSetGpu, PerSetWorkIsRedoneExactlyWhenTheSetChanges) {

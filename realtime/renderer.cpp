@@ -466,6 +466,7 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
 void readGpuPerSet(DeviceState& d, const Settings& settings, core::Frame& frame) {
     if (settings.perSet != PerSetDevice::Gpu) return;
     for (const auto& [stage, ms] : d.perSetGpu.takeTimings()) frame.timingsMs[stage] = ms;
+    d.perSetGpu.afterFrame();
     frame.counters["particles_drawn"] = d.perSetGpu.drawnCount();
     frame.counters["droplets"] = d.perSetGpu.dropletCount();
     if (usesKernels(settings)) frame.counters["kernels_splatted"] = d.perSetGpu.kernelCount();
