@@ -1,10 +1,31 @@
 // realtime.particles.normal = "gradient": every particle's kernel gradient added at the surface
-// points of the G-buffer (shaders/support.vert, shaders/gradient_splat.frag), then turned into
-// the normal (shaders/gradient_resolve.frag).
+// points of the G-buffer, splatted (per_set = "cpu": shaders/support.vert,
+// shaders/gradient_splat.frag) or gathered through the per-set grid (per_set = "gpu":
+// shaders/gradient_gather.comp), then turned into the normal (shaders/gradient_resolve.frag).
 #include "realtime/gl/pipeline.h"
 #include "realtime/passes.h"
+#include "realtime/per_set_gpu.h"
 
 namespace twinrender::realtime {
+
+namespace {
+// The normal from the summed gradient, where it is not zero; the G-buffer's own elsewhere.
+gl::Texture resolveGradient(ProgramCache& programs, const gl::Texture& gradient,
+                            const GBuffer& gbuffer, DepthMode mode) {
+    gl::Texture normalUv(gradient.width(), gradient.height(), gl::Format::RGBA32F);
+    gl::Framebuffer target("gradient resolve", {{&normalUv}}, gl::Attachment{&gbuffer.depth});
+    target.bind();
+    gl::setPipelineState(coveredOnlyState(mode));
+    const gl::Program& resolve = programs.get("fullscreen.vert", "gradient_resolve.frag", {});
+    resolve.use();
+    resolve.set("uDepth", coveredOnlyDepth(mode));
+    gbuffer.normalUv.bind(0);
+    gradient.bind(1);
+    gl::drawFullscreenTriangle();
+    gl::setPipelineState({});
+    return normalUv;
+}
+}  // namespace
 
 gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& scene,
                                   const gl::Buffer& kernels, const DrawList& kernelDraw,
@@ -30,18 +51,16 @@ gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& sc
         gbuffer.surface.bind(0);
         kernelDraw.draw();
     }
-    gl::Texture normalUv(w, h, gl::Format::RGBA32F);
-    gl::Framebuffer target("gradient resolve", {{&normalUv}}, gl::Attachment{&gbuffer.depth});
-    target.bind();
-    gl::setPipelineState(coveredOnlyState(mode));
-    const gl::Program& resolve = programs.get("fullscreen.vert", "gradient_resolve.frag", {});
-    resolve.use();
-    resolve.set("uDepth", coveredOnlyDepth(mode));
-    gbuffer.normalUv.bind(0);
-    gradient.bind(1);
-    gl::drawFullscreenTriangle();
-    gl::setPipelineState({});
-    return normalUv;
+    return resolveGradient(programs, gradient, gbuffer, mode);
+}
+
+gl::Texture runGradientGatherPass(ProgramCache& programs, const SceneBuffers& scene,
+                                  GpuPerSet& perSet, const glm::dvec3& camera,
+                                  const GBuffer& gbuffer, DepthMode mode) {
+    gl::Texture gradient(gbuffer.surface.width(), gbuffer.surface.height(), gl::Format::RGBA32F);
+    scene.bind();  // the frame's uniforms
+    perSet.gatherGradient(programs, gbuffer.surface, gradient, camera);
+    return resolveGradient(programs, gradient, gbuffer, mode);
 }
 
 }  // namespace twinrender::realtime

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,8 @@
 #include "realtime/shader_library.h"
 
 namespace twinrender::realtime {
+
+class GpuPerSet;
 
 // What a draw takes (6 vertices per item): `count` items from item `first`, or, when
 // `commands` is set, the indirect draw command a compute pass wrote there at byte `offset`
@@ -91,6 +94,11 @@ GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int wi
 // summed over `kernels` (GpuKernel[], every particle of the set).
 gl::Texture runGradientNormalPass(ProgramCache& programs, const SceneBuffers& scene,
                                   const gl::Buffer& kernels, const DrawList& kernelDraw,
+                                  const GBuffer& gbuffer, DepthMode mode);
+// The same with the gradient gathered through `perSet`'s grid (per_set = "gpu": no kernels
+// splatted); `camera` the camera's world position.
+gl::Texture runGradientGatherPass(ProgramCache& programs, const SceneBuffers& scene,
+                                  GpuPerSet& perSet, const glm::dvec3& camera,
                                   const GBuffer& gbuffer, DepthMode mode);
 
 // Full-screen passes that only need covered pixels (ssss, shade) draw with this state and put

@@ -257,7 +257,8 @@ bool timerQueriesSeeCompute(ProgramCache& programs) {
 PerSetRequest perSetRequest(const Settings& settings) {
     PerSetRequest request;
     request.particles = settings.particles;
-    request.kernels = usesKernels(settings);
+    // The gradient pass gathers through the grid (gatherGradient): no kernels marked or packed.
+    request.kernels = false;
     // The culling test is exact for spheres only (renderer.cpp's uploadCpu says why).
     request.cull =
         settings.particles.cullHidden && settings.particles.shape == ParticleShape::Sphere;
@@ -485,7 +486,8 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     }
     resized(mDrawLists, 2 * (n + 1) * sizeof(std::uint32_t));
     resized(mParticles, n * sizeof(GpuParticle));
-    resized(mKernels, n * sizeof(GpuKernel));
+    // The kernels' records where a request asks for them (pack()).
+    if (mKernels) resized(mKernels, n * sizeof(GpuKernel));
 }
 
 void GpuPerSet::scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
@@ -756,7 +758,7 @@ void GpuPerSet::mark(ProgramCache& programs, const FrameRequest& frame, const Ma
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
-        mKernels->bindStorage(KERNELS);
+        if (mKernels) mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
         const std::uint32_t zero = 0;
         mHeader.write(4, std::span<const std::uint32_t>(&zero, 1));  // nearHit
@@ -849,6 +851,10 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     };
     if (ellipsoidsDrawn() && !mEllipsoids)
         mEllipsoids.emplace(gl::Buffer::storage(mCount * sizeof(GpuEllipsoid)));
+    if (mRequest.kernels && !mKernels) {
+        mKernels.emplace(gl::Buffer::storage(mCount * sizeof(GpuKernel)));
+        mMarks.reset();  // the kernels' records are written with the marks' scans
+    }
     const bool dropletsApart = this->dropletsApart();
     const bool cull = mRequest.cull && mCulled;
     // The marks of the last frame hold where nothing they depend on changed: the set's answers
@@ -866,7 +872,7 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
-        mKernels->bindStorage(KERNELS);
+        if (mKernels) mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
         const gl::Program& p = stage("PACK");
         p.set("uCamera", frame.camera);
@@ -883,6 +889,17 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
         finish.set("uDropletsApart", dropletsApart ? 1 : 0);
         finish.dispatch(1);
     });
+}
+
+void GpuPerSet::gatherGradient(ProgramCache& programs, const gl::Texture& surface,
+                               gl::Texture& gradient, const glm::dvec3& camera) {
+    bindStorage();
+    surface.bind(0);
+    gradient.bindImageForWriting(0);
+    const gl::Program& p = programs.compute("gradient_gather.comp", {});
+    p.set("uCamera", camera);
+    p.dispatch(groups(gradient.width(), 8), groups(gradient.height(), 8));
+    gl::computeBarrier();  // the resolve fetches the gradient
 }
 
 std::map<std::string, double> GpuPerSet::takeTimings() {

@@ -26,6 +26,7 @@
 #include "realtime/anisotropy.h"
 #include "realtime/gl/buffer.h"
 #include "realtime/gl/buffer_texture.h"
+#include "realtime/gl/texture.h"
 #include "realtime/gl/timer_query.h"
 #include "realtime/particle_set_key.h"
 #include "realtime/program_variants.h"
@@ -84,6 +85,12 @@ class GpuPerSet {
     // the kernels as GpuKernel[], and their indirect draw commands. Timed as "pack".
     void pack(ProgramCache& programs, const FrameRequest& frame);
 
+    // normal = "gradient": the colour field's gradient at the surface point of each pixel of
+    // `surface` (the G-buffer's eye depth, +inf where nothing is), summed over every particle
+    // whose support covers it through the grid (shaders/gradient_gather.comp), written into
+    // `gradient` (RGBA32F, the surface's size). The frame's uniforms must be bound.
+    void gatherGradient(ProgramCache& programs, const gl::Texture& surface, gl::Texture& gradient,
+                        const glm::dvec3& camera);
     // Whether the last pack() kept the marks of the frame before (the drawn particles, the
     // kernels and their prefixes: nothing they depend on changed) and redid only the records.
     bool marksReused() const { return mMarksReused; }

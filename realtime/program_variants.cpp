@@ -116,9 +116,12 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         add("fullscreen.vert", "composite.frag", {"BLOOM"});
     }
     add("fullscreen.vert", "composite.frag", {});
-    if (settings.perSet == PerSetDevice::Gpu)
+    if (settings.perSet == PerSetDevice::Gpu) {
         for (ProgramVariant& v : perSetPrograms(perSetRequest(settings)))
             out.push_back(std::move(v));
+        if (settings.particles.normal == NormalModel::Gradient)
+            out.push_back(ProgramVariant::computeProgram("gradient_gather.comp", {}));
+    }
     return out;
 }
 

@@ -469,7 +469,7 @@ void readGpuPerSet(DeviceState& d, const Settings& settings, core::Frame& frame)
     d.perSetGpu.afterFrame();
     frame.counters["particles_drawn"] = d.perSetGpu.drawnCount();
     frame.counters["droplets"] = d.perSetGpu.dropletCount();
-    if (usesKernels(settings)) frame.counters["kernels_splatted"] = d.perSetGpu.kernelCount();
+    // normal = "gradient": the gradient is gathered through the grid, no kernel is splatted.
 }
 
 // ---- Passes ----
@@ -485,6 +485,10 @@ struct PassInputs {
     bool emits = false;  // whether anything emits: else the emission buffer is zero
     float exposure = 1.0f;
     std::vector<OcclusionSphere> spheres = {};  // shadows = "spheres": camera-relative
+    // normal = "gradient" with per_set = "gpu": the grid the gradient is gathered through
+    // instead, and the camera's world position.
+    GpuPerSet* gradientGrid = nullptr;
+    glm::dvec3 camera{0.0};
 };
 
 // The textures the passes write, each pass reading those of the passes before it, and the
@@ -563,11 +567,17 @@ const Pass PASSES[] = {
     // leaves the kernels out then).
     {"normals",
      [](const PassInputs& in) {
-         return in.kernels != nullptr && (in.kernelDraw.commands || in.kernelDraw.count > 0);
+         return in.gradientGrid != nullptr ||
+                (in.kernels != nullptr && (in.kernelDraw.commands || in.kernelDraw.count > 0));
      },
      [](const PassInputs& in, PassTargets& t) {
-         t.gradientNormalUv.emplace(runGradientNormalPass(
-             in.programs, in.scene, *in.kernels, in.kernelDraw, *t.gbuffer, in.settings.depth));
+         if (in.gradientGrid)
+             t.gradientNormalUv.emplace(runGradientGatherPass(in.programs, in.scene,
+                                                              *in.gradientGrid, in.camera,
+                                                              *t.gbuffer, in.settings.depth));
+         else
+             t.gradientNormalUv.emplace(runGradientNormalPass(
+                 in.programs, in.scene, *in.kernels, in.kernelDraw, *t.gbuffer, in.settings.depth));
      }},
     {"ssss", [](const PassInputs& in) { return usesSsss(in.settings); },
      [](const PassInputs& in, PassTargets& t) {
@@ -704,6 +714,11 @@ core::Frame Renderer::render(const core::RenderInput& in) {
         d.programs,          uploaded.scene, mSettings,      uploaded.kernelBuffer,
         uploaded.kernelDraw, camera.width(), camera.height()};
     passInputs.emits = emits;
+    if (mSettings.perSet == PerSetDevice::Gpu && usesKernels(mSettings) &&
+        !in.particles.particles.position.empty()) {
+        passInputs.gradientGrid = &d.perSetGpu;
+        passInputs.camera = in.scene.camera.position;
+    }
     passInputs.exposure = static_cast<float>(in.scene.camera.exposure);
     if (mSettings.shadows == ShadowMode::Spheres) {
         passInputs.spheres = occlusionSpheres(in.particles);

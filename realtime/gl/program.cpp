@@ -119,6 +119,11 @@ void Program::dispatch(unsigned groups) const {
     if (groups > 0) glDispatchCompute(groups, 1, 1);
 }
 
+void Program::dispatch(unsigned groupsX, unsigned groupsY) const {
+    use();
+    if (groupsX > 0 && groupsY > 0) glDispatchCompute(groupsX, groupsY, 1);
+}
+
 void Program::dispatchIndirect(const Buffer& commands, std::size_t offset) const {
     use();
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, commands.id());

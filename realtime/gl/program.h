@@ -44,6 +44,7 @@ class Program {
     void use() const;
     // use(), then glDispatchCompute(groups, 1, 1) (nothing when groups is 0).
     void dispatch(unsigned groups) const;
+    void dispatch(unsigned groupsX, unsigned groupsY) const;  // a 2-D grid of work groups
     // use(), then glDispatchComputeIndirect from `commands` at `offset` bytes (3 uints: the work
     // groups along x, y and z, written by an earlier pass).
     void dispatchIndirect(const Buffer& commands, std::size_t offset) const;

@@ -72,6 +72,10 @@ void Texture::bind(unsigned unit) const {
     glBindTextureUnit(unit, mHandle.id());
 }
 
+void Texture::bindImageForWriting(unsigned unit) const {
+    glBindImageTexture(unit, mHandle.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, internalFormat(mFormat));
+}
+
 int Texture::width(int level) const {
     return std::max(1, mWidth >> level);
 }

@@ -24,6 +24,8 @@ class Texture {
     Texture(int width, int height, Format format, Filter filter = Filter::Nearest, int levels = 1);
 
     void bind(unsigned unit) const;  // glBindTextureUnit
+    // glBindImageTexture, level 0, for a compute pass to write (GL_WRITE_ONLY).
+    void bindImageForWriting(unsigned unit) const;
     int width(int level = 0) const;
     int height(int level = 0) const;
     int levels() const { return mLevels; }
