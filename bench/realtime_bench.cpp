@@ -204,13 +204,12 @@ void BM_Planet1M1080pNewSet(benchmark::State& state, tr::realtime::PerSetDevice 
 }
 
 // The per-set work alone on the GPU (realtime/per_set_gpu.h), without the render passes: every
-// iteration a new set (as newSetFrames), what the planet's frame asks for (its radii, the
-// gradient pass's kernels, culling), each stage in milliseconds and per_set_ms their sum.
+// iteration a new set (as newSetFrames), what the planet's frame asks for (its radii,
+// culling), each stage in milliseconds and per_set_ms their sum.
 void BM_PerSet1MGpu(benchmark::State& state) {
     const LoadedScene& s = planet(1000000, 1920, 1080);
     tr::realtime::PerSetRequest request;
     request.particles = s.settings.particles;
-    request.kernels = s.settings.particles.normal == tr::realtime::NormalModel::Gradient;
     request.cull = s.settings.particles.cullHidden;
     request.droplets = s.settings.particles.radius == tr::realtime::RadiusModel::Field &&
                        s.settings.particles.dropletAtoms >= 2;
@@ -242,7 +241,6 @@ void BM_PerSet1MGpu(benchmark::State& state) {
     }
     state.counters["per_set_ms"] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);
     state.counters["drawn"] = double(perSet.drawnCount());
-    state.counters["kernels"] = double(perSet.kernelCount());
     state.SetLabel(context().renderer());
 }
 

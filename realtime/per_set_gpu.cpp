@@ -35,9 +35,10 @@ namespace {
 // units of n floats) of each attribute.
 constexpr std::size_t ATTRIBUTE_FLOATS = 21;
 constexpr int MAX_LEVELS = 32;
-// The Header block: 4 uints, 2 draw commands, MAX_LEVELS levels of 64 bytes, then indirect
+// The Header block: 4 uints, a draw command, MAX_LEVELS levels of 64 bytes, then indirect
 // dispatches (bytes): the walk list's, the next walk list's, the cell scan's, SORT's, NEAR's.
-constexpr std::size_t WALK_DISPATCH = 16 + 32 + MAX_LEVELS * 64;
+constexpr std::size_t LEVELS = 16 + 16;  // the levels' array
+constexpr std::size_t WALK_DISPATCH = LEVELS + MAX_LEVELS * 64;
 constexpr std::size_t NEXT_WALK_DISPATCH = WALK_DISPATCH + 16;
 constexpr std::size_t SCAN_DISPATCH = NEXT_WALK_DISPATCH + 16;
 constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
@@ -75,7 +76,6 @@ unsigned groups(std::size_t count, std::size_t per = GROUP) {
 // Binding points of the per-set stages (shaders/per_set_stages.glsl, per_set.glsl).
 enum Binding : unsigned {
     PARTICLES = 0,
-    KERNELS = 3,
     ELLIPSOIDS = 4,
     ATTRIBUTES = 5,
     HEADER = 6,
@@ -144,8 +144,7 @@ const char* stageFile(std::string_view stage) {
         {"per_set_models.comp", {"NORMALS", "FIELD_NORMAL", "ANISOTROPY"}},
         {"per_set_droplets.comp",
          {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"}},
-        {"per_set_pack.comp",
-         {"NEAR_BOUND", "NEAR", "MARK", "KERNELS", "PACK", "PACK_KERNELS", "FINISH"}},
+        {"per_set_pack.comp", {"NEAR_BOUND", "NEAR", "MARK", "PACK", "FINISH"}},
     };
     for (const Group& g : GROUPS)
         if (std::ranges::find(g.stages, stage) != g.stages.end()) return g.file;
@@ -257,8 +256,6 @@ bool timerQueriesSeeCompute(ProgramCache& programs) {
 PerSetRequest perSetRequest(const Settings& settings) {
     PerSetRequest request;
     request.particles = settings.particles;
-    // The gradient pass gathers through the grid (gatherGradient): no kernels marked or packed.
-    request.kernels = false;
     // The culling test is exact for spheres only (renderer.cpp's uploadCpu says why).
     request.cull =
         settings.particles.cullHidden && settings.particles.shape == ParticleShape::Sphere;
@@ -276,7 +273,6 @@ std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request) {
                                        "COUNT",   "SCATTER",  "SORT",   "GATHER",
                                        "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
                                        "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
-    if (request.kernels) stages.insert(stages.end(), {"KERNELS", "PACK_KERNELS"});
     if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR_BOUND", "NEAR"});
     if (request.droplets)
         stages.insert(stages.end(),
@@ -303,9 +299,8 @@ void checkPerSetLayouts(const gl::Program& program) {
         {"nearHit", 4, 0},
         {"dropletCount", DROPLET_COUNT * 4, 0},
         {"drawParticles", GpuPerSet::particleDrawOffset(), 0},
-        {"drawKernels", GpuPerSet::kernelDrawOffset(), 0},
-        {"levels[0].minX", 48, 64},
-        {"levels[0].hMaxBits", 48 + 28, 64},
+        {"levels[0].minX", LEVELS, 64},
+        {"levels[0].hMaxBits", LEVELS + 28, 64},
         {"walkDispatch.groups", WALK_DISPATCH, 0},
         {"walkDispatch.entries", WALK_DISPATCH + 12, 0},
         {"nextWalkDispatch.groups", NEXT_WALK_DISPATCH, 0},
@@ -320,7 +315,6 @@ void checkPerSetLayouts(const gl::Program& program) {
         {"particles[0].positionRadius", 0, sizeof(GpuParticle)},
         {"particles[0].hessianOffDiagonal", offsetof(GpuParticle, hessianOffDiagonal),
          sizeof(GpuParticle)},
-        {"kernels[0].coefficients", offsetof(GpuKernel, coefficients), sizeof(GpuKernel)},
     };
     for (const Expected& e : EXPECTED) {
         const auto found = program.bufferVariable(e.name);
@@ -355,7 +349,6 @@ void GpuPerSet::checkOverruns(const char* stage) const {
         {"models", mModelBuffer ? &*mModelBuffer : nullptr},
         {"draw_lists", mDrawLists ? &*mDrawLists : nullptr},
         {"particles", mParticles ? &*mParticles : nullptr},
-        {"kernels", mKernels ? &*mKernels : nullptr},
         {"ellipsoids", mEllipsoids ? &*mEllipsoids : nullptr},
         {"droplets", &mDroplets},
         {"walks", &mWalks},
@@ -484,10 +477,8 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
         if (mModelBuffer) mModelBuffer->poison();
         if (mEllipsoids) mEllipsoids->poison();
     }
-    resized(mDrawLists, 2 * (n + 1) * sizeof(std::uint32_t));
+    resized(mDrawLists, (n + 1) * sizeof(std::uint32_t));
     resized(mParticles, n * sizeof(GpuParticle));
-    // The kernels' records where a request asks for them (pack()).
-    if (mKernels) resized(mKernels, n * sizeof(GpuKernel));
 }
 
 void GpuPerSet::scan(ProgramCache& programs, const gl::Buffer& data, std::size_t offset,
@@ -758,7 +749,6 @@ void GpuPerSet::mark(ProgramCache& programs, const FrameRequest& frame, const Ma
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
-        if (mKernels) mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
         const std::uint32_t zero = 0;
         mHeader.write(4, std::span<const std::uint32_t>(&zero, 1));  // nearHit
@@ -785,17 +775,7 @@ void GpuPerSet::mark(ProgramCache& programs, const FrameRequest& frame, const Ma
             gl::computeBarrier();
         }
     });
-    if (mRequest.kernels)
-        timed("kernels", [&] {
-            const gl::Program& p = stageProgram(programs, "KERNELS");
-            p.set("uCount", static_cast<unsigned>(mCount));
-            p.set("uEllipsoids", mModels == 2 ? 1 : 0);
-            p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed
-        });
-    timed("pack", [&] {
-        scan(programs, *mDrawLists, 0, mCount);
-        scan(programs, *mDrawLists, mCount + 1, mCount);
-    });
+    timed("pack", [&] { scan(programs, *mDrawLists, 0, mCount); });
     mMarks = marks;
 }
 
@@ -826,8 +806,9 @@ void GpuPerSet::afterFrame() {
     const std::uint32_t used = mHeader.read<std::uint32_t>(USED_LEVELS / 4, 1)[0];
     const std::vector<std::uint32_t> list = mHeader.read<std::uint32_t>(USED_LEVELS / 4 + 1, used);
     // Level: ordered keys of the smallest x, y, z, the count, of the largest x, y, z, the bits
-    // of the largest h (per_set.glsl), 16 words each from byte 48.
-    const std::vector<std::uint32_t> levels = mHeader.read<std::uint32_t>(12, 16 * MAX_LEVELS);
+    // of the largest h (per_set.glsl), 16 words each.
+    const std::vector<std::uint32_t> levels =
+        mHeader.read<std::uint32_t>(LEVELS / 4, 16 * MAX_LEVELS);
     auto fromOrderedKey = [](std::uint32_t k) {
         return std::bit_cast<float>((k & 0x80000000u) ? (k & 0x7FFFFFFFu) : ~k);
     };
@@ -851,39 +832,29 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     };
     if (ellipsoidsDrawn() && !mEllipsoids)
         mEllipsoids.emplace(gl::Buffer::storage(mCount * sizeof(GpuEllipsoid)));
-    if (mRequest.kernels && !mKernels) {
-        mKernels.emplace(gl::Buffer::storage(mCount * sizeof(GpuKernel)));
-        mMarks.reset();  // the kernels' records are written with the marks' scans
-    }
     const bool dropletsApart = this->dropletsApart();
     const bool cull = mRequest.cull && mCulled;
     // The marks of the last frame hold where nothing they depend on changed: the set's answers
-    // (update() built nothing), what is drawn apart, the kernels asked for, and, with culling,
+    // (update() built nothing), what is drawn apart and, with culling,
     // NEAR's answer, which the camera decides. NEAR_BOUND's test on the CPU, over the levels'
     // boxes read after an earlier frame, tells a camera from which no sphere can reach into the
     // near plane's ball (the usual view: at 1M particles the per-frame marks took 341 ms of
     // a 573 ms frame on an H200).
     const bool nearFree =
         mLevelBoxes && !mayReachNearPlane(*mLevelBoxes, frame, mRequest.particles.radiusScale);
-    const Marks marks{cull, dropletsApart, mRequest.kernels, nearFree};
+    const Marks marks{cull, dropletsApart, nearFree};
     mMarksReused = mMarks && mMarks->cull == cull && mMarks->dropletsApart == dropletsApart &&
-                   mMarks->kernels == mRequest.kernels && (!cull || (mMarks->nearFree && nearFree));
+                   (!cull || (mMarks->nearFree && nearFree));
     if (!mMarksReused) mark(programs, frame, marks);
     timed("pack", [&] {
         bindStorage();
         mParticles->bindStorage(PARTICLES);
-        if (mKernels) mKernels->bindStorage(KERNELS);
         if (mEllipsoids) mEllipsoids->bindStorage(ELLIPSOIDS);
         const gl::Program& p = stage("PACK");
         p.set("uCamera", frame.camera);
         p.set("uModels", mModels);
         p.set("uDropletsApart", dropletsApart ? 1 : 0);
         p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed
-        if (mRequest.kernels) {
-            const gl::Program& kernels = stage("PACK_KERNELS");
-            kernels.set("uCamera", frame.camera);
-            kernels.dispatch(groups(mCount));
-        }
         gl::computeBarrier();
         const gl::Program& finish = stage("FINISH");
         finish.set("uDropletsApart", dropletsApart ? 1 : 0);
@@ -923,11 +894,6 @@ std::size_t GpuPerSet::dropletDrawOffset() {
     return DROPLET_DRAW;
 }
 
-std::uint32_t GpuPerSet::kernelCount() const {
-    if (mCount == 0) return 0;
-    return mHeader.read<std::uint32_t>(kernelDrawOffset() / 4, 1)[0] / 6;
-}
-
 std::vector<float> GpuPerSet::radii() const {
     return mRadii.read<float>(0, mCount);
 }
@@ -937,16 +903,6 @@ std::vector<glm::vec3> GpuPerSet::normals() const {
     std::vector<glm::vec3> out(mCount);
     for (std::size_t i = 0; i < mCount; ++i)
         out[i] = glm::vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    return out;
-}
-
-std::vector<std::uint32_t> GpuPerSet::kernelParticles() const {
-    if (!mDrawLists || mCount == 0) return {};
-    const std::vector<std::uint32_t> prefix =
-        mDrawLists->read<std::uint32_t>(mCount + 1, mCount + 1);
-    std::vector<std::uint32_t> out;
-    for (std::size_t i = 0; i < mCount; ++i)
-        if (prefix[i + 1] > prefix[i]) out.push_back(static_cast<std::uint32_t>(i));
     return out;
 }
 

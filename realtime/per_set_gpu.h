@@ -4,10 +4,11 @@
 // sorted by index), and compute passes over the grid give what the CPU path computes with
 // core::ColourField: the impostor radii (impostor_radius.h), the exact occlusion culling
 // (occlusion_culling.h), the field normal models (field_normal.h) and the ellipsoids
-// (anisotropy.h). Per frame, compute passes mark the drawn particles and the kernels whose
-// support reaches one of them (the gradient pass's), pack both (camera-relative, subtracted in
+// (anisotropy.h). Per frame, compute passes mark the drawn particles (kept from the frame
+// before where nothing they depend on changed), pack them (camera-relative, subtracted in
 // double) into the storage buffers the draw passes read, and write the draw counts into
-// indirect draw commands: nothing is read back. Sums over the grid run in a fixed order, so the
+// indirect draw commands: nothing is read back. The gradient normals are gathered through the
+// grid (gatherGradient). Sums over the grid run in a fixed order, so the
 // results do not depend on scheduling. The walks read the grid as buffer textures (per_set.glsl
 // says why). shaders/per_set_*.comp (a file per group of stages), per_set_stages.glsl,
 // per_set.glsl, scan.comp.
@@ -38,7 +39,6 @@ namespace twinrender::realtime {
 // What a frame needs of the per-set work.
 struct PerSetRequest {
     ParticleSettings particles;
-    bool kernels = false;   // the gradient pass's kernels
     bool cull = false;      // occlusion culling (spheres)
     bool droplets = false;  // small droplets drawn as ellipsoids (particles.droplet_atoms)
 };
@@ -59,7 +59,7 @@ PerSetRequest perSetRequest(const Settings& settings);
 // The compute programs GpuPerSet uses for `request`.
 std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request);
 // Throws gl::Error where the driver lays out a variable of a per-set program's blocks (the
-// Header's commands and counters, the packed particles and kernels) at another byte or
+// Header's commands and counters, the packed particles) at another byte or
 // stride than per_set_gpu.cpp writes and reads it (std430 as the C++ structs mirror it).
 void checkPerSetLayouts(const gl::Program& program);
 // Compiles them (set-up, like the passes'), checks their layouts and probes the stages' clock
@@ -81,8 +81,8 @@ class GpuPerSet {
                 const PerSetRequest& request, std::span<const core::BodyInfo> deriveNormalsOf = {});
 
     // The frame's draw lists: the drawn particles (radius > 0, not hidden unless a sphere
-    // reaches into the near plane's ball) as GpuParticle[] (and GpuEllipsoid[] with ellipsoids),
-    // the kernels as GpuKernel[], and their indirect draw commands. Timed as "pack".
+    // reaches into the near plane's ball) as GpuParticle[] (and GpuEllipsoid[] with ellipsoids)
+    // and their indirect draw commands. Timed as "pack".
     void pack(ProgramCache& programs, const FrameRequest& frame);
 
     // normal = "gradient": the colour field's gradient at the surface point of each pixel of
@@ -91,8 +91,8 @@ class GpuPerSet {
     // `gradient` (RGBA32F, the surface's size). The frame's uniforms must be bound.
     void gatherGradient(ProgramCache& programs, const gl::Texture& surface, gl::Texture& gradient,
                         const glm::dvec3& camera);
-    // Whether the last pack() kept the marks of the frame before (the drawn particles, the
-    // kernels and their prefixes: nothing they depend on changed) and redid only the records.
+    // Whether the last pack() kept the marks of the frame before (the drawn particles and their
+    // prefix: nothing they depend on changed) and redid only the records.
     bool marksReused() const { return mMarksReused; }
     // After a frame has been drawn (the renderer's read-back): reads what later frames decide
     // with, once per set (the levels' boxes, for the marks' reuse). Waits for the frame.
@@ -104,7 +104,6 @@ class GpuPerSet {
     };
 
     const gl::Buffer& particles() const { return *mParticles; }
-    const gl::Buffer& kernels() const { return *mKernels; }
     // One GpuEllipsoid per drawn particle where ellipsoidsDrawn() (shape = "ellipsoid", the
     // droplets' among them).
     const gl::Buffer& ellipsoids() const { return *mEllipsoids; }
@@ -115,11 +114,10 @@ class GpuPerSet {
     // does not learn it).
     bool dropletsApart() const { return mRequest.droplets && mModels != 2; }
     const gl::Buffer& dropletEllipsoids() const { return mDroplets; }
-    // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the kernels' at
-    // kernelDrawOffset(), the droplets' at dropletDrawOffset() (bytes).
+    // glDrawArraysIndirect commands: the particles' at particleDrawOffset(), the droplets' at
+    // dropletDrawOffset() (bytes).
     const gl::Buffer& drawCommands() const { return mHeader; }
     static std::size_t particleDrawOffset() { return 16; }
-    static std::size_t kernelDrawOffset() { return 32; }
     static std::size_t dropletDrawOffset();
     std::size_t capacity() const { return mCount; }
     // Wall-clock milliseconds of the last update's upload (0 when the set was kept): the
@@ -127,7 +125,7 @@ class GpuPerSet {
     double uploadMs() const { return mUploadMs; }
 
     // The stages run since the last call, milliseconds each ("grid", "particle_normals", "radius",
-    // "kernels", "cull", "field_normals", "anisotropy", "pack"), by stageClock(). With timer
+    // "cull", "field_normals", "anisotropy", "pack"), by stageClock(). With timer
     // queries this waits for their results: call it after the frame.
     std::map<std::string, double> takeTimings();
     // How the stages are timed: GL timer queries where the device's see compute dispatches
@@ -138,18 +136,13 @@ class GpuPerSet {
     enum class StageClock { Queries, Finish };
     StageClock stageClock() const { return mStageClock.value_or(StageClock::Finish); }
     void setStageClock(StageClock clock) { mStageClock = clock; }  // instead of the probe
-    // Read back after the frame (waits): the drawn particles (droplets drawn apart among them)
-    // and kernels.
+    // Read back after the frame (waits): the drawn particles (droplets drawn apart among them).
     std::uint32_t drawnCount() const;
-    std::uint32_t kernelCount() const;
     std::uint32_t dropletCount() const;  // the droplets of the set (0 without droplets)
 
     // Read back, for tests: per particle of the last set.
     std::vector<float> radii() const;
-    std::vector<glm::vec3> normals() const;  // as update() left them
-    // The kernels of the last frame (ascending): those whose support reaches a drawn impostor
-    // (a superset of what surfaceKernels() keeps where it matters).
-    std::vector<std::uint32_t> kernelParticles() const;
+    std::vector<glm::vec3> normals() const;               // as update() left them
     std::vector<std::uint32_t> visibleParticles() const;  // not hidden, as unoccludedParticles()
     std::vector<glm::vec4> models() const;                // 3 per particle
     // The droplets' first particles (ascending) and their ellipsoids (droplets.h).
@@ -184,7 +177,7 @@ class GpuPerSet {
     void timed(const char* stage, const auto& work);
     // What the marks were made with (pack()).
     struct Marks {
-        bool cull = false, dropletsApart = false, kernels = false;
+        bool cull = false, dropletsApart = false;
         // No sphere reached into the near plane's ball (NEAR_BOUND's bound on the CPU, or NEAR's
         // answer read by afterFrame()).
         bool nearFree = false;
@@ -212,7 +205,7 @@ class GpuPerSet {
     int mModels = 0;                                 // 0 none, 1 field normals, 2 ellipsoids
     gl::Buffer mAttributes, mHeader, mCells, mCellOf, mSorted, mEntries, mRadii, mFlags, mBlockSums,
         mDirections;
-    std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mKernels, mEllipsoids;
+    std::optional<gl::Buffer> mModelBuffer, mDrawLists, mParticles, mEllipsoids;
     // Per droplet its GpuEllipsoid (the droplets' draw reads them), then per droplet its
     // FieldNormal model, each region sized for the most droplets a set may hold.
     gl::Buffer mDroplets;

@@ -293,7 +293,7 @@ TEST_F(PerSetGpu, CullingIsOffForFramesWhoseNearPlaneCutsASphere) {
     EXPECT_EQ(g.drawnCount(), visible) << "far again";
 }
 
-// A steady frame keeps the marks (drawn particles, kernels) of the frame before where nothing
+// A steady frame keeps the marks (drawn particles, their prefix) of the frame before where nothing
 // they depend on changed, and its records equal those of marks made anew; a camera whose near
 // plane's ball may reach a sphere makes them anew, and so does every frame until the levels'
 // boxes are known (afterFrame) and after a new set.
@@ -301,16 +301,14 @@ TEST_F(PerSetGpu, SteadyFramesKeepTheMarksAndDrawTheSame) {
     const core::ParticleSet& ps = contact().particles.particles;
     PerSetRequest request;
     request.cull = true;
-    request.kernels = true;
     const FrameRequest far{glm::dvec3(0.0, -50.0, 0.0), 1e-3};
     const FrameRequest farther{glm::dvec3(3.0, -60.0, 1.0), 1e-3};
     GpuPerSet fresh = built(ps, request);
     fresh.pack(programs, farther);
     const std::uint32_t drawn = fresh.drawnCount();
     const std::vector<GpuParticle> expected = fresh.particles().read<GpuParticle>(0, drawn);
-    const std::vector<std::uint32_t> kernels = fresh.kernelParticles();
+    const std::vector<std::uint32_t> prefix = fresh.drawnPrefix();
     ASSERT_GT(drawn, 0u);
-    ASSERT_FALSE(kernels.empty());
 
     GpuPerSet g = built(ps, request);
     g.pack(programs, far);
@@ -319,7 +317,7 @@ TEST_F(PerSetGpu, SteadyFramesKeepTheMarksAndDrawTheSame) {
     g.pack(programs, farther);
     EXPECT_TRUE(g.marksReused());
     EXPECT_EQ(g.drawnCount(), drawn);
-    EXPECT_EQ(g.kernelParticles(), kernels);
+    EXPECT_EQ(g.drawnPrefix(), prefix);
     const std::vector<GpuParticle> kept = g.particles().read<GpuParticle>(0, drawn);
     EXPECT_EQ(std::memcmp(kept.data(), expected.data(), drawn * sizeof(GpuParticle)), 0)
         << "the records are relative to this frame's camera";

@@ -449,10 +449,6 @@ Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Came
     if (g.dropletsApart())
         out.scene.droplets = SceneBuffers::Droplets{
             &g.dropletEllipsoids(), {0, &g.drawCommands(), GpuPerSet::dropletDrawOffset()}};
-    if (request.kernels) {
-        out.kernelBuffer = &g.kernels();
-        out.kernelDraw = {0, &g.drawCommands(), GpuPerSet::kernelDrawOffset()};
-    }
     return out;
 }
 

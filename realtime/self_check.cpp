@@ -83,11 +83,6 @@ SelfCheck selfCheck(Device& device, const Settings& settings, const core::Render
         "within 3: radii agree within 3e-4 h");
     const double dropletsCpu = counter(cpu, "droplets"), dropletsGpu = counter(gpu, "droplets");
     add("droplets", dropletsCpu, dropletsGpu, 0.0, dropletsCpu == dropletsGpu, "equal");
-    if (usesKernels(settings) && gpu.counters.contains("kernels_splatted")) {
-        const double c = counter(cpu, "kernels_splatted"), g = counter(gpu, "kernels_splatted");
-        add("kernels_splatted", c, g, 4.0 * c, g >= c && g <= 4.0 * c,
-            "the GPU's at least the CPU's, at most 4 times");
-    }
     const ImageDifference d = imageDifference(cpu, gpu);
     const double bound = std::max(d.covered / 200, 1);
     add("covered_pixels", d.covered, d.covered, 1.0, d.covered > 0, "something drawn");

@@ -33,11 +33,9 @@ struct SelfCheck {
 
 // Renders `input` with `settings` through both per-set paths on `device` and compares:
 // particles_drawn within 3 (the radii agree within 3e-4 h, so a sphere or two may change sides
-// of the culling test), droplets equal, kernels_splatted on the GPU at least the CPU's (the
-// GPU marks every kernel that reaches a drawn impostor, the CPU's probes a subset) and at most
-// 4 times it; pixels whose coverage or body differ, and covered pixels whose red differs by
-// more than 1e-2, each at most 1 in 200 of the covered pixels (outline pixels of spheres whose
-// radius moved, as per_set_gpu_gl_test.cpp measures).
+// of the culling test), droplets equal; pixels whose coverage or body differ, and covered pixels
+// whose red differs by more than 1e-2, each at most 1 in 200 of the covered pixels (outline pixels
+// of spheres whose radius moved, as per_set_gpu_gl_test.cpp measures).
 SelfCheck selfCheck(Device& device, const Settings& settings, const core::RenderInput& input);
 
 // The per-set stages alone (GpuPerSet, as BM_PerSet1MGpu runs them, no render passes) against

@@ -96,7 +96,6 @@ layout(std430, binding = 6) coherent buffer Header {
     uint totalCells;         // cells of all levels
     uint dropletCount;       // DROPLET_FIT: the droplets fitted
     uvec4 drawParticles;     // glDrawArraysIndirect: 6 x drawn particles, 1, 6 x first, 0
-    uvec4 drawKernels;       // the same for the kernels the gradient pass adds
     Level levels[MAX_LEVELS];
     // The walk list's dispatch (per_set_stages.glsl's appendWalk). The next list's, which a pass
     // over the walk list fills.

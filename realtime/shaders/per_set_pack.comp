@@ -1,7 +1,6 @@
 // The per-frame stages of the draw lists, one per #define: NEAR_BOUND and NEAR (whether a
-// sphere reaches into the near plane's ball), MARK (the drawn particles), KERNELS (the
-// kernels the gradient pass adds), PACK and PACK_KERNELS (the records drawn), FINISH (the
-// draw commands).
+// sphere reaches into the near plane's ball), MARK (the drawn particles), PACK (their records),
+// FINISH (the draw commands).
 #if defined(FINISH)
 layout(local_size_x = 32) in;
 #else
@@ -16,10 +15,9 @@ layout(local_size_x = 64) in;
 
 // ---- The frame's draw lists ----
 
-#if defined(MARK) || defined(PACK) || defined(FINISH) || defined(KERNELS) || \
-    defined(PACK_KERNELS)
+#if defined(MARK) || defined(PACK) || defined(FINISH)
 layout(std430, binding = 14) buffer DrawLists {
-    uint drawnPrefix[];  // n + 1: exclusive prefix of the drawn particles; then n + 1 of kernels
+    uint drawnPrefix[];  // n + 1: exclusive prefix of the drawn particles
 };
 #endif
 
@@ -59,7 +57,7 @@ void main() {
 #endif
 
 #ifdef MARK
-// The drawn particles are also listed, for KERNELS and PACK; with uDropletsApart the droplets
+// The drawn particles are also listed, for PACK; with uDropletsApart the droplets
 // are listed but take no slot of the particles' draw (PACK puts them in a draw of their own).
 uniform int uCull, uDropletsApart;
 void main() {
@@ -68,67 +66,14 @@ void main() {
     bool hidden = uCull != 0 && nearHit == 0u && (flags[i] & HIDDEN) != 0u;
     bool drawn = radii[i] > 0.0 && !hidden;
     drawnPrefix[i] = drawn && !(uDropletsApart != 0 && dropletSlot(i) != 0u) ? 1u : 0u;
-    drawnPrefix[uCount + 1u + i] = 0u;
     if (drawn) appendWalk(i);
 }
 #endif
 
-#ifdef KERNELS
-// The kernels the gradient pass adds: those whose support (2 h) reaches a drawn impostor, where
-// every surface point of the G-buffer lies. Exact: a G-buffer pixel's gradient sums every kernel
-// whose support covers it (surface_kernels.h's probes, on the CPU, leave out a few whose share
-// is small). Each drawn particle marks its neighbours; the marks do not depend on the order.
-// A kernel is marked by some fifty drawn particles on a body's surface: each reads the mark
-// before writing it, since llvmpipe stores lane by lane at more cost than it loads (KERNELS at
-// 1M particles 59 -> 49 ms).
-uniform int uEllipsoids;
-float kernelReach_r;
-float kernelReach(float hMax) { return kernelReach_r + 2.0 * hMax; }
-void main() {
-    if (invocation() >= walkDispatch.entries) return;
-    uint i = walkList[invocation()];  // a drawn particle
-    float r = radii[i];
-    vec3 centre = particlePosition(i);
-    uint slot = dropletSlot(i);
-    if (slot != 0u || uEllipsoids != 0) {
-        // The ellipsoid lies within |shift| + its longest semi-axis of the particle. Branches,
-        // not ?: selects, which a compiler may evaluate on both sides (the droplets' index is
-        // out of range for slot 0).
-        vec4 a0, a1, a2;
-        if (slot != 0u) {
-            uint d = 3u * (slot - 1u);
-            a0 = droplets[d];
-            a1 = droplets[d + 1u];
-            a2 = droplets[d + 2u];
-        } else {
-            a0 = models[3u * i];
-            a1 = models[3u * i + 1u];
-            a2 = models[3u * i + 2u];
-        }
-        r = length(vec3(a0.w, a1.w, a2.w)) +
-            max(length(a0.xyz), max(length(a1.xyz), length(a2.xyz)));
-    }
-    kernelReach_r = r;
-#define MARK_KERNEL(k)                                                   \
-    {                                                                    \
-        vec4 e = entryPosition(k);                                       \
-        float reach = r + 2.0 / e.w;                                     \
-        vec3 d = e.xyz - centre;                                         \
-        uint mark = uCount + 1u + entryIndex(k); \
-        if (dot(d, d) < reach * reach && drawnPrefix[mark] == 0u)          \
-            drawnPrefix[mark] = 1u;                                        \
-    }
-    FOR_EACH_NEAR(centre, kernelReach, MARK_KERNEL)
-#undef MARK_KERNEL
-}
-#endif
-
-#if defined(PACK) || defined(PACK_KERNELS)
-// gpu_scene.cpp's packParticles, packEllipsoids and packKernels: positions relative to the
-// camera, subtracted in double. PACK takes the drawn particles MARK listed, PACK_KERNELS every
-// particle, each writing its slot of the prefix sum (so the list's order does not matter).
-// Two programs: one invocation of the whole of PACK costs llvmpipe more than one of
-// PACK_KERNELS, whatever branch it takes (pack at 1M particles 36 -> 27 ms).
+#ifdef PACK
+// gpu_scene.cpp's packParticles and packEllipsoids: positions relative to the camera,
+// subtracted in double. PACK takes the drawn particles MARK listed, each writing its slot of
+// the prefix sum (so the list's order does not matter).
 uniform dvec3 uCamera;
 #endif
 
@@ -174,7 +119,8 @@ void main() {
     p.hessianDiagonal = vec4(0.0);
     p.hessianOffDiagonal = vec4(0.0);
     uint slot = dropletSlot(i);
-    // Branches rather than ?: selects (KERNELS says why).
+    // Branches rather than ?: selects, which a compiler may evaluate on both sides (the
+    // droplets' index is out of range for slot 0).
     if (uModels == 1 && slot != 0u) {
         // A droplet's normal is its ellipsoid's.
         uint m = dropletModel(slot - 1u);
@@ -199,33 +145,11 @@ void main() {
 }
 #endif
 
-#ifdef PACK_KERNELS
-struct Kernel {
-    vec4 positionSupport;
-    vec4 coefficients;
-};
-layout(std430, binding = 3) writeonly buffer Kernels {
-    Kernel kernels[];
-};
-void main() {
-    uint i = invocation();
-    if (i >= uCount) return;
-    uint kernelBase = uCount + 1u;
-    uint k = drawnPrefix[kernelBase + i];
-    if (drawnPrefix[kernelBase + i + 1u] == k) return;
-    double h = double(particleH(i));
-    double v = double(attribute1(ATTR_VOLUME, i));
-    const double PI = 3.14159265358979323846LF;
-    kernels[k].positionSupport = vec4(vec3(dvec3(particlePosition(i)) - uCamera), float(2.0LF * h));
-    kernels[k].coefficients = vec4(float(v / (PI * h * h * h * h)), float(1.0LF / h), 0.0, 0.0);
-}
-#endif
 
 #ifdef FINISH
 void main() {
     if (invocation() != 0u) return;
     drawParticles = uvec4(6u * drawnPrefix[uCount], 1u, 6u * firstSphere(), 0u);
-    drawKernels = uvec4(6u * drawnPrefix[2u * uCount + 1u], 1u, 0u, 0u);
     drawDroplets = uvec4(6u * dropletCount, 1u, 0u, 0u);
 }
 #endif
