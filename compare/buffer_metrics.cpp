@@ -379,13 +379,18 @@ ShadowResult shadowError(const core::Image& reference, const core::Image& test,
     const int w = reference.width();
     ShadowResult result;
     result.errorMap = core::Image(w, reference.height(), {"disagreement"});
-    // Counts: pixels, shadowed in both, shadowed in either, false shadow, missed shadow.
-    const auto sums = sumRows<5>(reference.height(), [&](int y, std::array<double, 5>& s) {
+    // Counts: pixels, shadowed in both, shadowed in either, false shadow, missed shadow, leaks;
+    // the sum of the absolute visibility errors.
+    const auto sums = sumRows<7>(reference.height(), [&](int y, std::array<double, 7>& s) {
         for (int x = 0; x < w; ++x) {
             if (!masks.facingLight(x, y)) continue;
-            const bool refShadowed = reference.at(x, y, c.ref[0]) < SHADOWED_BELOW;
-            const bool testShadowed = test.at(x, y, c.test[0]) < SHADOWED_BELOW;
+            const float refVisibility = reference.at(x, y, c.ref[0]);
+            const float testVisibility = test.at(x, y, c.test[0]);
+            const bool refShadowed = refVisibility < SHADOWED_BELOW;
+            const bool testShadowed = testVisibility < SHADOWED_BELOW;
             s[0] += 1.0;
+            s[5] += refVisibility <= 0.0f && !testShadowed;
+            s[6] += std::abs(double(testVisibility) - double(refVisibility));
             s[1] += refShadowed && testShadowed;
             s[2] += refShadowed || testShadowed;
             if (testShadowed && !refShadowed) {
@@ -399,11 +404,14 @@ ShadowResult shadowError(const core::Image& reference, const core::Image& test,
     });
     if (sums[0] == 0.0) {
         result.iou = result.falseShadow = result.missedShadow = NOT_A_NUMBER;
+        result.mae = result.leak = NOT_A_NUMBER;
         return result;
     }
     result.iou = sums[2] > 0.0 ? sums[1] / sums[2] : 1.0;
     result.falseShadow = sums[3] / sums[0];
     result.missedShadow = sums[4] / sums[0];
+    result.leak = sums[5] / sums[0];
+    result.mae = sums[6] / sums[0];
     return result;
 }
 

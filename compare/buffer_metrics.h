@@ -113,7 +113,7 @@ struct SmoothnessResult {
 SmoothnessResult smoothness(const core::Image& reference, const core::Image& test,
                             const Masks& masks);
 
-// ---- shadow.iou, shadow.false_shadow, shadow.missed_shadow --------------------------------
+// ---- shadow.iou, shadow.false_shadow, shadow.missed_shadow, shadow.mae, shadow.leak ---------
 // A pixel is shadowed when its shadow channel (light visibility) is below this.
 constexpr float SHADOWED_BELOW = 0.5f;
 
@@ -125,8 +125,14 @@ struct ShadowResult {
     // or too-dark shadow maps),
     double falseShadow = 0.0;
     // and the fraction shadowed in the reference and lit in the test (leaks, peter-panning).
-    // All three NaN when no pixel is covered in both and faces the light.
     double missedShadow = 0.0;
+    // The visibility itself (fractional under a sun with an angular radius, or a filtered map):
+    // the mean of |test - reference| over those pixels,
+    double mae = 0.0;
+    // and the fraction of them lit in the test (visibility above SHADOWED_BELOW) where the
+    // reference is in full shadow (visibility 0): light leaking into the umbra.
+    // All five NaN when no pixel is covered in both and faces the light.
+    double leak = 0.0;
     // One channel "disagreement": 1 false shadow, 2 missed shadow, 0 agreement or outside the
     // mask.
     core::Image errorMap;

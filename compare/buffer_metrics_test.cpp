@@ -485,6 +485,33 @@ TEST(Shadow, KnownShadowMasks) {
     EXPECT_EQ(r.errorMap.at(15, 3, 0), 0.0f);
 }
 
+TEST(Shadow, KnownVisibilityErrorAndLeak) {
+    // 10 columns x 4 rows, all covered, light unknown. Reference visibility by column:
+    // 0 0 0 0 0.5 0.5 1 1 1 1; test: 0.2 0.6 1 0 0.5 0 1 1 0.9 0.4.
+    // Absolute errors: 0.2 0.6 1 0 0 0.5 0 0 0.1 0.6, sum 3.0 over 10 columns: mae 0.3.
+    // Leak: full shadow in the reference (columns 0..3) and test above 0.5 (columns 1, 2):
+    // 2 of 10 columns, 0.2. Column 4's 0.5 is not a leak (not full shadow).
+    const float ref[10] = {0.0f, 0.0f, 0.0f, 0.0f, 0.5f, 0.5f, 1.0f, 1.0f, 1.0f, 1.0f};
+    const float tst[10] = {0.2f, 0.6f, 1.0f, 0.0f, 0.5f, 0.0f, 1.0f, 1.0f, 0.9f, 0.4f};
+    auto img = [](const float* v) {
+        return scene(
+            10, 4, [](int, int) { return true; },
+            [v](int x, int) {
+                Surface s;
+                s.shadow = v[x];
+                return s;
+            });
+    };
+    const core::Image reference = img(ref), test = img(tst);
+    const ShadowResult r = shadowError(reference, test, computeMasks(reference, test));
+    EXPECT_NEAR(r.mae, 0.3, 1e-7);
+    EXPECT_DOUBLE_EQ(r.leak, 0.2);
+    // Against itself: no error, no leak.
+    const ShadowResult same = shadowError(reference, reference, computeMasks(reference, reference));
+    EXPECT_EQ(same.mae, 0.0);
+    EXPECT_EQ(same.leak, 0.0);
+}
+
 TEST(Shadow, OnlySurfacesFacingTheLightCount) {
     // Rows 0..4 face the light (N.Z = 1, light travelling along -z), rows 5..9 face away: their
     // shadow (self-shadowing, N.L <= 0) is not a shadow-map question and is ignored. Reference
@@ -518,9 +545,12 @@ TEST(Shadow, NoShadowInEitherAgreesAndAnEmptyMaskIsNaN) {
     EXPECT_EQ(agree.iou, 1.0);
     EXPECT_EQ(agree.falseShadow, 0.0);
     EXPECT_EQ(agree.missedShadow, 0.0);
+    EXPECT_EQ(agree.mae, 0.0);
+    EXPECT_EQ(agree.leak, 0.0);
     const core::Image empty = core::aov::makeImage(10, 10);
     const ShadowResult none = shadowError(empty, lit, computeMasks(empty, lit));
     EXPECT_TRUE(isNaN(none.iou) && isNaN(none.falseShadow) && isNaN(none.missedShadow));
+    EXPECT_TRUE(isNaN(none.mae) && isNaN(none.leak));
 }
 
 // ---- every metric -------------------------------------------------------------------------

@@ -101,6 +101,15 @@ const std::vector<MetricInfo>& metricTable() {
          .machineDependent = false,
          .meaning = "fraction shadowed in the reference but lit in the test: leaks, peter-"
                     "panning"},
+        {.key = "shadow.mae", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "shadow", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "mean absolute error of the sun's visibility (0 to 1, fractional in "
+                    "penumbrae) over the pixels facing the light"},
+        {.key = "shadow.leak", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "shadow", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "fraction of the pixels facing the light that the test lights (visibility "
+                    "above 0.5) where the reference is in full shadow (visibility 0): light "
+                    "bleeding into the umbra"},
         {.key = "occlusion.error", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
          .buffer = "id", .source = S::Study, .overview = false, .machineDependent = false,
          .meaning = "fraction of the reference's covered pixels where the test shows another "

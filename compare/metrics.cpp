@@ -202,6 +202,8 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
     result.values["shadow.iou"] = shadow.iou;
     result.values["shadow.false_shadow"] = shadow.falseShadow;
     result.values["shadow.missed_shadow"] = shadow.missedShadow;
+    result.values["shadow.mae"] = shadow.mae;
+    result.values["shadow.leak"] = shadow.leak;
     result.errorMaps["shadow"] = std::move(shadow.errorMap);
     return result;
 }

@@ -25,13 +25,13 @@ const std::set<std::string> BEAUTY_KEYS = {"beauty.psnr",     "beauty.ssim",
                                            "beauty.flip",     "beauty.flip_p95",
                                            "beauty.flip_p99", "beauty.flip_over"};
 const std::set<std::string> ALL_KEYS = {
-    "beauty.psnr",         "beauty.ssim",     "beauty.flip",
-    "beauty.flip_p95",     "beauty.flip_p99", "beauty.flip_over",
-    "beauty.hdrflip",      "coverage.iou",    "silhouette.mean_px",
-    "depth.rel_mean",      "id.mismatch",     "normal.mean_deg",
-    "normal.p95_deg",      "uv.mean",         "emission.rmse",
-    "smoothness.ratio",    "shadow.iou",      "shadow.false_shadow",
-    "shadow.missed_shadow"};
+    "beauty.psnr",          "beauty.ssim",     "beauty.flip",
+    "beauty.flip_p95",      "beauty.flip_p99", "beauty.flip_over",
+    "beauty.hdrflip",       "coverage.iou",    "silhouette.mean_px",
+    "depth.rel_mean",       "id.mismatch",     "normal.mean_deg",
+    "normal.p95_deg",       "uv.mean",         "emission.rmse",
+    "smoothness.ratio",     "shadow.iou",      "shadow.false_shadow",
+    "shadow.missed_shadow", "shadow.mae",      "shadow.leak"};
 const std::set<std::string> MAP_KEYS = {"beauty.flip", "beauty.hdrflip", "normal",  "depth", "uv",
                                         "id",          "shadow",         "emission"};
 
@@ -126,6 +126,8 @@ TEST(Metrics, IdenticalAovImagesArePerfect) {
     EXPECT_EQ(r.values.at("shadow.iou"), 1.0);
     EXPECT_EQ(r.values.at("shadow.false_shadow"), 0.0);
     EXPECT_EQ(r.values.at("shadow.missed_shadow"), 0.0);
+    EXPECT_EQ(r.values.at("shadow.mae"), 0.0);
+    EXPECT_EQ(r.values.at("shadow.leak"), 0.0);
     for (const auto& [name, map] : r.errorMaps) {
         EXPECT_EQ(map.channelCount(), 1) << name;
         EXPECT_EQ(map.width(), 96) << name;

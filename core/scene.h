@@ -34,6 +34,10 @@ struct LightSettings {
     double intensity = 3.0;                 // irradiance scale, >= 0
     glm::dvec3 color{1.0, 1.0, 1.0};        // linear RGB, >= 0
     double ambient = 0.03;                  // ambient fraction of the diffuse albedo, >= 0
+    // Angular radius of the sun's disc, degrees, [0, 10]; 0: a point direction (hard shadows).
+    // The reference averages the visibility over sun directions across the disc; the real-time
+    // "pcf" widens its filter to the penumbra (realtime/shaders/shade.frag).
+    double angularRadiusDeg = 0.0;
 };
 
 // Where a texture comes from: a constant colour, a named procedural, or an image file.

@@ -17,6 +17,7 @@
 #include "core/camera.h"
 #include "core/cancellation.h"
 #include "raymarch/pixel_samples.h"
+#include "raymarch/sun_disc.h"
 #include "raymarch/surface_tracer.h"
 
 namespace twinrender::raymarch {
@@ -96,7 +97,8 @@ class FrameTrace {
           mTilesY((camera.height() + settings.tileSize - 1) / settings.tileSize),
           mGrid(static_cast<int>(std::ceil(std::sqrt(double(settings.spp))))),
           mExposure(static_cast<float>(input.scene.camera.exposure)),
-          mToLight(-input.scene.light.direction) {}
+          mSunDirections(sunDirections(-input.scene.light.direction,
+                                       input.scene.light.angularRadiusDeg, settings.sunSamples)) {}
 
     int tileCount() const { return mTilesX * mTilesY; }
 
@@ -133,7 +135,7 @@ class FrameTrace {
         const auto t0 = Clock::now();
         mTracer.tracePrimary(b.n, b.rowLength, r.rays, r.tnear, r.tfar, b.central, hits, found, w);
         if (mSettings.shadows)
-            mTracer.traceShadows(b.n, hits, found, mToLight, vis, w);
+            traceVisibility(b.n, hits, found, vis, w);
         else
             std::fill_n(vis, b.n, 1.0f);
         const auto t1 = Clock::now();
@@ -148,6 +150,24 @@ class FrameTrace {
     }
 
   private:
+    // The sun's visibility from each hit: one bundle of parallel shadow rays per sun
+    // direction, averaged (each direction's own n.l test included, so a point where part of
+    // the disc has set sees that part occluded).
+    void traceVisibility(int n, const SurfaceHit* hits, const bool* found, float* vis,
+                         Workspace& w) const {
+        if (mSunDirections.size() == 1) {
+            mTracer.traceShadows(n, hits, found, mSunDirections[0], vis, w);
+            return;
+        }
+        float one[N];
+        double sum[N] = {};
+        for (const glm::dvec3& toLight : mSunDirections) {
+            mTracer.traceShadows(n, hits, found, toLight, one, w);
+            for (int i = 0; i < n; ++i) sum[i] += one[i];
+        }
+        for (int i = 0; i < n; ++i) vis[i] = static_cast<float>(sum[i] / mSunDirections.size());
+    }
+
     // The pixels [x0, x1) x [y0, y1) of the block whose corner is (x0, y0).
     Block block(int x0, int y0, int x1, int y1) const {
         Block b;
@@ -191,7 +211,7 @@ class FrameTrace {
     int mTilesX, mTilesY;
     int mGrid;  // strata per side of a pixel's samples
     float mExposure;
-    glm::dvec3 mToLight;
+    std::vector<glm::dvec3> mSunDirections;  // towards the light; one for a point sun
 };
 
 // The tiles in parallel on the caller's arena, on one workspace per thread; the thread time

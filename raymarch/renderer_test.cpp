@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -164,58 +165,118 @@ TEST(Raymarch, LatticeHalfSpaceIsFlatAtTheComputedHeight) {
     EXPECT_LT(centreZ, 1.0 * h);
 }
 
-TEST(Raymarch, SphereShadowOnAPlaneMatchesTheAnalyticOutline) {
-    // One particle (an exact sphere) above a lattice floor, lit at 37 degrees from the
-    // vertical: a floor point is in shadow exactly when the line from it toward the light
-    // passes within the sphere's radius of its centre.
+// One particle (an exact sphere) above a lattice floor, lit at 37 degrees from the vertical,
+// seen from above.
+struct SphereOverFloor {
     TestScene s;
-    const float spacing = 0.1f, h = 1.3f * spacing;
-    const float v = std::min(spacing * spacing * spacing, float(tr::core::maxParticleVolume(h)));
-    std::vector<glm::vec3> floor;
-    for (int i = -25; i <= 25; ++i)
-        for (int j = -25; j <= 25; ++j)
-            for (int k = 0; k < 3; ++k) floor.emplace_back(i * spacing, j * spacing, -k * spacing);
-    s.addBody(floor, h, v);
-    // The ball's support (2 h = 0.8) stays clear of the floor's, so its surface is an exact
-    // sphere: its volume is chosen so that the field peaks at twice the level.
-    const float hBall = 0.4f;
     tr::raymarch::Settings settings;
-    const float vBall = float(2.0 * settings.surfaceLevel / tr::core::m4Kernel(0.0, double(hBall)));
-    s.addBody({glm::vec3(0.0f, 0.0f, 1.0f)}, hBall, vBall);
-    const double radius = singleParticleRadius(vBall, hBall, settings.surfaceLevel);
-    ASSERT_GT(radius, 0.05);
-    s.scene.light.direction = {0.6, 0.0, -0.8};
-    const glm::dvec3 toLight(-0.6, 0.0, 0.8), centre(0.0, 0.0, 1.0);
-    s.scene.camera.position = {0.3, -0.01, 4.0};
-    s.scene.camera.target = {0.3, 0.0, 0.0};
-    s.scene.camera.up = {0.0, 1.0, 0.0};
-    s.scene.camera.fovYDeg = 25.0;
-    s.scene.camera.width = s.scene.camera.height = 64;
-    const auto frame = render(s, settings);
-    tr::core::Camera camera(s.scene.camera);
+    double radius = 0.0;  // the sphere's
+    const glm::dvec3 toLight{-0.6, 0.0, 0.8}, centre{0.0, 0.0, 1.0};
+
+    SphereOverFloor() {
+        const float spacing = 0.1f, h = 1.3f * spacing;
+        const float v =
+            std::min(spacing * spacing * spacing, float(tr::core::maxParticleVolume(h)));
+        std::vector<glm::vec3> floor;
+        for (int i = -25; i <= 25; ++i)
+            for (int j = -25; j <= 25; ++j)
+                for (int k = 0; k < 3; ++k)
+                    floor.emplace_back(i * spacing, j * spacing, -k * spacing);
+        s.addBody(floor, h, v);
+        // The ball's support (2 h = 0.8) stays clear of the floor's, so its surface is an exact
+        // sphere: its volume is chosen so that the field peaks at twice the level.
+        const float hBall = 0.4f;
+        const float vBall =
+            float(2.0 * settings.surfaceLevel / tr::core::m4Kernel(0.0, double(hBall)));
+        s.addBody({glm::vec3(centre)}, hBall, vBall);
+        radius = singleParticleRadius(vBall, hBall, settings.surfaceLevel);
+        s.scene.light.direction = -toLight;
+        s.scene.camera.position = {0.3, -0.01, 4.0};
+        s.scene.camera.target = {0.3, 0.0, 0.0};
+        s.scene.camera.up = {0.0, 1.0, 0.0};
+        s.scene.camera.fovYDeg = 25.0;
+        s.scene.camera.width = s.scene.camera.height = 64;
+    }
+
+    // Calls visit(x, y, p, angle, pixel) for each floor pixel: its point p, the angle between
+    // toLight and the direction from p to the sphere's centre minus the sphere's angular radius
+    // seen from p (radians; negative: the light's centre is behind the sphere), and the angle a
+    // pixel's footprint spans there.
+    template <typename Visit>
+    void forEachFloorPixel(const Image& img, Visit&& visit) const {
+        const tr::core::Camera camera(s.scene.camera);
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                if (img.at(x, y, img.channelIndex("id")) != 0.0f) continue;  // the floor only
+                const auto ray = camera.ray(x + 0.5, y + 0.5);
+                const double t =
+                    img.at(x, y, img.channelIndex("Z")) / glm::dot(ray.direction, camera.forward());
+                const glm::dvec3 p = ray.origin + t * ray.direction;
+                const glm::dvec3 toCentre = centre - p;
+                const double d = glm::length(toCentre);
+                const double between =
+                    std::acos(std::clamp(glm::dot(toCentre / d, toLight), -1.0, 1.0));
+                const double angle = between - std::asin(radius / d);
+                // A pixel's footprint on the floor, stretched by the light's slant.
+                const double pixel = 2.0 * 2.0 * t * camera.tanHalfFovY() / 64.0 / d;
+                visit(x, y, p, angle, pixel);
+            }
+    }
+};
+
+TEST(Raymarch, SphereShadowOnAPlaneMatchesTheAnalyticOutline) {
+    // A floor point is in shadow exactly when the line from it toward the light passes within
+    // the sphere's radius of its centre.
+    const SphereOverFloor f;
+    ASSERT_GT(f.radius, 0.05);
+    const auto frame = render(f.s, f.settings);
     const Image& img = frame.image;
     int checked = 0, wrong = 0, shadowed = 0;
-    for (int y = 0; y < 64; ++y)
-        for (int x = 0; x < 64; ++x) {
-            if (img.at(x, y, img.channelIndex("id")) != 0.0f) continue;  // the floor only
-            const auto ray = camera.ray(x + 0.5, y + 0.5);
-            const double t =
-                img.at(x, y, img.channelIndex("Z")) / glm::dot(ray.direction, camera.forward());
-            const glm::dvec3 p = ray.origin + t * ray.direction;
-            // Distance from the sphere's centre to the ray p + s toLight, s >= 0.
-            const double sc = std::max(0.0, glm::dot(centre - p, toLight));
-            const double r = glm::length(p + sc * toLight - centre);
-            // A pixel's footprint on the floor, stretched by the light's slant.
-            const double pixel = 2.0 * 2.0 * t * camera.tanHalfFovY() / 64.0;
-            if (std::abs(r - radius) < pixel) continue;  // the outline itself
-            const bool inShadow = img.at(x, y, img.channelIndex("shadow")) < 0.5f;
-            wrong += inShadow != (r < radius);
-            shadowed += inShadow;
-            ++checked;
-        }
+    f.forEachFloorPixel(img, [&](int x, int y, const glm::dvec3&, double angle, double pixel) {
+        if (std::abs(angle) < pixel) return;  // the outline itself
+        const bool inShadow = img.at(x, y, img.channelIndex("shadow")) < 0.5f;
+        wrong += inShadow != (angle < 0.0);
+        shadowed += inShadow;
+        ++checked;
+    });
     EXPECT_GT(checked, 2000);
     EXPECT_GT(shadowed, 50);
     EXPECT_EQ(wrong, 0);
+}
+
+TEST(Raymarch, ASunWithAnAngularRadiusCastsTheAnalyticPenumbra) {
+    // A sun of 4 degrees: a floor point sees all of it (visibility 1) when the sphere's disc
+    // and the sun's do not overlap, none of it (0) when the sphere's covers the sun's, part of
+    // it between: the penumbra. The same image on every thread count.
+    SphereOverFloor f;
+    f.s.scene.light.angularRadiusDeg = 4.0;
+    f.settings.sunSamples = 32;
+    const double sun = 4.0 * std::numbers::pi / 180.0;
+    const auto frame = render(f.s, f.settings);
+    const Image& img = frame.image;
+    int lit = 0, umbra = 0, penumbra = 0, fractional = 0, wrong = 0;
+    f.forEachFloorPixel(img, [&](int x, int y, const glm::dvec3&, double angle, double pixel) {
+        const float v = img.at(x, y, img.channelIndex("shadow"));
+        if (angle > sun + pixel) {
+            ++lit;
+            wrong += v != 1.0f;
+        } else if (angle < -sun - pixel) {
+            ++umbra;
+            wrong += v != 0.0f;
+        } else if (std::abs(angle) < sun - pixel) {
+            ++penumbra;
+            fractional += v > 0.0f && v < 1.0f;
+        }
+    });
+    EXPECT_GT(lit, 1000);
+    EXPECT_GT(umbra, 20);
+    EXPECT_GT(penumbra, 50);
+    EXPECT_EQ(wrong, 0);
+    EXPECT_EQ(fractional, penumbra);
+    const auto one = render(f.s, f.settings, 1);
+    for (std::size_t p = 0; p < img.pixelCount(); ++p)
+        ASSERT_EQ(img.at(p, img.channelIndex("shadow")),
+                  one.image.at(p, img.channelIndex("shadow")));
 }
 
 TEST(Raymarch, SameImageForAnyThreadCount) {

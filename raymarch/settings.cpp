@@ -14,6 +14,7 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.stepWindow = t.getDouble("step_window", s.stepWindow, 0.01, 4.0);
     s.maxIterations = static_cast<int>(t.getInt("max_iterations", s.maxIterations, 8, 100000));
     s.tileSize = static_cast<int>(t.getInt("tile_size", s.tileSize, 4, 256));
+    s.sunSamples = static_cast<int>(t.getInt("sun_samples", s.sunSamples, 1, 1024));
     t.checkAllRead();
     return s;
 }
@@ -28,7 +29,8 @@ nlohmann::json toJson(const Settings& s) {
             {"raymarch.segment_length", s.segmentLength},
             {"raymarch.step_window", s.stepWindow},
             {"raymarch.max_iterations", s.maxIterations},
-            {"raymarch.tile_size", s.tileSize}};
+            {"raymarch.tile_size", s.tileSize},
+            {"raymarch.sun_samples", s.sunSamples}};
 }
 
 }  // namespace twinrender::raymarch

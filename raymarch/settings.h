@@ -18,6 +18,9 @@ struct Settings {
     double stepWindow = 0.5;      // window of the curvature bound, in units of h, [0.01, 4]
     int maxIterations = 256;      // field evaluations per segment before a ray is unresolved
     int tileSize = 16;            // pixels per tile side, 4..256
+    // Sun directions per shadow sample when light.angular_radius > 0, 1..1024
+    // (raymarch/sun_disc.h); the visibility is then a multiple of 1 / sun_samples.
+    int sunSamples = 64;
 };
 
 // Reads every key of the table and rejects the ones it does not know.

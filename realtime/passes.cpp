@@ -55,6 +55,15 @@ std::string shadowDefine(ShadowMode mode) {
     return define;
 }
 
+std::vector<std::string> shadeDefines(ShadowMode mode, const ShadowMapSettings& shadowMap,
+                                      bool emission) {
+    std::vector<std::string> defines = {shadowDefine(mode)};
+    if (mode == ShadowMode::Esm && shadowMap.esmForm == EsmForm::Seed)
+        defines.emplace_back("ESM_SEED");
+    if (emission) defines.emplace_back("EMISSION");
+    return defines;
+}
+
 gl::PipelineState coveredOnlyState(DepthMode mode) {
     // The background holds the cleared depth (1, or 0 reversed); every covered pixel is nearer.
     return {.depthTest = mode == DepthMode::Reversed ? gl::DepthTest::Less : gl::DepthTest::Greater,

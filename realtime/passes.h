@@ -73,10 +73,21 @@ std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::strin
 const char* depthDefine(DepthMode mode);
 // The shade pass's define for the shadows: SHADOWS_ and the mode's name in capitals.
 std::string shadowDefine(ShadowMode mode);
+// The shade pass's defines: the shadows' (with ESM_SEED for the seed's form of ESM), and
+// EMISSION when anything emits.
+std::vector<std::string> shadeDefines(ShadowMode mode, const ShadowMapSettings& shadowMap,
+                                      bool emission);
 
 // shadow: the impostors seen from the light into a resolution^2 float depth map holding
-// linear light depth in [0, 1].
-gl::Texture runShadowPass(ProgramCache& programs, const SceneBuffers& scene, int resolution);
+// linear light depth in [0, 1]; for the filtered modes ("esm", "vsm", "evsm") that map turned
+// into theirs (one, two or four float channels, linear filtering) and blurred by
+// settings.blurRadius texels.
+gl::Texture runShadowPass(ProgramCache& programs, const SceneBuffers& scene, ShadowMode mode,
+                          const ShadowMapSettings& settings);
+// The defines of shaders/shadow_moments.frag for a filtered mode, and the exponents it and the
+// shade pass take: ESM (c, 0), EVSM (c+, c-).
+std::vector<std::string> shadowMomentsDefines(ShadowMode mode, const ShadowMapSettings& settings);
+glm::vec2 shadowExponents(ShadowMode mode, const ShadowMapSettings& settings);
 
 // gbuffer: impostors from the camera, depth test in the selected encoding.
 struct GBuffer {
@@ -155,7 +166,8 @@ struct ShadeInputs {
     DepthMode depthMode = DepthMode::Log;
     const gl::Texture* shadowMap = nullptr;
     ShadowMode shadows = ShadowMode::None;
-    bool emission = true;  // false: the emission buffer is zero and need not be read
+    ShadowMapSettings shadowSettings;  // the filtered modes' exponents and bleed reduction
+    bool emission = true;              // false: the emission buffer is zero and need not be read
     // Spheres mode: camera-relative centres.
     std::vector<OcclusionSphere> spheres;
 };

@@ -104,9 +104,12 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         add("fullscreen.vert", "ssss.frag", defines);
     }
     if (usesSurfaceFilter(settings)) surfaceVariants(settings.surface, out);
-    std::vector<std::string> shade = {shadowDefine(settings.shadows)};
-    if (emits) shade.emplace_back("EMISSION");
-    add("fullscreen.vert", "shade.frag", shade);
+    if (usesFilteredShadowMap(settings.shadows)) {
+        add("fullscreen.vert", "shadow_moments.frag",
+            shadowMomentsDefines(settings.shadows, settings.shadowMap));
+        if (settings.shadowMap.blurRadius > 0.0) add("fullscreen.vert", "shadow_blur.frag", {});
+    }
+    add("fullscreen.vert", "shade.frag", shadeDefines(settings.shadows, settings.shadowMap, emits));
     // The bloom's levels exist where the image is large enough; the composite without them
     // either way.
     if (settings.bloom.enabled && settings.bloom.strength > 0.0) {
@@ -130,7 +133,8 @@ std::vector<ProgramVariant> allProgramVariants() {
     Settings s;
     for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed})
         for (ShadowMode shadows :
-             {ShadowMode::None, ShadowMode::Map, ShadowMode::Pcf, ShadowMode::Spheres})
+             {ShadowMode::None, ShadowMode::Map, ShadowMode::Pcf, ShadowMode::Spheres,
+              ShadowMode::Esm, ShadowMode::Vsm, ShadowMode::Evsm})
             for (ParticleShape shape : {ParticleShape::Sphere, ParticleShape::Ellipsoid})
                 for (NormalModel normal : {NormalModel::Sphere, NormalModel::Field,
                                            NormalModel::Blend, NormalModel::Gradient})
@@ -158,6 +162,8 @@ std::vector<ProgramVariant> allProgramVariants() {
                                                 s.surface.bilateral.separable = flags;
                                                 s.surface.narrowRange.separable = flags;
                                                 s.surface.shaderNormals = flags;
+                                                s.shadowMap.esmForm =
+                                                    flags ? EsmForm::Warp : EsmForm::Seed;
                                                 s.perSet = where;
                                                 for (ProgramVariant& v : programVariants(s, emits))
                                                     all.try_emplace(v.name(), std::move(v));

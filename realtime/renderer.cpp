@@ -121,7 +121,8 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
     u.shadowRange =
         glm::vec4(light.nearDepth, light.farDepth, light.texelSize, settings.shadowMap.resolution);
     u.shadowBias = glm::vec4(settings.shadowMap.bias, settings.shadowMap.slopeBias,
-                             settings.shadowMap.pcfRadius, 0.0);
+                             settings.shadowMap.pcfRadius,
+                             std::tan(glm::radians(scene.light.angularRadiusDeg)));
     // The share of the impostor's own normal in the G-buffer's (gbuffer.frag).
     const double impostorNormal = settings.particles.normal == NormalModel::Blend
                                       ? settings.particles.sphereNormalWeight
@@ -531,6 +532,7 @@ ShadeInputs shadeInputs(const PassInputs& in, const PassTargets& t) {
     s.depthMode = in.settings.depth;
     s.shadowMap = t.shadowMap ? &*t.shadowMap : nullptr;
     s.shadows = in.settings.shadows;
+    s.shadowSettings = in.settings.shadowMap;
     s.spheres = in.spheres;
     return s;
 }
@@ -552,7 +554,7 @@ const Pass PASSES[] = {
     {"shadow", [](const PassInputs& in) { return usesShadowMap(in.settings.shadows); },
      [](const PassInputs& in, PassTargets& t) {
          t.shadowMap.emplace(
-             runShadowPass(in.programs, in.scene, in.settings.shadowMap.resolution));
+             runShadowPass(in.programs, in.scene, in.settings.shadows, in.settings.shadowMap));
      }},
     {"gbuffer", always,
      [](const PassInputs& in, PassTargets& t) {

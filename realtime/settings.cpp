@@ -24,6 +24,9 @@ ShadowMode parseShadowMode(const std::string& s) {
     if (s == "none") return ShadowMode::None;
     if (s == "pcf") return ShadowMode::Pcf;
     if (s == "spheres") return ShadowMode::Spheres;
+    if (s == "esm") return ShadowMode::Esm;
+    if (s == "vsm") return ShadowMode::Vsm;
+    if (s == "evsm") return ShadowMode::Evsm;
     return ShadowMode::Map;
 }
 
@@ -51,8 +54,18 @@ std::string_view toString(ShadowMode mode) {
             return "pcf";
         case ShadowMode::Spheres:
             return "spheres";
+        case ShadowMode::Esm:
+            return "esm";
+        case ShadowMode::Vsm:
+            return "vsm";
+        case ShadowMode::Evsm:
+            return "evsm";
     }
     return "map";
+}
+
+std::string_view toString(EsmForm form) {
+    return form == EsmForm::Seed ? "seed" : "warp";
 }
 
 std::string_view toString(NormalModel model) {
@@ -194,7 +207,11 @@ bool mayHaveDroplets(const ParticleSettings& p) {
 }
 
 bool usesShadowMap(ShadowMode mode) {
-    return mode == ShadowMode::Map || mode == ShadowMode::Pcf;
+    return mode != ShadowMode::None && mode != ShadowMode::Spheres;
+}
+
+bool usesFilteredShadowMap(ShadowMode mode) {
+    return mode == ShadowMode::Esm || mode == ShadowMode::Vsm || mode == ShadowMode::Evsm;
 }
 
 Settings parseSettings(const core::ParameterTable& t) {
@@ -205,8 +222,8 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.perSet = t.getEnum("per_set", std::string(toString(d.perSet)), {"gpu", "cpu"}) == "cpu"
                    ? PerSetDevice::Cpu
                    : PerSetDevice::Gpu;
-    s.shadows = parseShadowMode(
-        t.getEnum("shadows", std::string(toString(d.shadows)), {"map", "pcf", "spheres", "none"}));
+    s.shadows = parseShadowMode(t.getEnum("shadows", std::string(toString(d.shadows)),
+                                          {"map", "pcf", "spheres", "none", "esm", "vsm", "evsm"}));
     s.particles.radiusScale =
         t.getDouble("particles.radius_scale", d.particles.radiusScale, 1e-6, 10.0);
     s.particles.radius = t.getEnum("particles.radius", std::string(toString(d.particles.radius)),
@@ -251,6 +268,21 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.shadowMap.bias = t.getDouble("shadow_map.bias", d.shadowMap.bias, 0.0, 10.0);
     s.shadowMap.slopeBias = t.getDouble("shadow_map.slope_bias", d.shadowMap.slopeBias, 0.0, 100.0);
     s.shadowMap.pcfRadius = t.getDouble("shadow_map.pcf_radius", d.shadowMap.pcfRadius, 0.0, 16.0);
+    s.shadowMap.blurRadius =
+        t.getDouble("shadow_map.blur_radius", d.shadowMap.blurRadius, 0.0, 16.0);
+    s.shadowMap.esmExponent =
+        t.getDouble("shadow_map.esm_exponent", d.shadowMap.esmExponent, 0.0, 80.0);
+    s.shadowMap.esmForm =
+        t.getEnum("shadow_map.esm_form", std::string(toString(d.shadowMap.esmForm)),
+                  {"seed", "warp"}) == "seed"
+            ? EsmForm::Seed
+            : EsmForm::Warp;
+    s.shadowMap.vsmBleedReduction =
+        t.getDouble("shadow_map.vsm_bleed_reduction", d.shadowMap.vsmBleedReduction, 0.0, 0.99);
+    s.shadowMap.evsmPositiveExponent = t.getDouble("shadow_map.evsm_positive_exponent",
+                                                   d.shadowMap.evsmPositiveExponent, 0.0, 42.0);
+    s.shadowMap.evsmNegativeExponent = t.getDouble("shadow_map.evsm_negative_exponent",
+                                                   d.shadowMap.evsmNegativeExponent, 0.0, 42.0);
 
     s.surface = parseSurface(t);
     s.ssss.enabled = t.getBool("ssss.enabled", d.ssss.enabled);
@@ -291,6 +323,12 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.shadow_map.bias", s.shadowMap.bias},
         {"realtime.shadow_map.slope_bias", s.shadowMap.slopeBias},
         {"realtime.shadow_map.pcf_radius", s.shadowMap.pcfRadius},
+        {"realtime.shadow_map.blur_radius", s.shadowMap.blurRadius},
+        {"realtime.shadow_map.esm_exponent", s.shadowMap.esmExponent},
+        {"realtime.shadow_map.esm_form", toString(s.shadowMap.esmForm)},
+        {"realtime.shadow_map.vsm_bleed_reduction", s.shadowMap.vsmBleedReduction},
+        {"realtime.shadow_map.evsm_positive_exponent", s.shadowMap.evsmPositiveExponent},
+        {"realtime.shadow_map.evsm_negative_exponent", s.shadowMap.evsmNegativeExponent},
         {"realtime.surface.method", toString(s.surface.method)},
         {"realtime.surface.shader", s.surface.shaderPath},
         {"realtime.surface.shader_passes", s.surface.shaderPasses},

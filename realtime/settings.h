@@ -23,6 +23,23 @@ enum class ShadowMode {
     Map,      // "map": orthographic shadow map of the particle impostors, one tap
     Pcf,      // "pcf": the same map, percentage-closer filtered
     Spheres,  // "spheres": the old baseline; one occluding sphere per body over 5 % of particles
+    // The filtered maps: the depth map turned into a map that may be blurred and filtered
+    // linearly (realtime/shadow_pass.cpp), then read with bilinear taps.
+    Esm,   // "esm": exponential shadow map (Annen et al. 2008), in the form of esm_form
+    Vsm,   // "vsm": variance shadow map, depth and depth squared (Donnelly & Lauritzen 2006)
+    Evsm,  // "evsm": exponential variance shadow map, positive and negative warps (Lauritzen 2008)
+};
+
+// The two forms of ESM (shadow_map.esm_form).
+enum class EsmForm {
+    // "seed": the depth map blurred, then visibility = clamp(exp(c (blurred depth - receiver
+    // depth)), 0, 1), as the WebGL planet renderer this project grew from did. The exponential
+    // of a blurred depth is not the blur of exponentials: across an edge it is darker or
+    // lighter than the filtered test.
+    Seed,
+    // "warp": exp(c depth) stored and blurred, times exp(-c receiver depth): the filtered
+    // exponential test of Annen et al.
+    Warp,
 };
 
 // What normal the G-buffer writes per fragment (particles.normal).
@@ -140,6 +157,26 @@ struct ShadowMapSettings {
     double bias = 0.5;       // shadow_map.bias: 0..10
     double slopeBias = 1.0;  // shadow_map.slope_bias: 0..100
     double pcfRadius = 1.5;  // shadow_map.pcf_radius: "pcf" filter radius, texels, 0..16
+    // shadow_map.blur_radius: "esm", "vsm", "evsm": the separable box blur of the filtered map,
+    // texels on each side of the centre, 0..16 (0: no blur; the bilinear taps still filter).
+    // A fractional radius weighs the outermost texels by its fraction.
+    double blurRadius = 2.0;
+    // shadow_map.esm_exponent: c, per unit of normalised light depth (0..1 over the map's
+    // depth range), 0..80. Larger leaks less light close behind an occluder and sharpens the
+    // edges. The warp form stores exp(c depth): c depth must stay below ln(FLT_MAX) = 88.7 to
+    // fit a 32-bit float, and 80 leaves room for the blur's and bilinear taps' rounding.
+    double esmExponent = 80.0;
+    EsmForm esmForm = EsmForm::Warp;  // shadow_map.esm_form: "seed" | "warp"
+    // shadow_map.vsm_bleed_reduction: "vsm" and "evsm": the Chebyshev bound's values below this
+    // become 0 and the rest are rescaled to [0, 1], [0, 0.99]; trades light bleeding where
+    // casters overlap for darker, harder penumbrae.
+    double vsmBleedReduction = 0.2;
+    // shadow_map.evsm_positive_exponent and evsm_negative_exponent: c+ and c- of EVSM's warps
+    // exp(c+ d) and -exp(-c- d), per unit of normalised depth, 0..42. The second moments are
+    // exp(2 c d), which must stay below FLT_MAX = exp(88.7) in the 32-bit map: c <= 44, 42
+    // with headroom.
+    double evsmPositiveExponent = 40.0;
+    double evsmNegativeExponent = 5.0;
 };
 
 struct SsssSettings {
@@ -250,7 +287,8 @@ enum class PerSetDevice {
 struct Settings {
     DepthMode depth = DepthMode::Log;         // depth: "log" | "standard" | "reversed"
     PerSetDevice perSet = PerSetDevice::Gpu;  // per_set: "gpu" | "cpu"
-    ShadowMode shadows = ShadowMode::Map;     // shadows: "map" | "pcf" | "spheres" | "none"
+    // shadows: "map" | "pcf" | "spheres" | "none" | "esm" | "vsm" | "evsm"
+    ShadowMode shadows = ShadowMode::Map;
     ParticleSettings particles;
     ShadowMapSettings shadowMap;
     SurfaceSettings surface;
@@ -269,8 +307,10 @@ bool rebuildsNormals(const Settings& settings);
 bool usesKernels(const Settings& settings);
 // Whether small droplets may be drawn as ellipsoids (realtime/droplets.h).
 bool mayHaveDroplets(const ParticleSettings& particles);
-// Whether the shadow map is drawn (shadows = "map" or "pcf").
+// Whether the shadow map is drawn (every mode but "spheres" and "none").
 bool usesShadowMap(ShadowMode mode);
+// Whether the depth map is turned into a filtered map ("esm", "vsm", "evsm").
+bool usesFilteredShadowMap(ShadowMode mode);
 
 // Reads every key of the table (the scene's [realtime] section with --set overrides applied)
 // and then calls table.checkAllRead(): an unknown key, a wrong type or an out-of-range value
@@ -282,6 +322,7 @@ nlohmann::json toJson(const Settings& settings);
 
 std::string_view toString(DepthMode mode);
 std::string_view toString(ShadowMode mode);
+std::string_view toString(EsmForm form);
 std::string_view toString(NormalModel model);
 std::string_view toString(RadiusModel model);
 std::string_view toString(SurfaceMethod method);

@@ -82,7 +82,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.per_set"), "cpu");
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
-    EXPECT_EQ(j.size(), 48u);
+    EXPECT_EQ(j.size(), 54u);
 }
 
 TEST(Settings, ReadsTheParticleShapeKeys) {
@@ -114,6 +114,33 @@ TEST(Settings, ReadsTheParticleShapeKeys) {
     EXPECT_EQ(j.at("realtime.particles.anisotropy.anchor"), "centre");
 }
 
+TEST(Settings, ReadsTheShadowFilterKeys) {
+    const Settings d = parseSettings(table({}));
+    EXPECT_DOUBLE_EQ(d.shadowMap.blurRadius, 2.0);
+    EXPECT_DOUBLE_EQ(d.shadowMap.esmExponent, 80.0);
+    EXPECT_EQ(d.shadowMap.esmForm, EsmForm::Warp);
+    const Settings s = parseSettings(table({{"shadows", std::string("evsm")},
+                                            {"shadow_map.blur_radius", 3.5},
+                                            {"shadow_map.esm_exponent", 20.0},
+                                            {"shadow_map.esm_form", std::string("seed")},
+                                            {"shadow_map.vsm_bleed_reduction", 0.4},
+                                            {"shadow_map.evsm_positive_exponent", 30.0},
+                                            {"shadow_map.evsm_negative_exponent", 10.0}}));
+    EXPECT_EQ(s.shadows, ShadowMode::Evsm);
+    EXPECT_TRUE(usesShadowMap(s.shadows) && usesFilteredShadowMap(s.shadows));
+    EXPECT_FALSE(usesFilteredShadowMap(ShadowMode::Pcf));
+    EXPECT_DOUBLE_EQ(s.shadowMap.blurRadius, 3.5);
+    EXPECT_DOUBLE_EQ(s.shadowMap.esmExponent, 20.0);
+    EXPECT_EQ(s.shadowMap.esmForm, EsmForm::Seed);
+    EXPECT_DOUBLE_EQ(s.shadowMap.vsmBleedReduction, 0.4);
+    EXPECT_DOUBLE_EQ(s.shadowMap.evsmPositiveExponent, 30.0);
+    EXPECT_DOUBLE_EQ(s.shadowMap.evsmNegativeExponent, 10.0);
+    const nlohmann::json j = toJson(s);
+    EXPECT_EQ(j.at("realtime.shadows"), "evsm");
+    EXPECT_EQ(j.at("realtime.shadow_map.esm_form"), "seed");
+    EXPECT_EQ(j.at("realtime.shadow_map.blur_radius"), 3.5);
+}
+
 void expectError(const core::ParameterTable& t, const std::string& fragment) {
     try {
         parseSettings(t);
@@ -130,7 +157,14 @@ TEST(Settings, UnknownKeyNamesFileLineAndKey) {
 
 TEST(Settings, RejectsBadValues) {
     expectError(table({{"depth", std::string("logarithmic")}}), "realtime.depth");
-    expectError(table({{"shadows", std::string("esm")}}), "realtime.shadows");
+    expectError(table({{"shadows", std::string("pcss")}}), "realtime.shadows");
+    expectError(table({{"shadow_map.esm_form", std::string("log")}}),
+                "realtime.shadow_map.esm_form");
+    // The exponential warps must fit a 32-bit float (settings.h).
+    expectError(table({{"shadow_map.esm_exponent", 90.0}}), "out of range");
+    expectError(table({{"shadow_map.evsm_positive_exponent", 45.0}}), "out of range");
+    expectError(table({{"shadow_map.vsm_bleed_reduction", 1.0}}), "out of range");
+    expectError(table({{"shadow_map.blur_radius", -1.0}}), "out of range");
     expectError(table({{"particles.normal", std::string("flat")}}), "realtime.particles.normal");
     expectError(table({{"particles.shape", std::string("disc")}}), "realtime.particles.shape");
     expectError(table({{"particles.anisotropy.smoothing", 1.5}}), "out of range");

@@ -15,7 +15,7 @@ layout(std140, binding = 0) uniform FrameUniforms {
     vec4 shadowRange;    // x, y: light-space depth of map values 0 and 1; z: texel size (scene
                          // units); w: resolution (texels)
     vec4 shadowBias;     // x: constant bias, y: slope bias (both in max(particle radius, texel));
-                         // z: PCF radius (texels); w: unused
+                         // z: PCF radius (texels); w: tan(sun angular radius)
     vec4 misc;           // x: exposure; y: particle radius scale; z: sphere normal weight;
                          // w: unused
 };

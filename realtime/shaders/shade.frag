@@ -1,14 +1,20 @@
 // The shading pass: core's shading model on the smoothed buffers, with the light's visibility
-// from the shadow map (SHADOWS_MAP, SHADOWS_PCF), the occlusion spheres (SHADOWS_SPHERES) or
-// none. Output: linear beauty and the visibility (the shadow AOV).
+// from the shadow map (SHADOWS_MAP, SHADOWS_PCF), a filtered map (SHADOWS_ESM with ESM_SEED or
+// not, SHADOWS_VSM, SHADOWS_EVSM), the occlusion spheres (SHADOWS_SPHERES) or none. Output:
+// linear beauty and the visibility (the shadow AOV).
 #include "common.glsl"
 #include "textures.glsl"
 #include "shading.glsl"
+#if defined(SHADOWS_ESM) || defined(SHADOWS_VSM) || defined(SHADOWS_EVSM)
+#define SHADOWS_FILTERED
+#include "shadow_filters.glsl"
+#endif
 
 layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
 layout(binding = 1) uniform sampler2D uEmission;
 layout(binding = 2) uniform sampler2D uSurface;
-layout(binding = 3) uniform sampler2D uShadowMap;  // linear light depth in [0, 1]
+// Linear light depth in [0, 1]; SHADOWS_FILTERED: the filtered map, linear filtering.
+layout(binding = 3) uniform sampler2D uShadowMap;
 
 #ifdef SHADOWS_SPHERES
 const int MAX_SPHERES = 20;  // bodies over 5 % of the particles: at most 19
@@ -21,9 +27,54 @@ layout(location = 0) out vec4 outBeautyShadow;
 
 // Cap of tan(angle between the normal and the light) in the slope bias.
 const float MAX_SLOPE = 10.0;
+// PCF with a sun of some angular radius: the blocker search and the filter reach at most this
+// many texels (a 33 x 33 grid).
+const float MAX_PCF_RADIUS = 16.0;
+
+#if defined(SHADOWS_PCF)
+// Percentage-closer filtering over a disc of `radius` texels: taps on a grid of one texel.
+float pcf(ivec2 centre, ivec2 size, float radius, float depth) {
+    int n = int(ceil(radius));
+    float lit = 0.0, count = 0.0;
+    for (int j = -n; j <= n; ++j) {
+        for (int i = -n; i <= n; ++i) {
+            if (float(i * i + j * j) > radius * radius + 1e-3) continue;
+            ivec2 q = clamp(centre + ivec2(i, j), ivec2(0), size - 1);
+            lit += texelFetch(uShadowMap, q, 0).r >= depth ? 1.0 : 0.0;
+            count += 1.0;
+        }
+    }
+    return lit / count;
+}
+
+// The filter radius of PCF in texels: shadow_map.pcf_radius, widened under a sun of angular
+// radius atan(shadowBias.w) to the penumbra that the mean blocker in the search disc casts
+// (percentage-closer soft shadows, Fernando 2005): (receiver - blocker depth) tan(radius).
+float pcfRadius(ivec2 centre, ivec2 size, float depth) {
+    float tanSun = shadowBias.w;
+    if (tanSun <= 0.0) return shadowBias.z;
+    float range = shadowRange.y - shadowRange.x;  // scene units per unit of map depth
+    float search = min(depth * range * tanSun / shadowRange.z, MAX_PCF_RADIUS);
+    int n = int(ceil(search));
+    float sum = 0.0, count = 0.0;
+    for (int j = -n; j <= n; ++j) {
+        for (int i = -n; i <= n; ++i) {
+            if (float(i * i + j * j) > search * search + 1e-3) continue;
+            float d = texelFetch(uShadowMap, clamp(centre + ivec2(i, j), ivec2(0), size - 1), 0).r;
+            if (d < depth) {
+                sum += d;
+                count += 1.0;
+            }
+        }
+    }
+    if (count == 0.0) return shadowBias.z;
+    float penumbra = (depth - sum / count) * range * tanSun / shadowRange.z;
+    return clamp(max(penumbra, shadowBias.z), 0.0, MAX_PCF_RADIUS);
+}
+#endif
 
 float visibility(vec3 position, vec3 normal, float body, float worldRadius) {
-#if defined(SHADOWS_MAP) || defined(SHADOWS_PCF)
+#if defined(SHADOWS_MAP) || defined(SHADOWS_PCF) || defined(SHADOWS_FILTERED)
     vec3 l = (lightView * vec4(position, 1.0)).xyz;
     vec2 tc = (lightClip * vec4(l, 1.0)).xy * 0.5 + 0.5;
     if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) return 1.0;
@@ -34,25 +85,18 @@ float visibility(vec3 position, vec3 normal, float body, float worldRadius) {
     float unit = max(worldRadius, shadowRange.z);
     float bias = (shadowBias.x + shadowBias.y * slope) * unit;
     float depth = (-l.z - bias - shadowRange.x) / (shadowRange.y - shadowRange.x);
+#if defined(SHADOWS_FILTERED)
+    return filteredVisibility(uShadowMap, tc, depth);
+#else
     ivec2 size = textureSize(uShadowMap, 0);
     vec2 texelPos = tc * vec2(size);
 #if defined(SHADOWS_PCF)
-    // Taps on a grid of one texel inside a disc of radius shadowBias.z texels.
-    float radius = shadowBias.z;
-    int n = int(ceil(radius));
-    float lit = 0.0, count = 0.0;
-    for (int j = -n; j <= n; ++j) {
-        for (int i = -n; i <= n; ++i) {
-            if (float(i * i + j * j) > radius * radius + 1e-3) continue;
-            ivec2 q = clamp(ivec2(floor(texelPos)) + ivec2(i, j), ivec2(0), size - 1);
-            lit += texelFetch(uShadowMap, q, 0).r >= depth ? 1.0 : 0.0;
-            count += 1.0;
-        }
-    }
-    return lit / count;
+    ivec2 centre = ivec2(floor(texelPos));
+    return pcf(centre, size, pcfRadius(centre, size, depth), depth);
 #else
     ivec2 q = clamp(ivec2(floor(texelPos)), ivec2(0), size - 1);
     return texelFetch(uShadowMap, q, 0).r >= depth ? 1.0 : 0.0;
+#endif
 #endif
 #elif defined(SHADOWS_SPHERES)
     // A ray towards the sun; a sphere of another body ahead of the point occludes it.
