@@ -4,6 +4,8 @@
 // inputs are unchanged.
 #pragma once
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -26,12 +28,11 @@ class ParticleSetKey {
                particles.volume == mVolume && particles.normal == mNormal &&
                particles.body == mBody;
     }
+    // The five copies side by side (36 MB at 1M particles, in every frame of a sequence).
     void assign(const core::ParticleSet& particles) {
-        mPosition = particles.position;
-        mH = particles.h;
-        mVolume = particles.volume;
-        mNormal = particles.normal;
-        mBody = particles.body;
+        tbb::parallel_invoke([&] { mPosition = particles.position; }, [&] { mH = particles.h; },
+                             [&] { mVolume = particles.volume; },
+                             [&] { mNormal = particles.normal; }, [&] { mBody = particles.body; });
         mValid = true;
     }
     // Forgets the set, so that an answer interrupted by an exception is not taken as kept.

@@ -1,6 +1,7 @@
 #include "realtime/per_set_gpu.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <bit>
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
@@ -112,10 +114,40 @@ constexpr unsigned DROPLET_SHIFT = 8;
 // The Header block's count of droplets (uint index).
 constexpr std::size_t DROPLET_COUNT = 3;
 
-template <typename T>
-void writeAttribute(gl::Buffer& buffer, std::size_t offset, std::size_t n,
-                    const std::vector<T>& values) {
-    if (values.size() == n) buffer.write(offset * n * sizeof(float), std::span<const T>(values));
+// The set's attributes into `out` as the Attributes buffer lays them out (shaders/per_set.glsl):
+// each attribute a run of n values from its offset (in units of n floats), those a set lacks
+// zero. Copied in parallel chunks: 84 MB at 1M particles.
+void stageAttributes(const core::ParticleSet& ps, std::span<std::byte> out) {
+    const std::size_t n = ps.size();
+    struct Run {
+        std::size_t at;           // bytes into `out`
+        const std::byte* values;  // nullptr: zeros
+        std::size_t bytes;
+    };
+    auto run = [&](std::size_t offset, const auto& values) {
+        const std::size_t bytes = n * sizeof(values[0]);
+        return Run{offset * n * sizeof(float),
+                   values.size() == n ? reinterpret_cast<const std::byte*>(values.data()) : nullptr,
+                   bytes};
+    };
+    const Run runs[] = {run(0, ps.position), run(3, ps.h),     run(4, ps.volume),
+                        run(5, ps.normal),   run(8, ps.body),  run(9, ps.uv),
+                        run(11, ps.dudx),    run(14, ps.dvdx), run(17, ps.glow),
+                        run(20, ps.material)};
+    static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec2) == 8);
+    constexpr std::size_t CHUNK = std::size_t(1) << 20;
+    std::vector<std::pair<const Run*, std::size_t>> chunks;  // run, first byte
+    for (const Run& r : runs)
+        for (std::size_t b = 0; b < r.bytes; b += CHUNK) chunks.emplace_back(&r, b);
+    tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t k) {
+        const auto [r, first] = chunks[k];
+        const std::size_t bytes = std::min(CHUNK, r->bytes - first);
+        std::byte* to = out.data() + r->at + first;
+        if (r->values)
+            std::memcpy(to, r->values + first, bytes);
+        else
+            std::memset(to, 0, bytes);
+    });
 }
 
 bool sameRadiusSettings(const ParticleSettings& a, const ParticleSettings& b) {
@@ -431,20 +463,9 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     // (the grid's counters are cleared in buildGrid), and allocating and zeroing them anew cost
     // more than the rest of the upload.
     const bool kept = resized(mAttributes, ATTRIBUTE_FLOATS * n * sizeof(float)) == Resized::Kept;
-    const bool complete = ps.h.size() == n && ps.volume.size() == n && ps.normal.size() == n &&
-                          ps.body.size() == n && ps.uv.size() == n && ps.dudx.size() == n &&
-                          ps.dvdx.size() == n && ps.glow.size() == n && ps.material.size() == n;
-    if (!complete) mAttributes.clear();  // the attributes a set lacks read as 0
-    writeAttribute(mAttributes, 0, n, ps.position);
-    writeAttribute(mAttributes, 3, n, ps.h);
-    writeAttribute(mAttributes, 4, n, ps.volume);
-    writeAttribute(mAttributes, 5, n, ps.normal);
-    writeAttribute(mAttributes, 8, n, ps.body);
-    writeAttribute(mAttributes, 9, n, ps.uv);
-    writeAttribute(mAttributes, 11, n, ps.dudx);
-    writeAttribute(mAttributes, 14, n, ps.dvdx);
-    writeAttribute(mAttributes, 17, n, ps.glow);
-    writeAttribute(mAttributes, 20, n, ps.material);
+    // Into the staging buffer here; buildGrid's first command copies it to the device.
+    mStagedBytes = ATTRIBUTE_FLOATS * n * sizeof(float);
+    stageAttributes(ps, mStaging.map(mStagedBytes));
     mHeader = gl::Buffer::zeros(HEADER_BYTES);
     resized(mCells, (mMaxCells + 1) * sizeof(std::uint32_t));
     resized(mCellOf, (n + mMaxCells) * sizeof(std::uint32_t));
@@ -508,8 +529,9 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
         p.dispatch(count);
         gl::computeBarrier();
     };
-    mCells.clear();   // COUNT's counts
-    mCellOf.clear();  // SCATTER's fill counts
+    mStaging.copyTo(mAttributes, 0, mStagedBytes);  // upload()'s attributes
+    mCells.clear();                                 // COUNT's counts
+    mCellOf.clear();                                // SCATTER's fill counts
     bindStorage();
     run("INIT", 1);
     run("H_MIN", groups(mCount, GROUP * REDUCED));
@@ -564,7 +586,6 @@ bool GpuPerSet::update(ProgramCache& programs, const core::ParticleSet& ps,
         mModelSettings.reset();
         upload(ps);
         mKey.assign(ps);
-        gl::finish();
         mBuilt = true;
         built = true;
     }

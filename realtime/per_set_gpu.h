@@ -121,7 +121,8 @@ class GpuPerSet {
     static std::size_t dropletDrawOffset();
     std::size_t capacity() const { return mCount; }
     // Wall-clock milliseconds of the last update's upload (0 when the set was kept): the
-    // attributes copied to the device, the set's key compared and kept.
+    // attributes written into the staging buffer (the device's copy from it is timed in
+    // "grid"), the set's key compared and kept.
     double uploadMs() const { return mUploadMs; }
 
     // The stages run since the last call, milliseconds each ("grid", "particle_normals", "radius",
@@ -189,6 +190,8 @@ class GpuPerSet {
     void checkOverruns(const char* stage) const;
 
     std::size_t mCount = 0, mMaxCells = 0;
+    gl::StagingBuffer mStaging;  // upload()'s attributes, copied by buildGrid
+    std::size_t mStagedBytes = 0;
     double mUploadMs = 0.0;
     ParticleSetKey mKey;
     bool mBuilt = false;

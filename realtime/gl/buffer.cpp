@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "realtime/gl/error.h"
 #include "realtime/gl/poison.h"
 
 namespace twinrender::realtime::gl {
@@ -115,6 +117,63 @@ void Buffer::bindStorage(unsigned binding) const {
 
 void Buffer::bindUniform(unsigned binding) const {
     glBindBufferBase(GL_UNIFORM_BUFFER, binding, mHandle.id());
+}
+
+StagingBuffer::~StagingBuffer() {
+    if (mFence) glDeleteSync(static_cast<GLsync>(mFence));
+}
+
+StagingBuffer::StagingBuffer(StagingBuffer&& other) noexcept
+    : mHandle(std::move(other.mHandle)),
+      mMapped(std::exchange(other.mMapped, nullptr)),
+      mSize(std::exchange(other.mSize, 0)),
+      mFence(std::exchange(other.mFence, nullptr)) {}
+
+StagingBuffer& StagingBuffer::operator=(StagingBuffer&& other) noexcept {
+    if (this != &other) {
+        if (mFence) glDeleteSync(static_cast<GLsync>(mFence));
+        mHandle = std::move(other.mHandle);
+        mMapped = std::exchange(other.mMapped, nullptr);
+        mSize = std::exchange(other.mSize, 0);
+        mFence = std::exchange(other.mFence, nullptr);
+    }
+    return *this;
+}
+
+void StagingBuffer::waitForCopies() {
+    if (!mFence) return;
+    const GLsync fence = static_cast<GLsync>(mFence);
+    // Flushes the fence on the first wait, then waits in steps of 1 s until it signals.
+    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
+    while (glClientWaitSync(fence, flags, 1'000'000'000) == GL_TIMEOUT_EXPIRED) flags = 0;
+    glDeleteSync(fence);
+    mFence = nullptr;
+}
+
+std::span<std::byte> StagingBuffer::map(std::size_t bytes) {
+    waitForCopies();
+    if (bytes > mSize || !mHandle) {
+        mHandle = Handle();
+        mMapped = nullptr;
+        mSize = std::max<std::size_t>(bytes, 16);
+        GLuint id = 0;
+        glCreateBuffers(1, &id);
+        mHandle = Handle(id, deleteBuffer);
+        const GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        glNamedBufferStorage(id, static_cast<GLsizeiptr>(mSize), nullptr, flags);
+        mMapped = static_cast<std::byte*>(
+            glMapNamedBufferRange(id, 0, static_cast<GLsizeiptr>(mSize), flags));
+        if (!mMapped) throw Error("could not map a staging buffer for writing");
+    }
+    return {mMapped, bytes};
+}
+
+void StagingBuffer::copyTo(const Buffer& destination, std::size_t offset, std::size_t bytes) {
+    if (bytes == 0) return;
+    glCopyNamedBufferSubData(mHandle.id(), destination.id(), 0, static_cast<GLintptr>(offset),
+                             static_cast<GLsizeiptr>(bytes));
+    if (mFence) glDeleteSync(static_cast<GLsync>(mFence));
+    mFence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
 }
 
 }  // namespace twinrender::realtime::gl

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "realtime/gl/handle.h"
@@ -62,6 +63,32 @@ class Buffer {
   private:
     Handle mHandle;
     std::size_t mSize = 0;
+};
+
+// Host memory the CPU writes through a persistent mapping and the GPU copies from into a
+// Buffer (glCopyNamedBufferSubData): an upload that changes every frame costs one copy by the
+// CPU, into memory the GPU reads by DMA, instead of glNamedBufferSubData's copy into the
+// driver's own staging and the driver's transfer after it. map() waits until the GPU has
+// finished the copies issued from the last mapping (a fence after them).
+class StagingBuffer {
+  public:
+    StagingBuffer() = default;
+    ~StagingBuffer();
+    StagingBuffer(StagingBuffer&& other) noexcept;
+    StagingBuffer& operator=(StagingBuffer&& other) noexcept;
+
+    // `bytes` of mapped memory to write (grown where smaller; contents undefined).
+    std::span<std::byte> map(std::size_t bytes);
+    // Copies bytes [0, bytes) of the mapping into `destination` from `offset` (a GPU command),
+    // then fences it.
+    void copyTo(const Buffer& destination, std::size_t offset, std::size_t bytes);
+
+  private:
+    void waitForCopies();
+    Handle mHandle;
+    std::byte* mMapped = nullptr;
+    std::size_t mSize = 0;
+    void* mFence = nullptr;  // GLsync
 };
 
 }  // namespace twinrender::realtime::gl
