@@ -24,6 +24,7 @@
 #include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
+#include "realtime/gl/readback.h"
 #include "realtime/gl/timer_query.h"
 #include "realtime/gpu_scene.h"
 #include "realtime/impostor_radius.h"
@@ -69,8 +70,8 @@ struct DeviceState {
     AnisotropyCache anisotropy;         // and for the ellipsoids (shape = "ellipsoid")
     DropletCache droplets;              // and for the small droplets' ellipsoids
     GpuPerSet perSetGpu;                // per_set = "gpu": all of the above on the GPU
-    // Read-back buffers, RGBA floats, kept between frames.
-    std::vector<float> normalUv, emission, surface, beautyShadow, display;
+    // The read-back's pixel buffers, kept between frames.
+    gl::TextureReadback readback;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
     core::Image spareImage, spareDisplay;
 };
@@ -630,12 +631,6 @@ PassTargets runPasses(const PassInputs& in) {
 
 // Reads an RGBA32F texture, bottom row first, into `out` (resized; kept by the device between
 // frames, so that its pages are not faulted in again every frame).
-void readTexture(const gl::Texture& texture, const char* name, std::vector<float>& out) {
-    gl::Framebuffer fb(name, {{&texture}});
-    out.resize(static_cast<std::size_t>(texture.width()) * texture.height() * 4);
-    fb.readInto(0, 4, out);
-}
-
 // `spare` when it has the size and channels asked for (its values are stale), else a new
 // image of zeros.
 core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::string> channels) {
@@ -648,22 +643,26 @@ core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::str
 // AOV and display images (frame_assembly.h). Times "readback".
 void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, core::Frame& frame) {
     const auto start = Clock::now();
-    readTexture(t.normalUv(), "read normal", d.normalUv);
+    // Every read queued, then one wait (gl/readback.h).
+    enum Slot : std::size_t { NORMAL_UV, EMISSION, SURFACE, BEAUTY_SHADOW, DISPLAY };
+    gl::TextureReadback& r = d.readback;
+    r.read(NORMAL_UV, t.normalUv());
     // Without emitters the emission buffer is zero, as the image's channels already are.
-    if (emits) readTexture(t.emission(), "read emission", d.emission);
-    readTexture(t.surface(), "read surface", d.surface);
-    readTexture(*t.beauty, "read beauty", d.beautyShadow);
-    readTexture(*t.display, "read display", d.display);
+    if (emits) r.read(EMISSION, t.emission());
+    r.read(SURFACE, t.surface());
+    r.read(BEAUTY_SHADOW, *t.beauty);
+    r.read(DISPLAY, *t.display);
+    r.wait();
     frame.image = reuseOrCreate(d.spareImage, w, h, core::aov::channelNames());
     frame.display = reuseOrCreate(d.spareDisplay, w, h, {"R", "G", "B"});
     ReadBackBuffers buffers;
     buffers.width = w;
     buffers.height = h;
-    buffers.normalUv = d.normalUv;
-    if (emits) buffers.emission = d.emission;
-    buffers.surface = d.surface;
-    buffers.beautyShadow = d.beautyShadow;
-    buffers.display = d.display;
+    buffers.normalUv = r.pixels(NORMAL_UV);
+    if (emits) buffers.emission = r.pixels(EMISSION);
+    buffers.surface = r.pixels(SURFACE);
+    buffers.beautyShadow = r.pixels(BEAUTY_SHADOW);
+    buffers.display = r.pixels(DISPLAY);
     assembleFrame(buffers, frame.image, frame.display);
     frame.timingsMs["readback"] = msSince(start);
 }

@@ -1,0 +1,53 @@
+#include "realtime/gl/readback.h"
+
+#include <epoxy/gl.h>
+
+#include "realtime/gl/error.h"
+
+namespace twinrender::realtime::gl {
+
+namespace {
+void deleteBuffer(unsigned id) {
+    glDeleteBuffers(1, &id);
+}
+}  // namespace
+
+void TextureReadback::read(std::size_t slot, const Texture& texture) {
+    if (slot >= mSlots.size()) mSlots.resize(slot + 1);
+    Slot& s = mSlots[slot];
+    const std::size_t floats = static_cast<std::size_t>(texture.width()) * texture.height() * 4;
+    if (floats > s.floats || !s.buffer) {
+        GLuint id = 0;
+        glCreateBuffers(1, &id);
+        s.buffer = Handle(id, deleteBuffer);
+        const GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        const auto bytes = static_cast<GLsizeiptr>(floats * sizeof(float));
+        glNamedBufferStorage(id, bytes, nullptr, flags | GL_CLIENT_STORAGE_BIT);
+        s.mapped = static_cast<const float*>(glMapNamedBufferRange(id, 0, bytes, flags));
+        if (!s.mapped) throw Error("could not map a pixel buffer for reading");
+        s.floats = floats;
+    }
+    s.read = floats;
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, s.buffer.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(texture.id(), 0, GL_RGBA, GL_FLOAT,
+                      static_cast<GLsizei>(floats * sizeof(float)), nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+}
+
+void TextureReadback::wait() {
+    // The copies' writes into the mapped memory are seen by the CPU once the fence signals.
+    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    const GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
+    while (glClientWaitSync(fence, flags, 1'000'000'000) == GL_TIMEOUT_EXPIRED) flags = 0;
+    glDeleteSync(fence);
+    checkErrors("read back textures");
+}
+
+std::span<const float> TextureReadback::pixels(std::size_t slot) const {
+    const Slot& s = mSlots.at(slot);
+    return {s.mapped, s.read};
+}
+
+}  // namespace twinrender::realtime::gl
