@@ -28,91 +28,13 @@
 #include "realtime/gl/poison.h"
 #include "realtime/gpu_scene.h"
 #include "realtime/occlusion_culling.h"
+#include "realtime/per_set_layout.h"
 
 namespace twinrender::realtime {
 
+using namespace per_set_layout;
+
 namespace {
-
-// shaders/per_set.glsl: floats per particle in the Attributes buffer, and the offsets (in
-// units of n floats) of each attribute.
-constexpr std::size_t ATTRIBUTE_FLOATS = 21;
-constexpr int MAX_LEVELS = 32;
-// The Header block: 4 uints, a draw command, MAX_LEVELS levels of 64 bytes, then indirect
-// dispatches (bytes): the walk list's, the next walk list's, the cell scan's, SORT's, NEAR's.
-constexpr std::size_t LEVELS = 16 + 16;  // the levels' array
-constexpr std::size_t WALK_DISPATCH = LEVELS + MAX_LEVELS * 64;
-constexpr std::size_t NEXT_WALK_DISPATCH = WALK_DISPATCH + 16;
-constexpr std::size_t SCAN_DISPATCH = NEXT_WALK_DISPATCH + 16;
-constexpr std::size_t SORT_DISPATCH = SCAN_DISPATCH + 16;
-constexpr std::size_t NEAR_DISPATCH = SORT_DISPATCH + 16;
-// Then the levels that hold particles (LAYOUT): their count and their numbers, in order.
-constexpr std::size_t USED_LEVELS = NEAR_DISPATCH + 16;
-// Then LEVELS' least kernel coefficient per level, then (16-byte aligned) the sparse particles'
-// list's dispatch (RADIUS_WALK's, which the droplet stages take).
-constexpr std::size_t SPARSE_DISPATCH = (USED_LEVELS + 4 + 2 * MAX_LEVELS * 4 + 15) / 16 * 16;
-// Then FINISH's draw command of the droplets drawn apart.
-constexpr std::size_t DROPLET_DRAW = SPARSE_DISPATCH + 16;
-constexpr std::size_t HEADER_BYTES = DROPLET_DRAW + 16;
-constexpr std::size_t GRID_ENTRY_BYTES = 32;
-constexpr unsigned GROUP = 64;        // local_size_x of the per_set_*.comp stages
-constexpr unsigned REDUCED = 16;      // particles per invocation of H_MIN and LEVELS
-constexpr std::size_t BLOCK = 16384;  // values per work group of scan.comp
-// The coarse culling grid's directions (CullingDirections::coarseCount), per_set_cull.comp's
-// COARSE_DIRECTIONS.
-constexpr std::size_t COARSE_DIRECTIONS = 42;
-
-// Every level has at most max(4 x its particles, 4096) cells.
-std::size_t maxCells(std::size_t particles) {
-    return 4 * particles + 4096 * MAX_LEVELS;
-}
-
-// At most one droplet per two particles (a droplet has two members or more).
-std::size_t maxDroplets(std::size_t particles) {
-    return std::max<std::size_t>(particles / 2, 1);
-}
-
-unsigned groups(std::size_t count, std::size_t per = GROUP) {
-    return static_cast<unsigned>((count + per - 1) / per);
-}
-
-// Binding points of the per-set stages (shaders/per_set_stages.glsl, per_set.glsl).
-enum Binding : unsigned {
-    PARTICLES = 0,
-    ELLIPSOIDS = 4,
-    ATTRIBUTES = 5,
-    HEADER = 6,
-    CELLS = 7,
-    CELL_OF = 8,
-    ENTRIES = 9,
-    SORTED = 10,
-    RADII = 11,
-    FLAGS = 12,
-    MODELS = 13,
-    DRAW_LISTS = 14,
-    DIRECTIONS = 15,
-    DROPLETS = 16,
-    CULL_SPHERES = 17,
-    WALKS = 18,
-    BLOCK_SUMS = 19,    // scan.comp
-    BODIES = 20,        // NORMALS
-    NEAR_MASKS = 21,    // INTERIOR, CULL
-    DROPLET_WORK = 22,  // RADIUS_WALK, the droplet stages
-};
-// Texture units of the buffer textures the walks read (shaders/per_set.glsl; the render passes
-// use units 0-7).
-enum TextureUnit : unsigned {
-    ENTRY_TEXELS = 8,
-    CELL_TEXELS = 9,
-    CULL_SPHERE_TEXELS = 10,
-    DIRECTION_TEXELS = 11,
-    ENTRY_WORD_TEXELS = 12,
-};
-
-// shaders/per_set_stages.glsl: a droplet's first particle holds its droplet's slot + 1 in the
-// flags' bits from DROPLET_SHIFT up.
-constexpr unsigned DROPLET_SHIFT = 8;
-// The Header block's count of droplets (uint index).
-constexpr std::size_t DROPLET_COUNT = 3;
 
 // The set's attributes into `out` as the Attributes buffer lays them out (shaders/per_set.glsl):
 // each attribute a run of n values from its offset (in units of n floats), those a set lacks
@@ -156,69 +78,6 @@ bool sameRadiusSettings(const ParticleSettings& a, const ParticleSettings& b) {
            a.interiorLevel == b.interiorLevel && a.dropletAtoms == b.dropletAtoms;
 }
 
-// 0: no per-particle models, 1: field normals, 2: ellipsoids (shaders/per_set_pack.comp, PACK).
-int modelKind(const ParticleSettings& p) {
-    if (p.shape == ParticleShape::Ellipsoid) return 2;
-    return p.normal == NormalModel::Field ? 1 : 0;
-}
-
-// The file of shaders/ that holds a per-set stage (one #define each): per_set_<group>.comp.
-const char* stageFile(std::string_view stage) {
-    struct Group {
-        const char* file;
-        std::initializer_list<std::string_view> stages;
-    };
-    static const Group GROUPS[] = {
-        {"per_set_grid.comp",
-         {"INIT", "H_MIN", "LEVELS", "LAYOUT", "COUNT", "SCATTER", "SORT", "GATHER"}},
-        {"per_set_radius.comp", {"INTERIOR", "RADIUS", "RADIUS_WALK", "INTERIOR_DRAWN"}},
-        {"per_set_cull.comp", {"CULL_SPHERES", "CULL", "CULL_FULL"}},
-        {"per_set_models.comp", {"NORMALS", "FIELD_NORMAL", "ANISOTROPY"}},
-        {"per_set_droplets.comp",
-         {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"}},
-        {"per_set_pack.comp", {"NEAR_BOUND", "NEAR", "MARK", "PACK", "FINISH"}},
-    };
-    for (const Group& g : GROUPS)
-        if (std::ranges::find(g.stages, stage) != g.stages.end()) return g.file;
-    assert(false && "a per-set stage without a file");
-    return "per_set_grid.comp";
-}
-
-// Stage `stage` of the per-set work, compiled on first use.
-const gl::Program& stageProgram(ProgramCache& programs, const char* stage) {
-    return programs.compute(stageFile(stage), {stage});
-}
-
-// A culling stage (CULL, CULL_FULL), the coarse grid's directions compiled in, and a variant's
-// define (CULL: NEAR_MASKS, INTERIOR's near shells; CULL_FULL: CULL_PROBE, the probe) or "".
-std::vector<std::string> cullDefines(const char* stage, const char* variant) {
-    // The grid is symmetric: the 21 directions whose antipode comes later, then those
-    // antipodes in the same order, so that one dot product tests a direction and its opposite.
-    static const std::string directions = [] {
-        const auto& d = cullingDirections().directions;
-        std::vector<glm::dvec3> half, opposite;
-        for (std::size_t k = 0; k < COARSE_DIRECTIONS; ++k)
-            for (std::size_t m = k + 1; m < COARSE_DIRECTIONS; ++m)
-                if (glm::length(d[k] + d[m]) < 1e-9) {
-                    half.push_back(d[k]);
-                    opposite.push_back(d[m]);
-                }
-        assert(2 * half.size() == COARSE_DIRECTIONS);
-        half.insert(half.end(), opposite.begin(), opposite.end());
-        std::string list;
-        for (std::size_t k = 0; k < half.size(); ++k)
-            list += fmt::format("{}vec3({:.9g}, {:.9g}, {:.9g})", k ? ", " : "", float(half[k].x),
-                                float(half[k].y), float(half[k].z));
-        return list;
-    }();
-    std::vector<std::string> defines = {stage, "COARSE_DIRECTION_VALUES " + directions};
-    if (*variant) defines.emplace_back(variant);
-    return defines;
-}
-const gl::Program& cullProgram(ProgramCache& programs, const char* stage, const char* variant) {
-    return programs.compute("per_set_cull.comp", cullDefines(stage, variant));
-}
-
 // `buffer` kept where it has `bytes` already, else a new one; its contents mean nothing (every
 // stage writes what it reads), so in poison mode (gl/poison.h) a kept buffer is poisoned again:
 // what the last set left must not stand in for what this one's stages write.
@@ -244,13 +103,12 @@ std::size_t perSetTexels(std::size_t particles) {
     return std::max(maxCells(particles) + 1, 2 * particles);
 }
 
-namespace {
 // Whether GL timer queries see compute dispatches on this device: a query around a scan of a
 // million values (4 ms on llvmpipe; on a GPU at least the 3 us its 8 MB of memory traffic take)
 // reads at least 2 us and no more than the wall clock to a glFinish after it. llvmpipe reads
 // 1 ns around compute (and may answer a context's first query with a timestamp). Probed once
 // per renderer (GL_RENDERER) in a process.
-bool timerQueriesSeeCompute(ProgramCache& programs) {
+bool per_set_layout::timerQueriesSeeCompute(ProgramCache& programs) {
     static std::map<std::string, bool> probed;
     const std::string renderer = gl::currentRenderer();
     if (const auto it = probed.find(renderer); it != probed.end()) return it->second;
@@ -282,87 +140,6 @@ bool timerQueriesSeeCompute(ProgramCache& programs) {
     }
     probed.emplace(renderer, seen);
     return seen;
-}
-}  // namespace
-
-PerSetRequest perSetRequest(const Settings& settings) {
-    PerSetRequest request;
-    request.particles = settings.particles;
-    // The culling test is exact for spheres only (renderer.cpp's uploadCpu says why).
-    request.cull =
-        settings.particles.cullHidden && settings.particles.shape == ParticleShape::Sphere;
-    request.droplets = mayHaveDroplets(settings.particles);
-    return request;
-}
-
-std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request) {
-    std::vector<ProgramVariant> out;
-    auto add = [&](const char* file, std::vector<std::string> defines) {
-        out.push_back(ProgramVariant::computeProgram(file, std::move(defines)));
-    };
-    for (const char* stage : {"BLOCKS", "SUMS", "ADD"}) add("scan.comp", {stage});
-    std::vector<const char*> stages = {"INIT",    "H_MIN",    "LEVELS", "LAYOUT",
-                                       "COUNT",   "SCATTER",  "SORT",   "GATHER",
-                                       "NORMALS", "INTERIOR", "RADIUS", "RADIUS_WALK",
-                                       "MARK",    "PACK",     "FINISH", "INTERIOR_DRAWN"};
-    if (request.cull) stages.insert(stages.end(), {"CULL_SPHERES", "NEAR_BOUND", "NEAR"});
-    if (request.droplets)
-        stages.insert(stages.end(),
-                      {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"});
-    const int kind = modelKind(request.particles);
-    if (kind == 1) stages.push_back("FIELD_NORMAL");
-    if (kind == 2) stages.push_back("ANISOTROPY");
-    for (const char* stage : stages) add(stageFile(stage), {stage});
-    if (request.cull)
-        for (const auto& [stage, variant] :
-             {std::pair{"CULL", request.particles.radius == RadiusModel::Field ? "NEAR_MASKS" : ""},
-              {"CULL_FULL", "CULL_PROBE"},
-              {"CULL_FULL", ""}})
-            add("per_set_cull.comp", cullDefines(stage, variant));
-    return out;
-}
-
-void checkPerSetLayouts(const gl::Program& program) {
-    struct Expected {
-        const char* name;
-        std::size_t offset, stride;
-    };
-    static const Expected EXPECTED[] = {
-        {"nearHit", 4, 0},
-        {"dropletCount", DROPLET_COUNT * 4, 0},
-        {"drawParticles", GpuPerSet::particleDrawOffset(), 0},
-        {"levels[0].minX", LEVELS, 64},
-        {"levels[0].hMaxBits", LEVELS + 28, 64},
-        {"walkDispatch.groups", WALK_DISPATCH, 0},
-        {"walkDispatch.entries", WALK_DISPATCH + 12, 0},
-        {"nextWalkDispatch.groups", NEXT_WALK_DISPATCH, 0},
-        {"scanDispatch", SCAN_DISPATCH, 0},
-        {"sortDispatch", SORT_DISPATCH, 0},
-        {"nearDispatch", NEAR_DISPATCH, 0},
-        {"usedLevels", USED_LEVELS, 0},
-        {"levelList[0]", USED_LEVELS + 4, 0},
-        {"levelCoefficientMin[0]", USED_LEVELS + 4 + MAX_LEVELS * 4, 0},
-        {"sparseDispatch.groups", SPARSE_DISPATCH, 0},
-        {"drawDroplets", DROPLET_DRAW, 0},
-        {"particles[0].positionRadius", 0, sizeof(GpuParticle)},
-        {"particles[0].hessianOffDiagonal", offsetof(GpuParticle, hessianOffDiagonal),
-         sizeof(GpuParticle)},
-    };
-    for (const Expected& e : EXPECTED) {
-        const auto found = program.bufferVariable(e.name);
-        if (!found) continue;  // not active in this stage
-        if (found->offset != static_cast<long long>(e.offset) ||
-            (e.stride != 0 && found->topLevelStride != static_cast<long long>(e.stride)))
-            throw gl::Error(fmt::format(
-                "program '{}': the driver lays out '{}' at byte {} (array stride {}), "
-                "per_set_gpu.cpp expects byte {} (stride {})",
-                program.name(), e.name, found->offset, found->topLevelStride, e.offset, e.stride));
-    }
-}
-
-void compilePerSetPrograms(ProgramCache& programs, const PerSetRequest& request) {
-    for (const ProgramVariant& v : perSetPrograms(request)) checkPerSetLayouts(v.build(programs));
-    timerQueriesSeeCompute(programs);  // set-up, not a frame's work: the stages' clock
 }
 
 void GpuPerSet::checkOverruns(const char* stage) const {
@@ -898,91 +675,6 @@ std::map<std::string, double> GpuPerSet::takeTimings() {
     for (const auto& [stage, query] : mQueries) mTimings[stage] += query.milliseconds();
     mQueries.clear();
     return std::exchange(mTimings, {});
-}
-
-std::uint32_t GpuPerSet::drawnCount() const {
-    if (mCount == 0) return 0;
-    const std::uint32_t particles = mHeader.read<std::uint32_t>(particleDrawOffset() / 4, 1)[0] / 6;
-    return particles + (dropletsApart() ? dropletCount() : 0);
-}
-
-std::uint32_t GpuPerSet::dropletCount() const {
-    if (mCount == 0) return 0;
-    return mHeader.read<std::uint32_t>(DROPLET_COUNT, 1)[0];
-}
-
-std::size_t GpuPerSet::dropletDrawOffset() {
-    return DROPLET_DRAW;
-}
-
-std::vector<float> GpuPerSet::radii() const {
-    return mRadii.read<float>(0, mCount);
-}
-
-std::vector<glm::vec3> GpuPerSet::normals() const {
-    const std::vector<float> xyz = mAttributes.read<float>(5 * mCount, 3 * mCount);
-    std::vector<glm::vec3> out(mCount);
-    for (std::size_t i = 0; i < mCount; ++i)
-        out[i] = glm::vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    return out;
-}
-
-std::vector<std::uint32_t> GpuPerSet::visibleParticles() const {
-    const std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
-    std::vector<std::uint32_t> out;
-    for (std::size_t i = 0; i < flags.size(); ++i)
-        if (!(flags[i] & 2u)) out.push_back(static_cast<std::uint32_t>(i));
-    return out;
-}
-
-std::vector<std::pair<std::uint32_t, Ellipsoid>> GpuPerSet::droplets() const {
-    const std::uint32_t count = dropletCount();
-    if (count == 0) return {};
-    const std::vector<std::uint32_t> flags = mFlags.read<std::uint32_t>(0, mCount);
-    const std::vector<glm::vec4> records = mDroplets.read<glm::vec4>(0, 3 * count);
-    std::vector<std::pair<std::uint32_t, Ellipsoid>> out;
-    for (std::size_t i = 0; i < flags.size(); ++i) {
-        const std::uint32_t slot = flags[i] >> DROPLET_SHIFT;
-        if (slot == 0) continue;
-        Ellipsoid e;
-        for (int a = 0; a < 3; ++a) {
-            const glm::vec4& r = records[3 * (slot - 1) + a];
-            e.axes[a] = glm::vec3(r);
-            e.shift[a] = r.w;
-        }
-        out.emplace_back(static_cast<std::uint32_t>(i), e);
-    }
-    return out;
-}
-
-GpuPerSet::Grid GpuPerSet::grid() const {
-    Grid g;
-    if (mCount == 0) return g;
-    g.totalCells = mHeader.read<std::uint32_t>(2, 1)[0];  // the Header's totalCells
-    g.sorted = mSorted.read<std::uint32_t>(0, mCount);
-    g.cellStart = mCells.read<std::uint32_t>(0, std::min<std::size_t>(g.totalCells, mMaxCells) + 1);
-    const std::vector<glm::uvec4> words = mEntries.read<glm::uvec4>(0, 2 * mCount);
-    for (std::size_t k = 0; k < mCount; ++k) {
-        const glm::uvec4& p = words[2 * k];
-        g.entryPosition.emplace_back(std::bit_cast<float>(p.x), std::bit_cast<float>(p.y),
-                                     std::bit_cast<float>(p.z));
-        g.entryIndex.push_back(words[2 * k + 1].z);
-    }
-    return g;
-}
-
-std::vector<std::uint32_t> GpuPerSet::flags() const {
-    return mFlags.read<std::uint32_t>(0, mCount);
-}
-
-std::vector<std::uint32_t> GpuPerSet::drawnPrefix() const {
-    if (!mDrawLists || mCount == 0) return {};
-    return mDrawLists->read<std::uint32_t>(0, mCount + 1);
-}
-
-std::vector<glm::vec4> GpuPerSet::models() const {
-    if (!mModelBuffer) return {};
-    return mModelBuffer->read<glm::vec4>(0, 3 * mCount);
 }
 
 }  // namespace twinrender::realtime
