@@ -31,45 +31,24 @@
 #include "realtime/light_frustum.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/passes.h"
+#include "realtime/per_set.h"
 #include "realtime/per_set_gpu.h"
 #include "realtime/program_variants.h"
 #include "realtime/surface_kernels.h"
 
 namespace twinrender::realtime {
 
-// per_set = "cpu": a set that came without normals (core::buildParticles leaves them to the
-// real-time renderer), copied with core::deriveNormals' normals and kept for the set.
-class DerivedNormalsCache {
-  public:
-    const core::ParticleSet& particles(const core::SceneParticles& in) {
-        mGiven = in.hasNormals;
-        if (mGiven) return in.particles;
-        return mCache.get(in.particles, [&] {
-            core::ParticleSet out = in.particles;
-            core::deriveNormals(out, in.bodies);
-            return out;
-        });
-    }
-    bool reused() const { return mGiven || mCache.reused(); }
-
-  private:
-    bool mGiven = false;
-    SetCache<core::ParticleSet> mCache;
-};
-
 struct DeviceState {
     explicit DeviceState(const gl::Context& c) : context(c) {}
     const gl::Context& context;
     gl::Limits limits;
     ProgramCache programs;
-    DerivedNormalsCache normals;        // the particle normals, where a set comes without them
-    OcclusionCuller culler;             // keeps the last particle set's answer (view-independent)
-    FieldNormalCache fieldNormals;      // the same for the G-buffer's field normal models
-    ImpostorRadiusCache radii;          // and for the impostor radii
-    SurfaceKernelCache surfaceKernels;  // and for the kernels the gradient pass adds
-    AnisotropyCache anisotropy;         // and for the ellipsoids (shape = "ellipsoid")
-    DropletCache droplets;              // and for the small droplets' ellipsoids
-    GpuPerSet perSetGpu;                // per_set = "gpu": all of the above on the GPU
+    // The work done once per particle set, each back end keeping its answers (per_set.h).
+    std::unique_ptr<PerSetWork> perSetCpu = makeCpuPerSetWork();
+    std::unique_ptr<PerSetWork> perSetGpu = makeGpuPerSetWork();
+    PerSetWork& perSet(const Settings& settings) const {
+        return settings.perSet == PerSetDevice::Gpu ? *perSetGpu : *perSetCpu;
+    }
     // The read-back's pixel buffers, kept between frames.
     gl::TextureReadback readback;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
@@ -90,11 +69,6 @@ std::vector<std::string> Device::programNames() const {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// The stages of the work done once per particle set (timings_ms; 0 when they do not run or
-// an unchanged set reuses them). "upload" and, with per_set = "gpu", "pack" are per frame.
-constexpr const char* PER_SET_STAGES[] = {"grid",    "particle_normals", "radius",     "droplets",
-                                          "kernels", "field_normals",    "anisotropy", "cull"};
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -132,24 +106,6 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
     u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale, impostorNormal, 0.0);
     (void)particles;
     return u;
-}
-
-// Occlusion culling assumes that every ray starts outside all spheres. Rays start at the near
-// plane; every point of the frustum in front of it lies within nearReach of the eye, so no
-// sphere reaching into that ball means the near plane cannot cut a body open.
-double nearReach(const core::Camera& camera) {
-    const double t = camera.tanHalfFovY();
-    return camera.settings().near *
-           std::sqrt(1.0 + t * t * (1.0 + camera.aspect() * camera.aspect()));
-}
-
-bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera,
-                    std::span<const float> radii) {
-    const double reach = nearReach(camera);
-    for (std::size_t i = 0; i < ps.size(); ++i)
-        if (glm::length(glm::dvec3(ps.position[i]) - camera.position()) - radii[i] <= reach)
-            return false;
-    return true;
 }
 
 bool sceneEmits(const core::ParticleSet& ps, const std::vector<core::Material>& materials) {
@@ -233,241 +189,44 @@ void checkBufferLimits(const core::RenderInput& in, const DeviceState& d, std::s
             in.scene.file.string(), texels, limits.maxTextureBufferTexels, d.context.renderer()));
 }
 
-// What upload() puts on the device: the scene's buffers, and the particles' kernels when the
-// normals come from the colour field's gradient (the CPU path's own buffers, or the GPU path's).
+// What upload() puts on the device: the scene's buffers, and the per-set work's draws.
 struct Uploaded {
     SceneBuffers scene;
-    std::unique_ptr<gl::Buffer> particles, ellipsoids, kernels;  // per_set = "cpu"
-    const gl::Buffer* kernelBuffer = nullptr;  // those that reach the surface (surface_kernels.h)
-    DrawList kernelDraw;
+    PerSetDraws draws;
 };
 
-// The drawn particles: those that may be seen (`culled`, hidden ones removed; empty = all)
-// that have a surface of their own (radius > 0). Empty with `nothingDrawn` set when none has.
-std::vector<std::uint32_t> withSurface(std::span<const std::uint32_t> culled,
-                                       std::span<const float> radii, bool& nothingDrawn) {
-    std::vector<std::uint32_t> drawn;
-    nothingDrawn = false;
-    if (std::find(radii.begin(), radii.end(), 0.0f) == radii.end())
-        return {culled.begin(), culled.end()};
-    if (culled.empty()) {
-        for (std::size_t i = 0; i < radii.size(); ++i)
-            if (radii[i] > 0.0f) drawn.push_back(static_cast<std::uint32_t>(i));
-    } else {
-        for (std::uint32_t i : culled)
-            if (radii[i] > 0.0f) drawn.push_back(i);
-    }
-    nothingDrawn = drawn.empty();
-    return drawn;
-}
-
-// The frame uniforms and the materials, uploaded; the particle buffers are left to the caller.
-SceneBuffers sceneBuffers(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
-                          const Settings& settings, std::size_t particles) {
+// The frame uniforms, the materials and the per-set work's draws (per_set.h), uploaded.
+Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
+                const Settings& settings, core::Frame& frame) {
+    const auto start = Clock::now();
     const LightFrustum light =
         fitLightFrustum(in.particles.boundsMin, in.particles.boundsMax, in.scene.camera.position,
                         in.scene.light.direction, settings.shadowMap.resolution);
     const FrameUniforms uniforms = makeUniforms(in.scene, camera, in.particles, settings, light);
     const GpuMaterials gpuMaterials = packMaterials(in.materials);
-    checkBufferLimits(in, d, particles, gpuMaterials.texels.size() / 3, settings.perSet);
-    return {gl::Buffer::of(std::span<const FrameUniforms>(&uniforms, 1)),
-            nullptr,
-            gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
-                                  gl::BufferFormat::RGB32F),
-            gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
-            {},
-            nullptr,
-            std::nullopt};
-}
-
-// per_set = "cpu": the particles that may be seen (hidden ones culled where that is exact,
-// those without a surface left out) with their impostor radii, ellipsoids and field normal
-// models, packed on the CPU and uploaded with the materials and the frame uniforms. Times
-// "radius", "kernels", "anisotropy", "field_normals" and "cull" (kept per particle set by the
-// device) and "upload" (the rest), counts "particles_drawn" and "per_set_builds".
-Uploaded uploadCpu(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
-                   const Settings& settings, core::Frame& frame) {
-    const auto start = Clock::now();
-    auto timed = [&](const char* stage, const auto& work) -> decltype(auto) {
-        const auto stageStart = Clock::now();
-        decltype(auto) result = work();
-        frame.timingsMs[stage] = msSince(stageStart);
-        return result;
-    };
-    const core::ParticleSet& ps = timed(
-        "particle_normals", [&]() -> auto& { return d.normals.particles(in.particles); });
-    bool built = !d.normals.reused();
-    std::span<const float> radii = timed(
-        "radius", [&]() -> auto& { return d.radii.radii(ps, settings.particles); });
-    built |= !d.radii.reused();
-    // Small droplets, one ellipsoid each: their members' spheres are replaced.
-    const Droplets* droplets = nullptr;
-    if (mayHaveDroplets(settings.particles)) {
-        droplets = &timed(
-            "droplets", [&]() -> auto& {
-                return d.droplets.droplets(ps, radii, settings.particles.surfaceLevel,
-                                           settings.particles.dropletAtoms);
-            });
-        built |= !d.droplets.reused();
-        if (droplets->firsts.empty()) droplets = nullptr;
-    }
-    frame.counters["droplets"] = droplets ? static_cast<double>(droplets->firsts.size()) : 0.0;
-    if (droplets) radii = droplets->radii;
-    const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
-    // Spheres keep the sphere programs; the droplets are drawn apart, first in the buffers.
-    const bool dropletsApart = droplets && !anisotropic;
-    const std::vector<Ellipsoid>* ellipsoids = nullptr;
-    std::vector<Ellipsoid> anisotropicWithDroplets;
-    if (anisotropic) {
-        ellipsoids = &timed(
-            "anisotropy", [&]() -> auto& {
-                return d.anisotropy.ellipsoids(ps, radii, settings.particles.anisotropy);
-            });
-        built |= !d.anisotropy.reused();
-        if (droplets) {
-            anisotropicWithDroplets = *ellipsoids;
-            for (std::uint32_t first : droplets->firsts)
-                anisotropicWithDroplets[first] = droplets->ellipsoids[first];
-            ellipsoids = &anisotropicWithDroplets;
-        }
-    }
-    // The culling test is exact for spheres only: an ellipsoid inside the union of its
-    // neighbours' bounding spheres may still show between their ellipsoids. Droplets are
-    // culled as nothing and drawn whatever the spheres hide.
-    std::span<const float> cullRadii = droplets ? droplets->cullRadii : radii;
-    std::span<const std::uint32_t> culled;
-    if (settings.particles.cullHidden && !anisotropic && cullingIsExact(ps, camera, cullRadii)) {
-        culled = timed(
-            "cull", [&]() -> auto& { return d.culler.unoccluded(ps, cullRadii); });
-        built |= !d.culler.reused();
-    }
-    bool nothingDrawn = false;
-    std::vector<std::uint32_t> drawn = withSurface(culled, cullRadii, nothingDrawn);
-    if (droplets) {
-        // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly: the droplets
-        // go first (apart) or in index order (every particle an ellipsoid).
-        std::vector<std::uint32_t> all;
-        if (dropletsApart) {
-            all = droplets->firsts;
-            all.insert(all.end(), drawn.begin(), drawn.end());
-        } else {
-            std::merge(drawn.begin(), drawn.end(), droplets->firsts.begin(), droplets->firsts.end(),
-                       std::back_inserter(all));
-        }
-        drawn = std::move(all);
-        nothingDrawn = false;
-    }
-    frame.counters["particles_drawn"] =
-        nothingDrawn ? 0.0 : static_cast<double>(drawn.empty() ? ps.size() : drawn.size());
-    std::span<const FieldNormal> fieldNormalModels;
-    std::vector<FieldNormal> withDropletNormals;
-    if (settings.particles.normal == NormalModel::Field) {
-        fieldNormalModels = timed(
-            "field_normals", [&]() -> auto& { return d.fieldNormals.normals(ps, radii, drawn); });
-        built |= !d.fieldNormals.reused();
-        if (droplets) {
-            // A droplet's normal is its ellipsoid's, not a model about its first particle.
-            withDropletNormals.assign(fieldNormalModels.begin(), fieldNormalModels.end());
-            for (std::size_t k = 0; k < drawn.size(); ++k)
-                if (std::binary_search(droplets->firsts.begin(), droplets->firsts.end(), drawn[k]))
-                    withDropletNormals[k] = dropletNormalModel(droplets->ellipsoids[drawn[k]]);
-            fieldNormalModels = withDropletNormals;
-        }
-    }
-    const std::vector<GpuParticle> gpuParticles =
-        nothingDrawn ? std::vector<GpuParticle>{}
-                     : packParticles(ps, in.scene.camera.position, radii, drawn, fieldNormalModels);
+    const std::size_t texels = gpuMaterials.texels.size() / 3;
+    checkBufferLimits(in, d, 0, texels, settings.perSet);
     Uploaded out{
-        sceneBuffers(d, in, camera, settings, gpuParticles.size()), {}, {}, {}, nullptr, {}};
-    out.particles =
-        std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuParticle>(gpuParticles)));
-    out.scene.particles = out.particles.get();
-    out.scene.draw.count = gpuParticles.size();
-    if (dropletsApart) {
-        const std::size_t count = droplets->firsts.size();
-        const std::vector<GpuEllipsoid> packed =
-            packEllipsoids(droplets->ellipsoids, droplets->firsts);
-        out.ellipsoids =
-            std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuEllipsoid>(packed)));
-        out.scene.droplets = SceneBuffers::Droplets{out.ellipsoids.get(), {count}};
-        out.scene.draw = {gpuParticles.size() - count, nullptr, 0, count};
-    } else if (ellipsoids) {
-        const std::vector<GpuEllipsoid> packed =
-            nothingDrawn ? std::vector<GpuEllipsoid>{} : packEllipsoids(*ellipsoids, drawn);
-        out.ellipsoids =
-            std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuEllipsoid>(packed)));
-        out.scene.ellipsoids = out.ellipsoids.get();
-    }
-    if (usesKernels(settings)) {
-        const std::vector<std::uint32_t>& reaching = timed(
-            "kernels", [&]() -> auto& {
-                return d.surfaceKernels.kernels(ps, settings.particles.surfaceLevel);
-            });
-        built |= !d.surfaceKernels.reused();
-        frame.counters["kernels_splatted"] = static_cast<double>(reaching.size());
-        if (!reaching.empty()) {
-            const std::vector<GpuKernel> packed =
-                packKernels(ps, in.scene.camera.position, reaching);
-            out.kernels =
-                std::make_unique<gl::Buffer>(gl::Buffer::of(std::span<const GpuKernel>(packed)));
-            out.kernelBuffer = out.kernels.get();
-            out.kernelDraw.count = packed.size();
-        }
-    }
-    frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
-    gl::checkErrors("upload");
-    gl::finish();
-    double perSet = 0.0;
-    for (const char* stage : PER_SET_STAGES) perSet += frame.timingsMs[stage];
-    frame.timingsMs["upload"] = msSince(start) - perSet;
+        .scene = {.uniforms = gl::Buffer::of(std::span<const FrameUniforms>(&uniforms, 1)),
+                  .particles = nullptr,
+                  .texels = gl::BufferTexture::of(std::span<const float>(gpuMaterials.texels),
+                                                  gl::BufferFormat::RGB32F),
+                  .materials = gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
+                  .draw = {},
+                  .ellipsoids = nullptr,
+                  .droplets = std::nullopt},
+        .draws = {}};
+    const double sceneMs = msSince(start);
+    out.draws = d.perSet(settings).prepare(
+        d.programs, in, camera, settings,
+        [&](std::size_t records) { checkBufferLimits(in, d, records, texels, settings.perSet); },
+        frame);
+    out.scene.particles = out.draws.particles;
+    out.scene.draw = out.draws.draw;
+    out.scene.ellipsoids = out.draws.ellipsoids;
+    out.scene.droplets = out.draws.droplets;
+    frame.timingsMs["upload"] += sceneMs;  // the uniforms and materials too
     return out;
-}
-
-// per_set = "gpu" (per_set_gpu.h): the particles' attributes uploaded once per set, the per-set
-// answers computed and the draw lists packed by compute passes; the draws take their counts
-// from indirect commands. Times "upload" (wall clock) and the GPU stages (timer queries, read
-// after the frame by readGpuTimings), counts "per_set_builds".
-Uploaded uploadGpu(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
-                   const Settings& settings, core::Frame& frame) {
-    const core::ParticleSet& ps = in.particles.particles;
-    Uploaded out{sceneBuffers(d, in, camera, settings, ps.size()), {}, {}, {}, nullptr, {}};
-    const PerSetRequest request = perSetRequest(settings);
-    GpuPerSet& g = d.perSetGpu;
-    const bool built =
-        g.update(d.programs, ps, request,
-                 in.particles.hasNormals ? std::span<const core::BodyInfo>() : in.particles.bodies);
-    frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
-    frame.timingsMs["upload"] = g.uploadMs();
-    g.pack(d.programs, {in.scene.camera.position, nearReach(camera)});
-    gl::checkErrors("per-set compute passes");
-    if (ps.size() == 0) {
-        out.particles = std::make_unique<gl::Buffer>(gl::Buffer::zeros(16));
-        out.scene.particles = out.particles.get();
-        return out;
-    }
-    out.scene.particles = &g.particles();
-    out.scene.draw = {0, &g.drawCommands(), GpuPerSet::particleDrawOffset()};
-    if (g.ellipsoidsDrawn()) out.scene.ellipsoids = &g.ellipsoids();
-    if (g.dropletsApart())
-        out.scene.droplets = SceneBuffers::Droplets{
-            &g.dropletEllipsoids(), {0, &g.drawCommands(), GpuPerSet::dropletDrawOffset()}};
-    return out;
-}
-
-Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera& camera,
-                const Settings& settings, core::Frame& frame) {
-    return settings.perSet == PerSetDevice::Gpu ? uploadGpu(d, in, camera, settings, frame)
-                                                : uploadCpu(d, in, camera, settings, frame);
-}
-
-// per_set = "gpu": the compute stages' GPU times and the draw counts, once the frame is done.
-void readGpuPerSet(DeviceState& d, const Settings& settings, core::Frame& frame) {
-    if (settings.perSet != PerSetDevice::Gpu) return;
-    for (const auto& [stage, ms] : d.perSetGpu.takeTimings()) frame.timingsMs[stage] = ms;
-    d.perSetGpu.afterFrame();
-    frame.counters["particles_drawn"] = d.perSetGpu.drawnCount();
-    frame.counters["droplets"] = d.perSetGpu.dropletCount();
-    // normal = "gradient": the gradient is gathered through the grid, no kernel is splatted.
 }
 
 // ---- Passes ----
@@ -707,15 +466,16 @@ core::Frame Renderer::render(const core::RenderInput& in) {
 
     const auto totalStart = Clock::now();
     const Uploaded uploaded = upload(d, in, camera, mSettings, frame);
-    PassInputs passInputs{
-        d.programs,          uploaded.scene, mSettings,      uploaded.kernelBuffer,
-        uploaded.kernelDraw, camera.width(), camera.height()};
+    PassInputs passInputs{.programs = d.programs,
+                          .scene = uploaded.scene,
+                          .settings = mSettings,
+                          .kernels = uploaded.draws.kernels,
+                          .kernelDraw = uploaded.draws.kernelDraw,
+                          .width = camera.width(),
+                          .height = camera.height()};
     passInputs.emits = emits;
-    if (mSettings.perSet == PerSetDevice::Gpu && usesKernels(mSettings) &&
-        !in.particles.particles.position.empty()) {
-        passInputs.gradientGrid = &d.perSetGpu;
-        passInputs.camera = in.scene.camera.position;
-    }
+    passInputs.gradientGrid = uploaded.draws.gradientGrid;
+    passInputs.camera = in.scene.camera.position;
     passInputs.exposure = static_cast<float>(in.scene.camera.exposure);
     if (mSettings.shadows == ShadowMode::Spheres) {
         passInputs.spheres = occlusionSpheres(in.particles);
@@ -726,7 +486,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     core::throwIfCancelled(in.cancel);
     const PassTargets targets = runPasses(passInputs);
     readBack(d, targets, emits, camera.width(), camera.height(), frame);
-    readGpuPerSet(d, mSettings, frame);
+    d.perSet(mSettings).afterFrame(frame);
     for (const auto& [name, query] : targets.timers) frame.timingsMs[name] = query.milliseconds();
     frame.timingsMs["total"] = msSince(totalStart);
     return frame;

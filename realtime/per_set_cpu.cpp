@@ -1,0 +1,245 @@
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/derived_attributes.h"
+#include "realtime/anisotropy.h"
+#include "realtime/droplets.h"
+#include "realtime/field_normal.h"
+#include "realtime/gl/error.h"
+#include "realtime/gl/pipeline.h"
+#include "realtime/gpu_scene.h"
+#include "realtime/impostor_radius.h"
+#include "realtime/occlusion_culling.h"
+#include "realtime/particle_set_key.h"
+#include "realtime/per_set.h"
+#include "realtime/surface_kernels.h"
+
+namespace twinrender::realtime {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// per_set = "cpu": a set that came without normals (core::buildParticles leaves them to the
+// real-time renderer), copied with core::deriveNormals' normals and kept for the set.
+class DerivedNormalsCache {
+  public:
+    const core::ParticleSet& particles(const core::SceneParticles& in) {
+        mGiven = in.hasNormals;
+        if (mGiven) return in.particles;
+        return mCache.get(in.particles, [&] {
+            core::ParticleSet out = in.particles;
+            core::deriveNormals(out, in.bodies);
+            return out;
+        });
+    }
+    bool reused() const { return mGiven || mCache.reused(); }
+
+  private:
+    bool mGiven = false;
+    SetCache<core::ParticleSet> mCache;
+};
+
+// Whether no sphere reaches into the near plane's ball (nearReach): culling is exact then.
+bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera,
+                    std::span<const float> radii) {
+    const double reach = nearReach(camera);
+    for (std::size_t i = 0; i < ps.size(); ++i)
+        if (glm::length(glm::dvec3(ps.position[i]) - camera.position()) - radii[i] <= reach)
+            return false;
+    return true;
+}
+
+// The drawn particles: those that may be seen (`culled`, hidden ones removed; empty = all)
+// that have a surface of their own (radius > 0). Empty with `nothingDrawn` set when none has.
+std::vector<std::uint32_t> withSurface(std::span<const std::uint32_t> culled,
+                                       std::span<const float> radii, bool& nothingDrawn) {
+    std::vector<std::uint32_t> drawn;
+    nothingDrawn = false;
+    if (std::find(radii.begin(), radii.end(), 0.0f) == radii.end())
+        return {culled.begin(), culled.end()};
+    if (culled.empty()) {
+        for (std::size_t i = 0; i < radii.size(); ++i)
+            if (radii[i] > 0.0f) drawn.push_back(static_cast<std::uint32_t>(i));
+    } else {
+        for (std::uint32_t i : culled)
+            if (radii[i] > 0.0f) drawn.push_back(i);
+    }
+    nothingDrawn = drawn.empty();
+    return drawn;
+}
+
+// per_set = "cpu": the particles that may be seen (hidden ones culled where that is exact,
+// those without a surface left out) with their impostor radii, ellipsoids and field normal
+// models, packed on the CPU and uploaded with the materials and the frame uniforms. Times
+// "radius", "kernels", "anisotropy", "field_normals" and "cull" (kept per particle set by the
+// device) and "upload" (the rest), counts "particles_drawn" and "per_set_builds".
+class CpuPerSetWork final : public PerSetWork {
+  public:
+    PerSetDraws prepare(ProgramCache& /*programs*/, const core::RenderInput& in,
+                        const core::Camera& camera, const Settings& settings,
+                        const std::function<void(std::size_t)>& checkRecords,
+                        core::Frame& frame) override {
+        const auto start = Clock::now();
+        auto timed = [&](const char* stage, const auto& work) -> decltype(auto) {
+            const auto stageStart = Clock::now();
+            decltype(auto) result = work();
+            frame.timingsMs[stage] = msSince(stageStart);
+            return result;
+        };
+        const core::ParticleSet& ps = timed(
+            "particle_normals", [&]() -> auto& { return mNormals.particles(in.particles); });
+        bool built = !mNormals.reused();
+        std::span<const float> radii = timed(
+            "radius", [&]() -> auto& { return mRadii.radii(ps, settings.particles); });
+        built |= !mRadii.reused();
+        // Small droplets, one ellipsoid each: their members' spheres are replaced.
+        const Droplets* droplets = nullptr;
+        if (mayHaveDroplets(settings.particles)) {
+            droplets = &timed(
+                "droplets", [&]() -> auto& {
+                    return mDroplets.droplets(ps, radii, settings.particles.surfaceLevel,
+                                              settings.particles.dropletAtoms);
+                });
+            built |= !mDroplets.reused();
+            if (droplets->firsts.empty()) droplets = nullptr;
+        }
+        frame.counters["droplets"] = droplets ? static_cast<double>(droplets->firsts.size()) : 0.0;
+        if (droplets) radii = droplets->radii;
+        const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
+        // Spheres keep the sphere programs; the droplets are drawn apart, first in the buffers.
+        const bool dropletsApart = droplets && !anisotropic;
+        const std::vector<Ellipsoid>* ellipsoids = nullptr;
+        std::vector<Ellipsoid> anisotropicWithDroplets;
+        if (anisotropic) {
+            ellipsoids = &timed(
+                "anisotropy", [&]() -> auto& {
+                    return mAnisotropy.ellipsoids(ps, radii, settings.particles.anisotropy);
+                });
+            built |= !mAnisotropy.reused();
+            if (droplets) {
+                anisotropicWithDroplets = *ellipsoids;
+                for (std::uint32_t first : droplets->firsts)
+                    anisotropicWithDroplets[first] = droplets->ellipsoids[first];
+                ellipsoids = &anisotropicWithDroplets;
+            }
+        }
+        // The culling test is exact for spheres only: an ellipsoid inside the union of its
+        // neighbours' bounding spheres may still show between their ellipsoids. Droplets are
+        // culled as nothing and drawn whatever the spheres hide.
+        std::span<const float> cullRadii = droplets ? droplets->cullRadii : radii;
+        std::span<const std::uint32_t> culled;
+        if (settings.particles.cullHidden && !anisotropic &&
+            cullingIsExact(ps, camera, cullRadii)) {
+            culled = timed(
+                "cull", [&]() -> auto& { return mCuller.unoccluded(ps, cullRadii); });
+            built |= !mCuller.reused();
+        }
+        bool nothingDrawn = false;
+        std::vector<std::uint32_t> drawn = withSurface(culled, cullRadii, nothingDrawn);
+        if (droplets) {
+            // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly: the droplets
+            // go first (apart) or in index order (every particle an ellipsoid).
+            std::vector<std::uint32_t> all;
+            if (dropletsApart) {
+                all = droplets->firsts;
+                all.insert(all.end(), drawn.begin(), drawn.end());
+            } else {
+                std::merge(drawn.begin(), drawn.end(), droplets->firsts.begin(),
+                           droplets->firsts.end(), std::back_inserter(all));
+            }
+            drawn = std::move(all);
+            nothingDrawn = false;
+        }
+        frame.counters["particles_drawn"] =
+            nothingDrawn ? 0.0 : static_cast<double>(drawn.empty() ? ps.size() : drawn.size());
+        std::span<const FieldNormal> fieldNormalModels;
+        std::vector<FieldNormal> withDropletNormals;
+        if (settings.particles.normal == NormalModel::Field) {
+            fieldNormalModels = timed(
+                "field_normals", [&]() -> auto& {
+                    return mFieldNormals.normals(ps, radii, drawn);
+                });
+            built |= !mFieldNormals.reused();
+            if (droplets) {
+                // A droplet's normal is its ellipsoid's, not a model about its first particle.
+                withDropletNormals.assign(fieldNormalModels.begin(), fieldNormalModels.end());
+                for (std::size_t k = 0; k < drawn.size(); ++k)
+                    if (std::binary_search(droplets->firsts.begin(), droplets->firsts.end(),
+                                           drawn[k]))
+                        withDropletNormals[k] = dropletNormalModel(droplets->ellipsoids[drawn[k]]);
+                fieldNormalModels = withDropletNormals;
+            }
+        }
+        const std::vector<GpuParticle> gpuParticles =
+            nothingDrawn
+                ? std::vector<GpuParticle>{}
+                : packParticles(ps, in.scene.camera.position, radii, drawn, fieldNormalModels);
+        checkRecords(gpuParticles.size());
+        PerSetDraws out;
+        mParticles = gl::Buffer::of(std::span<const GpuParticle>(gpuParticles));
+        out.particles = &mParticles;
+        out.draw.count = gpuParticles.size();
+        if (dropletsApart) {
+            const std::size_t count = droplets->firsts.size();
+            const std::vector<GpuEllipsoid> packed =
+                packEllipsoids(droplets->ellipsoids, droplets->firsts);
+            mEllipsoids = gl::Buffer::of(std::span<const GpuEllipsoid>(packed));
+            out.droplets = SceneBuffers::Droplets{&mEllipsoids, {count}};
+            out.draw = {gpuParticles.size() - count, nullptr, 0, count};
+        } else if (ellipsoids) {
+            const std::vector<GpuEllipsoid> packed =
+                nothingDrawn ? std::vector<GpuEllipsoid>{} : packEllipsoids(*ellipsoids, drawn);
+            mEllipsoids = gl::Buffer::of(std::span<const GpuEllipsoid>(packed));
+            out.ellipsoids = &mEllipsoids;
+        }
+        if (usesKernels(settings)) {
+            const std::vector<std::uint32_t>& reaching = timed(
+                "kernels", [&]() -> auto& {
+                    return mSurfaceKernels.kernels(ps, settings.particles.surfaceLevel);
+                });
+            built |= !mSurfaceKernels.reused();
+            frame.counters["kernels_splatted"] = static_cast<double>(reaching.size());
+            if (!reaching.empty()) {
+                const std::vector<GpuKernel> packed =
+                    packKernels(ps, in.scene.camera.position, reaching);
+                mKernels = gl::Buffer::of(std::span<const GpuKernel>(packed));
+                out.kernels = &mKernels;
+                out.kernelDraw.count = packed.size();
+            }
+        }
+        frame.counters["per_set_builds"] = built ? 1.0 : 0.0;
+        gl::checkErrors("upload");
+        gl::finish();
+        double perSet = 0.0;
+        for (const char* stage : PER_SET_STAGES) perSet += frame.timingsMs[stage];
+        frame.timingsMs["upload"] = msSince(start) - perSet;
+        return out;
+    }
+
+  private:
+    DerivedNormalsCache mNormals;        // the particle normals, where a set comes without them
+    ImpostorRadiusCache mRadii;          // the impostor radii
+    DropletCache mDroplets;              // the small droplets' ellipsoids
+    AnisotropyCache mAnisotropy;         // the ellipsoids (shape = "ellipsoid")
+    OcclusionCuller mCuller;             // the culling (view-independent)
+    FieldNormalCache mFieldNormals;      // the G-buffer's field normal models
+    SurfaceKernelCache mSurfaceKernels;  // the kernels the gradient pass adds
+    gl::Buffer mParticles, mEllipsoids, mKernels;  // the frame's records
+};
+
+}  // namespace
+
+std::unique_ptr<PerSetWork> makeCpuPerSetWork() {
+    return std::make_unique<CpuPerSetWork>();
+}
+
+}  // namespace twinrender::realtime
