@@ -75,8 +75,7 @@ double msSince(Clock::time_point start) {
 }
 
 FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
-                           const core::SceneParticles& particles, const Settings& settings,
-                           const LightFrustum& light) {
+                           const Settings& settings, const LightFrustum& light) {
     const core::CameraSettings& cs = scene.camera;
     FrameUniforms u;
     glm::dmat4 view = camera.viewMatrix();
@@ -104,7 +103,6 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
                                   : settings.particles.normal == NormalModel::Sphere ? 1.0
                                                                                      : 0.0;
     u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale, impostorNormal, 0.0);
-    (void)particles;
     return u;
 }
 
@@ -202,7 +200,7 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     const LightFrustum light =
         fitLightFrustum(in.particles.boundsMin, in.particles.boundsMax, in.scene.camera.position,
                         in.scene.light.direction, settings.shadowMap.resolution);
-    const FrameUniforms uniforms = makeUniforms(in.scene, camera, in.particles, settings, light);
+    const FrameUniforms uniforms = makeUniforms(in.scene, camera, settings, light);
     const GpuMaterials gpuMaterials = packMaterials(in.materials);
     const std::size_t texels = gpuMaterials.texels.size() / 3;
     checkBufferLimits(in, d, 0, texels, settings.perSet);
