@@ -6,10 +6,21 @@
 
 namespace twinrender::realtime {
 
+std::size_t gbufferBytesPerPixel(GBufferFormat format, DepthMode mode) {
+    const std::size_t colour = format == GBufferFormat::Compact ? 8 + 8 + 16 : 3 * 16;
+    (void)mode;  // Depth24 and Depth32F both take 4 bytes a pixel
+    return colour + 4;
+}
+
 GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int width, int height,
-                       DepthMode mode) {
-    GBuffer g{gl::Texture(width, height, gl::Format::RGBA32F),
-              gl::Texture(width, height, gl::Format::RGBA32F),
+                       DepthMode mode, GBufferFormat format) {
+    // "compact": the normal + uv and the emission in half floats, as the seed's renderer kept
+    // them; the surface target (eye depth, body, radius, material) stays 32-bit: a body index
+    // above 2048 and a depth's relative precision need it.
+    const gl::Format small =
+        format == GBufferFormat::Compact ? gl::Format::RGBA16F : gl::Format::RGBA32F;
+    GBuffer g{gl::Texture(width, height, small),
+              gl::Texture(width, height, small),
               gl::Texture(width, height, gl::Format::RGBA32F),
               // "standard" is what a default framebuffer gives: 24-bit fixed point.
               gl::Texture(width, height,

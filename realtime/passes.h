@@ -91,14 +91,19 @@ glm::vec2 shadowExponents(ShadowMode mode, const ShadowMapSettings& settings);
 
 // gbuffer: impostors from the camera, depth test in the selected encoding.
 struct GBuffer {
-    gl::Texture normalUv;  // RGBA32F: world normal (octahedral, octahedral.h), u, v
-    gl::Texture emission;  // RGBA32F: emission, 0
+    // RGBA32F, or RGBA16F with gbuffer.format = "compact": world normal (octahedral,
+    // octahedral.h), u, v
+    gl::Texture normalUv;
+    gl::Texture emission;  // RGBA32F (RGBA16F "compact"): emission, 0
     gl::Texture surface;   // RGBA32F: eye depth (+inf background), body (-1), radius px, material
     gl::Texture depth;     // Depth24 (standard) or Depth32F
     gl::Framebuffer framebuffer;
 };
 GBuffer runGBufferPass(ProgramCache& programs, const SceneBuffers& scene, int width, int height,
-                       DepthMode mode);
+                       DepthMode mode, GBufferFormat format);
+// The G-buffer's bytes per pixel (its three colour targets and depth), for the frame's
+// gbuffer_bytes counter.
+std::size_t gbufferBytesPerPixel(GBufferFormat format, DepthMode mode);
 
 // gradient (realtime.particles.normal = "gradient"): the G-buffer's normal + uv with the normal
 // replaced by the colour field's exact gradient direction at each covered pixel's surface point,

@@ -316,8 +316,8 @@ const Pass PASSES[] = {
      }},
     {"gbuffer", always,
      [](const PassInputs& in, PassTargets& t) {
-         t.gbuffer.emplace(
-             runGBufferPass(in.programs, in.scene, in.width, in.height, in.settings.depth));
+         t.gbuffer.emplace(runGBufferPass(in.programs, in.scene, in.width, in.height,
+                                          in.settings.depth, in.settings.gbufferFormat));
      }},
     // Not under a depth filter, whose normals are rebuilt from the filtered depth (upload
     // leaves the kernels out then).
@@ -475,6 +475,9 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.gradientGrid = uploaded.draws.gradientGrid;
     passInputs.camera = in.scene.camera.position;
     passInputs.exposure = static_cast<float>(in.scene.camera.exposure);
+    frame.counters["gbuffer_bytes"] =
+        static_cast<double>(gbufferBytesPerPixel(mSettings.gbufferFormat, mSettings.depth)) *
+        camera.width() * camera.height();
     if (mSettings.shadows == ShadowMode::Spheres) {
         passInputs.spheres = occlusionSpheres(in.particles);
         for (auto& s : passInputs.spheres) s.centre -= in.scene.camera.position;

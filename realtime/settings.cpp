@@ -44,6 +44,10 @@ std::string_view toString(DepthMode mode) {
     return "log";
 }
 
+std::string_view toString(GBufferFormat format) {
+    return format == GBufferFormat::Compact ? "compact" : "full";
+}
+
 std::string_view toString(ShadowMode mode) {
     switch (mode) {
         case ShadowMode::None:
@@ -219,6 +223,10 @@ Settings parseSettings(const core::ParameterTable& t) {
     Settings s;
     s.depth = parseDepthMode(
         t.getEnum("depth", std::string(toString(d.depth)), {"log", "standard", "reversed"}));
+    s.gbufferFormat = t.getEnum("gbuffer.format", std::string(toString(d.gbufferFormat)),
+                                {"full", "compact"}) == "compact"
+                          ? GBufferFormat::Compact
+                          : GBufferFormat::Full;
     s.perSet = t.getEnum("per_set", std::string(toString(d.perSet)), {"gpu", "cpu"}) == "cpu"
                    ? PerSetDevice::Cpu
                    : PerSetDevice::Gpu;
@@ -303,6 +311,7 @@ Settings parseSettings(const core::ParameterTable& t) {
 nlohmann::json toJson(const Settings& s) {
     return {
         {"realtime.depth", toString(s.depth)},
+        {"realtime.gbuffer.format", toString(s.gbufferFormat)},
         {"realtime.shadows", toString(s.shadows)},
         {"realtime.per_set", toString(s.perSet)},
         {"realtime.particles.radius_scale", s.particles.radiusScale},

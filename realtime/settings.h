@@ -12,6 +12,12 @@ namespace twinrender::realtime {
 
 // How the depth buffer stores depth (docs/scenes.md, realtime.depth). The Z channel of the frame is
 // linear eye depth in every mode.
+// How the G-buffer stores the normal, uv and emission (docs/scenes.md, realtime.gbuffer.format).
+enum class GBufferFormat {
+    Full,     // "full": 32-bit floats (48 bytes a pixel with the surface target)
+    Compact,  // "compact": 16-bit floats for normal + uv and emission (32 bytes a pixel)
+};
+
 enum class DepthMode {
     Standard,  // "standard": the perspective z/w in a 24-bit fixed-point buffer (GL's default)
     Log,       // "log": log2(1 + z/near) / log2(1 + far/near) in a float buffer
@@ -285,8 +291,9 @@ enum class PerSetDevice {
 };
 
 struct Settings {
-    DepthMode depth = DepthMode::Log;         // depth: "log" | "standard" | "reversed"
-    PerSetDevice perSet = PerSetDevice::Gpu;  // per_set: "gpu" | "cpu"
+    DepthMode depth = DepthMode::Log;                   // depth: "log" | "standard" | "reversed"
+    GBufferFormat gbufferFormat = GBufferFormat::Full;  // gbuffer.format: "full" | "compact"
+    PerSetDevice perSet = PerSetDevice::Gpu;            // per_set: "gpu" | "cpu"
     // shadows: "map" | "pcf" | "spheres" | "none" | "esm" | "vsm" | "evsm"
     ShadowMode shadows = ShadowMode::Map;
     ParticleSettings particles;
@@ -321,6 +328,7 @@ Settings parseSettings(const core::ParameterTable& table);
 nlohmann::json toJson(const Settings& settings);
 
 std::string_view toString(DepthMode mode);
+std::string_view toString(GBufferFormat format);
 std::string_view toString(ShadowMode mode);
 std::string_view toString(EsmForm form);
 std::string_view toString(NormalModel model);

@@ -31,6 +31,7 @@ TEST(Settings, DefaultsFollowScenesMd) {
 
 TEST(Settings, ReadsEveryKey) {
     const Settings s = parseSettings(table({{"depth", std::string("reversed")},
+                                            {"gbuffer.format", std::string("compact")},
                                             {"per_set", std::string("cpu")},
                                             {"shadows", std::string("pcf")},
                                             {"particles.radius_scale", 1.1},
@@ -53,6 +54,7 @@ TEST(Settings, ReadsEveryKey) {
                                             {"bloom.strength", 0.2},
                                             {"bloom.threshold", 2.0}}));
     EXPECT_EQ(s.depth, DepthMode::Reversed);
+    EXPECT_EQ(s.gbufferFormat, GBufferFormat::Compact);
     EXPECT_EQ(s.perSet, PerSetDevice::Cpu);
     EXPECT_EQ(s.shadows, ShadowMode::Pcf);
     EXPECT_DOUBLE_EQ(s.particles.radiusScale, 1.1);
@@ -82,7 +84,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.per_set"), "cpu");
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
-    EXPECT_EQ(j.size(), 54u);
+    EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
+    EXPECT_EQ(j.size(), 55u);
 }
 
 TEST(Settings, ReadsTheParticleShapeKeys) {

@@ -57,7 +57,9 @@ void main() {
     uint beyond = data[4];  // the word after the buffer's 4
     for (uint k = 0u; k < uWrites; ++k) data[k] = k;
     data[0] = beyond;
-})"});
+})",
+                                                       .files = {},
+                                                       .spans = {}});
     for (const unsigned writes : {4u, 5u}) {
         const Buffer data = Buffer::storage(4 * sizeof(std::uint32_t));
         data.bindStorage(0);

@@ -20,6 +20,8 @@ GLenum internalFormat(Format format) {
     switch (format) {
         case Format::RGBA32F:
             return GL_RGBA32F;
+        case Format::RGBA16F:
+            return GL_RGBA16F;
         case Format::RG32F:
             return GL_RG32F;
         case Format::R32F:

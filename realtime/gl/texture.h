@@ -9,6 +9,7 @@ namespace twinrender::realtime::gl {
 
 enum class Format {
     RGBA32F,
+    RGBA16F,  // half floats: 10-bit mantissas
     RG32F,
     R32F,
     Depth24,   // 24-bit fixed point: what a default framebuffer offers
