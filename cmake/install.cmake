@@ -22,7 +22,9 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri")
+# libegl1 is libglvnd's libEGL.so.1, which libepoxy opens at run time (no link names it, so
+# dpkg-shlibdeps cannot find it); a debootstrap'ed Debian 12 lacks it.
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl1, libegl-mesa0, libgl1-mesa-dri")
 # ffmpeg: videos of sequences (optional; reports say when it is missing).
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "ffmpeg")
 # `cmake --install` and cpack need only the installed targets built (scripts/package builds
