@@ -14,6 +14,7 @@
 #include "compare/metric_table.h"
 #include "compare/thresholds.h"
 #include "core/install_layout.h"
+#include "core/stage_table.h"
 #include "report/study_summary.h"
 
 namespace twinrender::app {
@@ -1014,19 +1015,12 @@ report::LineChart alongChart(const std::vector<const StudyRow*>& rows, const std
 
 // Stages in the order a frame runs them (realtime/README.md); others after them by name.
 std::vector<std::string> stageOrder(const std::vector<report::SettingMedians>& settings) {
-    std::vector<std::string> order = {"total",   "radius",  "cull",    "upload",
-                                      "shadow",  "gbuffer", "normals", "ssss",
-                                      "surface", "shade",   "post",    "readback"};
     std::set<std::string> seen;
     // A stage under 0.1 ms in every setting is per-particle-set work done in the warm-up frame.
     for (const auto& s : settings)
         for (const auto& [stage, ms] : s.timingsMs)
             if (ms >= 0.1) seen.insert(stage);
-    std::vector<std::string> out;
-    for (const auto& st : order)
-        if (seen.erase(st)) out.push_back(st);
-    out.insert(out.end(), seen.begin(), seen.end());
-    return out;
+    return core::inStageOrder({seen.begin(), seen.end()});
 }
 
 double timeOf(const report::SettingMedians& s) {

@@ -4,12 +4,21 @@
 #include <memory>
 #include <span>
 
+#include "core/stage_table.h"
 #include "realtime/gl/error.h"
 #include "realtime/per_set_gpu.h"
 
 namespace twinrender::realtime {
 
 void PerSetWork::afterFrame(core::Frame&) {}
+
+std::vector<std::string> perSetStages() {
+    std::vector<std::string> out;
+    for (const core::StageInfo& s : core::stageTable())
+        if (s.cadence == core::StageCadence::Set && s.renderer == "realtime")
+            out.emplace_back(s.key);
+    return out;
+}
 
 double nearReach(const core::Camera& camera) {
     const double t = camera.tanHalfFovY();

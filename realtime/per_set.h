@@ -10,6 +10,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/renderer.h"
@@ -21,11 +23,10 @@ namespace twinrender::realtime {
 
 class GpuPerSet;
 
-// The stages of the work done once per particle set (timings_ms; 0 when they do not run or an
-// unchanged set reuses them). "upload" and, on the GPU, "pack" are per frame.
-inline constexpr const char* PER_SET_STAGES[] = {
-    "grid",    "particle_normals", "radius",     "droplets",
-    "kernels", "field_normals",    "anisotropy", "cull"};
+// The stages of the work done once per particle set: core/stage_table.h's with cadence Set (0
+// in a frame when they do not run or an unchanged set reuses them). "upload" and, on the GPU,
+// "pack" are per frame.
+std::vector<std::string> perSetStages();
 
 // A frame's particles as the passes draw them.
 struct PerSetDraws {
@@ -44,7 +45,7 @@ class PerSetWork {
   public:
     virtual ~PerSetWork() = default;
     // The draws of a frame of `in` seen by `camera`, the per-set answers built anew where the
-    // set or the settings they depend on changed. Times its stages (PER_SET_STAGES, "upload",
+    // set or the settings they depend on changed. Times its stages (perSetStages(), "upload",
     // "pack") and counts particles_drawn, droplets, kernels_splatted and per_set_builds into
     // `frame`; calls `checkRecords(n)` before it makes n packed particles' records (throws
     // where the device cannot hold them). The buffers live until the next prepare().

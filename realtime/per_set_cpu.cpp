@@ -220,7 +220,7 @@ class CpuPerSetWork final : public PerSetWork {
         gl::checkErrors("upload");
         gl::finish();
         double perSet = 0.0;
-        for (const char* stage : PER_SET_STAGES) perSet += frame.timingsMs[stage];
+        for (const std::string& stage : perSetStages()) perSet += frame.timingsMs[stage];
         frame.timingsMs["upload"] = msSince(start) - perSet;
         return out;
     }

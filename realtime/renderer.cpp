@@ -451,7 +451,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     frame.device = d.context.renderer();
     frame.settings = toJson(mSettings);
     frame.particleCount = in.particles.particles.size();
-    for (const char* stage : PER_SET_STAGES) frame.timingsMs[stage] = 0.0;
+    for (const std::string& stage : perSetStages()) frame.timingsMs[stage] = 0.0;
     for (const char* stage : {"upload", "pack", "readback"}) frame.timingsMs[stage] = 0.0;
     for (const Pass& pass : PASSES) frame.timingsMs[pass.name] = 0.0;
 

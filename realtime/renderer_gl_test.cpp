@@ -10,6 +10,7 @@
 
 #include "core/camera.h"
 #include "core/shading.h"
+#include "core/stage_table.h"
 #include "realtime/gl/context.h"
 #include "realtime/renderer.h"
 #include "realtime/testing/gl_test_scene.h"
@@ -468,6 +469,26 @@ TEST_F(RendererTest, CompactGBufferKeepsNormalsAndUvWithinHalfPrecision) {
     EXPECT_LT(worstDegrees, 0.1);
     EXPECT_LE(worstUv, 4.9e-4);
     EXPECT_GT(worstUv, 0.0) << "the compact targets must round: half floats hold no more";
+}
+
+// Every stage a frame times is a row of core/stage_table.h (the reports, sweeps and studies
+// order and describe stages from it), on both per-set paths and with the optional passes on.
+TEST_F(RendererTest, EveryTimedStageIsInTheStageTable) {
+    TestScene t;
+    t.slab(0, {-1.0f, -1.0f, 0.0f}, 8, 8, 0.25f,
+           [](int x, int y) { return glm::vec2(x / 8.0f, y / 8.0f); });
+    t.finish();
+    for (const PerSetDevice where : {PerSetDevice::Cpu, PerSetDevice::Gpu}) {
+        Settings s;
+        s.perSet = where;
+        s.shadows = ShadowMode::Pcf;
+        s.particles.normal = NormalModel::Gradient;
+        s.particles.shape = ParticleShape::Ellipsoid;
+        const core::Frame f = render(t, s);
+        ASSERT_FALSE(f.timingsMs.empty());
+        for (const auto& [stage, ms] : f.timingsMs)
+            EXPECT_NE(core::findStage(stage), nullptr) << stage << " (" << toString(where) << ")";
+    }
 }
 
 TEST_F(RendererTest, PassesTheSettingsDoNotNeedDoNotRun) {

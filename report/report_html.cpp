@@ -11,6 +11,7 @@
 #include "compare/metric_table.h"
 #include "compare/settings_keys.h"
 #include "core/image_io.h"
+#include "core/stage_table.h"
 #include "core/write_roots.h"
 #include "report/buffer_display.h"
 #include "report/html_page.h"
@@ -312,12 +313,6 @@ std::string metricTable(const SceneReport& s) {
     return h;
 }
 
-const std::vector<std::string>& stageOrder() {
-    static const std::vector<std::string> order = {"shadow", "gbuffer", "ssss", "shade",
-                                                   "post",   "build",   "trace"};
-    return order;
-}
-
 // A stage's time, with a bar of its share of the renderer's total.
 std::string stageCell(const std::map<std::string, double>& t, const std::string& stage) {
     auto it = t.find(stage);
@@ -346,12 +341,7 @@ std::string timingTable(const SceneReport& s) {
         for (const auto& [stage, ms] : s.renderers.at(r).timingsMs)
             if (stage != "total" && std::find(stages.begin(), stages.end(), stage) == stages.end())
                 stages.push_back(stage);
-    std::stable_sort(stages.begin(), stages.end(), [](const std::string& a, const std::string& b) {
-        const auto& o = stageOrder();
-        const auto ia = std::find(o.begin(), o.end(), a) - o.begin();
-        const auto ib = std::find(o.begin(), o.end(), b) - o.begin();
-        return ia != ib ? ia < ib : a < b;
-    });
+    stages = core::inStageOrder(std::move(stages));  // the order a frame runs them
     std::string h = "<table class=\"timings\">\n<thead><tr><th>Stage</th>";
     for (const auto& r : renderers)
         h += "<th class=\"num\">" + htmlEscape(rendererLabel(r)) +

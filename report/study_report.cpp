@@ -9,6 +9,7 @@
 #include "compare/json_number.h"
 #include "compare/metric_table.h"
 #include "core/image_io.h"
+#include "core/stage_table.h"
 #include "core/write_roots.h"
 #include "report/csv.h"
 #include "report/html_page.h"
@@ -41,7 +42,7 @@ std::vector<std::string> columnsOf(const StudyResult& s, Get get,
     for (const auto& k : first)
         if (all.erase(k)) cols.push_back(k);
     std::vector<std::string> rest(all.begin(), all.end());
-    if (metrics) rest = inMetricOrder(std::move(rest));
+    rest = metrics ? inMetricOrder(std::move(rest)) : core::inStageOrder(std::move(rest));
     cols.insert(cols.end(), rest.begin(), rest.end());
     return cols;
 }
@@ -122,8 +123,7 @@ json studyJson(const StudyResult& s) {
 
 std::string studyCsv(const StudyResult& s) {
     const auto stages = columnsOf(
-        s, [](const StudyRow& r) -> const auto& { return r.timingsMs; },
-        {"total", "shadow", "gbuffer", "ssss", "shade", "post"}, false);
+        s, [](const StudyRow& r) -> const auto& { return r.timingsMs; }, {}, false);
     const auto metrics = columnsOf(
         s, [](const StudyRow& r) -> const auto& { return r.metrics; }, s.columns, true);
     const bool scenes = spansScenes(s);

@@ -15,6 +15,7 @@
 #include "compare/thresholds.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/stage_table.h"
 #include "core/write_roots.h"
 #include "report/csv.h"
 #include "report/html_page.h"
@@ -189,15 +190,8 @@ std::vector<std::string> stageColumns(const SweepReport& s) {
     std::set<std::string> all;
     for (const SweepRow& r : s.rows)
         for (const auto& [k, v] : r.timingsMs) all.insert(k);
-    // The total, then the stages in pipeline order (real-time, then raymarcher), then others.
-    static const std::vector<std::string> order = {"total",    "cull",  "upload", "shadow",
-                                                   "gbuffer",  "ssss",  "shade",  "post",
-                                                   "readback", "build", "trace"};
-    std::vector<std::string> cols;
-    for (const auto& st : order)
-        if (all.erase(st)) cols.push_back(st);
-    cols.insert(cols.end(), all.begin(), all.end());
-    return cols;
+    // The stages in the order a frame runs them (core/stage_table.h), the total first.
+    return core::inStageOrder({all.begin(), all.end()});
 }
 
 }  // namespace
