@@ -107,11 +107,10 @@ std::size_t perSetTexels(std::size_t particles) {
 // million values (4 ms on llvmpipe; on a GPU at least the 3 us its 8 MB of memory traffic take)
 // reads at least 2 us and no more than the wall clock to a glFinish after it. llvmpipe reads
 // 1 ns around compute (and may answer a context's first query with a timestamp). Probed once
-// per renderer (GL_RENDERER) in a process.
+// per program cache (a device's programs: ProgramCache::timerQueriesSeeCompute).
 bool per_set_layout::timerQueriesSeeCompute(ProgramCache& programs) {
-    static std::map<std::string, bool> probed;
-    const std::string renderer = gl::currentRenderer();
-    if (const auto it = probed.find(renderer); it != probed.end()) return it->second;
+    std::optional<bool>& probed = programs.timerQueriesSeeCompute();
+    if (probed) return *probed;
     constexpr std::size_t VALUES = std::size_t(1) << 20;
     const gl::Buffer data = gl::Buffer::zeros(VALUES * sizeof(std::uint32_t));
     const gl::Buffer sums = gl::Buffer::zeros(64 * sizeof(std::uint32_t));
@@ -138,7 +137,7 @@ bool per_set_layout::timerQueriesSeeCompute(ProgramCache& programs) {
         const double ms = query.milliseconds();
         seen = ms >= 2e-3 && ms <= wall;
     }
-    probed.emplace(renderer, seen);
+    probed = seen;
     return seen;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -54,8 +55,14 @@ class ProgramCache {
                                 std::span<const std::string> defines);
     static std::string computeName(std::string_view file, std::span<const std::string> defines);
 
+    // Whether the device's GL timer queries see compute dispatches, once per_set_gpu.cpp's
+    // probe has run with these programs (the device they were compiled for): kept here, with
+    // the device's programs, not in a process-wide table.
+    std::optional<bool>& timerQueriesSeeCompute() { return mTimerQueriesSeeCompute; }
+
   private:
     std::map<std::string, gl::Program, std::less<>> mPrograms;
+    std::optional<bool> mTimerQueriesSeeCompute;
 };
 
 }  // namespace twinrender::realtime
