@@ -1,0 +1,48 @@
+#include "raymarch/ao_hemisphere.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace twinrender::raymarch {
+namespace {
+
+// SplitMix64's finaliser (Steele, Lea and Flood 2014): a well-mixed 64-bit hash.
+std::uint64_t mix(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+// A number in [0, 1) from the top 53 bits of a hash.
+double unit(std::uint64_t x) {
+    return static_cast<double>(x >> 11) * 0x1.0p-53;
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> aoDirections(const glm::dvec3& normal, int side, std::uint64_t seed) {
+    // An orthonormal frame about the normal (Frisvad's, with the branch of Duff et al. 2017).
+    const double sign = std::copysign(1.0, normal.z);
+    const double a = -1.0 / (sign + normal.z), b = normal.x * normal.y * a;
+    const glm::dvec3 u(1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x);
+    const glm::dvec3 v(b, sign + normal.y * normal.y * a, -normal.y);
+    std::vector<glm::dvec3> out;
+    out.reserve(static_cast<std::size_t>(side) * side);
+    for (int i = 0; i < side; ++i) {
+        for (int j = 0; j < side; ++j) {
+            const std::uint64_t h = mix(seed * 0x100000001b3ull + mix(i * side + j));
+            const double s = (i + unit(h)) / side, t = (j + unit(mix(h))) / side;
+            const double r = std::sqrt(s), phi = 2.0 * M_PI * t;
+            const double z = std::sqrt(std::max(0.0, 1.0 - s));
+            out.push_back(glm::normalize(z * normal + r * (std::cos(phi) * u + std::sin(phi) * v)));
+        }
+    }
+    return out;
+}
+
+double aoStandardError(double open, int samples) {
+    return std::sqrt(std::clamp(open, 0.0, 1.0) * (1.0 - std::clamp(open, 0.0, 1.0)) / samples);
+}
+
+}  // namespace twinrender::raymarch

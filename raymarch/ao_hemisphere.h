@@ -1,0 +1,25 @@
+// The directions the reference's ambient occlusion traces from a surface point (issue 27,
+// "Ambient occlusion"): cosine-weighted over the hemisphere about the normal, so the fraction
+// of them that reach distance R unblocked is the cosine-weighted unoccluded fraction, the
+// factor the shared shading model multiplies its ambient term by.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace twinrender::raymarch {
+
+// `side` x `side` unit directions about `normal` (a unit vector), one per stratum of the unit
+// square mapped onto the disc (r = sqrt(u), phi = 2 pi v) and lifted onto the hemisphere
+// (Malley's method, so the density is cos(theta) / pi). Each is jittered inside its stratum by
+// a hash of (seed, stratum): fixed for a given seed (a pixel's index), so the result is the
+// same on every thread count.
+std::vector<glm::dvec3> aoDirections(const glm::dvec3& normal, int side, std::uint64_t seed);
+
+// The standard error of the unoccluded fraction `open` estimated from `samples` directions.
+// Jittered stratification never has a larger variance than independent samples, so the
+// binomial value sqrt(open (1 - open) / samples) bounds it (at most 0.5 / sqrt(samples)).
+double aoStandardError(double open, int samples);
+
+}  // namespace twinrender::raymarch
