@@ -17,9 +17,6 @@
 #include "core/cancellation.h"
 #include "core/derived_attributes.h"
 #include "core/error.h"
-#include "realtime/anisotropy.h"
-#include "realtime/droplets.h"
-#include "realtime/field_normal.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
@@ -27,14 +24,12 @@
 #include "realtime/gl/readback.h"
 #include "realtime/gl/timer_query.h"
 #include "realtime/gpu_scene.h"
-#include "realtime/impostor_radius.h"
 #include "realtime/light_frustum.h"
 #include "realtime/occlusion_culling.h"
 #include "realtime/passes.h"
 #include "realtime/per_set.h"
 #include "realtime/per_set_gpu.h"
 #include "realtime/program_variants.h"
-#include "realtime/surface_kernels.h"
 
 namespace twinrender::realtime {
 

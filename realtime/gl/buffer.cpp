@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "realtime/gl/error.h"
+#include "realtime/gl/pipeline.h"
 #include "realtime/gl/poison.h"
 
 namespace twinrender::realtime::gl {
@@ -142,11 +143,7 @@ StagingBuffer& StagingBuffer::operator=(StagingBuffer&& other) noexcept {
 
 void StagingBuffer::waitForCopies() {
     if (!mFence) return;
-    const GLsync fence = static_cast<GLsync>(mFence);
-    // Flushes the fence on the first wait, then waits in steps of 1 s until it signals.
-    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
-    while (glClientWaitSync(fence, flags, 1'000'000'000) == GL_TIMEOUT_EXPIRED) flags = 0;
-    glDeleteSync(fence);
+    waitAndDelete(mFence);
     mFence = nullptr;
 }
 

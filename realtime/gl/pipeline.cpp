@@ -58,6 +58,13 @@ void finish() {
     glFinish();
 }
 
+void waitAndDelete(void* sync) {
+    const GLsync fence = static_cast<GLsync>(sync);
+    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
+    while (glClientWaitSync(fence, flags, 1'000'000'000) == GL_TIMEOUT_EXPIRED) flags = 0;
+    glDeleteSync(fence);
+}
+
 Limits queryLimits() {
     Limits l;
     GLint64 block = 0;

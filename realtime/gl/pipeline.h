@@ -44,6 +44,8 @@ void memoryBarrierAll();
 // shader's storage writes.
 void computeBarrier();
 void finish();
+// Waits until the fence `sync` (a GLsync) has signalled, flushing it first, then deletes it.
+void waitAndDelete(void* sync);
 
 struct Limits {
     long long maxStorageBlockBytes = 0;    // GL_MAX_SHADER_STORAGE_BLOCK_SIZE

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include "realtime/gl/error.h"
+#include "realtime/gl/pipeline.h"
 
 namespace twinrender::realtime::gl {
 
@@ -38,10 +39,7 @@ void TextureReadback::read(std::size_t slot, const Texture& texture) {
 void TextureReadback::wait() {
     // The copies' writes into the mapped memory are seen by the CPU once the fence signals.
     glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
-    const GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
-    while (glClientWaitSync(fence, flags, 1'000'000'000) == GL_TIMEOUT_EXPIRED) flags = 0;
-    glDeleteSync(fence);
+    waitAndDelete(glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0));
     checkErrors("read back textures");
 }
 
