@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "compare/distance_transform.h"
 #include "core/error.h"
@@ -412,6 +413,58 @@ ShadowResult shadowError(const core::Image& reference, const core::Image& test,
     result.missedShadow = sums[4] / sums[0];
     result.leak = sums[5] / sums[0];
     result.mae = sums[6] / sums[0];
+    return result;
+}
+
+// ---- ao ------------------------------------------------------------------------------------
+
+Mask depthEdgeMask(const core::Image& reference, const Mask& covered) {
+    const int w = reference.width(), h = reference.height();
+    const int z = reference.requireChannel("Z"), id = reference.requireChannel("id");
+    Mask edges(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!covered(x, y)) continue;
+            const float depth = reference.at(x, y, z), body = reference.at(x, y, id);
+            bool edge = false;
+            for (const auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                edge = edge || !covered(nx, ny) || reference.at(nx, ny, id) != body ||
+                       std::abs(double(reference.at(nx, ny, z)) - double(depth)) >
+                           AO_DEPTH_EDGE * double(depth);
+            }
+            edges.set(x, y, edge);
+        }
+    return edges;
+}
+
+AoResult aoError(const core::Image& reference, const core::Image& test, const Masks& masks) {
+    requireComparable(reference, test, masks, "ao.mean_abs");
+    const auto c = requireChannels<1>(reference, test, {"ao"}, "ao.mean_abs");
+    const int w = reference.width();
+    const std::vector<float> toEdge =
+        squaredDistanceTransform(depthEdgeMask(reference, masks.referenceCovered));
+    AoResult result;
+    result.errorMap = core::Image(w, reference.height(), {"abs_error"});
+    // Pixels, |error| sum, error sum; halo pixels, their |error| sum.
+    const auto sums = sumRows<5>(reference.height(), [&](int y, std::array<double, 5>& s) {
+        for (int x = 0; x < w; ++x) {
+            if (!masks.coveredInBoth(x, y)) continue;
+            const double error = double(test.at(x, y, c.test[0])) - reference.at(x, y, c.ref[0]);
+            result.errorMap.at(x, y, 0) = static_cast<float>(std::abs(error));
+            s[0] += 1.0;
+            s[1] += std::abs(error);
+            s[2] += error;
+            if (toEdge[static_cast<std::size_t>(y) * w + x] <= float(AO_HALO_PX * AO_HALO_PX)) {
+                s[3] += 1.0;
+                s[4] += std::abs(error);
+            }
+        }
+    });
+    result.meanAbs = ratioOrNaN(sums[1], sums[0]);
+    result.bias = ratioOrNaN(sums[2], sums[0]);
+    result.halo = ratioOrNaN(sums[4], sums[3]);
     return result;
 }
 

@@ -142,4 +142,29 @@ constexpr float SHADOW_FALSE = 1.0f;
 constexpr float SHADOW_MISSED = 2.0f;
 ShadowResult shadowError(const core::Image& reference, const core::Image& test, const Masks& masks);
 
+// ---- ao.mean_abs, ao.bias, ao.halo ---------------------------------------------------------
+// A reference pixel is on a depth edge when it is covered and a 4-neighbour in the image is
+// not, shows another body, or lies deeper or shallower by more than this fraction of its depth:
+// where a screen-space occlusion pass meets a depth discontinuity it cannot see behind.
+constexpr double AO_DEPTH_EDGE = 0.05;
+// The halo band: pixels within this many pixels (Euclidean) of a reference depth edge.
+constexpr int AO_HALO_PX = 4;
+
+struct AoResult {
+    // Over the pixels covered in both, of the ambient occlusion channel "ao" (the open fraction
+    // of the cosine-weighted hemisphere within light.ao_radius): the mean of |test - reference|,
+    double meanAbs = 0.0;
+    // the mean of test - reference (positive: the test is too light, it misses occlusion;
+    // negative: too dark, it invents occlusion),
+    double bias = 0.0;
+    // and the mean of |test - reference| over those within AO_HALO_PX of a reference depth
+    // edge (NaN when there is none), where screen-space occlusion fails. NaN when no pixel is
+    // covered in both.
+    double halo = 0.0;
+    core::Image errorMap;  // one channel "abs_error": |test - reference|, covered in both
+};
+// The reference's depth edges, as above.
+Mask depthEdgeMask(const core::Image& reference, const Mask& referenceCovered);
+AoResult aoError(const core::Image& reference, const core::Image& test, const Masks& masks);
+
 }  // namespace twinrender::compare

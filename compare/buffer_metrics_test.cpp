@@ -24,6 +24,7 @@ struct Surface {
     float id = 0.0f;
     float er = 0.0f, eg = 0.0f, eb = 0.0f;
     float shadow = 1.0f;
+    float ao = 1.0f;
 };
 
 void cover(core::Image& img, int x, int y, const Surface& s = {}) {
@@ -40,6 +41,7 @@ void cover(core::Image& img, int x, int y, const Surface& s = {}) {
     set("emission.G", s.eg);
     set("emission.B", s.eb);
     set("shadow", s.shadow);
+    set("ao", s.ao);
 }
 
 // An AOV image whose pixels inside(x, y) are covered with surface(x, y).
@@ -554,6 +556,52 @@ TEST(Shadow, NoShadowInEitherAgreesAndAnEmptyMaskIsNaN) {
 }
 
 // ---- every metric -------------------------------------------------------------------------
+
+// ---- ao ------------------------------------------------------------------------------------
+
+TEST(AmbientOcclusion, KnownErrorsBiasAndHalo) {
+    // 20 columns x 10 rows, all covered; columns 0..9 at depth 10, 10..19 at depth 20: a depth
+    // edge (a jump of 100 %) on columns 9 and 10. Reference open fraction 0.5 everywhere; test
+    // 0.7 on columns 0..4 (+0.2: too light), 0.2 on columns 8..11 (-0.3: a dark halo), 0.5
+    // elsewhere. Per row: |error| sum 5 x 0.2 + 4 x 0.3 = 2.2, error sum 1.0 - 1.2 = -0.2, over
+    // 20 columns: mean_abs 0.11, bias -0.01. The halo band (within 4 px of columns 9 or 10) is
+    // columns 5..14: |error| 1.2 over 10 columns, 0.12.
+    auto img = [](bool test) {
+        return scene(
+            20, 10, [](int, int) { return true; },
+            [test](int x, int) {
+                Surface s;
+                s.z = x < 10 ? 10.0f : 20.0f;
+                s.ao = 0.5f;
+                if (test && x <= 4) s.ao = 0.7f;
+                if (test && x >= 8 && x <= 11) s.ao = 0.2f;
+                return s;
+            });
+    };
+    const core::Image reference = img(false), test = img(true);
+    const Masks masks = computeMasks(reference, test);
+    const Mask edges = depthEdgeMask(reference, masks.referenceCovered);
+    EXPECT_EQ(edges.count(), 20u);
+    EXPECT_TRUE(edges(9, 4) && edges(10, 4) && !edges(8, 4) && !edges(0, 0));
+    const AoResult r = aoError(reference, test, masks);
+    EXPECT_NEAR(r.meanAbs, 0.11, 1e-6);
+    EXPECT_NEAR(r.bias, -0.01, 1e-6);
+    EXPECT_NEAR(r.halo, 0.12, 1e-6);
+    ASSERT_EQ(r.errorMap.channelNames(), std::vector<std::string>{"abs_error"});
+    EXPECT_NEAR(r.errorMap.at(2, 3, 0), 0.2, 1e-6);
+    EXPECT_NEAR(r.errorMap.at(9, 3, 0), 0.3, 1e-6);
+}
+
+TEST(AmbientOcclusion, NoEdgeNoHaloAndAnEmptyMaskIsNaN) {
+    const core::Image flat = full(12, 8);
+    const AoResult same = aoError(flat, flat, computeMasks(flat, flat));
+    EXPECT_EQ(same.meanAbs, 0.0);
+    EXPECT_EQ(same.bias, 0.0);
+    EXPECT_TRUE(isNaN(same.halo));  // no depth edge: no band
+    const core::Image empty = core::aov::makeImage(12, 8);
+    const AoResult none = aoError(empty, empty, computeMasks(empty, empty));
+    EXPECT_TRUE(isNaN(none.meanAbs) && isNaN(none.bias) && isNaN(none.halo));
+}
 
 TEST(BufferMetrics, EmptyMasksGiveNaN) {
     const core::Image empty = core::aov::makeImage(12, 12);

@@ -110,6 +110,18 @@ const std::vector<MetricInfo>& metricTable() {
          .meaning = "fraction of the pixels facing the light that the test lights (visibility "
                     "above 0.5) where the reference is in full shadow (visibility 0): light "
                     "bleeding into the umbra"},
+        {.key = "ao.mean_abs", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "mean absolute error of the ambient occlusion (the open fraction of the "
+                    "hemisphere within light.ao_radius) on the pixels covered in both"},
+        {.key = "ao.bias", .unit = "", .better = B::Closer, .origin = 0.0, .noise = 1e-3,
+         .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "mean signed error of that occlusion: positive too light (occlusion "
+                    "missed), negative too dark (occlusion invented)"},
+        {.key = "ao.halo", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "mean absolute occlusion error within 4 pixels of the reference's depth "
+                    "edges, where screen-space occlusion cannot see behind the surface"},
         {.key = "occlusion.error", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
          .buffer = "id", .source = S::Study, .overview = false, .machineDependent = false,
          .meaning = "fraction of the reference's covered pixels where the test shows another "

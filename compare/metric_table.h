@@ -43,7 +43,7 @@ struct MetricInfo {
     // a regression anyone could see (a baseline's absolute tolerance).
     double noise;
     // The AOV buffer it reads (docs/design.md, "The frame"): "beauty" (R, G, B tonemapped), "A",
-    // "Z", "N", "uv", "id", "emission", "shadow"; "" for none (times, counters).
+    // "Z", "N", "uv", "id", "emission", "shadow", "ao"; "" for none (times, counters).
     std::string_view buffer;
     MetricSource source;
     bool overview;             // a column of the run's index page

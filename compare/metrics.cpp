@@ -205,6 +205,15 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
     result.values["shadow.mae"] = shadow.mae;
     result.values["shadow.leak"] = shadow.leak;
     result.errorMaps["shadow"] = std::move(shadow.errorMap);
+
+    // Frames written before the ambient occlusion channel have none: no ao metrics for them.
+    if (reference.hasChannel("ao") && test.hasChannel("ao")) {
+        AoResult ao = aoError(reference, test, masks);
+        result.values["ao.mean_abs"] = ao.meanAbs;
+        result.values["ao.bias"] = ao.bias;
+        result.values["ao.halo"] = ao.halo;
+        result.errorMaps["ao"] = std::move(ao.errorMap);
+    }
     return result;
 }
 

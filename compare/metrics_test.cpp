@@ -31,9 +31,10 @@ const std::set<std::string> ALL_KEYS = {
     "depth.rel_mean",       "id.mismatch",     "normal.mean_deg",
     "normal.p95_deg",       "uv.mean",         "emission.rmse",
     "smoothness.ratio",     "shadow.iou",      "shadow.false_shadow",
-    "shadow.missed_shadow", "shadow.mae",      "shadow.leak"};
-const std::set<std::string> MAP_KEYS = {"beauty.flip", "beauty.hdrflip", "normal",  "depth", "uv",
-                                        "id",          "shadow",         "emission"};
+    "shadow.missed_shadow", "shadow.mae",      "shadow.leak",
+    "ao.mean_abs",          "ao.bias",         "ao.halo"};
+const std::set<std::string> MAP_KEYS = {"beauty.flip", "beauty.hdrflip", "normal",   "depth", "uv",
+                                        "id",          "shadow",         "emission", "ao"};
 
 template <typename Map>
 std::set<std::string> keys(const Map& m) {

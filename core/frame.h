@@ -17,8 +17,8 @@ namespace twinrender::core {
 namespace aov {
 inline const std::vector<std::string>& channelNames() {
     static const std::vector<std::string> names = {
-        "R",    "G",    "B",  "A",          "Z",          "N.X",        "N.Y",   "N.Z",
-        "uv.U", "uv.V", "id", "emission.R", "emission.G", "emission.B", "shadow"};
+        "R",    "G",    "B",  "A",          "Z",          "N.X",        "N.Y",    "N.Z",
+        "uv.U", "uv.V", "id", "emission.R", "emission.G", "emission.B", "shadow", "ao"};
     return names;
 }
 // An image with every AOV channel set to its background (Z = +inf, id = -1, others 0).

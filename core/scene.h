@@ -38,6 +38,11 @@ struct LightSettings {
     // The reference averages the visibility over sun directions across the disc; the real-time
     // "pcf" widens its filter to the penumbra (realtime/shaders/shade.frag).
     double angularRadiusDeg = 0.0;
+    // The reach R of ambient occlusion, scene units, >= 0; 0: no occlusion (the ambient term
+    // everywhere). Both renderers read it: the reference traces cosine-weighted rays of length
+    // R (raymarch/ao_hemisphere.h), the real-time renderer's screen-space pass
+    // (realtime.ao.method) looks this far.
+    double aoRadius = 0.0;
 };
 
 // Where a texture comes from: a constant colour, a named procedural, or an image file.

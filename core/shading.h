@@ -1,7 +1,7 @@
 // The shading model both renderers use (mirrored in realtime/shaders/shading.glsl): Lambert
 // diffuse x diffuse texture, Blinn-Phong specular x specular map, the emission buffer
-// (emission map + blackbody glow), city lights on the night side only, ambient. The
-// directional light is multiplied by its visibility (shadow). Linear radiance out.
+// (emission map + blackbody glow), city lights on the night side only, ambient times its occlusion.
+// The directional light is multiplied by its visibility (shadow). Linear radiance out.
 #pragma once
 
 #include <glm/vec2.hpp>
@@ -20,6 +20,9 @@ struct SurfacePoint {
     std::uint32_t material = 0;
     glm::vec3 emission{0.0f};  // emission map + glow, already looked up
     float visibility = 1.0f;   // 1 lit, 0 in shadow
+    // The ambient occlusion: the cosine-weighted fraction of the hemisphere open within
+    // light.ao_radius (1 open, 0 closed). It multiplies the ambient term.
+    float ambientOcclusion = 1.0f;
 };
 
 // Emission map at uv plus the particle glow: the value of the emission buffer.

@@ -42,6 +42,9 @@ constexpr std::array STAGES = {
               .meaning = "screen-space surface smoothing"},
     StageInfo{.key = "surface", .renderer = "realtime", .cadence = StageCadence::Frame,
               .meaning = "a depth filter (surface.method) and its rebuilt normals"},
+    StageInfo{.key = "ao", .renderer = "both", .cadence = StageCadence::Frame,
+              .meaning = "ambient occlusion: the screen-space pass and its blur, or the "
+                         "reference's occlusion rays"},
     StageInfo{.key = "shade", .renderer = "realtime", .cadence = StageCadence::Frame,
               .meaning = "the lighting of every covered pixel"},
     StageInfo{.key = "post", .renderer = "realtime", .cadence = StageCadence::Frame,

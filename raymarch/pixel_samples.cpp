@@ -8,7 +8,7 @@ namespace twinrender::raymarch {
 
 ShadedSample shadeHit(const SurfaceHit& hit, const glm::dvec3& direction, float visibility,
                       const std::vector<core::Material>& materials,
-                      const core::LightSettings& light) {
+                      const core::LightSettings& light, float ambientOcclusion) {
     core::SurfacePoint sp;
     sp.normal = hit.normal;
     sp.toEye = glm::vec3(-direction);
@@ -16,15 +16,17 @@ ShadedSample shadeHit(const SurfaceHit& hit, const glm::dvec3& direction, float 
     sp.material = hit.material;
     sp.emission = core::surfaceEmission(materials[hit.material], hit.uv, hit.glow);
     sp.visibility = visibility;
+    sp.ambientOcclusion = ambientOcclusion;
     return {core::shade(materials, light, sp), sp.emission};
 }
 
 void PixelSamples::add(const ShadedSample& sample, float visibility, const SurfaceHit& hit,
-                       double hitDepth, double jx, double jy) {
+                       double hitDepth, double jx, double jy, float open) {
     beauty += glm::dvec3(sample.beauty);
     emission += glm::dvec3(sample.emission);
     coverage += 1.0;
     shadow += visibility;
+    ambientOcclusion += open;
     const double dist = (jx - 0.5) * (jx - 0.5) + (jy - 0.5) * (jy - 0.5);
     if (dist < nearest) {
         nearest = dist;
@@ -43,7 +45,8 @@ AovChannels::AovChannels(const core::Image& image)
       uv(image.requireChannel("uv.U")),
       id(image.requireChannel("id")),
       emission(image.requireChannel("emission.R")),
-      shadow(image.requireChannel("shadow")) {}
+      shadow(image.requireChannel("shadow")),
+      ao(image.requireChannel("ao")) {}
 
 void writePixel(const PixelSamples& s, int spp, float exposure, int x, int y, const AovChannels& c,
                 core::Image& aov, core::Image& display) {
@@ -62,6 +65,7 @@ void writePixel(const PixelSamples& s, int spp, float exposure, int x, int y, co
     }
     aov.at(x, y, c.coverage) = static_cast<float>(s.coverage * inv);
     aov.at(x, y, c.shadow) = static_cast<float>(s.shadow / s.coverage);
+    aov.at(x, y, c.ao) = static_cast<float>(s.ambientOcclusion / s.coverage);
     aov.at(x, y, c.depth) = s.depth;
     aov.at(x, y, c.uv) = s.uv.x;
     aov.at(x, y, c.uv + 1) = s.uv.y;

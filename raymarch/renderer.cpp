@@ -16,6 +16,7 @@
 
 #include "core/camera.h"
 #include "core/cancellation.h"
+#include "raymarch/ao_hemisphere.h"
 #include "raymarch/pixel_samples.h"
 #include "raymarch/sun_disc.h"
 #include "raymarch/surface_tracer.h"
@@ -57,10 +58,14 @@ float hashToUnit(std::uint32_t x, std::uint32_t y, std::uint32_t k, std::uint32_
     return (h >> 8) * (1.0f / 16777216.0f);
 }
 
-// Thread time of the two parts of tracing, in steady-clock ticks.
+// Thread time of the parts of tracing, in steady-clock ticks, and the ambient occlusion's
+// standard errors.
 struct StageTicks {
-    std::int64_t trace = 0;  // camera rays and shadow rays
-    std::int64_t shade = 0;  // shading the hits
+    std::int64_t trace = 0;      // camera rays and shadow rays
+    std::int64_t ao = 0;         // ambient occlusion rays
+    std::int64_t shade = 0;      // shading the hits
+    double aoErrorSum = 0.0;     // of aoStandardError over the hit samples
+    std::int64_t aoSamples = 0;  // hit samples with occlusion traced
 };
 
 // The pixels of one block, in rows, and the ray through the centre of the full block.
@@ -98,7 +103,9 @@ class FrameTrace {
           mGrid(static_cast<int>(std::ceil(std::sqrt(double(settings.spp))))),
           mExposure(static_cast<float>(input.scene.camera.exposure)),
           mSunDirections(sunDirections(-input.scene.light.direction,
-                                       input.scene.light.angularRadiusDeg, settings.sunSamples)) {}
+                                       input.scene.light.angularRadiusDeg, settings.sunSamples)),
+          mAoRadius(input.scene.light.aoRadius),
+          mAoSide(aoSide(settings)) {}
 
     int tileCount() const { return mTilesX * mTilesY; }
 
@@ -131,25 +138,47 @@ class FrameTrace {
         const SampleRays r = sampleRays(b, k);
         SurfaceHit hits[N];
         bool found[N];
-        float vis[N];
+        float vis[N], open[N];
         const auto t0 = Clock::now();
         mTracer.tracePrimary(b.n, b.rowLength, r.rays, r.tnear, r.tfar, b.central, hits, found, w);
         if (mSettings.shadows)
             traceVisibility(b.n, hits, found, vis, w);
         else
             std::fill_n(vis, b.n, 1.0f);
+        const auto tAo = Clock::now();
+        ticks.trace += (tAo - t0).count();
+        std::fill_n(open, b.n, 1.0f);
+        if (mAoRadius > 0.0) traceOcclusion(b, k, hits, found, open, w, ticks);
         const auto t1 = Clock::now();
-        ticks.trace += (t1 - t0).count();
+        ticks.ao += (t1 - tAo).count();
         for (int i = 0; i < b.n; ++i) {
             if (!found[i]) continue;
             const ShadedSample s = shadeHit(hits[i], r.rays[i].direction, vis[i], mInput.materials,
-                                            mInput.scene.light);
-            pixels[i].add(s, vis[i], hits[i], hits[i].t * r.cosAxis[i], r.jx[i], r.jy[i]);
+                                            mInput.scene.light, open[i]);
+            pixels[i].add(s, vis[i], hits[i], hits[i].t * r.cosAxis[i], r.jx[i], r.jy[i], open[i]);
         }
         ticks.shade += (Clock::now() - t1).count();
     }
 
   private:
+    // The open fraction of each hit's hemisphere within light.ao_radius: aoSamples
+    // cosine-weighted directions, stratified and jittered by the pixel and the sample, so
+    // that the value does not depend on the thread.
+    void traceOcclusion(const Block& b, int k, const SurfaceHit* hits, const bool* found,
+                        float* open, Workspace& w, StageTicks& ticks) const {
+        const int samples = mAoSide * mAoSide;
+        for (int i = 0; i < b.n; ++i) {
+            if (!found[i]) continue;
+            const std::uint64_t pixel =
+                std::uint64_t(b.py[i]) * std::uint64_t(mCamera.width()) + std::uint64_t(b.px[i]);
+            const std::vector<glm::dvec3> directions = aoDirections(
+                glm::dvec3(hits[i].normal), mAoSide, pixel * std::uint64_t(mSettings.spp) + k);
+            open[i] = mTracer.traceOpen(hits[i], directions.data(), samples, mAoRadius, w);
+            ticks.aoErrorSum += aoStandardError(open[i], samples);
+            ++ticks.aoSamples;
+        }
+    }
+
     // The sun's visibility from each hit: one bundle of parallel shadow rays per sun
     // direction, averaged (each direction's own n.l test included, so a point where part of
     // the disc has set sees that part occluded).
@@ -212,6 +241,8 @@ class FrameTrace {
     int mGrid;  // strata per side of a pixel's samples
     float mExposure;
     std::vector<glm::dvec3> mSunDirections;  // towards the light; one for a point sun
+    double mAoRadius;                        // light.ao_radius; 0: no occlusion rays
+    int mAoSide;                             // the occlusion pattern's side
 };
 
 // The tiles in parallel on the caller's arena, on one workspace per thread; the thread time
@@ -220,7 +251,10 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
                       const core::RenderInput& input) {
     const int tiles = trace.tileCount();
     std::atomic<int> done{0};
-    std::atomic<std::int64_t> traceTicks{0}, shadeTicks{0};
+    std::atomic<std::int64_t> traceTicks{0}, aoTicks{0}, shadeTicks{0}, aoSamples{0};
+    // The standard errors' sum, per tile, added in tile order after the loop (a sum of
+    // doubles in the order threads finish would depend on the threads).
+    std::vector<double> aoErrors(static_cast<std::size_t>(tiles), 0.0);
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
         // Embree wants flush-to-zero and denormals-are-zero on every thread that traces.
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
@@ -233,12 +267,18 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
             StageTicks ticks;
             trace.traceTile(t, w, ticks);
             traceTicks += ticks.trace;
+            aoTicks += ticks.ao;
             shadeTicks += ticks.shade;
+            aoSamples += ticks.aoSamples;
+            aoErrors[static_cast<std::size_t>(t)] = ticks.aoErrorSum;
             const int finished = ++done;
             if (input.progress) input.progress(double(finished) / tiles);
         }
     });
-    return {traceTicks.load(), shadeTicks.load()};
+    StageTicks sum{.trace = traceTicks.load(), .ao = aoTicks.load(), .shade = shadeTicks.load()};
+    for (const double e : aoErrors) sum.aoErrorSum += e;
+    sum.aoSamples = aoSamples.load();
+    return sum;
 }
 
 // The counters of every thread's workspace, summed.
@@ -268,7 +308,8 @@ Renderer::Renderer(const EmbreeDevice& device, const Settings& settings)
 core::Frame Renderer::render(const core::RenderInput& input) {
     core::throwIfCancelled(input.cancel);
     const core::Camera camera(input.scene.camera);
-    const SurfaceTracer tracer(mDevice, camera, input.particles, mSettings);  // "build"
+    const bool occlusion = input.scene.light.aoRadius > 0.0;
+    const SurfaceTracer tracer(mDevice, camera, input.particles, mSettings, occlusion);  // "build"
     core::Frame frame;
     frame.renderer = "raymarch";
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
@@ -284,13 +325,21 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     const StageTicks ticks = traceTiles(trace, workspaces, input);
     const double traceMs = msSince(start);
     // Split the parallel wall time by the thread time of each part.
-    const double sum = std::max(double(ticks.trace) + double(ticks.shade), 1.0);
+    const double sum = std::max(double(ticks.trace) + double(ticks.ao) + double(ticks.shade), 1.0);
     frame.timingsMs["build"] = tracer.buildMs();
     frame.timingsMs["trace"] = traceMs * double(ticks.trace) / sum;  // surfaces, shadow rays
+    frame.timingsMs["ao"] = traceMs * double(ticks.ao) / sum;
     frame.timingsMs["shade"] = traceMs * double(ticks.shade) / sum;
     frame.timingsMs["total"] = tracer.buildMs() + traceMs;
 
     collectCounters(tracer, workspaces, frame.counters);
+    if (occlusion) {
+        // The mean over the hit samples of each one's standard error: what the reference's
+        // own noise adds to a per-pixel occlusion error (ao.mean_abs).
+        frame.counters["ao_standard_error"] =
+            ticks.aoSamples > 0 ? ticks.aoErrorSum / double(ticks.aoSamples) : 0.0;
+        frame.counters["ao_rays"] = double(ticks.aoSamples) * aoSide(mSettings) * aoSide(mSettings);
+    }
     frame.device =
         fmt::format("{} ({} threads)", cpuName(), tbb::this_task_arena::max_concurrency());
     frame.settings = toJson(mSettings);

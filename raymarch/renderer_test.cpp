@@ -279,6 +279,85 @@ TEST(Raymarch, ASunWithAnAngularRadiusCastsTheAnalyticPenumbra) {
                   one.image.at(p, img.channelIndex("shadow")));
 }
 
+TEST(Raymarch, AmbientOcclusionOfAFloorByASphereMatchesTheClosedForm) {
+    // A floor point p under a sphere (centre c at distance d, radius r) wholly above its
+    // horizon: the sphere closes the cosine-weighted share (r / d)^2 cos(beta) of the
+    // hemisphere (the form factor of a differential area to a sphere), beta the angle between
+    // the normal and c - p. With the reach longer than any ray to the sphere (at most the
+    // tangent length sqrt(d^2 - r^2)) the open fraction is 1 - (r / d)^2 cos(beta); the floor
+    // closes nothing above its own plane. Checked per pixel within its own standard error
+    // (64 stratified directions), and in the mean within the mean's.
+    SphereOverFloor f;
+    f.s.scene.light.aoRadius = 3.0;
+    f.settings.shadows = false;
+    f.settings.aoSamples = 64;
+    const auto frame = render(f.s, f.settings);
+    const Image& img = frame.image;
+    const int ao = img.channelIndex("ao"), nx = img.channelIndex("N.X");
+    int pixels = 0, outside = 0;
+    double sum = 0.0, variance = 0.0;
+    f.forEachFloorPixel(img, [&](int x, int y, const glm::dvec3& p, double, double) {
+        const glm::dvec3 n(img.at(x, y, nx), img.at(x, y, nx + 1), img.at(x, y, nx + 2));
+        const glm::dvec3 toCentre = f.centre - p;
+        const double d = glm::length(toCentre);
+        const double cosBeta = glm::dot(n, toCentre) / d;
+        // Wholly above the horizon: beta + asin(r / d) < 90 degrees.
+        if (std::acos(std::clamp(cosBeta, -1.0, 1.0)) + std::asin(f.radius / d) >
+            0.5 * std::numbers::pi - 0.02)
+            return;
+        const double expected = 1.0 - (f.radius / d) * (f.radius / d) * cosBeta;
+        const double error = img.at(x, y, ao) - expected;
+        const double se = std::sqrt(expected * (1.0 - expected) / 64.0);
+        outside += std::abs(error) > 4.0 * se + 1e-3;
+        sum += error;
+        variance += se * se;
+        ++pixels;
+    });
+    ASSERT_GT(pixels, 1000);
+    EXPECT_EQ(outside, 0);
+    const double meanError = sum / pixels, meanSe = std::sqrt(variance) / pixels;
+    EXPECT_LT(std::abs(meanError), 4.0 * meanSe + 1e-4) << meanError << " " << meanSe;
+    EXPECT_GT(frame.counters.at("ao_standard_error"), 0.0);
+    EXPECT_LE(frame.counters.at("ao_standard_error"), 0.5 / 8.0);
+    EXPECT_GT(frame.timingsMs.at("ao"), 0.0);
+    // The sphere's top: a point whose normal is within 6 degrees of the vertical sees the
+    // floor below its horizon in the cosine-weighted share (1 - cos 6 deg) / 2 < 0.003 of its
+    // hemisphere: open within a 64th.
+    int tops = 0;
+    for (std::size_t q = 0; q < img.pixelCount(); ++q)
+        if (img.at(q, img.channelIndex("id")) == 1.0f && img.at(q, nx + 2) > 0.9945f) {
+            ++tops;
+            EXPECT_GE(img.at(q, ao), 1.0f - 1.0f / 64.0f);
+        }
+    EXPECT_GT(tops, 5);
+    // The same image on every thread count.
+    const auto one = render(f.s, f.settings, 1);
+    for (std::size_t q = 0; q < img.pixelCount(); ++q)
+        ASSERT_EQ(img.at(q, ao), one.image.at(q, ao));
+}
+
+TEST(Raymarch, AmbientOcclusionReachesOnlyItsRadius) {
+    // With a reach shorter than the gap between floor and sphere (d - r > R everywhere), no
+    // ray meets the sphere: the floor is open everywhere. Without a reach, no rays are traced
+    // and every covered pixel is open.
+    SphereOverFloor f;
+    f.settings.shadows = false;
+    f.settings.aoSamples = 16;
+    for (const double reach : {0.0, 0.3}) {
+        f.s.scene.light.aoRadius = reach;
+        const auto frame = render(f.s, f.settings);
+        const Image& img = frame.image;
+        int covered = 0;
+        for (std::size_t q = 0; q < img.pixelCount(); ++q) {
+            if (img.at(q, img.channelIndex("A")) == 0.0f) continue;
+            ++covered;
+            ASSERT_EQ(img.at(q, img.channelIndex("ao")), 1.0f) << reach;
+        }
+        EXPECT_GT(covered, 3000);
+        EXPECT_EQ(frame.counters.count("ao_rays"), reach > 0.0 ? 1u : 0u);
+    }
+}
+
 TEST(Raymarch, SameImageForAnyThreadCount) {
     TestScene s;
     std::vector<glm::vec3> positions;

@@ -1,5 +1,11 @@
 #include "raymarch/settings.h"
 
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/error.h"
+
 namespace twinrender::raymarch {
 
 Settings parseSettings(const core::ParameterTable& t) {
@@ -15,8 +21,18 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.maxIterations = static_cast<int>(t.getInt("max_iterations", s.maxIterations, 8, 100000));
     s.tileSize = static_cast<int>(t.getInt("tile_size", s.tileSize, 4, 256));
     s.sunSamples = static_cast<int>(t.getInt("sun_samples", s.sunSamples, 1, 1024));
+    s.aoSamples = static_cast<int>(t.getInt("ao_samples", s.aoSamples, 1, 4096));
+    if (aoSide(s) * aoSide(s) != s.aoSamples)
+        throw core::InputError(fmt::format(
+            "{} = {} is not a square number: the directions are a side x side pattern; use one of "
+            "16, 36, 64, 100, 256, 1024",
+            t.describe("ao_samples"), s.aoSamples));
     t.checkAllRead();
     return s;
+}
+
+int aoSide(const Settings& settings) {
+    return static_cast<int>(std::lround(std::sqrt(double(settings.aoSamples))));
 }
 
 nlohmann::json toJson(const Settings& s) {
@@ -30,7 +46,8 @@ nlohmann::json toJson(const Settings& s) {
             {"raymarch.step_window", s.stepWindow},
             {"raymarch.max_iterations", s.maxIterations},
             {"raymarch.tile_size", s.tileSize},
-            {"raymarch.sun_samples", s.sunSamples}};
+            {"raymarch.sun_samples", s.sunSamples},
+            {"raymarch.ao_samples", s.aoSamples}};
 }
 
 }  // namespace twinrender::raymarch

@@ -21,10 +21,17 @@ struct Settings {
     // Sun directions per shadow sample when light.angular_radius > 0, 1..1024
     // (raymarch/sun_disc.h); the visibility is then a multiple of 1 / sun_samples.
     int sunSamples = 64;
+    // Cosine-weighted directions traced per hit sample for the ambient occlusion when
+    // light.ao_radius > 0, a square number 1..4096 (a side x side stratified pattern,
+    // raymarch/ao_hemisphere.h). The per-pixel standard error is at most 0.5 / sqrt(ao_samples)
+    // (the frame's ao_standard_error counter states the mean).
+    int aoSamples = 64;
 };
 
 // Reads every key of the table and rejects the ones it does not know.
 Settings parseSettings(const core::ParameterTable& table);
+// The side of the ambient occlusion's pattern: sqrt(ao_samples).
+int aoSide(const Settings& settings);
 // Every setting by its scene key, for the frame's JSON.
 nlohmann::json toJson(const Settings& settings);
 

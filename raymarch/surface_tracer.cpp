@@ -155,7 +155,7 @@ struct SurfaceTracer::Impl {
     double sinBlock = 0.0;
 
     Impl(const EmbreeDevice& device, const core::Camera& cam, const core::SceneParticles& p,
-         const Settings& st)
+         const Settings& st, bool occlusionRays)
         : camera(cam), particles(p), settings(st) {
         const auto& ps = p.particles;
         const std::size_t n = ps.size();
@@ -190,7 +190,7 @@ struct SurfaceTracer::Impl {
             hitAttributes[i] = {ps.uv[i].x, ps.uv[i].y, ps.glow[i].r, ps.glow[i].g, ps.glow[i].b};
         const std::vector<std::uint32_t> order = BundleGather::groupOrder(ps.position);
         bundles = std::make_unique<BundleGather>(device, ps.position, supportRadius, margin, order);
-        if (st.shadows)
+        if (st.shadows || occlusionRays)
             shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius,
                                                            shadowMargin, order);
         auto addRange = [&](std::size_t begin, std::size_t end) {
@@ -613,9 +613,10 @@ struct SurfaceTracer::Impl {
 };
 
 SurfaceTracer::SurfaceTracer(const EmbreeDevice& device, const core::Camera& camera,
-                             const core::SceneParticles& particles, const Settings& settings) {
+                             const core::SceneParticles& particles, const Settings& settings,
+                             bool occlusionRays) {
     const auto start = std::chrono::steady_clock::now();
-    mImpl = std::make_unique<Impl>(device, camera, particles, settings);
+    mImpl = std::make_unique<Impl>(device, camera, particles, settings, occlusionRays);
     mBuildMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -715,6 +716,37 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
     for (std::size_t g = 0, begin = 0; g < w.groupEnds.size(); begin = w.groupEnds[g++])
         im.march(traced + begin, w.groupEnds[g] - int(begin), toLight, true, w, nullptr);
     for (int k = 0; k < count; ++k) visibility[traced[k]] = w.rays[traced[k]].hit ? 0.0f : 1.0f;
+}
+
+float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count,
+                               double radius, Workspace& w) const {
+    const Impl& im = *mImpl;
+    int open = 0;
+    for (int j = 0; j < count; ++j) {
+        const glm::dvec3& d = directions[j];
+        if (im.settings.spheres) {
+            open += !im.spheres->occluded(glm::vec3(hit.outside), glm::vec3(d), 0.0f,
+                                          static_cast<float>(radius));
+            continue;
+        }
+        // From just outside the surface, as a shadow ray, but stopping at the radius; a ray
+        // alone is its own bundle (the directions spread over the hemisphere).
+        MarchRay& r = w.rays[0];
+        r = MarchRay{};
+        r.ray = core::Ray{hit.outside, d};
+        r.t = 2.0 * im.settings.rootTolerance * hit.hRef;
+        r.tEnd = std::min(radius, im.exitDistance(hit.outside, d));
+        if (!(r.t < r.tEnd)) {
+            ++open;
+            continue;
+        }
+        r.hRef = hit.hRef;
+        r.needEntry = false;
+        const int id = 0;
+        im.march(&id, 1, d, true, w, nullptr);
+        open += r.hit ? 0 : 1;
+    }
+    return count > 0 ? static_cast<float>(open) / static_cast<float>(count) : 1.0f;
 }
 
 }  // namespace twinrender::raymarch

@@ -11,7 +11,8 @@
 // where the tangent plane of a neighbouring pixel's crossing meets it, when the field is
 // proven below the level up to there.
 // Shadow rays of a block are parallel (a directional light) and march the same way, in
-// bundles that stay within the shadow margin of their central line.
+// bundles that stay within the shadow margin of their central line. Ambient occlusion rays
+// (short, from one point in many directions) march alone, each its own bundle.
 #pragma once
 
 #include <cstdint>
@@ -52,8 +53,11 @@ class SurfaceTracer {
     static constexpr int MAX_RAYS = 64;           // rays per bundle
     static constexpr double SHADOW_MARGIN = 0.3;  // shadow-bundle spread allowed, in units of h
 
+    // `occlusionRays`: traceOpen will be called (it needs the shadow rays' gather even when
+    // settings.shadows is off).
     SurfaceTracer(const EmbreeDevice& device, const core::Camera& camera,
-                  const core::SceneParticles& particles, const Settings& settings);
+                  const core::SceneParticles& particles, const Settings& settings,
+                  bool occlusionRays = false);
     ~SurfaceTracer();
 
     // Per-thread working memory (opaque; its deleter lives with its definition).
@@ -76,6 +80,12 @@ class SurfaceTracer {
     // last tracePrimary call on this workspace.
     void traceShadows(int n, const SurfaceHit* hits, const bool* found, const glm::dvec3& toLight,
                       float* visibility, Workspace& w) const;
+
+    // The fraction of the `count` directions (unit, in the hemisphere about hit.normal) along
+    // which the surface is not met within `radius` of the hit: the ambient occlusion's open
+    // fraction when they are cosine-weighted (raymarch/ao_hemisphere.h). Needs occlusionRays.
+    float traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count, double radius,
+                    Workspace& w) const;
 
     const TraceCounters& counters(const Workspace& w) const;
     void resetCounters(Workspace& w) const;

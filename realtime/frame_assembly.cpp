@@ -16,13 +16,14 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
               cZ = channel("Z"), cNX = channel("N.X"), cNY = channel("N.Y"), cNZ = channel("N.Z"),
               cU = channel("uv.U"), cV = channel("uv.V"), cId = channel("id"),
               cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
-              cShadow = channel("shadow");
+              cShadow = channel("shadow"), cAo = channel("ao");
     const std::size_t stride = static_cast<std::size_t>(aov.channelCount());
     const bool emits = !in.emission.empty();
+    const bool occluded = !in.ambientOcclusion.empty();
     float* out = aov.pixels().data();
     float* shown = display.pixels().data();
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
-    // written in the same pass as the covered pixels: filling the 15 channels first costs
+    // written in the same pass as the covered pixels: filling the 16 channels first costs
     // as much as the whole read-back.
     tbb::parallel_for(0, h, [&](int y) {
         // OpenGL rows run bottom-up; images top-down.
@@ -46,6 +47,7 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
             o[cG] = in.beautyShadow[g + 1];
             o[cB] = in.beautyShadow[g + 2];
             o[cShadow] = in.beautyShadow[g + 3];
+            o[cAo] = occluded ? in.ambientOcclusion[glRow + x] : 1.0f;
             o[cA] = 1.0f;
             o[cZ] = in.surface[g + 0];
             o[cId] = body;

@@ -17,6 +17,8 @@ struct ReadBackBuffers {
     std::span<const float> surface;       // eye depth, body (< 0 on the background), -, -
     std::span<const float> beautyShadow;  // linear beauty rgb, light visibility
     std::span<const float> display;       // display rgb (bloom, tonemapped), -
+    // The ambient occlusion's open fraction, one float a pixel; empty: no occlusion (1).
+    std::span<const float> ambientOcclusion;
 };
 
 // Writes every pixel of `aov` (the core::aov channels; core::aov::makeImage's values on the

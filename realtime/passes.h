@@ -73,10 +73,10 @@ std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::strin
 const char* depthDefine(DepthMode mode);
 // The shade pass's define for the shadows: SHADOWS_ and the mode's name in capitals.
 std::string shadowDefine(ShadowMode mode);
-// The shade pass's defines: the shadows' (with ESM_SEED for the seed's form of ESM), and
-// EMISSION when anything emits.
+// The shade pass's defines: the shadows' (with ESM_SEED for the seed's form of ESM), EMISSION
+// when anything emits, AMBIENT_OCCLUSION when the ambient occlusion pass runs.
 std::vector<std::string> shadeDefines(ShadowMode mode, const ShadowMapSettings& shadowMap,
-                                      bool emission);
+                                      bool emission, bool ambientOcclusion = false);
 
 // shadow: the impostors seen from the light into a resolution^2 float depth map holding
 // linear light depth in [0, 1]; for the filtered modes ("esm", "vsm", "evsm") that map turned
@@ -162,6 +162,15 @@ void compileSurfacePrograms(ProgramCache& programs, const SurfaceSettings& setti
 // core::InputError naming the file, with the compiler's messages by file and line.
 const gl::Program& userSurfaceProgram(ProgramCache& programs, const SurfaceSettings& settings);
 
+// ao (ao.method is not "none"): the open fraction of each covered pixel's hemisphere within
+// `radius` (light.ao_radius, scene units; 0: 1 everywhere), from the surface and normals the
+// shade pass reads, then blurred (ao.blur). R32F, background texels 1.
+gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& surface,
+                                    const gl::Texture& normalUv, const AoSettings& settings,
+                                    double radius);
+// The defines of shaders/ao.frag for these settings (the method's and the noise's).
+std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings);
+
 // shade: beauty (rgb) and light visibility (a). `shadowMap` may be null (no map).
 struct ShadeInputs {
     const gl::Texture* normalUv = nullptr;
@@ -173,6 +182,9 @@ struct ShadeInputs {
     ShadowMode shadows = ShadowMode::None;
     ShadowMapSettings shadowSettings;  // the filtered modes' exponents and bleed reduction
     bool emission = true;              // false: the emission buffer is zero and need not be read
+    // The ambient occlusion pass's open fraction (binding 4), multiplying the ambient term;
+    // null: no occlusion.
+    const gl::Texture* ambientOcclusion = nullptr;
     // Spheres mode: camera-relative centres.
     std::vector<OcclusionSphere> spheres;
 };

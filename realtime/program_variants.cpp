@@ -109,7 +109,15 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
             shadowMomentsDefines(settings.shadows, settings.shadowMap));
         if (settings.shadowMap.blurRadius > 0.0) add("fullscreen.vert", "shadow_blur.frag", {});
     }
-    add("fullscreen.vert", "shade.frag", shadeDefines(settings.shadows, settings.shadowMap, emits));
+    if (usesAmbientOcclusion(settings)) {
+        add("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings.ao));
+        if (settings.ao.blur != AoBlur::None)
+            add("fullscreen.vert", "ao_blur.frag",
+                settings.ao.blur == AoBlur::DepthAware ? std::vector<std::string>{"AO_DEPTH_AWARE"}
+                                                       : std::vector<std::string>{});
+    }
+    add("fullscreen.vert", "shade.frag",
+        shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings)));
     // The bloom's levels exist where the image is large enough; the composite without them
     // either way.
     if (settings.bloom.enabled && settings.bloom.strength > 0.0) {
@@ -168,6 +176,20 @@ std::vector<ProgramVariant> allProgramVariants() {
                                                 for (ProgramVariant& v : programVariants(s, emits))
                                                     all.try_emplace(v.name(), std::move(v));
                                             }
+    // The ambient occlusion's programs, beside the defaults above.
+    for (AoMethod method : {AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao})
+        for (AoNoise noise : {AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue})
+            for (AoBlur blur : {AoBlur::None, AoBlur::Flat, AoBlur::DepthAware})
+                for (ShadowMode shadows : {ShadowMode::None, ShadowMode::Map})
+                    for (bool emits : {false, true}) {
+                        Settings a;
+                        a.ao.method = method;
+                        a.ao.noise = noise;
+                        a.ao.blur = blur;
+                        a.shadows = shadows;
+                        for (ProgramVariant& v : programVariants(a, emits))
+                            all.try_emplace(v.name(), std::move(v));
+                    }
     std::vector<ProgramVariant> out;
     for (auto& [name, v] : all) out.push_back(std::move(v));
     return out;

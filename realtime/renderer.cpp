@@ -239,6 +239,7 @@ struct PassInputs {
     // instead, and the camera's world position.
     GpuPerSet* gradientGrid = nullptr;
     glm::dvec3 camera{0.0};
+    double aoRadius = 0.0;  // light.ao_radius
 };
 
 // The textures the passes write, each pass reading those of the passes before it, and the
@@ -249,8 +250,9 @@ struct PassTargets {
     std::optional<gl::Texture> gradientNormalUv;  // normal = "gradient"
     std::optional<SmoothedSurface> smoothed;
     std::optional<FilteredSurface> filtered;
-    std::optional<gl::Texture> beauty;   // linear beauty, light visibility
-    std::optional<gl::Texture> display;  // bloom and tonemap
+    std::optional<gl::Texture> ambientOcclusion;  // the open fraction (ao.method)
+    std::optional<gl::Texture> beauty;            // linear beauty, light visibility
+    std::optional<gl::Texture> display;           // bloom and tonemap
     std::vector<std::pair<const char*, gl::TimerQuery>> timers;
 
     // The surface before smoothing: the G-buffer's, with the gradient pass's normals when it
@@ -287,6 +289,7 @@ ShadeInputs shadeInputs(const PassInputs& in, const PassTargets& t) {
     s.shadows = in.settings.shadows;
     s.shadowSettings = in.settings.shadowMap;
     s.spheres = in.spheres;
+    s.ambientOcclusion = t.ambientOcclusion ? &*t.ambientOcclusion : nullptr;
     return s;
 }
 
@@ -339,6 +342,11 @@ const Pass PASSES[] = {
      [](const PassInputs& in, PassTargets& t) {
          t.filtered.emplace(
              runSurfacePass(in.programs, *t.gbuffer, t.surfaceNormalUv(), in.settings.surface));
+     }},
+    {"ao", [](const PassInputs& in) { return usesAmbientOcclusion(in.settings); },
+     [](const PassInputs& in, PassTargets& t) {
+         t.ambientOcclusion.emplace(runAmbientOcclusionPass(in.programs, t.surface(), t.normalUv(),
+                                                            in.settings.ao, in.aoRadius));
      }},
     {"shade", always,
      [](const PassInputs& in, PassTargets& t) {
@@ -396,7 +404,7 @@ core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::str
 void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, core::Frame& frame) {
     const auto start = Clock::now();
     // Every read queued, then one wait (gl/readback.h).
-    enum Slot : std::size_t { NORMAL_UV, EMISSION, SURFACE, BEAUTY_SHADOW, DISPLAY };
+    enum Slot : std::size_t { NORMAL_UV, EMISSION, SURFACE, BEAUTY_SHADOW, DISPLAY, OCCLUSION };
     gl::TextureReadback& r = d.readback;
     r.read(NORMAL_UV, t.normalUv());
     // Without emitters the emission buffer is zero, as the image's channels already are.
@@ -404,6 +412,7 @@ void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, co
     r.read(SURFACE, t.surface());
     r.read(BEAUTY_SHADOW, *t.beauty);
     r.read(DISPLAY, *t.display);
+    if (t.ambientOcclusion) r.read(OCCLUSION, *t.ambientOcclusion, 1);
     r.wait();
     frame.image = reuseOrCreate(d.spareImage, w, h, core::aov::channelNames());
     frame.display = reuseOrCreate(d.spareDisplay, w, h, {"R", "G", "B"});
@@ -415,6 +424,7 @@ void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, co
     buffers.surface = r.pixels(SURFACE);
     buffers.beautyShadow = r.pixels(BEAUTY_SHADOW);
     buffers.display = r.pixels(DISPLAY);
+    if (t.ambientOcclusion) buffers.ambientOcclusion = r.pixels(OCCLUSION);
     assembleFrame(buffers, frame.image, frame.display);
     frame.timingsMs["readback"] = msSince(start);
 }
@@ -469,6 +479,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.emits = emits;
     passInputs.gradientGrid = uploaded.draws.gradientGrid;
     passInputs.camera = in.scene.camera.position;
+    passInputs.aoRadius = in.scene.light.aoRadius;
     passInputs.exposure = static_cast<float>(in.scene.camera.exposure);
     frame.counters["gbuffer_bytes"] =
         static_cast<double>(gbufferBytesPerPixel(mSettings.gbufferFormat, mSettings.depth)) *

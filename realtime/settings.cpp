@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -30,7 +31,77 @@ ShadowMode parseShadowMode(const std::string& s) {
     return ShadowMode::Map;
 }
 
+// The value of `values` whose name (toString) the key holds.
+template <typename Enum, std::size_t N>
+Enum byName(const std::string& name, const std::array<Enum, N>& values) {
+    for (Enum v : values)
+        if (toString(v) == name) return v;
+    return values[0];
+}
+
+AoSettings parseAo(const core::ParameterTable& t) {
+    const AoSettings d;
+    AoSettings a;
+    a.method = byName(
+        t.getEnum("ao.method", std::string(toString(d.method)), {"none", "ssao", "hbao", "gtao"}),
+        std::array{AoMethod::None, AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao});
+    a.slices = static_cast<int>(t.getInt("ao.slices", d.slices, 1, 32));
+    a.steps = static_cast<int>(t.getInt("ao.steps", d.steps, 1, 64));
+    a.blur =
+        byName(t.getEnum("ao.blur", std::string(toString(d.blur)), {"none", "flat", "depth_aware"}),
+               std::array{AoBlur::None, AoBlur::Flat, AoBlur::DepthAware});
+    a.blurRadius = static_cast<int>(t.getInt("ao.blur_radius", d.blurRadius, 1, 16));
+    a.noise = byName(t.getEnum("ao.noise", std::string(toString(d.noise)),
+                               {"white", "interleaved_gradient", "blue"}),
+                     std::array{AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue});
+    a.maxPixels = t.getDouble("ao.max_pixels", d.maxPixels, 4.0, 4096.0);
+    a.angleBiasDeg = t.getDouble("ao.angle_bias", d.angleBiasDeg, 0.0, 60.0);
+    return a;
+}
+
 }  // namespace
+
+std::string_view toString(AoMethod method) {
+    switch (method) {
+        case AoMethod::None:
+            return "none";
+        case AoMethod::Ssao:
+            return "ssao";
+        case AoMethod::Hbao:
+            return "hbao";
+        case AoMethod::Gtao:
+            return "gtao";
+    }
+    return "none";
+}
+
+std::string_view toString(AoBlur blur) {
+    switch (blur) {
+        case AoBlur::None:
+            return "none";
+        case AoBlur::Flat:
+            return "flat";
+        case AoBlur::DepthAware:
+            return "depth_aware";
+    }
+    return "depth_aware";
+}
+
+std::string_view toString(AoNoise noise) {
+    switch (noise) {
+        case AoNoise::White:
+            return "white";
+        case AoNoise::InterleavedGradient:
+            return "interleaved_gradient";
+        case AoNoise::Blue:
+            return "blue";
+    }
+    return "interleaved_gradient";
+}
+
+bool usesAmbientOcclusion(const Settings& settings) {
+    return settings.ao.method != AoMethod::None;
+}
 
 std::string_view toString(DepthMode mode) {
     switch (mode) {
@@ -293,6 +364,7 @@ Settings parseSettings(const core::ParameterTable& t) {
                                                    d.shadowMap.evsmNegativeExponent, 0.0, 42.0);
 
     s.surface = parseSurface(t);
+    s.ao = parseAo(t);
     s.ssss.enabled = t.getBool("ssss.enabled", d.ssss.enabled);
     s.ssss.radiusScale = t.getDouble("ssss.radius_scale", d.ssss.radiusScale, 0.0, 16.0);
     s.ssss.depthLimit = t.getDouble("ssss.depth_limit", d.ssss.depthLimit, 1e-6, 1000.0);
@@ -338,6 +410,14 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.shadow_map.vsm_bleed_reduction", s.shadowMap.vsmBleedReduction},
         {"realtime.shadow_map.evsm_positive_exponent", s.shadowMap.evsmPositiveExponent},
         {"realtime.shadow_map.evsm_negative_exponent", s.shadowMap.evsmNegativeExponent},
+        {"realtime.ao.method", toString(s.ao.method)},
+        {"realtime.ao.slices", s.ao.slices},
+        {"realtime.ao.steps", s.ao.steps},
+        {"realtime.ao.blur", toString(s.ao.blur)},
+        {"realtime.ao.blur_radius", s.ao.blurRadius},
+        {"realtime.ao.noise", toString(s.ao.noise)},
+        {"realtime.ao.max_pixels", s.ao.maxPixels},
+        {"realtime.ao.angle_bias", s.ao.angleBiasDeg},
         {"realtime.surface.method", toString(s.surface.method)},
         {"realtime.surface.shader", s.surface.shaderPath},
         {"realtime.surface.shader_passes", s.surface.shaderPasses},

@@ -290,6 +290,44 @@ enum class PerSetDevice {
     Cpu,  // "cpu": oneTBB over core::ColourField's grids, packed and uploaded
 };
 
+// ao.*: the screen-space ambient occlusion pass (realtime/ao_pass.cpp, shaders/ao.frag). Its
+// reach is the scene's light.ao_radius, which the reference traces exactly.
+enum class AoMethod {
+    None,  // "none": no pass; the ambient term is not occluded
+    Ssao,  // "ssao": points in the normal's hemisphere tested against the depth buffer
+    Hbao,  // "hbao": horizon-based (Bavoil & Sainz 2008)
+    Gtao,  // "gtao": ground-truth AO (Jimenez et al. 2016), cosine-weighted horizons
+};
+enum class AoBlur {
+    None,        // "none": the raw, noisy estimate
+    Flat,        // "flat": a separable Gaussian over covered pixels
+    DepthAware,  // "depth_aware": the same, weighted by depth closeness and the same body
+};
+enum class AoNoise {
+    White,                // "white": a per-pixel hash
+    InterleavedGradient,  // "interleaved_gradient": Jimenez 2014's low-discrepancy pattern
+    Blue,                 // "blue": a tiled void-and-cluster texture (realtime/blue_noise.h)
+};
+struct AoSettings {
+    AoMethod method = AoMethod::None;  // ao.method: "none" | "ssao" | "hbao" | "gtao"
+    // ao.slices: screen directions per pixel (hbao: over a full turn; gtao: slices over half a
+    // turn, two sides each; ssao: slices x steps points), 1..32.
+    int slices = 4;
+    int steps = 8;  // ao.steps: samples along each direction (or per ssao slice), 1..64
+    // ao.blur: "none" | "flat" | "depth_aware"; ao.blur_radius: pixels, 1..16.
+    AoBlur blur = AoBlur::DepthAware;
+    int blurRadius = 4;
+    // ao.noise: "white" | "interleaved_gradient" | "blue"
+    AoNoise noise = AoNoise::InterleavedGradient;
+    // ao.max_pixels: the cap of the radius on screen, pixels, 4..4096 (a point near the camera
+    // would otherwise look across the whole image).
+    double maxPixels = 64.0;
+    // ao.angle_bias: hbao's tangent angle bias, degrees, 0..60 (Bavoil & Sainz: samples within
+    // it above the tangent plane count nothing, against a coarse surface's false occlusion).
+    double angleBiasDeg = 20.0;
+    bool operator==(const AoSettings&) const = default;
+};
+
 struct Settings {
     DepthMode depth = DepthMode::Log;                   // depth: "log" | "standard" | "reversed"
     GBufferFormat gbufferFormat = GBufferFormat::Full;  // gbuffer.format: "full" | "compact"
@@ -301,8 +339,11 @@ struct Settings {
     SurfaceSettings surface;
     SsssSettings ssss;
     BloomSettings bloom;
+    AoSettings ao;
 };
 
+// Whether the ambient occlusion pass runs (ao.method is not "none").
+bool usesAmbientOcclusion(const Settings& settings);
 // Whether the settings smooth with SSSS (surface.method = "ssss", ssss.enabled and a radius).
 bool usesSsss(const Settings& settings);
 // Whether a depth filter or the user's shader runs (the "surface" pass).
@@ -337,5 +378,8 @@ std::string_view toString(SurfaceMethod method);
 std::string_view toString(ParticleShape shape);
 std::string_view toString(EllipsoidAnchor anchor);
 std::string_view toString(PerSetDevice device);
+std::string_view toString(AoMethod method);
+std::string_view toString(AoBlur blur);
+std::string_view toString(AoNoise noise);
 
 }  // namespace twinrender::realtime

@@ -85,7 +85,34 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
-    EXPECT_EQ(j.size(), 55u);
+    EXPECT_EQ(j.size(), 63u);
+}
+
+TEST(Settings, ReadsTheAmbientOcclusionKeys) {
+    const Settings d = parseSettings(table({}));
+    EXPECT_EQ(d.ao.method, AoMethod::None);
+    EXPECT_FALSE(usesAmbientOcclusion(d));
+    const Settings s = parseSettings(table({{"ao.method", std::string("gtao")},
+                                            {"ao.slices", std::int64_t(6)},
+                                            {"ao.steps", std::int64_t(12)},
+                                            {"ao.blur", std::string("flat")},
+                                            {"ao.blur_radius", std::int64_t(3)},
+                                            {"ao.noise", std::string("blue")},
+                                            {"ao.max_pixels", 100.0}}));
+    EXPECT_EQ(s.ao.method, AoMethod::Gtao);
+    EXPECT_TRUE(usesAmbientOcclusion(s));
+    EXPECT_EQ(s.ao.slices, 6);
+    EXPECT_EQ(s.ao.steps, 12);
+    EXPECT_EQ(s.ao.blur, AoBlur::Flat);
+    EXPECT_EQ(s.ao.blurRadius, 3);
+    EXPECT_EQ(s.ao.noise, AoNoise::Blue);
+    EXPECT_DOUBLE_EQ(s.ao.maxPixels, 100.0);
+    const nlohmann::json j = toJson(s);
+    EXPECT_EQ(j.at("realtime.ao.method"), "gtao");
+    EXPECT_EQ(j.at("realtime.ao.noise"), "blue");
+    EXPECT_EQ(j.at("realtime.ao.blur"), "flat");
+    EXPECT_THROW(parseSettings(table({{"ao.method", std::string("hbao+")}})),
+                 twinrender::core::InputError);
 }
 
 TEST(Settings, ReadsTheParticleShapeKeys) {

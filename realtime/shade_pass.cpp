@@ -20,13 +20,15 @@ gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& in) {
     framebuffer.clearColor(0, glm::vec4(0.0f));  // the background: black, visibility 0
     gl::setPipelineState(coveredOnlyState(in.depthMode));
 
-    std::vector<std::string> defines = shadeDefines(in.shadows, in.shadowSettings, in.emission);
+    std::vector<std::string> defines =
+        shadeDefines(in.shadows, in.shadowSettings, in.emission, in.ambientOcclusion != nullptr);
     const gl::Program& program = programs.get("fullscreen.vert", "shade.frag", defines);
     program.use();
     in.normalUv->bind(0);
     in.emissionBuffer->bind(1);
     in.surface->bind(2);
     if (in.shadowMap) in.shadowMap->bind(3);
+    if (in.ambientOcclusion) in.ambientOcclusion->bind(4);
     if (usesFilteredShadowMap(in.shadows)) {
         program.set("uExponents", shadowExponents(in.shadows, in.shadowSettings));
         program.set("uBleedReduction", static_cast<float>(in.shadowSettings.vsmBleedReduction));

@@ -17,8 +17,8 @@ namespace twinrender::report {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& bufferNames() {
-    static const std::vector<std::string> names = {"beauty", "normal", "uv",      "depth",
-                                                   "id",     "shadow", "emission"};
+    static const std::vector<std::string> names = {"beauty", "normal", "uv", "depth",
+                                                   "id",     "shadow", "ao", "emission"};
     return names;
 }
 
@@ -81,10 +81,11 @@ std::vector<std::string> channelsOf(std::string_view buffer) {
     if (buffer == "depth") return {"Z"};
     if (buffer == "id") return {"id"};
     if (buffer == "shadow") return {"shadow"};
+    if (buffer == "ao") return {"ao"};
     if (buffer == "emission") return {"emission.R", "emission.G", "emission.B"};
     throw std::invalid_argument(
         fmt::format("unknown buffer '{}'; buffers are beauty, normal, "
-                    "uv, depth, id, shadow, emission",
+                    "uv, depth, id, shadow, ao, emission",
                     buffer));
 }
 
@@ -159,7 +160,7 @@ core::Image visualiseBuffer(const core::Image& aov, std::string_view buffer,
                     const double k = std::round(id);
                     hsvToRgb(0.08 + 0.6180339887498949 * k, 0.62, 0.95, rgb);
                 }
-            } else if (buffer == "shadow") {
+            } else if (buffer == "shadow" || buffer == "ao") {
                 rgb[0] = rgb[1] = rgb[2] = 0.3f + 0.7f * clamp01(aov.at(p, ch[0]));
             } else if (buffer == "emission") {
                 const glm::vec3 c =

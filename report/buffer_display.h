@@ -14,7 +14,7 @@
 namespace twinrender::report {
 
 // The buffers a scene page can switch between, in its order:
-// beauty, normal, uv, depth, id, shadow, emission.
+// beauty, normal, uv, depth, id, shadow, ao, emission.
 const std::vector<std::string>& bufferNames();
 
 struct BufferVisualSettings {
@@ -32,10 +32,10 @@ std::pair<double, double> depthRange(const core::Image& a, const core::Image& b)
 // An R, G, B display image in [0, 1] of one buffer of an AOV image (channel names of
 // docs/design.md): beauty -> tonemapped R,G,B; normal -> 0.5 + 0.5 n; uv -> (u, v, 0); depth ->
 // log-scaled grey; id -> one distinct colour per body (the same in every image); shadow ->
-// white lit, grey occluded; emission -> tonemapped. Pixels without coverage (A = 0, or
-// Z = inf without A) are a dark slate, except for beauty. Throws core::NotComparableError
-// naming the channel when the image lacks one the buffer needs; std::invalid_argument for an
-// unknown buffer.
+// white lit, grey occluded; ao -> white open, grey closed; emission -> tonemapped. Pixels without
+// coverage (A = 0, or Z = inf without A) are a dark slate, except for beauty. Throws
+// core::NotComparableError naming the channel when the image lacks one the buffer needs;
+// std::invalid_argument for an unknown buffer.
 core::Image visualiseBuffer(const core::Image& aov, std::string_view buffer,
                             const BufferVisualSettings& settings = {});
 

@@ -577,7 +577,8 @@ std::string imagesSection(const SceneReport& s, const std::vector<std::string>& 
     h += swapView(s, buffers, initial, data);
     h += "<p class=\"note\">Buffers: beauty tonemapped as displayed; normal as 0.5 + 0.5 n; "
          "uv as (u, v, 0); depth log-scaled, near white to far grey, the same range for both "
-         "renders; id one colour per body; shadow white where lit; emission tonemapped. "
+         "renders; id one colour per body; shadow white where lit; ao white where the "
+         "hemisphere is open; emission tonemapped. "
          "Slate: no surface. Keys 1–" +
          std::to_string(buffers.size()) + " switch buffers.</p>\n</section>\n";
     return h;

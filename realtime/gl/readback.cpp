@@ -13,10 +13,11 @@ void deleteBuffer(unsigned id) {
 }
 }  // namespace
 
-void TextureReadback::read(std::size_t slot, const Texture& texture) {
+void TextureReadback::read(std::size_t slot, const Texture& texture, int channels) {
     if (slot >= mSlots.size()) mSlots.resize(slot + 1);
     Slot& s = mSlots[slot];
-    const std::size_t floats = static_cast<std::size_t>(texture.width()) * texture.height() * 4;
+    const std::size_t floats =
+        static_cast<std::size_t>(texture.width()) * texture.height() * (channels == 1 ? 1 : 4);
     if (floats > s.floats || !s.buffer) {
         GLuint id = 0;
         glCreateBuffers(1, &id);
@@ -31,7 +32,7 @@ void TextureReadback::read(std::size_t slot, const Texture& texture) {
     s.read = floats;
     glBindBuffer(GL_PIXEL_PACK_BUFFER, s.buffer.id());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(texture.id(), 0, GL_RGBA, GL_FLOAT,
+    glGetTextureImage(texture.id(), 0, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
                       static_cast<GLsizei>(floats * sizeof(float)), nullptr);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }

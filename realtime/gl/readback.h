@@ -15,12 +15,13 @@ namespace twinrender::realtime::gl {
 
 class TextureReadback {
   public:
-    // Queues the read of `texture` (RGBA32F, level 0) into slot `slot` (0, 1, ...).
-    void read(std::size_t slot, const Texture& texture);
+    // Queues the read of `texture` (level 0) into slot `slot` (0, 1, ...): its RGBA values, or
+    // with `channels` = 1 its red values alone.
+    void read(std::size_t slot, const Texture& texture, int channels = 4);
     // Waits for every read queued since the last wait().
     void wait();
-    // Slot `slot`'s pixels (RGBA floats, rows from the bottom as GL stores them), valid after
-    // wait() until the slot's next read().
+    // Slot `slot`'s pixels (RGBA or red floats, rows from the bottom as GL stores them), valid
+    // after wait() until the slot's next read().
     std::span<const float> pixels(std::size_t slot) const;
 
   private:

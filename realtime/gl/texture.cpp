@@ -74,6 +74,16 @@ void Texture::bind(unsigned unit) const {
     glBindTextureUnit(unit, mHandle.id());
 }
 
+void Texture::upload(std::span<const float> values) {
+    if (mFormat != Format::R32F ||
+        values.size() != static_cast<std::size_t>(mWidth) * static_cast<std::size_t>(mHeight))
+        throw Error(fmt::format("texture upload: {} values for an {}x{} texture of another format",
+                                values.size(), mWidth, mHeight));
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(mHandle.id(), 0, 0, 0, mWidth, mHeight, GL_RED, GL_FLOAT, values.data());
+    checkErrors("texture upload");
+}
+
 void Texture::bindImageForWriting(unsigned unit) const {
     glBindImageTexture(unit, mHandle.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, internalFormat(mFormat));
 }

@@ -3,6 +3,8 @@
 // the bloom chain.
 #pragma once
 
+#include <span>
+
 #include "realtime/gl/handle.h"
 
 namespace twinrender::realtime::gl {
@@ -25,6 +27,8 @@ class Texture {
     Texture(int width, int height, Format format, Filter filter = Filter::Nearest, int levels = 1);
 
     void bind(unsigned unit) const;  // glBindTextureUnit
+    // Level 0 from width x height R32F values (rows from the bottom); an R32F texture only.
+    void upload(std::span<const float> values);
     // glBindImageTexture, level 0, for a compute pass to write (GL_WRITE_ONLY).
     void bindImageForWriting(unsigned unit) const;
     int width(int level = 0) const;

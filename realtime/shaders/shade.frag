@@ -1,7 +1,8 @@
 // The shading pass: core's shading model on the smoothed buffers, with the light's visibility
 // from the shadow map (SHADOWS_MAP, SHADOWS_PCF), a filtered map (SHADOWS_ESM with ESM_SEED or
 // not, SHADOWS_VSM, SHADOWS_EVSM), the occlusion spheres (SHADOWS_SPHERES) or none. Output:
-// linear beauty and the visibility (the shadow AOV).
+// linear beauty and the visibility (the shadow AOV). AMBIENT_OCCLUSION: the ambient term times
+// the ambient occlusion pass's open fraction.
 #include "common.glsl"
 #include "textures.glsl"
 #include "shading.glsl"
@@ -15,6 +16,9 @@ layout(binding = 1) uniform sampler2D uEmission;
 layout(binding = 2) uniform sampler2D uSurface;
 // Linear light depth in [0, 1]; SHADOWS_FILTERED: the filtered map, linear filtering.
 layout(binding = 3) uniform sampler2D uShadowMap;
+#ifdef AMBIENT_OCCLUSION
+layout(binding = 4) uniform sampler2D uAmbientOcclusion;  // the open fraction (ao.frag)
+#endif
 
 #ifdef SHADOWS_SPHERES
 const int MAX_SPHERES = 20;  // bodies over 5 % of the particles: at most 19
@@ -137,6 +141,11 @@ void main() {
     // A surface facing away from the light is shadowed by its own body (what a shadow ray
     // from the surface finds); the beauty does not change, as it lights only n.l > 0.
     float vis = dot(normal, -light.xyz) > 0.0 ? visibility(position, normal, s.y, worldRadius) : 0.0;
-    vec3 color = shadeSurface(int(s.w), normal, -normalize(position), a.zw, emission, vis);
+#ifdef AMBIENT_OCCLUSION
+    float open = texelFetch(uAmbientOcclusion, p, 0).r;
+#else
+    const float open = 1.0;
+#endif
+    vec3 color = shadeSurface(int(s.w), normal, -normalize(position), a.zw, emission, vis, open);
     outBeautyShadow = vec4(color, vis);
 }

@@ -1,0 +1,202 @@
+// Screen-space ambient occlusion (realtime/ao_pass.cpp): the open fraction of each covered
+// pixel's hemisphere within uRadius (light.ao_radius, scene units), from the depth and normals
+// the shade pass reads. The reference traces the same quantity exactly: the cosine-weighted
+// share of directions that meet no surface within the radius (raymarch/ao_hemisphere.h).
+//  - AO_SSAO: normal-oriented hemisphere sampling (the Crytek/StarCraft II family): points in
+//    the hemisphere about the normal, cosine-distributed, occluded where the depth buffer lies
+//    in front of them within the radius.
+//  - AO_HBAO: horizon-based (Bavoil & Sainz 2008): per screen direction, the highest horizon
+//    within the radius above the tangent plane raised by an angle bias, occlusion
+//    sin(h) - sin(t), falloff 1 - r^2/R^2.
+//    Its weighting is the image plane's, not the normal's cosine.
+//  - AO_GTAO: ground-truth AO (Jimenez et al. 2016): per slice about the view vector, two
+//    horizons clamped to the normal's hemisphere and the cosine-weighted visibility between
+//    them in closed form, weighted by the projected normal's length.
+// Noise (per pixel: slice rotation and step jitter): NOISE_WHITE (a hash), NOISE_IGN
+// (interleaved gradient noise, Jimenez 2014), NOISE_BLUE (a void-and-cluster texture,
+// realtime/blue_noise.h).
+#include "common.glsl"
+
+layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
+layout(binding = 2) uniform sampler2D uSurface;   // eye depth, body, radius px, material
+#ifdef NOISE_BLUE
+layout(binding = 5) uniform sampler2D uBlueNoise;  // R32F ranks in [0, 1), tiled
+#endif
+uniform float uRadius;    // scene units; 0: no occlusion
+uniform int uSlices;      // screen directions (hbao, gtao), or sample rings (ssao)
+uniform int uSteps;       // samples along each
+uniform float uMaxPixels;  // the screen radius's cap, pixels
+uniform float uAngleBias;  // hbao: radians added to the tangent's elevation
+
+layout(location = 0) out vec4 outOpen;
+
+const float PI = 3.14159265358979;
+
+vec2 noise(ivec2 p) {
+#if defined(NOISE_BLUE)
+    ivec2 size = textureSize(uBlueNoise, 0);
+    float b = texelFetch(uBlueNoise, p % size, 0).r;
+    return vec2(b, fract(b + 0.61803398875));
+#elif defined(NOISE_IGN)
+    vec2 q = vec2(p);
+    float a = fract(52.9829189 * fract(dot(q, vec2(0.06711056, 0.00583715))));
+    float b = fract(52.9829189 * fract(dot(q + vec2(5.588238), vec2(0.06711056, 0.00583715))));
+    return vec2(a, b);
+#else
+    // A 2-D integer hash (pcg2d, Jarzynski & Olano 2020).
+    uvec2 v = uvec2(p) * 1664525u + 1013904223u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    return vec2(v >> 8u) * (1.0 / 16777216.0);
+#endif
+}
+
+// The surface at pixel q: false on the background or off the image.
+bool surfaceAt(ivec2 q, out vec3 position) {
+    ivec2 size = ivec2(viewport.xy);
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return false;
+    vec4 s = texelFetch(uSurface, q, 0);
+    if (s.y < 0.0) return false;
+    position = surfacePosition(vec2(q) + 0.5, s.x);
+    return true;
+}
+
+// Eye depth and pixel (window coordinates) of a camera-relative point.
+vec3 project(vec3 position) {
+    vec3 eye = mat3(viewFromWorld) * position;
+    float z = -eye.z;
+    float aspect = viewport.x * viewport.w;
+    vec2 ndc = vec2(eye.x / (z * camera.z * aspect), eye.y / (z * camera.z));
+    return vec3((ndc * 0.5 + 0.5) * viewport.xy, z);
+}
+
+// The slice's direction on screen (unit) and in the world, at right angles to the view vector.
+void sliceDirection(float angle, vec3 toEye, out vec2 screen, out vec3 world) {
+    screen = vec2(cos(angle), sin(angle));
+    vec3 d = transpose(mat3(viewFromWorld)) * vec3(screen, 0.0);
+    world = normalize(d - toEye * dot(d, toEye));
+}
+
+#if defined(AO_SSAO)
+float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels, vec2 xi) {
+    // A frame about the normal.
+    vec3 t = normalize(abs(normal.z) < 0.9 ? cross(normal, vec3(0.0, 0.0, 1.0))
+                                           : cross(normal, vec3(1.0, 0.0, 0.0)));
+    vec3 b = cross(normal, t);
+    int samples = uSlices * uSteps;
+    float closed = 0.0;
+    for (int k = 0; k < samples; ++k) {
+        // Cosine-distributed directions (Malley: the disc lifted), stratified in radius,
+        // turned by the golden angle and the pixel's noise; distances spread over the radius
+        // with more of them near the point.
+        float u = (float(k) + 0.5) / float(samples);
+        float phi = 2.0 * PI * fract(float(k) * 0.61803398875 + xi.x);
+        float r = sqrt(u);
+        vec3 dir = t * (r * cos(phi)) + b * (r * sin(phi)) + normal * sqrt(max(1.0 - u, 0.0));
+        float f = fract(float(k) * 0.7548776662 + xi.y);
+        float reach = uRadius * mix(0.1, 1.0, f * f);
+        vec3 q = position + dir * reach;
+        vec3 screen = project(q);
+        vec3 seen;
+        if (!surfaceAt(ivec2(floor(screen.xy)), seen)) continue;
+        float zSeen = -(mat3(viewFromWorld) * seen).z;
+        // The depth buffer in front of the point, by less than the radius (the range check).
+        float bias = 0.02 * uRadius;
+        if (zSeen < screen.z - bias && screen.z - zSeen < uRadius) closed += 1.0;
+    }
+    return 1.0 - closed / float(samples);
+}
+#elif defined(AO_HBAO)
+float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels, vec2 xi) {
+    float closed = 0.0;
+    for (int i = 0; i < uSlices; ++i) {
+        vec2 screen;
+        vec3 world;
+        sliceDirection(2.0 * PI * (float(i) + xi.x) / float(uSlices), toEye, screen, world);
+        // The tangent's elevation above the image plane along this direction.
+        float nd = dot(normal, world), nv = dot(normal, toEye);
+        // Raised by the angle bias (the paper's answer to a coarse surface: samples just above
+        // the tangent plane, here the impostors' bumps under a smooth normal, count nothing).
+        float sinT = sin(min(asin(clamp(-nd / max(sqrt(nd * nd + nv * nv), 1e-6), -1.0, 1.0)) +
+                                 uAngleBias,
+                             0.5 * PI));
+        float sinH = sinT, occlusion = 0.0;
+        for (int j = 0; j < uSteps; ++j) {
+            float along = (float(j) + xi.y) / float(uSteps) * pixels + 1.0;
+            vec3 q;
+            if (!surfaceAt(ivec2(floor(vec2(p) + 0.5 + screen * along)), q)) continue;
+            vec3 v = q - position;
+            float r2 = dot(v, v);
+            if (r2 > uRadius * uRadius || r2 <= 0.0) continue;
+            float s = dot(v, toEye) * inversesqrt(r2);
+            if (s > sinH) {
+                occlusion += (1.0 - r2 / (uRadius * uRadius)) * (s - sinH);
+                sinH = s;
+            }
+        }
+        closed += occlusion;
+    }
+    return clamp(1.0 - closed / float(uSlices), 0.0, 1.0);
+}
+#else  // AO_GTAO
+// The cosine-weighted visibility between the horizons h1 <= n <= h2 of a slice whose projected
+// normal makes the angle n with the view vector (Jimenez et al. 2016, eq. 10).
+float sliceVisibility(float h1, float h2, float n) {
+    float cn = cos(n), sn = sin(n);
+    return 0.25 * (-cos(2.0 * h1 - n) + cn + 2.0 * h1 * sn) +
+           0.25 * (-cos(2.0 * h2 - n) + cn + 2.0 * h2 * sn);
+}
+
+float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels, vec2 xi) {
+    float open = 0.0;
+    for (int i = 0; i < uSlices; ++i) {
+        vec2 screen;
+        vec3 world;
+        // Slices cover half a turn: each has two sides.
+        sliceDirection(PI * (float(i) + xi.x) / float(uSlices), toEye, screen, world);
+        // The normal projected into the slice (spanned by `world` and the view vector).
+        vec3 axis = cross(world, toEye);
+        vec3 projected = normal - axis * dot(normal, axis);
+        float weight = sqrt(dot(projected, projected));
+        if (weight < 1e-6) continue;
+        float n = atan(dot(projected, world), dot(projected, toEye));
+        // The horizons: the largest cosine to the view vector on each side, within the radius.
+        float best[2] = float[2](-1.0, -1.0);
+        for (int side = 0; side < 2; ++side) {
+            float way = side == 0 ? 1.0 : -1.0;
+            for (int j = 0; j < uSteps; ++j) {
+                float along = (float(j) + xi.y) / float(uSteps) * pixels + 1.0;
+                vec3 q;
+                if (!surfaceAt(ivec2(floor(vec2(p) + 0.5 + way * screen * along)), q)) continue;
+                vec3 v = q - position;
+                float r2 = dot(v, v);
+                if (r2 > uRadius * uRadius || r2 <= 0.0) continue;
+                best[side] = max(best[side], dot(v, toEye) * inversesqrt(r2));
+            }
+        }
+        float h2 = min(acos(clamp(best[0], -1.0, 1.0)), n + 0.5 * PI);
+        float h1 = max(-acos(clamp(best[1], -1.0, 1.0)), n - 0.5 * PI);
+        open += weight * sliceVisibility(h1, h2, n);
+    }
+    return clamp(open / float(uSlices), 0.0, 1.0);
+}
+#endif
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 s = texelFetch(uSurface, p, 0);
+    if (s.y < 0.0 || uRadius <= 0.0) {
+        outOpen = vec4(1.0);
+        return;
+    }
+    vec3 position = surfacePosition(gl_FragCoord.xy, s.x);
+    vec3 normal = octDecode(texelFetch(uNormalUv, p, 0).xy);
+    vec3 toEye = -normalize(position);
+    // The radius on screen, capped: a point near the camera would look across the image.
+    float pixels = min(uRadius * pixelsPerUnitAt(s.x), uMaxPixels);
+    outOpen = vec4(openFraction(p, position, normal, toEye, pixels, noise(p)));
+}
