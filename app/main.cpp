@@ -20,6 +20,7 @@
 #include "app/render_job.h"
 #include "app/sequence_run.h"
 #include "app/shard.h"
+#include "app/studies.h"
 #include "app/study_command.h"
 #include "app/suite_commands.h"
 #include "app/sweep_command.h"
@@ -242,14 +243,9 @@ int main(int argc, char** argv) {
     tr::app::StudyOptions studyOpts;
     CommonOptions studyCommon;
     studyCommon.out = "out/studies";
-    auto* studyCmd =
-        app.add_subcommand("study",
-                           "studies: depth range, particle size, view angle, "
-                           "temporal, flicker, collision, thin casters, surface methods");
-    studyCmd->add_option(
-        "NAMES", studyOpts.names,
-        "studies to run (default: all): depth_range, thin_casters, particle_size, view_angle, "
-        "temporal, flicker, collision, methods");
+    auto* studyCmd = app.add_subcommand("study", "studies: " + tr::app::studyNames());
+    studyCmd->add_option("NAMES", studyOpts.names,
+                         "studies to run (default: all): " + tr::app::studyNames());
     studyCmd->add_flag("--quick", studyOpts.quick,
                        "fewer points and particles (seconds per study)");
     studyCmd->add_option("--cache", studyOpts.cache,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/render_job.h"
@@ -49,15 +50,19 @@ struct StudyDef {
     // frame (after the warm-up).
     int frames = 1;
     std::function<std::vector<StudyPoint>(bool quick)> points;
-    std::function<double(const LoadedScene&)> xOf;  // for points without an x
+    std::function<double(const LoadedScene&)> xOf = nullptr;  // for points without an x
     // Fills finding, facts and chart from the rows (and the fields above).
     std::function<void(report::StudyResult&)> conclude;
 };
 
-// Every study, in the order `twinrender study` runs them.
+// Every study, in the order `twinrender study` runs them (app/studies/registry.cpp; each study's
+// points and conclusion are in app/studies/<name>.cpp).
 const std::vector<StudyDef>& studies();
 
-// The lines of a chart: one per series (in order of first appearance) of `metric` against x.
-report::LineChart seriesChart(const report::StudyResult& study, const std::string& metric);
+// The study of that name; nullptr when there is none.
+const StudyDef* findStudy(std::string_view name);
+
+// Every study's name in that order, as a list for people: "depth_range, thin_casters, ...".
+std::string studyNames();
 
 }  // namespace twinrender::app

@@ -132,18 +132,14 @@ void renderPoints(const Planned& plan, std::size_t first, std::size_t end, bool 
 ExitCode runStudies(const StudyOptions& o) {
     // ---- Everything is read and checked before the first render. ----
     std::vector<const StudyDef*> chosen;
-    std::string known;
-    for (const StudyDef& d : studies()) known += (known.empty() ? "" : ", ") + d.name;
     if (o.names.empty())
         for (const StudyDef& d : studies()) chosen.push_back(&d);
     std::set<std::string> seen;
     for (const std::string& n : o.names) {
-        const StudyDef* found = nullptr;
-        for (const StudyDef& d : studies())
-            if (d.name == n) found = &d;
+        const StudyDef* found = findStudy(n);
         if (!found)
             throw core::InputError(
-                fmt::format("study {}: no such study; the studies are {}", n, known));
+                fmt::format("study {}: no such study; the studies are {}", n, studyNames()));
         if (!seen.insert(n).second) throw core::InputError(fmt::format("study {}: named twice", n));
         chosen.push_back(found);
     }

@@ -1,0 +1,116 @@
+#include "app/studies/common.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "compare/metric_table.h"
+#include "compare/thresholds.h"
+
+namespace twinrender::app::study {
+
+double metricOf(const StudyRow& r, const std::string& metric) {
+    const auto it = r.metrics.find(metric);
+    return it == r.metrics.end() ? NAN : it->second;
+}
+
+SeriesRows bySeries(const StudyResult& s) {
+    SeriesRows out;
+    for (const StudyRow& r : s.rows) {
+        auto it = std::find_if(out.begin(), out.end(),
+                               [&](const auto& p) { return p.first == r.series; });
+        if (it == out.end()) {
+            out.push_back({r.series, {}});
+            it = std::prev(out.end());
+        }
+        it->second.push_back(&r);
+    }
+    for (auto& [name, rows] : out)
+        std::stable_sort(rows.begin(), rows.end(),
+                         [](const StudyRow* a, const StudyRow* b) { return a->x < b->x; });
+    return out;
+}
+
+const std::vector<const StudyRow*>* seriesRows(const SeriesRows& all, const std::string& name) {
+    for (const auto& [n, rows] : all)
+        if (n == name) return &rows;
+    return nullptr;
+}
+
+double meanOf(const std::vector<const StudyRow*>& rows, const std::string& metric) {
+    double sum = 0.0;
+    int n = 0;
+    for (const StudyRow* r : rows) {
+        const double v = metricOf(*r, metric);
+        if (std::isfinite(v)) {
+            sum += v;
+            ++n;
+        }
+    }
+    return n ? sum / n : NAN;
+}
+
+std::string xNumber(double x) {
+    if (!std::isfinite(x)) return compare::formatValue(x);
+    const double e = std::round(std::log10(std::abs(x)));
+    if (std::abs(x) >= 1e4 && std::abs(x - std::pow(10.0, e)) < 1e-9 * std::abs(x))
+        return fmt::format("1e{}", e);
+    if (std::abs(x) >= 100 && std::abs(x) < 1e6 && x == std::round(x))
+        return fmt::format("{:.0f}", x);
+    return fmt::format("{:.3g}", x);
+}
+
+std::string num(double v) {
+    return std::isfinite(v) ? fmt::format("{:.3g}", v) : compare::formatValue(v);
+}
+
+std::string percent(double fraction) {
+    return std::abs(fraction) < 0.1 ? fmt::format("{:.1f} %", 100.0 * fraction)
+                                    : fmt::format("{:.0f} %", 100.0 * fraction);
+}
+
+json jsonOrNull(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+std::string set(const std::string& key, const std::string& value) {
+    return key + "=" + value;
+}
+std::string vec(double x, double y, double z) {
+    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", x, y, z);
+}
+
+std::map<double, double> gainOf(const StudyResult& s, const std::string& metric,
+                                const std::string& on, const std::string& off) {
+    const auto all = bySeries(s);
+    const auto* a = seriesRows(all, on);
+    const auto* b = seriesRows(all, off);
+    std::map<double, double> gain;
+    if (!a || !b) return gain;
+    for (const StudyRow* r : *a)
+        for (const StudyRow* q : *b)
+            if (q->x == r->x || std::abs(q->x - r->x) < 1e-9 * std::abs(r->x))
+                gain[r->x] = 1.0 - metricOf(*r, metric) / metricOf(*q, metric);
+    return gain;
+}
+
+report::LineChart seriesChart(const StudyResult& s, const std::string& metric) {
+    report::LineChart c;
+    // The x axis carries its own label: the title names the study and the metric only, so that
+    // it fits over the plot.
+    c.title = fmt::format("{}: {}", s.title, metric);
+    c.xLabel = s.xLabel;
+    const std::string unit = compare::metricUnit(metric);
+    c.yLabel = unit.empty() ? metric : fmt::format("{} ({})", metric, unit);
+    c.xScale = s.xLog ? report::AxisScale::Log : report::AxisScale::Linear;
+    for (const auto& [name, rows] : bySeries(s)) {
+        report::LineSeries line{name, {}, false};
+        for (const StudyRow* r : rows) line.points.push_back({r->x, metricOf(*r, metric), ""});
+        c.series.push_back(std::move(line));
+    }
+    return c;
+}
+
+}  // namespace twinrender::app::study

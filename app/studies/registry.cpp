@@ -1,0 +1,186 @@
+// The list of studies: each study's name, title, question, scene, axes and columns, with the
+// points and the conclusion of its file (app/studies/<name>.cpp). The CLI's help and its name
+// checks are built from it.
+#include <fmt/format.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/studies.h"
+#include "app/studies/study_list.h"
+#include "compare/metric_table.h"
+
+namespace twinrender::app {
+
+namespace {
+
+// Every metric a study charts or tabulates must be one of compare's metric table: a typo would
+// show as an empty column.
+std::vector<StudyDef> checked(std::vector<StudyDef> defs) {
+    for (const StudyDef& d : defs) {
+        std::vector<std::string> keys = d.columns;
+        keys.push_back(d.metric);
+        for (const std::string& k : keys)
+            if (!compare::findMetric(k))
+                throw std::logic_error(
+                    fmt::format("study {}: '{}' is not in compare's metric table", d.name, k));
+    }
+    return defs;
+}
+
+}  // namespace
+
+const std::vector<StudyDef>& studies() {
+    // What the studies of the screen-space smoothing tabulate.
+    const std::vector<std::string> smoothingColumns = {"normal.mean_deg", "normal.p95_deg",
+                                                       "uv.mean",         "smoothness.ratio",
+                                                       "beauty.flip",     "count.unbracketed_rays"};
+    static const std::vector<StudyDef> all = checked({
+        {
+            .name = "depth_range",
+            .title = "Depth range",
+            .question = "Far/near from 1e2 to 1e12 with the scene scaled along: where does each "
+                        "depth mode (standard 24-bit, reversed float, log) start to show the far "
+                        "body through the near one, or lose both (occlusion.error: the "
+                        "reference's covered pixels where the real-time render shows another "
+                        "body or none)?",
+            .scene = "depth_range.toml",
+            .xLabel = "far / near",
+            .xLog = true,
+            .metric = "occlusion.error",
+            .columns = {"occlusion.error", "id.mismatch", "coverage.iou", "depth.rel_mean",
+                        "beauty.flip", "count.unbracketed_rays"},
+            .occlusionError = true,
+            .points = study::depthRangePoints,
+            .conclude = study::depthRangeConclude,
+        },
+        {
+            .name = "thin_casters",
+            .title = "Thin casters",
+            .question = "A ring one particle thick shadows its planet: shadow-map resolution and "
+                        "bias against shadow IoU, acne (false shadow) and leaks (missed shadow), "
+                        "with the per-body occlusion spheres beside them.",
+            .scene = "thin_casters.toml",
+            .xLabel = "shadow-map resolution (texels per side)",
+            .xLog = true,
+            .metric = "shadow.iou",
+            .columns = {"shadow.iou", "shadow.false_shadow", "shadow.missed_shadow", "beauty.flip",
+                        "count.unbracketed_rays"},
+            .points = study::thinCastersPoints,
+            .conclude = study::thinCastersConclude,
+        },
+        {
+            .name = "particle_size",
+            .title = "Particle size on screen",
+            .question = "The camera backs away from a slab from about 40 pixels per particle to "
+                        "below one: SSSS's normal and uv errors and smoothness, on and off; where "
+                        "does the filter radius selection stop helping?",
+            .scene = "particle_size.toml",
+            .xLabel = "particle diameter on screen (px)",
+            .xLog = true,
+            .metric = "normal.mean_deg",
+            .columns = smoothingColumns,
+            .points = study::particleSizePoints,
+            .xOf = study::particlePixels,
+            .conclude = study::particleSizeConclude,
+        },
+        {
+            .name = "view_angle",
+            .title = "View angle",
+            .question = "The camera turns from face-on to grazing over a flat slab: the view "
+                        "dependence of the screen-space smoothing.",
+            .scene = "view_angle.toml",
+            .xLabel = "view angle from the surface normal (degrees)",
+            .metric = "normal.mean_deg",
+            .columns = smoothingColumns,
+            .points = study::viewAnglePoints,
+            .conclude = study::viewAngleConclude,
+        },
+        {
+            .name = "temporal",
+            .title = "Temporal stability",
+            .question = "A camera orbit in steps of half a degree: flicker as the mean "
+                        "frame-to-frame ꟻLIP of the real-time renders minus the reference's.",
+            .scene = "temporal.toml",
+            .xLabel = "frame",
+            .metric = "temporal.frame_flip",
+            .columns = {"temporal.frame_flip", "temporal.reference_frame_flip", "beauty.flip",
+                        "normal.mean_deg", "count.unbracketed_rays"},
+            .frameToFrame = true,
+            .points = study::temporalPoints,
+            .conclude = study::temporalConclude,
+        },
+        {
+            .name = "flicker",
+            .title = "Flicker of the surface methods",
+            .question = "Which surface method flickers least against the truth (temporal.flicker: "
+                        "the real-time frames' frame-to-frame ꟻLIP minus the reference's) when "
+                        "SPH particles reorder: a ball whose particles churn (a new random "
+                        "displacement of up to 0.6 h each frame under a still surface), with the "
+                        "default particles and with impostor spheres, and the default suite's two "
+                        "real sequences, an OpenSPH impact and a LAMMPS splash, with the default "
+                        "particles.",
+            .scene = "",
+            .xLabel = "frame",
+            .metric = "temporal.flicker",
+            .columns = {"temporal.flicker", "temporal.frame_flip", "temporal.reference_frame_flip",
+                        "temporal.normal_flicker_deg", "normal.mean_deg", "beauty.flip",
+                        "count.unbracketed_rays"},
+            .frameToFrame = true,
+            .points = study::flickerPoints,
+            .conclude = study::flickerConclude,
+        },
+        {
+            .name = "collision",
+            .title = "Two bodies colliding",
+            .question = "Two bodies from apart to overlapping: bleeding of uv and emission across "
+                        "the contact, measured in a 3-pixel band along the boundary between them "
+                        "in the reference.",
+            .scene = "collision.toml",
+            .xLabel = "gap between the surfaces (scene units; < 0 overlapping)",
+            .metric = "contact.uv_mean",
+            .columns = {"contact.uv_mean", "contact.emission_rmse", "contact.pixels", "uv.mean",
+                        "emission.rmse", "id.mismatch", "count.unbracketed_rays"},
+            .contactBand = true,
+            .points = study::collisionPoints,
+            .conclude = study::collisionConclude,
+        },
+        {
+            .name = "methods",
+            .title = "Surface methods",
+            .question = "Every surface method at its defaults and along its main parameter, with "
+                        "each particle shape, on the default scenes and along particle size and "
+                        "view angle: how far each is from the exact surface (normals, depth, "
+                        "coverage, outlines, uv, ꟻLIP, smoothness) and what its frame costs (the "
+                        "fastest of 5 frames, rendered in rounds with the other settings of its "
+                        "scene after a warm-up frame).",
+            .scene = "",
+            .xLabel = "the method's parameter (particle radii; steps for curvature_flow); "
+                      "particle_size: px per particle; view_angle: degrees",
+            .metric = "normal.mean_deg",
+            .columns = {"normal.mean_deg", "normal.p95_deg", "depth.rel_mean", "coverage.iou",
+                        "silhouette.mean_px", "uv.mean", "beauty.flip", "smoothness.ratio",
+                        "count.unbracketed_rays"},
+            .frames = 5,
+            .points = study::methodsPoints,
+            .xOf = study::particlePixels,
+            .conclude = study::methodsConclude,
+        },
+    });
+    return all;
+}
+
+const StudyDef* findStudy(std::string_view name) {
+    for (const StudyDef& d : studies())
+        if (d.name == name) return &d;
+    return nullptr;
+}
+
+std::string studyNames() {
+    std::string names;
+    for (const StudyDef& d : studies()) names += (names.empty() ? "" : ", ") + d.name;
+    return names;
+}
+
+}  // namespace twinrender::app
