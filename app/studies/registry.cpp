@@ -147,6 +147,22 @@ const std::vector<StudyDef>& studies() {
             .conclude = study::collisionConclude,
         },
         {
+            .name = "ambient_occlusion",
+            .title = "Ambient occlusion",
+            .question = "A ball resting on a slab: each screen-space occlusion method (ssao, hbao, "
+                        "gtao) along its samples per pixel against the reference's traced "
+                        "occlusion, and on gtao the surface method, the blur and the noise "
+                        "varied; the ao pass's time against its error.",
+            .scene = "ambient_occlusion.toml",
+            .xLabel = "samples per pixel (slices x steps)",
+            .xLog = true,
+            .metric = "ao.mean_abs",
+            .columns = {"ao.mean_abs", "ao.bias", "ao.halo", "normal.mean_deg", "beauty.flip"},
+            .frames = 3,
+            .points = study::ambientOcclusionPoints,
+            .conclude = study::ambientOcclusionConclude,
+        },
+        {
             .name = "methods",
             .title = "Surface methods",
             .question = "Every surface method at its defaults and along its main parameter, with "

@@ -52,6 +52,10 @@ void flickerConclude(report::StudyResult& s);
 std::vector<StudyPoint> collisionPoints(bool quick);
 void collisionConclude(report::StudyResult& s);
 
+// ---- ambient_occlusion (ambient_occlusion.cpp) ----
+std::vector<StudyPoint> ambientOcclusionPoints(bool quick);
+void ambientOcclusionConclude(report::StudyResult& s);
+
 // ---- methods (methods.cpp) ----
 std::vector<StudyPoint> methodsPoints(bool quick);
 void methodsConclude(report::StudyResult& s);

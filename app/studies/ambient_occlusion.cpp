@@ -1,0 +1,149 @@
+// The ambient_occlusion study (docs/studies.md): the screen-space occlusion methods against the
+// reference's traced occlusion on a ball resting on a slab, along their sample count, with the
+// surface method, the blur and the noise each varied on the best method.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "app/studies/common.h"
+#include "app/studies/study_list.h"
+#include "report/svg_chart.h"
+
+namespace twinrender::app::study {
+
+namespace {
+
+// A series: its name and the overrides beside the method's sample count.
+struct AoSeries {
+    std::string name;
+    std::vector<std::string> sets;
+};
+
+std::vector<AoSeries> aoSeries() {
+    const std::string gtao = "realtime.ao.method=\"gtao\"";
+    return {
+        {"ssao", {"realtime.ao.method=\"ssao\""}},
+        {"hbao", {"realtime.ao.method=\"hbao\""}},
+        {"gtao", {gtao}},
+        // Does a surface method change the occlusion? The impostors' caps without smoothing,
+        // and a depth filter, against SSSS (the default) above.
+        {"gtao, no smoothing", {gtao, "realtime.surface.method=\"none\""}},
+        {"gtao, bilateral depth", {gtao, "realtime.surface.method=\"bilateral\""}},
+        // The blur: flat against depth-aware (the default) on the halo; none at all.
+        {"gtao, flat blur", {gtao, "realtime.ao.blur=\"flat\""}},
+        {"gtao, no blur", {gtao, "realtime.ao.blur=\"none\""}},
+        // The noise under the blur: white and blue against interleaved gradient (the default).
+        {"gtao, white noise", {gtao, "realtime.ao.noise=\"white\""}},
+        {"gtao, blue noise", {gtao, "realtime.ao.noise=\"blue\""}},
+    };
+}
+
+// The slices and steps of a point with `samples` samples per pixel: slices x steps, slices
+// half the steps (at least 1) as the methods' defaults (4 x 8) have them.
+std::pair<int, int> slicesAndSteps(int samples) {
+    int slices = 1;
+    while (2 * slices * 2 * slices * 2 <= samples) slices *= 2;
+    return {slices, std::max(1, samples / slices)};
+}
+
+const StudyRow* bestOf(const std::vector<const StudyRow*>& rows, const std::string& metric) {
+    const StudyRow* best = nullptr;
+    for (const StudyRow* r : rows)
+        if (std::isfinite(metricOf(*r, metric)) &&
+            (!best || metricOf(*r, metric) < metricOf(*best, metric)))
+            best = r;
+    return best;
+}
+
+double aoTime(const StudyRow& r) {
+    const auto it = r.timingsMs.find("ao");
+    return it == r.timingsMs.end() ? NAN : it->second;
+}
+
+}  // namespace
+
+std::vector<StudyPoint> ambientOcclusionPoints(bool quick) {
+    const std::vector<int> samples =
+        quick ? std::vector<int>{8, 32} : std::vector<int>{4, 8, 16, 32, 64, 128};
+    std::vector<StudyPoint> pts;
+    // Without occlusion: the error the methods start from, drawn across the axis.
+    for (int n : {samples.front(), samples.back()})
+        pts.push_back({"none", double(n), {"realtime.ao.method=\"none\""}, ""});
+    for (const AoSeries& series : aoSeries())
+        for (int n : samples) {
+            const auto [slices, steps] = slicesAndSteps(n);
+            StudyPoint p{series.name, double(slices * steps), series.sets, ""};
+            p.sets.push_back(set("realtime.ao.slices", std::to_string(slices)));
+            p.sets.push_back(set("realtime.ao.steps", std::to_string(steps)));
+            pts.push_back(std::move(p));
+        }
+    return pts;
+}
+
+void ambientOcclusionConclude(StudyResult& s) {
+    s.chart = seriesChart(s, "ao.mean_abs");
+    for (auto& line : s.chart.series) line.dashed = line.name == "none";
+    const auto all = bySeries(s);
+    const auto* none = seriesRows(all, "none");
+    const double noneError = none ? meanOf(*none, "ao.mean_abs") : NAN;
+    // The cost against the error: every point, the Pareto front drawn.
+    report::ScatterChart scatter;
+    scatter.title = "Ambient occlusion: the pass's time against its error";
+    scatter.xLabel = "ao pass (ms, one frame)";
+    scatter.yLabel = "ao.mean_abs (lower is better)";
+    json points = json::array();
+    for (const StudyRow& r : s.rows) {
+        if (r.series == "none" || !r.error.empty()) continue;
+        scatter.points.push_back(
+            {aoTime(r), metricOf(r, "ao.mean_abs"), fmt::format("{} {}", r.series, xNumber(r.x))});
+        scatter.groups.push_back(r.series);
+    }
+    const std::vector<std::size_t> front = report::paretoFront(scatter.points, true);
+    for (std::size_t i : front)
+        points.push_back({{"label", scatter.points[i].label},
+                          {"ao_ms", jsonOrNull(scatter.points[i].x)},
+                          {"ao_mean_abs", jsonOrNull(scatter.points[i].y)}});
+    s.facts["pareto_front"] = points;
+    s.scatter = scatter;
+    s.figures.push_back({"along_samples",
+                         "ao.mean_abs along the samples per pixel (slices x steps), a line per "
+                         "series; none dashed.",
+                         s.chart});
+    s.facts["none_mean_abs"] = jsonOrNull(noneError);
+    std::string methods;
+    for (const std::string name : {"ssao", "hbao", "gtao"}) {
+        const auto* rows = seriesRows(all, name);
+        const StudyRow* best = rows ? bestOf(*rows, "ao.mean_abs") : nullptr;
+        if (!best) continue;
+        s.facts[name] = {{"mean_abs", jsonOrNull(metricOf(*best, "ao.mean_abs"))},
+                         {"bias", jsonOrNull(metricOf(*best, "ao.bias"))},
+                         {"halo", jsonOrNull(metricOf(*best, "ao.halo"))},
+                         {"samples", best->x}};
+        methods += fmt::format("{}{} {} (bias {:+.3f}, halo {}) at {} samples",
+                               methods.empty() ? "" : "; ", name,
+                               num(metricOf(*best, "ao.mean_abs")), metricOf(*best, "ao.bias"),
+                               num(metricOf(*best, "ao.halo")), xNumber(best->x));
+    }
+    // The variations of gtao at its largest sample count.
+    std::string variations;
+    for (const AoSeries& series : aoSeries()) {
+        if (series.name.rfind("gtao, ", 0) != 0) continue;
+        const auto* rows = seriesRows(all, series.name);
+        if (!rows || rows->empty()) continue;
+        const StudyRow& last = *rows->back();
+        s.facts[series.name] = {{"mean_abs", jsonOrNull(metricOf(last, "ao.mean_abs"))},
+                                {"halo", jsonOrNull(metricOf(last, "ao.halo"))}};
+        variations +=
+            fmt::format("{}{} {} (halo {})", variations.empty() ? "" : ", ", series.name.substr(6),
+                        num(metricOf(last, "ao.mean_abs")), num(metricOf(last, "ao.halo")));
+    }
+    s.finding = fmt::format(
+        "ao.mean_abs without occlusion {}; best of each method: {}; gtao at the most samples with "
+        "one thing changed: {}",
+        num(noneError), methods, variations);
+}
+
+}  // namespace twinrender::app::study
