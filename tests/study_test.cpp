@@ -137,7 +137,7 @@ TEST(Study, DepthRangeStandardDepthBreaksBeforeLog) {
 }
 
 TEST(Study, ThinCastersShadowMapAgainstOcclusionSpheres) {
-    const json s = runStudy("thin_casters", 2 * 3 + 2, "shadow.iou");
+    const json s = runStudy("thin_casters", 2 * 3 + 4 * 3 + 2, "shadow.iou");
     ASSERT_FALSE(s.is_discarded());
     // One reference for every point: only realtime.* settings vary.
     EXPECT_EQ(s["references"], 1);
@@ -153,6 +153,52 @@ TEST(Study, ThinCastersShadowMapAgainstOcclusionSpheres) {
               std::string::npos);
     // A shadow map at 1024 texels beats one occluding sphere per body on a thin ring.
     EXPECT_GT(best, f["spheres_iou"].get<double>()) << f;
+    // Each filter's smallest map within 0.02 of PCF's IoU at the finest: every row of the
+    // series from there on is at least that, the row before it (if any) is not.
+    const double target = metric(series(s, "pcf").back(), "shadow.iou") - 0.02;
+    for (const std::string filter : {"pcf", "esm", "vsm", "evsm"}) {
+        const auto rows = series(s, filter);
+        ASSERT_EQ(rows.size(), 3u) << filter;
+        const json& from = f["filters"][filter]["matches_pcf_from"];
+        double expected = NAN;
+        for (auto it = rows.rbegin(); it != rows.rend(); ++it) {
+            if (!(metric(*it, "shadow.iou") >= target)) break;
+            expected = (*it)["x"].get<double>();
+        }
+        if (std::isnan(expected))
+            EXPECT_TRUE(from.is_null()) << filter;
+        else
+            EXPECT_EQ(from.get<double>(), expected) << filter;
+        EXPECT_NE(s["finding"].get<std::string>().find(filter + " "), std::string::npos);
+    }
+    EXPECT_EQ(f["filters"]["pcf"]["matches_pcf_from"].is_null(), false);
+}
+
+TEST(Study, AmbientOcclusionMethodsAgainstTheTracedTruth) {
+    // Two sample counts of each of the 9 series, and none drawn at both ends.
+    const json s = runStudy("ambient_occlusion", 9 * 2 + 2, "ao.mean_abs");
+    ASSERT_FALSE(s.is_discarded());
+    EXPECT_EQ(s["references"], 1);
+    const json& f = s["facts"];
+    double none = 0.0;
+    for (const json& r : series(s, "none")) none += metric(r, "ao.mean_abs") / 2.0;
+    EXPECT_DOUBLE_EQ(f["none_mean_abs"].get<double>(), none);
+    // Each method's best is its series' smallest error, and it occludes: below none's.
+    for (const std::string method : {"ssao", "hbao", "gtao"}) {
+        double best = INFINITY;
+        for (const json& r : series(s, method)) best = std::min(best, metric(r, "ao.mean_abs"));
+        EXPECT_DOUBLE_EQ(f[method]["mean_abs"].get<double>(), best) << method;
+        EXPECT_LT(best, none) << method;
+    }
+    // The Pareto front: no point of it is beaten in both time and error by a row.
+    ASSERT_FALSE(f["pareto_front"].empty());
+    for (const json& p : f["pareto_front"])
+        for (const json& r : s["rows"]) {
+            if (r["series"] == "none") continue;
+            const double t = r["timings_ms"].value("ao", NAN), e = metric(r, "ao.mean_abs");
+            EXPECT_FALSE(t < p["ao_ms"].get<double>() && e < p["ao_mean_abs"].get<double>())
+                << p << " beaten by " << r["series"] << " " << r["x"];
+        }
 }
 
 TEST(Study, ParticleSizeFromFortyPixelsToBelowOne) {
@@ -434,7 +480,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
               std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
-    ASSERT_EQ(all["studies"].size(), 8u);
+    ASSERT_EQ(all["studies"].size(), 9u);
     const std::string page = readText(out / "studies" / "index.html");
     for (const json& s : all["studies"]) {
         EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;

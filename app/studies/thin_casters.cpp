@@ -10,6 +10,43 @@
 
 namespace twinrender::app::study {
 
+namespace {
+// The filtered series, PCF first: the others are judged against it.
+constexpr const char* FILTERS[] = {"pcf", "esm", "vsm", "evsm"};
+
+// The smallest x from which every row of `rows` (sorted by x) has shadow.iou of at least
+// `target`; NaN when the finest does not.
+double matchesFrom(const std::vector<const StudyRow*>& rows, double target) {
+    double from = NAN;
+    for (auto it = rows.rbegin(); it != rows.rend(); ++it) {
+        if (!(metricOf(**it, "shadow.iou") >= target)) break;
+        from = (*it)->x;
+    }
+    return from;
+}
+
+// "esm from 256 texels (IoU 0.9 at 1024), ..." against PCF at its finest, and the facts.
+std::string filtersAgainstPcf(const SeriesRows& all, json& facts) {
+    const auto* pcf = seriesRows(all, "pcf");
+    if (!pcf || pcf->empty()) return "";
+    const double target = metricOf(*pcf->back(), "shadow.iou") - 0.02;
+    std::string out;
+    for (const char* filter : FILTERS) {
+        const auto* rows = seriesRows(all, filter);
+        if (!rows || rows->empty()) continue;
+        const double from = matchesFrom(*rows, target);
+        facts["filters"][filter] = {
+            {"finest_iou", jsonOrNull(metricOf(*rows->back(), "shadow.iou"))},
+            {"finest_mae", jsonOrNull(metricOf(*rows->back(), "shadow.mae"))},
+            {"matches_pcf_from", jsonOrNull(from)}};
+        out += fmt::format("{}{} {} (IoU {} at {})", out.empty() ? "" : ", ", filter,
+                           std::isfinite(from) ? "from " + xNumber(from) + " texels" : "never",
+                           num(metricOf(*rows->back(), "shadow.iou")), xNumber(rows->back()->x));
+    }
+    return fmt::format("within 0.02 of pcf at {} texels: {}", xNumber(pcf->back()->x), out);
+}
+}  // namespace
+
 std::vector<StudyPoint> thinCastersPoints(bool quick) {
     const std::vector<int> res =
         quick ? std::vector<int>{64, 256, 1024} : std::vector<int>{64, 128, 256, 512, 1024, 2048};
@@ -23,6 +60,15 @@ std::vector<StudyPoint> thinCastersPoints(bool quick) {
                            {"realtime.shadows=\"map\"",
                             set("realtime.shadow_map.resolution", std::to_string(r)),
                             set("realtime.shadow_map.bias", fmt::format("{:g}", b))},
+                           ""});
+    // The filtered maps and PCF at the default bias: at what map size does each match PCF at
+    // the finest (the seed's claim: ESM let its map shrink from 2048 to 1024 texels)?
+    for (const char* filter : FILTERS)
+        for (int r : res)
+            pts.push_back({filter,
+                           double(r),
+                           {set("realtime.shadows", fmt::format("\"{}\"", filter)),
+                            set("realtime.shadow_map.resolution", std::to_string(r))},
                            ""});
     // The baseline does not use the map: one render, drawn across the axis.
     pts.push_back({"occlusion spheres", double(res.front()), {"realtime.shadows=\"spheres\""}, ""});
@@ -92,6 +138,8 @@ void thinCastersConclude(StudyResult& s) {
         percent(metricOf(*smallest.back(), "shadow.false_shadow")),
         largest.empty() ? "" : largest.back()->series,
         percent(metricOf(*largest.back(), "shadow.missed_shadow")), num(sphereIou));
+    const std::string filters = filtersAgainstPcf(all, s.facts);
+    if (!filters.empty()) s.finding += "; " + filters;
 }
 
 }  // namespace twinrender::app::study
