@@ -1,9 +1,9 @@
 // The frame as named passes (docs/design.md, "The real-time renderer"): shadow -> gbuffer ->
-// normals -> ssss or surface -> shade -> post. Each pass takes the buffers it reads and returns the
-// textures it writes; the renderer (renderer.cpp) runs them in order, times each with a GL timer
-// query and skips the passes the settings do not need. Positions are camera-relative; the frame
-// uniforms are bound at uniform binding 0, particles and materials at storage bindings 0 and 2
-// (ellipsoids at 4), the material texels at texture unit 7.
+// normals -> ssss or surface -> ao -> shade -> post. Each pass takes the buffers it reads and
+// returns the textures it writes; the renderer (renderer.cpp) runs them in order, times each with a
+// GL timer query and skips the passes the settings do not need. Positions are camera-relative; the
+// frame uniforms are bound at uniform binding 0, particles and materials at storage bindings 0 and
+// 2 (ellipsoids at 4), the material texels at texture unit 7.
 #pragma once
 
 #include <cstddef>

@@ -140,6 +140,24 @@ void ambientOcclusionConclude(StudyResult& s) {
             fmt::format("{}{} {} (halo {})", variations.empty() ? "" : ", ", series.name.substr(6),
                         num(metricOf(last, "ao.mean_abs")), num(metricOf(last, "ao.halo")));
     }
+    // A line per series at its largest sample count: the errors and the pass's cost.
+    report::StudyTable table{
+        "at_most_samples",
+        "Each series at its largest sample count: the occlusion's errors against the traced "
+        "truth and the ao pass's time (the fastest of the point's frames).",
+        {"series", "samples"},
+        {"ao.mean_abs", "ao.bias", "ao.halo", "ao_ms"},
+        {}};
+    for (const auto& [name, rows] : all) {
+        if (rows.empty()) continue;
+        const StudyRow& last = *rows.back();
+        table.lines.push_back({{name, xNumber(last.x)},
+                               {{"ao.mean_abs", metricOf(last, "ao.mean_abs")},
+                                {"ao.bias", metricOf(last, "ao.bias")},
+                                {"ao.halo", metricOf(last, "ao.halo")},
+                                {"ao_ms", aoTime(last)}}});
+    }
+    s.tables.push_back(std::move(table));
     s.finding = fmt::format(
         "ao.mean_abs without occlusion {}; best of each method: {}; gtao at the most samples with "
         "one thing changed: {}",

@@ -138,6 +138,25 @@ void thinCastersConclude(StudyResult& s) {
         percent(metricOf(*smallest.back(), "shadow.false_shadow")),
         largest.empty() ? "" : largest.back()->series,
         percent(metricOf(*largest.back(), "shadow.missed_shadow")), num(sphereIou));
+    // A line per filtered series and resolution: the visibility's errors and the map's cost.
+    report::StudyTable table{
+        "filters",
+        "PCF and the filtered maps at the default bias along the map's resolution: shadow IoU, "
+        "mean visibility error, leaks into the umbra, and the shadow stage's time (one frame).",
+        {"filter", "texels"},
+        {"shadow.iou", "shadow.mae", "shadow.leak", "shadow_ms"},
+        {}};
+    for (const char* filter : FILTERS)
+        if (const auto* rows = seriesRows(all, filter))
+            for (const StudyRow* r : *rows) {
+                const auto t = r->timingsMs.find("shadow");
+                table.lines.push_back({{filter, xNumber(r->x)},
+                                       {{"shadow.iou", metricOf(*r, "shadow.iou")},
+                                        {"shadow.mae", metricOf(*r, "shadow.mae")},
+                                        {"shadow.leak", metricOf(*r, "shadow.leak")},
+                                        {"shadow_ms", t == r->timingsMs.end() ? NAN : t->second}}});
+            }
+    if (!table.lines.empty()) s.tables.push_back(std::move(table));
     const std::string filters = filtersAgainstPcf(all, s.facts);
     if (!filters.empty()) s.finding += "; " + filters;
 }
