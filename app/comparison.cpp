@@ -23,12 +23,25 @@ void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
     metrics["time." + ref.renderer + "_ms"] = ref.timingsMs.at("total");
 }
 
+void addSplitMetrics(const core::Frame& ref, const core::Frame& test,
+                     const compare::MetricSettings& settings, compare::MetricValues& metrics) {
+    if (test.split.empty()) return;
+    const float exposure = static_cast<float>(settings.exposure);
+    const core::Image reference = core::tonemappedBeauty(ref.image, exposure);
+    for (const auto& [part, image] : test.split) {
+        const compare::MetricResult r =
+            compare::computeMetrics(reference, core::tonemappedBeauty(image, exposure), settings);
+        for (const char* metric : SPLIT_METRICS) metrics[part + "." + metric] = r.values.at(metric);
+    }
+}
+
 report::SceneReport compareScene(const LoadedScene& s, const core::Frame& ref,
                                  const core::Frame& test, const compare::Bounds& bounds,
                                  const compare::Baseline* baseline, double ppd, double flipOver,
                                  const std::filesystem::path& dir) {
-    const compare::MetricResult result =
-        compare::computeMetrics(ref.image, test.image, metricSettings(s, ppd, flipOver));
+    const compare::MetricSettings settings = metricSettings(s, ppd, flipOver);
+    compare::MetricResult result = compare::computeMetrics(ref.image, test.image, settings);
+    addSplitMetrics(ref, test, settings, result.values);
     return sceneReport(s, ref, test, result, bounds, baseline, dir);
 }
 

@@ -46,6 +46,14 @@ nlohmann::json hdrExposuresJson(const compare::ExposureRange& range);
 // The time a report is written, "2026-11-21 16:40 UTC".
 std::string nowUtc();
 
+// The image metrics each part of the error split is measured by (core::Frame::split), as
+// PART.METRIC: surface.beauty.flip, lighting.beauty.flip, shading.beauty.flip, ...
+inline constexpr const char* SPLIT_METRICS[] = {"beauty.flip", "beauty.psnr", "beauty.ssim"};
+// Adds the error split's metrics when the test frame has its images: each part's image
+// tonemapped and compared with the reference's tonemapped beauty.
+void addSplitMetrics(const core::Frame& ref, const core::Frame& test,
+                     const compare::MetricSettings& settings, compare::MetricValues& metrics);
+
 // The time metrics of a pair of renders: time.realtime_ms and time.raymarch_ms (total).
 void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
                     compare::MetricValues& metrics);

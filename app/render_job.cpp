@@ -97,23 +97,27 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
                                        fmt::join(rendererNames(), ", ")));
 }
 
-core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& s) {
+core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& s,
+                   const core::Image* exactSurface) {
     throwIfInterrupted();
     Progress progress(fmt::format("{}: {}", s.scene.name, name));
-    core::Frame frame = renderer.render({s.scene, s.particles, s.materials,
-                                         [&](double f) { progress.update(f); }, interruptFlag()});
+    core::Frame frame =
+        renderer.render({s.scene, s.particles, s.materials, [&](double f) { progress.update(f); },
+                         interruptFlag(), exactSurface});
     progress.finish();
     throwIfInterrupted();
     return frame;
 }
 
-core::Frame render(std::string_view name, Devices& devices, const LoadedScene& s) {
-    return render(*makeRenderer(name, devices, s), name, s);
+core::Frame render(std::string_view name, Devices& devices, const LoadedScene& s,
+                   const core::Image* exactSurface) {
+    return render(*makeRenderer(name, devices, s), name, s, exactSurface);
 }
 
 std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& devices,
                                           const std::vector<const LoadedScene*>& scenes, int frames,
-                                          bool warmUp) {
+                                          bool warmUp,
+                                          const std::vector<const core::Image*>& exactSurfaces) {
     std::vector<std::unique_ptr<core::Renderer>> renderers;
     for (const LoadedScene* s : scenes) {
         renderers.push_back(makeRenderer(name, devices, *s));
@@ -126,7 +130,9 @@ std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& device
         // Each round starts further along, so that each scene takes another place in each.
         for (std::size_t k = 0; k < n; ++k) {
             const std::size_t i = (k + f * n / rounds) % n;
-            timed[i].frame = render(*renderers[i], name, *scenes[i]);
+            const bool last = f + 1 == rounds;
+            timed[i].frame = render(*renderers[i], name, *scenes[i],
+                                    last && i < exactSurfaces.size() ? exactSurfaces[i] : nullptr);
             for (const auto& [stage, ms] : timed[i].frame.timingsMs)
                 if (stage != "compile") times[i][stage].push_back(ms);
         }
@@ -139,8 +145,9 @@ std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& device
 }
 
 TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& s, int frames,
-                       bool warmUp) {
-    return std::move(renderTimedRounds(name, devices, {&s}, frames, warmUp).front());
+                       bool warmUp, const core::Image* exactSurface) {
+    return std::move(
+        renderTimedRounds(name, devices, {&s}, frames, warmUp, {exactSurface}).front());
 }
 
 void writeRender(const LoadedScene& s, const core::Frame& frame, const std::filesystem::path& dir) {

@@ -76,10 +76,13 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
                                              const LoadedScene& scene);
 
 // Renders the scene, with a progress bar ("<scene>: <name>") on a terminal while the renderer
-// reports progress.
-core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& scene);
+// reports progress. `exactSurface`: the reference's AOV image, for the error split
+// (core::RenderInput::exactSurface).
+core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& scene,
+                   const core::Image* exactSurface = nullptr);
 // One frame of a renderer made for it (makeRenderer).
-core::Frame render(std::string_view name, Devices& devices, const LoadedScene& scene);
+core::Frame render(std::string_view name, Devices& devices, const LoadedScene& scene,
+                   const core::Image* exactSurface = nullptr);
 
 // A frame and its cost over several frames: per stage and for the total, the median and the
 // fastest. On a machine that other processes share they lengthen some frames and shorten
@@ -96,15 +99,19 @@ struct TimedFrame {
 // variants on first use, and a particle set's first frame does its per-set work (culling, impostor
 // radii). The "compile" stage (programs built for the renderer) is not part of a frame's time and
 // is left out.
+// `exactSurface`: the reference's AOV image, given to the last frame alone (the one returned)
+// for the error split (core::RenderInput::exactSurface); its passes run after the frame's
+// timings are taken.
 TimedFrame renderTimed(std::string_view name, Devices& devices, const LoadedScene& scene,
-                       int frames, bool warmUp);
+                       int frames, bool warmUp, const core::Image* exactSurface = nullptr);
 // The same for several scenes (or settings of one), their frames rendered in rounds, one frame
 // of each in turn, each round starting at another: a change of the machine's load over the
 // rounds, or within each, then falls on every scene alike, where one scene's frames after
 // another's would give the later ones another load.
-std::vector<TimedFrame> renderTimedRounds(std::string_view name, Devices& devices,
-                                          const std::vector<const LoadedScene*>& scenes, int frames,
-                                          bool warmUp);
+// `exactSurfaces`: empty, or one per scene (null: none) for the last round's frames.
+std::vector<TimedFrame> renderTimedRounds(
+    std::string_view name, Devices& devices, const std::vector<const LoadedScene*>& scenes,
+    int frames, bool warmUp, const std::vector<const core::Image*>& exactSurfaces = {});
 
 // Writes DIR/<renderer>.exr|.png|.json for a frame of the scene.
 void writeRender(const LoadedScene& scene, const core::Frame& frame,

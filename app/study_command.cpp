@@ -111,11 +111,20 @@ std::size_t timedTogetherEnd(const Planned& plan, std::size_t first) {
 // Renders the real-time frames of the points [first, end) (timedTogetherEnd) and their median
 // stage times: one frame each for a stability study; for a study that compares costs, one
 // untimed warm-up frame each and then `frames` rounds (one in quick runs).
+// The last frame of each gets its reference's AOV image for the error split (the references
+// are rendered or read first).
 void renderPoints(const Planned& plan, std::size_t first, std::size_t end, bool quick,
-                  Devices& devices, std::vector<std::optional<TimedFrame>>& timed) {
+                  Devices& devices, ReferenceCache& cache,
+                  std::vector<std::optional<TimedFrame>>& timed) {
     const StudyDef& d = *plan.def;
     std::vector<const LoadedScene*> scenes;
-    for (std::size_t k = first; k < end; ++k) scenes.push_back(&plan.points[k].scene);
+    std::vector<const core::Image*> references;
+    for (std::size_t k = first; k < end; ++k) {
+        const Point& pt = plan.points[k];
+        scenes.push_back(&pt.scene);
+        const auto [key, what] = referenceKey(pt.scene, pt.overrides);
+        references.push_back(&cache.get(pt.scene, key, what).image);
+    }
     const int frames = quick ? 1 : std::max(d.frames, 1);
     if (scenes.size() > 1) {
         std::printf("[%s] %s: %zu settings, %d frame%s each in rounds after a warm-up frame\n",
@@ -123,7 +132,8 @@ void renderPoints(const Planned& plan, std::size_t first, std::size_t end, bool 
                     frames, frames == 1 ? "" : "s");
         std::fflush(stdout);
     }
-    auto frameTimes = renderTimedRounds("realtime", devices, scenes, frames, d.frames > 1);
+    auto frameTimes =
+        renderTimedRounds("realtime", devices, scenes, frames, d.frames > 1, references);
     for (std::size_t k = first; k < end; ++k) timed[k] = std::move(frameTimes[k - first]);
 }
 
@@ -228,12 +238,14 @@ ExitCode runStudies(const StudyOptions& o) {
                 row.metrics["count.unbracketed_rays"] = u == ref.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
                 if (!timed[i])
-                    renderPoints(plan, i, timedTogetherEnd(plan, i), o.quick, devices, timed);
+                    renderPoints(plan, i, timedTogetherEnd(plan, i), o.quick, devices, cache,
+                                 timed);
                 const core::Frame test = std::move(timed[i]->frame);
                 row.timingsMs = std::move(timed[i]->fastestMs);
                 timed[i].reset();
                 const compare::MetricSettings ms = metricSettings(pt.scene, o.ppd);
-                const compare::MetricResult m = compare::computeMetrics(ref.image, test.image, ms);
+                compare::MetricResult m = compare::computeMetrics(ref.image, test.image, ms);
+                addSplitMetrics(ref, test, ms, m.values);
                 for (const auto& [k, v] : m.values) row.metrics[k] = v;
                 if (d.contactBand || d.occlusionError) {
                     const compare::Masks masks =

@@ -249,7 +249,7 @@ ExitCode runSuite(const RunOptions& o) {
                 return cached;
             }();
             writeRender(s, ref, dir);
-            const core::Frame test = render("realtime", devices, s);
+            const core::Frame test = render("realtime", devices, s, &ref.image);
             writeRender(s, test, dir);
             report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd,
                                   o.flipOver, dir);

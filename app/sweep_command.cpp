@@ -108,12 +108,14 @@ Measured measureStill(const Job& job, report::SweepRow& row, const std::string& 
         referenceKey(refScene, convergence ? job.tightOverrides : job.testOverrides);
     row.referenceKey = key;
     const core::Frame& ref = cache.get(refScene, key, what);
-    TimedFrame timed = renderTimed(testRenderer, devices, job.test, frames, !convergence);
+    TimedFrame timed = renderTimed(testRenderer, devices, job.test, frames, !convergence,
+                                   convergence ? nullptr : &ref.image);
     Measured m;
     m.shown = std::move(timed.frame);
     row.timingsMs = std::move(timed.medianMs);
-    compare::MetricResult result = compare::computeMetrics(
-        ref.image, m.shown.image, metricSettings(job.test, o.ppd, o.flipOver));
+    const compare::MetricSettings settings = metricSettings(job.test, o.ppd, o.flipOver);
+    compare::MetricResult result = compare::computeMetrics(ref.image, m.shown.image, settings);
+    addSplitMetrics(ref, m.shown, settings, result.values);
     row.metrics = result.values;
     addCounters(m.shown, row.metrics);
     if (auto it = result.errorMaps.find("beauty.flip"); it != result.errorMaps.end())

@@ -27,7 +27,7 @@ std::string_view toString(Better better);
 enum class MetricSource {
     AnyPair,   // computeMetrics, for every pair (AOV images and plain images alike)
     AovPair,   // computeMetrics, for pairs of AOV images only
-    Render,    // the commands that render: the renders' times and counters
+    Render,    // the commands that render: the renders' times and counters, the error split
     Study,     // the stability studies that ask for it (app/studies.h)
     Sequence,  // a sequence scene (`run`, app/sequence_run.h): per frame, or over its frames
 };

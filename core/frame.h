@@ -37,6 +37,12 @@ struct Frame {
     // "total" (the render, without process start and file I/O) and one entry per stage.
     std::map<std::string, double> timingsMs;
     std::size_t particleCount = 0;
+    // With RenderInput::exactSurface, the images of the error split (linear R, G, B): the
+    // renderer's shading of its own surface with the reference's light ("surface": what its
+    // surface costs), of the reference's surface with its own light ("lighting": what its
+    // shadow and occlusion cost), and of the reference's surface with the reference's light
+    // ("shading": what its shading alone costs, rounding).
+    std::map<std::string, Image> split;
 };
 
 // The tonemapped sRGB beauty (R, G, B in [0, 1]) a person looks at.

@@ -25,6 +25,9 @@ struct RenderInput {
     // Optional: when it becomes true, the render stops at its next tile or pass and throws
     // core::Cancelled (core/cancellation.h).
     const std::atomic<bool>* cancel = nullptr;
+    // Optional: the reference's AOV image of the same view. A renderer that can shades it
+    // too, to say where its own image's error comes from, and fills Frame::split.
+    const Image* exactSurface = nullptr;
 };
 
 class Renderer {

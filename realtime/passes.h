@@ -185,6 +185,9 @@ struct ShadeInputs {
     // The ambient occlusion pass's open fraction (binding 4), multiplying the ambient term;
     // null: no occlusion.
     const gl::Texture* ambientOcclusion = nullptr;
+    // The sun's visibility per pixel (R32F, binding 3) instead of the shadows' test: the error
+    // split's exact light (VISIBILITY_TEXTURE). Null: the shadows of `shadows`.
+    const gl::Texture* visibility = nullptr;
     // Spheres mode: camera-relative centres.
     std::vector<OcclusionSphere> spheres;
 };

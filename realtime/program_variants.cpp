@@ -190,6 +190,19 @@ std::vector<ProgramVariant> allProgramVariants() {
                         for (ProgramVariant& v : programVariants(a, emits))
                             all.try_emplace(v.name(), std::move(v));
                     }
+    // The error split's (error_split.h): the reference's depth, and shade with its light.
+    for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
+        ProgramVariant v =
+            ProgramVariant::draw("fullscreen.vert", "exact_depth.frag", {depthDefine(depth)});
+        all.try_emplace(v.name(), std::move(v));
+    }
+    for (bool emits : {false, true})
+        for (bool occlusion : {false, true}) {
+            std::vector<std::string> defines = shadeDefines(ShadowMode::None, {}, emits, occlusion);
+            defines.front() = "VISIBILITY_TEXTURE";
+            ProgramVariant v = ProgramVariant::draw("fullscreen.vert", "shade.frag", defines);
+            all.try_emplace(v.name(), std::move(v));
+        }
     std::vector<ProgramVariant> out;
     for (auto& [name, v] : all) out.push_back(std::move(v));
     return out;

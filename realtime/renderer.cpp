@@ -17,6 +17,7 @@
 #include "core/cancellation.h"
 #include "core/derived_attributes.h"
 #include "core/error.h"
+#include "realtime/error_split.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
@@ -429,6 +430,60 @@ void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, co
     frame.timingsMs["readback"] = msSince(start);
 }
 
+// ---- Error split ----
+
+// The linear beauty of an RGBA texture read back (rows from the bottom) as an image.
+core::Image beautyImage(std::span<const float> rgba, int w, int h) {
+    core::Image image(w, h, {"R", "G", "B"});
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t g = (static_cast<std::size_t>(h - 1 - y) * w + x) * 4;
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = rgba[g + c];
+        }
+    return image;
+}
+
+// Frame::split: the shade pass run three more times on the exact surface and light
+// (error_split.h) after the frame, untimed.
+void renderSplit(DeviceState& d, const PassInputs& in, const PassTargets& t,
+                 const core::RenderInput& input, core::Frame& frame) {
+    const ExactSurface exact =
+        uploadExactSurface(d.programs, *input.exactSurface, input, in.settings);
+    const GBuffer& g = exact.gbuffer;
+    // The exact surface with the real-time light: its shadow map, its occlusion pass.
+    std::optional<gl::Texture> occlusion;
+    if (usesAmbientOcclusion(in.settings))
+        occlusion.emplace(runAmbientOcclusionPass(d.programs, g.surface, g.normalUv, in.settings.ao,
+                                                  in.aoRadius));
+    ShadeInputs lighting = shadeInputs(in, t);
+    lighting.normalUv = &g.normalUv;
+    lighting.emissionBuffer = &g.emission;
+    lighting.emission = true;
+    lighting.surface = &g.surface;
+    lighting.depth = &g.depth;
+    lighting.ambientOcclusion = occlusion ? &*occlusion : nullptr;
+    // The real-time surface with the exact light, pixel by pixel.
+    ShadeInputs surface = shadeInputs(in, t);
+    surface.visibility = &exact.visibility;
+    surface.ambientOcclusion = &exact.ambientOcclusion;
+    // The exact surface with the exact light.
+    ShadeInputs shading = lighting;
+    shading.visibility = &exact.visibility;
+    shading.ambientOcclusion = &exact.ambientOcclusion;
+    const std::pair<const char*, const ShadeInputs*> parts[] = {
+        {"surface", &surface}, {"lighting", &lighting}, {"shading", &shading}};
+    std::vector<gl::Texture> beauty;
+    for (const auto& [name, inputs] : parts) beauty.push_back(runShadePass(d.programs, *inputs));
+    gl::checkErrors("error split");
+    gl::TextureReadback& r = d.readback;
+    constexpr std::size_t FIRST_SLOT = 8;  // after readBack's
+    for (std::size_t i = 0; i < beauty.size(); ++i) r.read(FIRST_SLOT + i, beauty[i]);
+    r.wait();
+    for (std::size_t i = 0; i < beauty.size(); ++i)
+        frame.split[parts[i].first] =
+            beautyImage(r.pixels(FIRST_SLOT + i), frame.image.width(), frame.image.height());
+}
+
 }  // namespace
 
 Renderer::Renderer(Device& device, const Settings& settings)
@@ -496,6 +551,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     d.perSet(mSettings).afterFrame(frame);
     for (const auto& [name, query] : targets.timers) frame.timingsMs[name] = query.milliseconds();
     frame.timingsMs["total"] = msSince(totalStart);
+    if (in.exactSurface) renderSplit(d, passInputs, targets, in, frame);
     return frame;
 }
 

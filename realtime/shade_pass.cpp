@@ -20,20 +20,26 @@ gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& in) {
     framebuffer.clearColor(0, glm::vec4(0.0f));  // the background: black, visibility 0
     gl::setPipelineState(coveredOnlyState(in.depthMode));
 
+    // With a visibility per pixel no shadow mode is read: its define takes the mode's place.
+    const ShadowMode shadows = in.visibility ? ShadowMode::None : in.shadows;
     std::vector<std::string> defines =
-        shadeDefines(in.shadows, in.shadowSettings, in.emission, in.ambientOcclusion != nullptr);
+        shadeDefines(shadows, in.shadowSettings, in.emission, in.ambientOcclusion != nullptr);
+    if (in.visibility) defines.front() = "VISIBILITY_TEXTURE";
     const gl::Program& program = programs.get("fullscreen.vert", "shade.frag", defines);
     program.use();
     in.normalUv->bind(0);
     in.emissionBuffer->bind(1);
     in.surface->bind(2);
-    if (in.shadowMap) in.shadowMap->bind(3);
+    if (in.visibility)
+        in.visibility->bind(3);
+    else if (in.shadowMap)
+        in.shadowMap->bind(3);
     if (in.ambientOcclusion) in.ambientOcclusion->bind(4);
-    if (usesFilteredShadowMap(in.shadows)) {
+    if (usesFilteredShadowMap(shadows)) {
         program.set("uExponents", shadowExponents(in.shadows, in.shadowSettings));
         program.set("uBleedReduction", static_cast<float>(in.shadowSettings.vsmBleedReduction));
     }
-    if (in.shadows == ShadowMode::Spheres) {
+    if (shadows == ShadowMode::Spheres) {
         if (in.spheres.size() > MAX_SPHERES)
             throw gl::Error(
                 fmt::format("{} occlusion spheres, at most {}", in.spheres.size(), MAX_SPHERES));

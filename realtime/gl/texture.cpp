@@ -75,12 +75,14 @@ void Texture::bind(unsigned unit) const {
 }
 
 void Texture::upload(std::span<const float> values) {
-    if (mFormat != Format::R32F ||
-        values.size() != static_cast<std::size_t>(mWidth) * static_cast<std::size_t>(mHeight))
+    const std::size_t channels = mFormat == Format::R32F ? 1 : mFormat == Format::RGBA32F ? 4 : 0;
+    if (channels == 0 || values.size() != static_cast<std::size_t>(mWidth) *
+                                              static_cast<std::size_t>(mHeight) * channels)
         throw Error(fmt::format("texture upload: {} values for an {}x{} texture of another format",
                                 values.size(), mWidth, mHeight));
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(mHandle.id(), 0, 0, 0, mWidth, mHeight, GL_RED, GL_FLOAT, values.data());
+    glTextureSubImage2D(mHandle.id(), 0, 0, 0, mWidth, mHeight, channels == 1 ? GL_RED : GL_RGBA,
+                        GL_FLOAT, values.data());
     checkErrors("texture upload");
 }
 

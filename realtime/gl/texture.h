@@ -27,7 +27,8 @@ class Texture {
     Texture(int width, int height, Format format, Filter filter = Filter::Nearest, int levels = 1);
 
     void bind(unsigned unit) const;  // glBindTextureUnit
-    // Level 0 from width x height R32F values (rows from the bottom); an R32F texture only.
+    // Level 0 from width x height x channels floats (rows from the bottom): an R32F (one a
+    // texel) or RGBA32F (four) texture.
     void upload(std::span<const float> values);
     // glBindImageTexture, level 0, for a compute pass to write (GL_WRITE_ONLY).
     void bindImageForWriting(unsigned unit) const;

@@ -1,11 +1,12 @@
 // The shading pass: core's shading model on the smoothed buffers, with the light's visibility
 // from the shadow map (SHADOWS_MAP, SHADOWS_PCF), a filtered map (SHADOWS_ESM with ESM_SEED or
 // not, SHADOWS_VSM, SHADOWS_EVSM), the occlusion spheres (SHADOWS_SPHERES) or none. Output:
-// linear beauty and the visibility (the shadow AOV). AMBIENT_OCCLUSION: the ambient term times
+// linear beauty and the visibility (the shadow AOV). VISIBILITY_TEXTURE: the visibility read
+// per pixel instead (the error split). AMBIENT_OCCLUSION: the ambient term times
 // the ambient occlusion pass's open fraction.
 #include "common.glsl"
-#include "textures.glsl"
 #include "shading.glsl"
+#include "textures.glsl"
 #if defined(SHADOWS_ESM) || defined(SHADOWS_VSM) || defined(SHADOWS_EVSM)
 #define SHADOWS_FILTERED
 #include "shadow_filters.glsl"
@@ -14,7 +15,8 @@
 layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
 layout(binding = 1) uniform sampler2D uEmission;
 layout(binding = 2) uniform sampler2D uSurface;
-// Linear light depth in [0, 1]; SHADOWS_FILTERED: the filtered map, linear filtering.
+// Linear light depth in [0, 1]; SHADOWS_FILTERED: the filtered map, linear filtering;
+// VISIBILITY_TEXTURE: the visibility itself per pixel (the error split's reference light).
 layout(binding = 3) uniform sampler2D uShadowMap;
 #ifdef AMBIENT_OCCLUSION
 layout(binding = 4) uniform sampler2D uAmbientOcclusion;  // the open fraction (ao.frag)
@@ -23,7 +25,7 @@ layout(binding = 4) uniform sampler2D uAmbientOcclusion;  // the open fraction (
 #ifdef SHADOWS_SPHERES
 const int MAX_SPHERES = 20;  // bodies over 5 % of the particles: at most 19
 uniform int uSphereCount;
-uniform vec4 uSpheres[MAX_SPHERES];     // camera-relative centre, radius
+uniform vec4 uSpheres[MAX_SPHERES];  // camera-relative centre, radius
 uniform float uSphereBodies[MAX_SPHERES];
 #endif
 
@@ -78,7 +80,9 @@ float pcfRadius(ivec2 centre, ivec2 size, float depth) {
 #endif
 
 float visibility(vec3 position, vec3 normal, float body, float worldRadius) {
-#if defined(SHADOWS_MAP) || defined(SHADOWS_PCF) || defined(SHADOWS_FILTERED)
+#if defined(VISIBILITY_TEXTURE)
+    return texelFetch(uShadowMap, ivec2(gl_FragCoord.xy), 0).r;
+#elif defined(SHADOWS_MAP) || defined(SHADOWS_PCF) || defined(SHADOWS_FILTERED)
     vec3 l = (lightView * vec4(position, 1.0)).xyz;
     vec2 tc = (lightClip * vec4(l, 1.0)).xy * 0.5 + 0.5;
     if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) return 1.0;
@@ -140,7 +144,8 @@ void main() {
     float worldRadius = s.z / pixelsPerUnitAt(z);
     // A surface facing away from the light is shadowed by its own body (what a shadow ray
     // from the surface finds); the beauty does not change, as it lights only n.l > 0.
-    float vis = dot(normal, -light.xyz) > 0.0 ? visibility(position, normal, s.y, worldRadius) : 0.0;
+    float vis =
+        dot(normal, -light.xyz) > 0.0 ? visibility(position, normal, s.y, worldRadius) : 0.0;
 #ifdef AMBIENT_OCCLUSION
     float open = texelFetch(uAmbientOcclusion, p, 0).r;
 #else
