@@ -2,11 +2,11 @@
 // from the shadow map (SHADOWS_MAP, SHADOWS_PCF), a filtered map (SHADOWS_ESM with ESM_SEED or
 // not, SHADOWS_VSM, SHADOWS_EVSM), the occlusion spheres (SHADOWS_SPHERES) or none. Output:
 // linear beauty and the visibility (the shadow AOV). VISIBILITY_TEXTURE: the visibility read
-// per pixel instead (the error split). AMBIENT_OCCLUSION: the ambient term times
-// the ambient occlusion pass's open fraction.
+// per pixel instead (the error split). AMBIENT_OCCLUSION: the ambient term times the ambient
+// occlusion pass's open fraction.
 #include "common.glsl"
-#include "shading.glsl"
 #include "textures.glsl"
+#include "shading.glsl"
 #if defined(SHADOWS_ESM) || defined(SHADOWS_VSM) || defined(SHADOWS_EVSM)
 #define SHADOWS_FILTERED
 #include "shadow_filters.glsl"
