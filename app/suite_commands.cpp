@@ -229,11 +229,23 @@ ExitCode runSuite(const RunOptions& o) {
     run.baselineFile = o.baseline;
     const std::size_t count =
         static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
+    using Clock = std::chrono::steady_clock;
+    const auto started = Clock::now();
     for (std::size_t i = 0, done = 0; i < scenes.size(); ++i) {
         if (!selected[i]) continue;
         LoadedScene& s = scenes[i];
         const fs::path dir = out / s.scene.name;
-        if (tty) std::fprintf(stderr, "[%zu/%zu] %s\n", ++done, count, s.scene.name.c_str());
+        if (tty) {
+            // What remains of the main job: the scenes at the pace of those done so far, then
+            // the studies (which count their own points down).
+            const double elapsed = std::chrono::duration<double>(Clock::now() - started).count();
+            const std::string left =
+                done == 0 ? ""
+                          : fmt::format(", about {:.0f} s left", elapsed / done * (count - done));
+            std::fprintf(stderr, "[%zu/%zu scenes%s%s] %s\n", done + 1, count, left.c_str(),
+                         o.linkStudies ? ", then the studies" : "", s.scene.name.c_str());
+        }
+        ++done;
         report::SceneReport report;
         try {
             if (s.scene.sequence) {
