@@ -439,6 +439,50 @@ Mask depthEdgeMask(const core::Image& reference, const Mask& covered) {
     return edges;
 }
 
+namespace {
+
+// AoResult::grain and banding.
+void aoNoise(const core::Image& reference, const core::Image& test, const Masks& masks,
+             int refChannel, int testChannel, AoResult& result) {
+    const int w = reference.width(), h = reference.height(), r = AO_NOISE_WINDOW / 2;
+    const auto index = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
+    std::vector<double> error(static_cast<std::size_t>(w) * h, 0.0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (masks.interior(x, y))
+                error[index(x, y)] =
+                    double(test.at(x, y, testChannel)) - reference.at(x, y, refChannel);
+    // The local mean over the interior pixels of each window, then the two parts' sums.
+    std::vector<double> local(error.size(), 0.0);
+    double n = 0.0, grain = 0.0, sum = 0.0, square = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!masks.interior(x, y)) continue;
+            double s = 0.0, count = 0.0;
+            for (int v = std::max(0, y - r); v <= std::min(h - 1, y + r); ++v)
+                for (int u = std::max(0, x - r); u <= std::min(w - 1, x + r); ++u)
+                    if (masks.interior(u, v)) {
+                        s += error[index(u, v)];
+                        count += 1.0;
+                    }
+            const double mean = s / count;
+            local[index(x, y)] = mean;
+            const double rest = error[index(x, y)] - mean;
+            grain += rest * rest;
+            sum += mean;
+            square += mean * mean;
+            n += 1.0;
+        }
+    if (n == 0.0) {
+        result.grain = result.banding = NOT_A_NUMBER;
+        return;
+    }
+    result.grain = std::sqrt(grain / n);
+    result.banding = std::sqrt(std::max(square / n - (sum / n) * (sum / n), 0.0));
+}
+
+}  // namespace
+
 AoResult aoError(const core::Image& reference, const core::Image& test, const Masks& masks) {
     requireComparable(reference, test, masks, "ao.mean_abs");
     const auto c = requireChannels<1>(reference, test, {"ao"}, "ao.mean_abs");
@@ -465,6 +509,7 @@ AoResult aoError(const core::Image& reference, const core::Image& test, const Ma
     result.meanAbs = ratioOrNaN(sums[1], sums[0]);
     result.bias = ratioOrNaN(sums[2], sums[0]);
     result.halo = ratioOrNaN(sums[4], sums[3]);
+    aoNoise(reference, test, masks, c.ref[0], c.test[0], result);
     return result;
 }
 

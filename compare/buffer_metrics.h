@@ -161,8 +161,17 @@ struct AoResult {
     // edge (NaN when there is none), where screen-space occlusion fails. NaN when no pixel is
     // covered in both.
     double halo = 0.0;
+    // The error's texture on interior pixels (masks.interior): split into its local mean over
+    // a window of AO_NOISE_WINDOW pixels a side (of the interior pixels in it) and the rest.
+    // grain: the RMS of the rest, the noise finer than the window that a blur leaves;
+    // banding: the RMS of the local mean about its own mean, the blotches and bands coarser
+    // than the window (and any error that varies over the image). NaN without interior pixels.
+    double grain = 0.0;
+    double banding = 0.0;
     core::Image errorMap;  // one channel "abs_error": |test - reference|, covered in both
 };
+// The window of ao.grain and ao.banding, pixels a side.
+constexpr int AO_NOISE_WINDOW = 9;
 // The reference's depth edges, as above.
 Mask depthEdgeMask(const core::Image& reference, const Mask& referenceCovered);
 AoResult aoError(const core::Image& reference, const core::Image& test, const Masks& masks);

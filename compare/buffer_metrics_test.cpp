@@ -592,6 +592,41 @@ TEST(AmbientOcclusion, KnownErrorsBiasAndHalo) {
     EXPECT_NEAR(r.errorMap.at(9, 3, 0), 0.3, 1e-6);
 }
 
+TEST(AmbientOcclusion, GrainIsFineNoiseAndBandingIsCoarse) {
+    // 40 x 40 pixels, all covered and interior; the reference open everywhere at 0.5.
+    auto img = [](auto errorAt) {
+        return scene(
+            40, 40, [](int, int) { return true; },
+            [errorAt](int x, int y) {
+                Surface s;
+                s.ao = 0.5f + errorAt(x, y);
+                return s;
+            });
+    };
+    const core::Image reference = img([](int, int) { return 0.0f; });
+    auto noise = [&](auto errorAt) {
+        const core::Image test = img(errorAt);
+        return aoError(reference, test, computeMasks(reference, test));
+    };
+    // A constant error is bias alone: no grain, no banding.
+    const AoResult constant = noise([](int, int) { return 0.1f; });
+    EXPECT_NEAR(constant.bias, 0.1, 1e-6);
+    EXPECT_NEAR(constant.grain, 0.0, 1e-6);
+    EXPECT_NEAR(constant.banding, 0.0, 1e-6);
+    // A checkerboard of +-0.1: pixel-fine noise. A 9 x 9 window holds 41 of one sign and 40 of
+    // the other (its mean +-0.1 / 81), so grain is 0.1 (1 - 1/81) = 0.0988 away from the image
+    // edge, where windows are cut; banding is about 0.1 / 81.
+    const AoResult checker = noise([](int x, int y) { return (x + y) % 2 ? 0.1f : -0.1f; });
+    EXPECT_GT(checker.grain, 0.095);
+    EXPECT_LT(checker.grain, 0.1);
+    EXPECT_LT(checker.banding, 0.01);
+    // Two bands, +0.1 on the left half and -0.1 on the right: coarse. The local mean follows
+    // the bands but within 4 px of their border: banding near 0.1, grain only at the border.
+    const AoResult bands = noise([](int x, int) { return x < 20 ? 0.1f : -0.1f; });
+    EXPECT_GT(bands.banding, 0.08);
+    EXPECT_LT(bands.grain, 0.05);
+}
+
 TEST(AmbientOcclusion, NoEdgeNoHaloAndAnEmptyMaskIsNaN) {
     const core::Image flat = full(12, 8);
     const AoResult same = aoError(flat, flat, computeMasks(flat, flat));
@@ -601,6 +636,7 @@ TEST(AmbientOcclusion, NoEdgeNoHaloAndAnEmptyMaskIsNaN) {
     const core::Image empty = core::aov::makeImage(12, 8);
     const AoResult none = aoError(empty, empty, computeMasks(empty, empty));
     EXPECT_TRUE(isNaN(none.meanAbs) && isNaN(none.bias) && isNaN(none.halo));
+    EXPECT_TRUE(isNaN(none.grain) && isNaN(none.banding));
 }
 
 TEST(BufferMetrics, EmptyMasksGiveNaN) {

@@ -122,6 +122,14 @@ const std::vector<MetricInfo>& metricTable() {
          .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
          .meaning = "mean absolute occlusion error within 4 pixels of the reference's depth "
                     "edges, where screen-space occlusion cannot see behind the surface"},
+        {.key = "ao.grain", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "RMS of the occlusion error finer than 9 px on interior pixels: the noise a "
+                    "blur leaves"},
+        {.key = "ao.banding", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "RMS of the occlusion error's 9 px local mean about its mean: blotches and "
+                    "bands coarser than the blur"},
         {.key = "surface.beauty.flip", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
          .buffer = "beauty", .source = S::Render, .overview = false, .machineDependent = false,
          .meaning = "the error split's surface part: ꟻLIP of the real-time surface shaded with "

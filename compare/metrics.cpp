@@ -212,6 +212,8 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
         result.values["ao.mean_abs"] = ao.meanAbs;
         result.values["ao.bias"] = ao.bias;
         result.values["ao.halo"] = ao.halo;
+        result.values["ao.grain"] = ao.grain;
+        result.values["ao.banding"] = ao.banding;
         result.errorMaps["ao"] = std::move(ao.errorMap);
     }
     return result;

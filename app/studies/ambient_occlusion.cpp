@@ -146,7 +146,7 @@ void ambientOcclusionConclude(StudyResult& s) {
         "Each series at its largest sample count: the occlusion's errors against the traced "
         "truth and the ao pass's time (the fastest of the point's frames).",
         {"series", "samples"},
-        {"ao.mean_abs", "ao.bias", "ao.halo", "ao_ms"},
+        {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding", "ao_ms"},
         {}};
     for (const auto& [name, rows] : all) {
         if (rows.empty()) continue;
@@ -155,13 +155,31 @@ void ambientOcclusionConclude(StudyResult& s) {
                                {{"ao.mean_abs", metricOf(last, "ao.mean_abs")},
                                 {"ao.bias", metricOf(last, "ao.bias")},
                                 {"ao.halo", metricOf(last, "ao.halo")},
+                                {"ao.grain", metricOf(last, "ao.grain")},
+                                {"ao.banding", metricOf(last, "ao.banding")},
                                 {"ao_ms", aoTime(last)}}});
     }
     s.tables.push_back(std::move(table));
+    // The noise kinds under the default blur at the fewest samples, where noise matters most.
+    std::string noises;
+    for (const auto& [label, name] :
+         {std::pair<const char*, const char*>{"interleaved gradient", "gtao"},
+          {"white", "gtao, white noise"},
+          {"blue", "gtao, blue noise"}}) {
+        const auto* rows = seriesRows(all, name);
+        if (!rows || rows->empty()) continue;
+        const StudyRow& first = *rows->front();
+        s.facts["noise"][label] = {{"grain", jsonOrNull(metricOf(first, "ao.grain"))},
+                                   {"banding", jsonOrNull(metricOf(first, "ao.banding"))},
+                                   {"samples", first.x}};
+        noises += fmt::format("{}{} {} / {}", noises.empty() ? "" : ", ", label,
+                              num(metricOf(first, "ao.grain")), num(metricOf(first, "ao.banding")));
+    }
     s.finding = fmt::format(
         "ao.mean_abs without occlusion {}; best of each method: {}; gtao at the most samples with "
-        "one thing changed: {}",
-        num(noneError), methods, variations);
+        "one thing changed: {}; noise after the blur at the fewest samples (ao.grain / "
+        "ao.banding): {}",
+        num(noneError), methods, variations, noises);
 }
 
 }  // namespace twinrender::app::study
