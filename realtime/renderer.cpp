@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -19,6 +20,7 @@
 #include "core/error.h"
 #include "realtime/error_split.h"
 #include "realtime/frame_assembly.h"
+#include "realtime/frame_graph.h"
 #include "realtime/gl/context.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
@@ -243,119 +245,128 @@ struct PassInputs {
     double aoRadius = 0.0;  // light.ao_radius
 };
 
-// The textures the passes write, each pass reading those of the passes before it, and the
-// timer query of each pass that ran.
+// The frame's resources after its passes (frame_graph.h), and the timer query of each pass
+// that ran.
 struct PassTargets {
-    std::optional<gl::Texture> shadowMap;
-    std::optional<GBuffer> gbuffer;
-    std::optional<gl::Texture> gradientNormalUv;  // normal = "gradient"
-    std::optional<SmoothedSurface> smoothed;
-    std::optional<FilteredSurface> filtered;
-    std::optional<gl::Texture> ambientOcclusion;  // the open fraction (ao.method)
-    std::optional<gl::Texture> beauty;            // linear beauty, light visibility
-    std::optional<gl::Texture> display;           // bloom and tonemap
+    FrameResources resources;
     std::vector<std::pair<const char*, gl::TimerQuery>> timers;
-
-    // The surface before smoothing: the G-buffer's, with the gradient pass's normals when it
-    // ran.
-    const gl::Texture& surfaceNormalUv() const {
-        return gradientNormalUv ? *gradientNormalUv : gbuffer->normalUv;
-    }
-    // The surface the shade pass reads: smoothed when SSSS ran, filtered when a depth filter
-    // or the user's shader did.
-    const gl::Texture& normalUv() const {
-        return smoothed   ? smoothed->resultNormalUv()
-               : filtered ? filtered->normalUv
-                          : surfaceNormalUv();
-    }
-    const gl::Texture& emission() const {
-        return smoothed   ? smoothed->resultEmission(*gbuffer)
-               : filtered ? filtered->resultEmission(*gbuffer)
-                          : gbuffer->emission;
-    }
-    const gl::Texture& surface() const {
-        return filtered ? filtered->resultSurface(*gbuffer) : gbuffer->surface;
-    }
 };
 
-ShadeInputs shadeInputs(const PassInputs& in, const PassTargets& t) {
+// What the shade pass reads, from the resources' current versions (FrameResources, or a pass's
+// PassResources).
+template <typename Resources>
+ShadeInputs shadeInputs(const PassInputs& in, const Resources& r) {
     ShadeInputs s;
-    s.normalUv = &t.normalUv();
-    s.emissionBuffer = &t.emission();
+    s.normalUv = &r.read(Resource::NormalUv);
+    s.emissionBuffer = &r.read(Resource::Emission);
     s.emission = in.emits;
-    s.surface = &t.surface();
-    s.depth = &t.gbuffer->depth;
+    s.surface = &r.read(Resource::Surface);
+    s.depth = &r.gbuffer().depth;
     s.depthMode = in.settings.depth;
-    s.shadowMap = t.shadowMap ? &*t.shadowMap : nullptr;
+    s.shadowMap = r.find(Resource::ShadowMap);
     s.shadows = in.settings.shadows;
     s.shadowSettings = in.settings.shadowMap;
     s.spheres = in.spheres;
-    s.ambientOcclusion = t.ambientOcclusion ? &*t.ambientOcclusion : nullptr;
+    s.ambientOcclusion = r.find(Resource::Occlusion);
     return s;
 }
 
-// One pass of the frame: its timings_ms key, whether the settings need it, and what it does.
+// One pass of the frame: its timings_ms key, what it reads and writes (frame_graph.h), whether
+// the settings need it, and what it does.
 struct Pass {
     const char* name;
+    std::span<const Resource> reads, writes;
     bool (*runs)(const PassInputs&);
-    void (*run)(const PassInputs&, PassTargets&);
+    void (*run)(const PassInputs&, PassResources&);
 };
 
 bool always(const PassInputs&) {
     return true;
 }
 
+using R = Resource;
+constexpr std::array SHADOW_WRITES{R::ShadowMap};
+constexpr std::array GBUFFER_WRITES{R::GBuffer, R::NormalUv, R::Emission, R::Surface};
+constexpr std::array SURFACE_READS{R::GBuffer, R::NormalUv};
+constexpr std::array NORMALS_WRITES{R::NormalUv};
+constexpr std::array SSSS_WRITES{R::NormalUv, R::Emission};
+constexpr std::array FILTER_WRITES{R::NormalUv, R::Emission, R::Surface};
+constexpr std::array AO_READS{R::Surface, R::NormalUv};
+constexpr std::array AO_WRITES{R::Occlusion};
+constexpr std::array SHADE_READS{R::GBuffer, R::NormalUv,  R::Emission,
+                                 R::Surface, R::ShadowMap, R::Occlusion};
+constexpr std::array SHADE_WRITES{R::Beauty};
+constexpr std::array POST_READS{R::Beauty};
+constexpr std::array POST_WRITES{R::Display};
+
 // The frame's passes, in order (passes.h). A pass that does not run reports 0 ms; a new pass is
-// a new row (and, if later passes read its output, a target).
+// a new row, declaring what it reads and writes.
 const Pass PASSES[] = {
-    {"shadow", [](const PassInputs& in) { return usesShadowMap(in.settings.shadows); },
-     [](const PassInputs& in, PassTargets& t) {
-         t.shadowMap.emplace(
-             runShadowPass(in.programs, in.scene, in.settings.shadows, in.settings.shadowMap));
+    {"shadow",
+     {},
+     SHADOW_WRITES,
+     [](const PassInputs& in) { return usesShadowMap(in.settings.shadows); },
+     [](const PassInputs& in, PassResources& r) {
+         r.write(R::ShadowMap,
+                 runShadowPass(in.programs, in.scene, in.settings.shadows, in.settings.shadowMap));
      }},
-    {"gbuffer", always,
-     [](const PassInputs& in, PassTargets& t) {
-         t.gbuffer.emplace(runGBufferPass(in.programs, in.scene, in.width, in.height,
-                                          in.settings.depth, in.settings.gbufferFormat));
+    {"gbuffer",
+     {},
+     GBUFFER_WRITES,
+     always,
+     [](const PassInputs& in, PassResources& r) {
+         r.writeGBuffer(runGBufferPass(in.programs, in.scene, in.width, in.height,
+                                       in.settings.depth, in.settings.gbufferFormat));
      }},
     // Not under a depth filter, whose normals are rebuilt from the filtered depth (upload
     // leaves the kernels out then).
-    {"normals",
+    {"normals", SURFACE_READS, NORMALS_WRITES,
      [](const PassInputs& in) {
          return in.gradientGrid != nullptr ||
                 (in.kernels != nullptr && (in.kernelDraw.commands || in.kernelDraw.count > 0));
      },
-     [](const PassInputs& in, PassTargets& t) {
+     [](const PassInputs& in, PassResources& r) {
          if (in.gradientGrid)
-             t.gradientNormalUv.emplace(runGradientGatherPass(in.programs, in.scene,
-                                                              *in.gradientGrid, in.camera,
-                                                              *t.gbuffer, in.settings.depth));
+             r.write(R::NormalUv, runGradientGatherPass(in.programs, in.scene, *in.gradientGrid,
+                                                        in.camera, r.gbuffer(), in.settings.depth));
          else
-             t.gradientNormalUv.emplace(runGradientNormalPass(
-                 in.programs, in.scene, *in.kernels, in.kernelDraw, *t.gbuffer, in.settings.depth));
+             r.write(R::NormalUv,
+                     runGradientNormalPass(in.programs, in.scene, *in.kernels, in.kernelDraw,
+                                           r.gbuffer(), in.settings.depth));
      }},
-    {"ssss", [](const PassInputs& in) { return usesSsss(in.settings); },
-     [](const PassInputs& in, PassTargets& t) {
-         t.smoothed.emplace(runSsssPass(in.programs, *t.gbuffer, t.surfaceNormalUv(),
-                                        in.settings.ssss, in.emits, in.settings.depth));
+    {"ssss", SURFACE_READS, SSSS_WRITES, [](const PassInputs& in) { return usesSsss(in.settings); },
+     [](const PassInputs& in, PassResources& r) {
+         auto s = std::make_shared<const SmoothedSurface>(
+             runSsssPass(in.programs, r.gbuffer(), r.read(R::NormalUv), in.settings.ssss, in.emits,
+                         in.settings.depth));
+         r.write(R::NormalUv, s, s->resultNormalUv());
+         // Without emitters the G-buffer's (zero) emission stands.
+         if (s->emission[s->current].id()) r.write(R::Emission, s, s->emission[s->current]);
      }},
-    {"surface", [](const PassInputs& in) { return usesSurfaceFilter(in.settings); },
-     [](const PassInputs& in, PassTargets& t) {
-         t.filtered.emplace(
-             runSurfacePass(in.programs, *t.gbuffer, t.surfaceNormalUv(), in.settings.surface));
+    {"surface", SURFACE_READS, FILTER_WRITES,
+     [](const PassInputs& in) { return usesSurfaceFilter(in.settings); },
+     [](const PassInputs& in, PassResources& r) {
+         auto f = std::make_shared<const FilteredSurface>(
+             runSurfacePass(in.programs, r.gbuffer(), r.read(R::NormalUv), in.settings.surface));
+         r.write(R::NormalUv, f, f->normalUv);
+         if (f->surface) r.write(R::Surface, f, *f->surface);
+         if (f->emission) r.write(R::Emission, f, *f->emission);
      }},
-    {"ao", [](const PassInputs& in) { return usesAmbientOcclusion(in.settings); },
-     [](const PassInputs& in, PassTargets& t) {
-         t.ambientOcclusion.emplace(runAmbientOcclusionPass(in.programs, t.surface(), t.normalUv(),
-                                                            in.settings.ao, in.aoRadius));
+    {"ao", AO_READS, AO_WRITES,
+     [](const PassInputs& in) { return usesAmbientOcclusion(in.settings); },
+     [](const PassInputs& in, PassResources& r) {
+         r.write(R::Occlusion,
+                 runAmbientOcclusionPass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
+                                         in.settings.ao, in.aoRadius));
      }},
-    {"shade", always,
-     [](const PassInputs& in, PassTargets& t) {
-         t.beauty.emplace(runShadePass(in.programs, shadeInputs(in, t)));
+    {"shade", SHADE_READS, SHADE_WRITES, always,
+     [](const PassInputs& in, PassResources& r) {
+         r.write(R::Beauty, runShadePass(in.programs, shadeInputs(in, r)));
      }},
-    {"post", always,
-     [](const PassInputs& in, PassTargets& t) {
-         t.display.emplace(runPostPass(in.programs, *t.beauty, in.settings.bloom, in.exposure));
+    {"post", POST_READS, POST_WRITES, always,
+     [](const PassInputs& in, PassResources& r) {
+         r.write(R::Display,
+                 runPostPass(in.programs, r.read(R::Beauty), in.settings.bloom, in.exposure));
      }},
 };
 
@@ -381,7 +392,8 @@ PassTargets runPasses(const PassInputs& in) {
         if (!pass.runs(in)) continue;
         t.timers.emplace_back(pass.name, gl::TimerQuery());
         t.timers.back().second.begin();
-        pass.run(in, t);
+        PassResources resources(pass.name, t.resources, pass.reads, pass.writes);
+        pass.run(in, resources);
         t.timers.back().second.end();
         gl::checkErrors(pass.name);
     }
@@ -402,18 +414,20 @@ core::Image reuseOrCreate(core::Image& spare, int w, int h, std::vector<std::str
 
 // Reads back what the shade pass read, the beauty and the display, and assembles the frame's
 // AOV and display images (frame_assembly.h). Times "readback".
-void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, core::Frame& frame) {
+void readBack(DeviceState& d, const FrameResources& t, bool emits, int w, int h,
+              core::Frame& frame) {
     const auto start = Clock::now();
     // Every read queued, then one wait (gl/readback.h).
     enum Slot : std::size_t { NORMAL_UV, EMISSION, SURFACE, BEAUTY_SHADOW, DISPLAY, OCCLUSION };
     gl::TextureReadback& r = d.readback;
-    r.read(NORMAL_UV, t.normalUv());
+    r.read(NORMAL_UV, t.read(Resource::NormalUv));
     // Without emitters the emission buffer is zero, as the image's channels already are.
-    if (emits) r.read(EMISSION, t.emission());
-    r.read(SURFACE, t.surface());
-    r.read(BEAUTY_SHADOW, *t.beauty);
-    r.read(DISPLAY, *t.display);
-    if (t.ambientOcclusion) r.read(OCCLUSION, *t.ambientOcclusion, 1);
+    if (emits) r.read(EMISSION, t.read(Resource::Emission));
+    r.read(SURFACE, t.read(Resource::Surface));
+    r.read(BEAUTY_SHADOW, t.read(Resource::Beauty));
+    r.read(DISPLAY, t.read(Resource::Display));
+    const gl::Texture* occlusion = t.find(Resource::Occlusion);
+    if (occlusion) r.read(OCCLUSION, *occlusion, 1);
     r.wait();
     frame.image = reuseOrCreate(d.spareImage, w, h, core::aov::channelNames());
     frame.display = reuseOrCreate(d.spareDisplay, w, h, {"R", "G", "B"});
@@ -425,7 +439,7 @@ void readBack(DeviceState& d, const PassTargets& t, bool emits, int w, int h, co
     buffers.surface = r.pixels(SURFACE);
     buffers.beautyShadow = r.pixels(BEAUTY_SHADOW);
     buffers.display = r.pixels(DISPLAY);
-    if (t.ambientOcclusion) buffers.ambientOcclusion = r.pixels(OCCLUSION);
+    if (occlusion) buffers.ambientOcclusion = r.pixels(OCCLUSION);
     assembleFrame(buffers, frame.image, frame.display);
     frame.timingsMs["readback"] = msSince(start);
 }
@@ -445,7 +459,7 @@ core::Image beautyImage(std::span<const float> rgba, int w, int h) {
 
 // Frame::split: the shade pass run three more times on the exact surface and light
 // (error_split.h) after the frame, untimed.
-void renderSplit(DeviceState& d, const PassInputs& in, const PassTargets& t,
+void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
                  const core::RenderInput& input, core::Frame& frame) {
     const ExactSurface exact =
         uploadExactSurface(d.programs, *input.exactSurface, input, in.settings);
@@ -547,11 +561,11 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     // The per-particle-set work (radii, anisotropy, culling) can take seconds on a large set.
     core::throwIfCancelled(in.cancel);
     const PassTargets targets = runPasses(passInputs);
-    readBack(d, targets, emits, camera.width(), camera.height(), frame);
+    readBack(d, targets.resources, emits, camera.width(), camera.height(), frame);
     d.perSet(mSettings).afterFrame(frame);
     for (const auto& [name, query] : targets.timers) frame.timingsMs[name] = query.milliseconds();
     frame.timingsMs["total"] = msSince(totalStart);
-    if (in.exactSurface) renderSplit(d, passInputs, targets, in, frame);
+    if (in.exactSurface) renderSplit(d, passInputs, targets.resources, in, frame);
     return frame;
 }
 
