@@ -175,13 +175,32 @@ std::string_view toString(PerSetDevice device) {
 
 namespace {
 
-constexpr std::pair<SurfaceMethod, std::string_view> SURFACE_METHODS[] = {
-    {SurfaceMethod::Ssss, "ssss"},
-    {SurfaceMethod::Bilateral, "bilateral"},
-    {SurfaceMethod::NarrowRange, "narrow_range"},
-    {SurfaceMethod::CurvatureFlow, "curvature_flow"},
-    {SurfaceMethod::None, "none"},
-    {SurfaceMethod::Shader, "shader"},
+// Each surface method with its name and what it needs of the frame (surfaceMethodInfo).
+constexpr SurfaceMethodInfo SURFACE_METHODS[] = {
+    {.method = SurfaceMethod::Ssss,
+     .name = "ssss",
+     .surfacePass = false,
+     .rebuildsNormals = NormalRebuild::Never},
+    {.method = SurfaceMethod::Bilateral,
+     .name = "bilateral",
+     .surfacePass = true,
+     .rebuildsNormals = NormalRebuild::Always},
+    {.method = SurfaceMethod::NarrowRange,
+     .name = "narrow_range",
+     .surfacePass = true,
+     .rebuildsNormals = NormalRebuild::Always},
+    {.method = SurfaceMethod::CurvatureFlow,
+     .name = "curvature_flow",
+     .surfacePass = true,
+     .rebuildsNormals = NormalRebuild::Always},
+    {.method = SurfaceMethod::None,
+     .name = "none",
+     .surfacePass = false,
+     .rebuildsNormals = NormalRebuild::Never},
+    {.method = SurfaceMethod::Shader,
+     .name = "shader",
+     .surfacePass = true,
+     .rebuildsNormals = NormalRebuild::WhenAsked},
 };
 
 // The surface.* keys: the method, the shader's text read (relative to the scene file), each
@@ -193,8 +212,8 @@ SurfaceSettings parseSurface(const core::ParameterTable& t) {
     const std::string method =
         t.getEnum("surface.method", shader.empty() ? std::string(toString(d.method)) : "shader",
                   {"ssss", "bilateral", "narrow_range", "curvature_flow", "none", "shader"});
-    for (const auto& [m, name] : SURFACE_METHODS)
-        if (name == method) s.method = m;
+    for (const SurfaceMethodInfo& m : SURFACE_METHODS)
+        if (m.name == method) s.method = m.method;
     if (s.method == SurfaceMethod::Shader && shader.empty())
         throw core::InputError(fmt::format(
             "{}: surface.method = \"shader\" needs realtime.surface.shader = PATH (a GLSL file "
@@ -252,10 +271,14 @@ SurfaceSettings parseSurface(const core::ParameterTable& t) {
 
 }  // namespace
 
+const SurfaceMethodInfo& surfaceMethodInfo(SurfaceMethod method) {
+    for (const SurfaceMethodInfo& m : SURFACE_METHODS)
+        if (m.method == method) return m;
+    return SURFACE_METHODS[0];
+}
+
 std::string_view toString(SurfaceMethod method) {
-    for (const auto& [m, name] : SURFACE_METHODS)
-        if (m == method) return name;
-    return "ssss";
+    return surfaceMethodInfo(method).name;
 }
 
 bool usesSsss(const Settings& s) {
@@ -263,14 +286,19 @@ bool usesSsss(const Settings& s) {
 }
 
 bool usesSurfaceFilter(const Settings& s) {
-    return s.surface.method != SurfaceMethod::Ssss && s.surface.method != SurfaceMethod::None;
+    return surfaceMethodInfo(s.surface.method).surfacePass;
 }
 
 bool rebuildsNormals(const Settings& s) {
-    const SurfaceMethod m = s.surface.method;
-    return m == SurfaceMethod::Bilateral || m == SurfaceMethod::NarrowRange ||
-           m == SurfaceMethod::CurvatureFlow ||
-           (m == SurfaceMethod::Shader && s.surface.shaderNormals);
+    switch (surfaceMethodInfo(s.surface.method).rebuildsNormals) {
+        case NormalRebuild::Never:
+            return false;
+        case NormalRebuild::Always:
+            return true;
+        case NormalRebuild::WhenAsked:
+            return s.surface.shaderNormals;
+    }
+    return false;
 }
 
 bool usesKernels(const Settings& s) {

@@ -344,6 +344,23 @@ struct Settings {
 
 // Whether the ambient occlusion pass runs (ao.method is not "none").
 bool usesAmbientOcclusion(const Settings& settings);
+// Whether a surface method's pass replaces the normals by those of its depth: the G-buffer's,
+// the gradient pass's or the field normals are then thrown away (and not computed).
+enum class NormalRebuild {
+    Never,      // it keeps the normals it is given (or smooths them: SSSS)
+    Always,     // a depth filter: normals from the filtered depth
+    WhenAsked,  // the user's shader: with surface.shader_normals
+};
+// What a surface method is and needs, in one place: its name, whether it runs as the "surface"
+// pass (after the G-buffer, before shading), and whether it rebuilds normals.
+struct SurfaceMethodInfo {
+    SurfaceMethod method;
+    std::string_view name;
+    bool surfacePass;
+    NormalRebuild rebuildsNormals;
+};
+const SurfaceMethodInfo& surfaceMethodInfo(SurfaceMethod method);
+
 // Whether the settings smooth with SSSS (surface.method = "ssss", ssss.enabled and a radius).
 bool usesSsss(const Settings& settings);
 // Whether a depth filter or the user's shader runs (the "surface" pass).
