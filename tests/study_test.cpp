@@ -175,8 +175,8 @@ TEST(Study, ThinCastersShadowMapAgainstOcclusionSpheres) {
 }
 
 TEST(Study, AmbientOcclusionMethodsAgainstTheTracedTruth) {
-    // Two sample counts of each of the 9 series, and none drawn at both ends.
-    const json s = runStudy("ambient_occlusion", 9 * 2 + 2, "ao.mean_abs");
+    // Two sample counts of each of the 10 series, and none drawn at both ends.
+    const json s = runStudy("ambient_occlusion", 10 * 2 + 2, "ao.mean_abs");
     ASSERT_FALSE(s.is_discarded());
     EXPECT_EQ(s["references"], 1);
     const json& f = s["facts"];

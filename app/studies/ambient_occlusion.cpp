@@ -38,6 +38,8 @@ std::vector<AoSeries> aoSeries() {
         // The noise under the blur: white and blue against interleaved gradient (the default).
         {"gtao, white noise", {gtao, "realtime.ao.noise=\"white\""}},
         {"gtao, blue noise", {gtao, "realtime.ao.noise=\"blue\""}},
+        // Fewer channels: the normal + uv and emission in half floats (the seed's choice).
+        {"gtao, compact G-buffer", {gtao, "realtime.gbuffer.format=\"compact\""}},
     };
 }
 
@@ -146,7 +148,8 @@ void ambientOcclusionConclude(StudyResult& s) {
         "Each series at its largest sample count: the occlusion's errors against the traced "
         "truth and the ao pass's time (the fastest of the point's frames).",
         {"series", "samples"},
-        {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding", "ao_ms"},
+        {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding", "normal.mean_deg",
+         "uv.mean", "ao_ms"},
         {}};
     for (const auto& [name, rows] : all) {
         if (rows.empty()) continue;
@@ -157,6 +160,8 @@ void ambientOcclusionConclude(StudyResult& s) {
                                 {"ao.halo", metricOf(last, "ao.halo")},
                                 {"ao.grain", metricOf(last, "ao.grain")},
                                 {"ao.banding", metricOf(last, "ao.banding")},
+                                {"normal.mean_deg", metricOf(last, "normal.mean_deg")},
+                                {"uv.mean", metricOf(last, "uv.mean")},
                                 {"ao_ms", aoTime(last)}}});
     }
     s.tables.push_back(std::move(table));

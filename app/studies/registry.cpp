@@ -151,14 +151,14 @@ const std::vector<StudyDef>& studies() {
             .title = "Ambient occlusion",
             .question = "A ball resting on a slab: each screen-space occlusion method (ssao, hbao, "
                         "gtao) along its samples per pixel against the reference's traced "
-                        "occlusion, and on gtao the surface method, the blur and the noise "
-                        "varied; the ao pass's time against its error.",
+                        "occlusion, and on gtao the surface method, the blur, the noise and "
+                        "the G-buffer's format varied; the ao pass's time against its error.",
             .scene = "ambient_occlusion.toml",
             .xLabel = "samples per pixel (slices x steps)",
             .xLog = true,
             .metric = "ao.mean_abs",
             .columns = {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding",
-                        "lighting.beauty.flip", "beauty.flip"},
+                        "normal.mean_deg", "uv.mean", "lighting.beauty.flip", "beauty.flip"},
             .frames = 3,
             .points = study::ambientOcclusionPoints,
             .conclude = study::ambientOcclusionConclude,
