@@ -129,10 +129,6 @@ struct SmoothedSurface {
     gl::Texture normalUv[2];
     gl::Texture emission[2];  // empty when the emission is not smoothed
     int current = 0;          // the targets holding the result
-    const gl::Texture& resultNormalUv() const { return normalUv[current]; }
-    const gl::Texture& resultEmission(const GBuffer& g) const {
-        return emission[current].id() ? emission[current] : g.emission;
-    }
 };
 // `normalUv`: the normal + uv to smooth (the G-buffer's, or the gradient pass's).
 SmoothedSurface runSsssPass(ProgramCache& programs, const GBuffer& gbuffer,
@@ -146,12 +142,6 @@ struct FilteredSurface {
     std::optional<gl::Texture> surface;   // as GBuffer::surface; empty: the G-buffer's stands
     gl::Texture normalUv;                 // world normal (octahedral), u, v
     std::optional<gl::Texture> emission;  // the user's shader only; empty: the G-buffer's
-    const gl::Texture& resultSurface(const GBuffer& g) const {
-        return surface ? *surface : g.surface;
-    }
-    const gl::Texture& resultEmission(const GBuffer& g) const {
-        return emission ? *emission : g.emission;
-    }
 };
 // `normalUv`: the normal + uv drawn (the G-buffer's, or the gradient pass's).
 FilteredSurface runSurfacePass(ProgramCache& programs, const GBuffer& gbuffer,

@@ -339,7 +339,7 @@ const Pass PASSES[] = {
          auto s = std::make_shared<const SmoothedSurface>(
              runSsssPass(in.programs, r.gbuffer(), r.read(R::NormalUv), in.settings.ssss, in.emits,
                          in.settings.depth));
-         r.write(R::NormalUv, s, s->resultNormalUv());
+         r.write(R::NormalUv, s, s->normalUv[s->current]);
          // Without emitters the G-buffer's (zero) emission stands.
          if (s->emission[s->current].id()) r.write(R::Emission, s, s->emission[s->current]);
      }},
