@@ -22,22 +22,11 @@ struct AoRun {
     nlohmann::json reference;  // the reference frame's JSON (counters, timings)
 };
 
-// `twinrender run` of the scene with the --set overrides `sets`; the reference is rendered
-// once into `dir`'s cache.
+// `twinrender run` of the scene with the --set overrides `sets`, and its reference's JSON.
 AoRun runWith(const fs::path& dir, const std::string& name, const std::vector<std::string>& sets) {
-    const fs::path out = dir / name;
-    std::string args =
-        "run " + SCENE.string() + " --out " + out.string() + " --cache " + (dir / "cache").string();
-    for (const std::string& s : sets) args += " --set " + s;
-    const auto r = tt::runTwinrender(args);
-    EXPECT_NE(r.exitCode, 4) << r.output;
     AoRun run;
-    const nlohmann::json summary = tt::readJson(out / "summary.json");
-    EXPECT_FALSE(summary.is_discarded()) << r.output;
-    if (summary.is_discarded()) return run;
-    for (const auto& [key, value] : summary["scenes"][0]["metrics"].items())
-        if (value.is_number()) run.metrics[key] = value.get<double>();
-    run.reference = tt::readJson(out / "ball_on_slab" / "raymarch.json");
+    run.metrics = tt::runMetrics(SCENE, dir, name, sets);
+    run.reference = tt::readJson(dir / name / "ball_on_slab" / "raymarch.json");
     return run;
 }
 

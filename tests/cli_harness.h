@@ -1,6 +1,7 @@
 // Runs the twinrender command as a user would and captures what it prints.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -8,9 +9,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/scratch_dir.h"
 
@@ -71,6 +74,29 @@ inline std::size_t count(const std::string& text, const std::string& what) {
 inline nlohmann::json readJson(const std::filesystem::path& file) {
     std::ifstream in(file);
     return nlohmann::json::parse(in, nullptr, false);
+}
+
+// The first scene's numeric metrics of `twinrender run SCENE --out DIR/NAME --cache DIR/cache`
+// with the --set overrides `sets` ("KEY=VALUE" each): the reference is rendered once per scene
+// into DIR's cache. Empty, with a failure recorded, when the run wrote no summary.
+inline std::map<std::string, double> runMetrics(const std::filesystem::path& scene,
+                                                const std::filesystem::path& dir,
+                                                const std::string& name,
+                                                const std::vector<std::string>& sets) {
+    const std::filesystem::path out = dir / name;
+    std::string args =
+        "run " + scene.string() + " --out " + out.string() + " --cache " + (dir / "cache").string();
+    for (const std::string& s : sets) args += " --set " + s;
+    const CommandResult r = runTwinrender(args);
+    std::map<std::string, double> metrics;
+    const nlohmann::json summary = readJson(out / "summary.json");
+    if (r.exitCode == 4 || summary.is_discarded()) {
+        ADD_FAILURE() << "twinrender " << args << ":\n" << r.output;
+        return metrics;
+    }
+    for (const auto& [key, value] : summary["scenes"][0]["metrics"].items())
+        if (value.is_number()) metrics[key] = value.get<double>();
+    return metrics;
 }
 
 // The page's self-test verdict in headless Chromium (as tests/report_browser_test.cpp opens

@@ -19,19 +19,7 @@ const fs::path SCENE = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "b
 
 std::map<std::string, double> metricsOf(const fs::path& dir, const std::string& name,
                                         const std::vector<std::string>& sets) {
-    const fs::path out = dir / name;
-    std::string args =
-        "run " + SCENE.string() + " --out " + out.string() + " --cache " + (dir / "cache").string();
-    for (const std::string& s : sets) args += " --set " + s;
-    const auto r = tt::runTwinrender(args);
-    EXPECT_NE(r.exitCode, 4) << r.output;
-    std::map<std::string, double> metrics;
-    const nlohmann::json summary = tt::readJson(out / "summary.json");
-    EXPECT_FALSE(summary.is_discarded()) << r.output;
-    if (summary.is_discarded()) return metrics;
-    for (const auto& [key, value] : summary["scenes"][0]["metrics"].items())
-        if (value.is_number()) metrics[key] = value.get<double>();
-    return metrics;
+    return tt::runMetrics(SCENE, dir, name, sets);
 }
 
 }  // namespace

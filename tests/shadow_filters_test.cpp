@@ -18,24 +18,11 @@ namespace {
 
 const fs::path SCENES = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes";
 
-// The metrics of `scene` rendered with the --set overrides `sets` ("KEY=VALUE" each); the
-// reference is rendered once per scene into `dir`'s cache.
+// The metrics of `scene` (a file of tests/scenes/) with the --set overrides `sets`.
 std::map<std::string, double> metricsOf(const fs::path& dir, const std::string& scene,
                                         const std::string& name,
                                         const std::vector<std::string>& sets) {
-    const fs::path out = dir / name;
-    std::string args = "run " + (SCENES / (scene + ".toml")).string() + " --out " + out.string() +
-                       " --cache " + (dir / "cache").string();
-    for (const std::string& s : sets) args += " --set " + s;
-    const auto r = tt::runTwinrender(args);
-    EXPECT_NE(r.exitCode, 4) << r.output;
-    const nlohmann::json summary = tt::readJson(out / "summary.json");
-    EXPECT_FALSE(summary.is_discarded()) << r.output;
-    std::map<std::string, double> metrics;
-    if (summary.is_discarded()) return metrics;
-    for (const auto& [key, value] : summary["scenes"][0]["metrics"].items())
-        if (value.is_number()) metrics[key] = value.get<double>();
-    return metrics;
+    return tt::runMetrics(SCENES / (scene + ".toml"), dir, name, sets);
 }
 
 }  // namespace
