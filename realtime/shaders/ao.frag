@@ -55,13 +55,20 @@ vec2 noise(ivec2 p) {
 #endif
 }
 
-// The surface at pixel q: false on the background or off the image.
-bool surfaceAt(ivec2 q, out vec3 position) {
+// The eye depth of the surface at pixel q: false on the background or off the image.
+bool depthAt(ivec2 q, out float z) {
     ivec2 size = ivec2(viewport.xy);
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return false;
     vec4 s = texelFetch(uSurface, q, 0);
-    if (s.y < 0.0) return false;
-    position = surfacePosition(vec2(q) + 0.5, s.x);
+    z = s.x;
+    return s.y >= 0.0;
+}
+
+// The camera-relative position of the surface at pixel q, as depthAt.
+bool surfaceAt(ivec2 q, out vec3 position) {
+    float z;
+    if (!depthAt(q, z)) return false;
+    position = surfacePosition(vec2(q) + 0.5, z);
     return true;
 }
 
@@ -101,9 +108,8 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         float reach = uRadius * mix(0.1, 1.0, f * f);
         vec3 q = position + dir * reach;
         vec3 screen = project(q);
-        vec3 seen;
-        if (!surfaceAt(ivec2(floor(screen.xy)), seen)) continue;
-        float zSeen = -(mat3(viewFromWorld) * seen).z;
+        float zSeen;
+        if (!depthAt(ivec2(floor(screen.xy)), zSeen)) continue;
         // The depth buffer in front of the point, by less than the radius (the range check).
         float bias = 0.02 * uRadius;
         if (zSeen < screen.z - bias && screen.z - zSeen < uRadius) closed += 1.0;
