@@ -175,8 +175,9 @@ TEST(Study, ThinCastersShadowMapAgainstOcclusionSpheres) {
 }
 
 TEST(Study, AmbientOcclusionMethodsAgainstTheTracedTruth) {
-    // Two sample counts of each of the 10 series, and none drawn at both ends.
-    const json s = runStudy("ambient_occlusion", 10 * 2 + 2, "ao.mean_abs");
+    // Two sample counts of each of the 10 series, none drawn at both ends, and the three
+    // methods on two surface methods.
+    const json s = runStudy("ambient_occlusion", 10 * 2 + 2 + 3 * 2, "ao.mean_abs");
     ASSERT_FALSE(s.is_discarded());
     EXPECT_EQ(s["references"], 1);
     const json& f = s["facts"];
@@ -189,6 +190,16 @@ TEST(Study, AmbientOcclusionMethodsAgainstTheTracedTruth) {
         for (const json& r : series(s, method)) best = std::min(best, metric(r, "ao.mean_abs"));
         EXPECT_DOUBLE_EQ(f[method]["mean_abs"].get<double>(), best) << method;
         EXPECT_LT(best, none) << method;
+        // The cross: the method's row on each surface method, and the best of them named.
+        const json& cross = f["by_surface"][method];
+        for (const std::string surface : {"ssss", "none"}) {
+            const json rows = series(s, method + " on " + surface);
+            ASSERT_EQ(rows.size(), 1u) << method << " on " << surface;
+            EXPECT_DOUBLE_EQ(cross[surface].get<double>(), metric(rows[0], "ao.mean_abs"));
+        }
+        const std::string bestSurface = cross["best"];
+        EXPECT_LE(cross[bestSurface].get<double>(), cross["none"].get<double>()) << method;
+        EXPECT_LE(cross[bestSurface].get<double>(), cross["ssss"].get<double>()) << method;
     }
     // The Pareto front: no point of it is beaten in both time and error by a row.
     ASSERT_FALSE(f["pareto_front"].empty());
