@@ -16,9 +16,25 @@ namespace twinrender::core {
 // The AOV channels in file order, and their background values.
 namespace aov {
 inline const std::vector<std::string>& channelNames() {
-    static const std::vector<std::string> names = {
-        "R",    "G",    "B",  "A",          "Z",          "N.X",        "N.Y",    "N.Z",
-        "uv.U", "uv.V", "id", "emission.R", "emission.G", "emission.B", "shadow", "ao"};
+    static const std::vector<std::string> names = {"R",
+                                                   "G",
+                                                   "B",
+                                                   "A",
+                                                   "Z",
+                                                   "N.X",
+                                                   "N.Y",
+                                                   "N.Z",
+                                                   "uv.U",
+                                                   "uv.V",
+                                                   "id",
+                                                   "emission.R",
+                                                   "emission.G",
+                                                   "emission.B",
+                                                   "shadow",
+                                                   "ao",
+                                                   "irradiance.R",
+                                                   "irradiance.G",
+                                                   "irradiance.B"};
     return names;
 }
 // An image with every AOV channel set to its background (Z = +inf, id = -1, others 0).

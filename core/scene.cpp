@@ -485,6 +485,7 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
         l.ambient = t.getDouble("ambient", l.ambient, 0.0, 1e9);
         l.angularRadiusDeg = t.getDouble("angular_radius", l.angularRadiusDeg, 0.0, 10.0);
         l.aoRadius = t.getDouble("ao_radius", l.aoRadius, 0.0, 1e9);
+        l.emissiveLight = t.getBool("emissive_light", l.emissiveLight);
         for (int c = 0; c < 3; ++c)
             if (!(l.color[c] >= 0.0))
                 throw InputError(fmt::format("{} must be >= 0", t.describe("color")));

@@ -43,6 +43,12 @@ struct LightSettings {
     // R (raymarch/ao_hemisphere.h), the real-time renderer's screen-space pass
     // (realtime.ao.method) looks this far.
     double aoRadius = 0.0;
+    // Light cast by emitting surfaces (emission maps, blackbody glow) onto the others: the
+    // irradiance E from them, added by the shared shading as albedo * E / pi. Both renderers
+    // read it: the reference integrates E over the emitting bodies by Monte Carlo
+    // (raymarch.emissive_samples), the real-time renderer estimates it with
+    // realtime.emissive.method. false: no such light (E = 0).
+    bool emissiveLight = false;
 };
 
 // Where a texture comes from: a constant colour, a named procedural, or an image file.

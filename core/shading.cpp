@@ -23,6 +23,7 @@ glm::vec3 shade(const std::vector<Material>& materials, const LightSettings& lig
     const glm::vec3 albedo = m.diffuse.sample(p.uv);
     const float nl = glm::dot(p.normal, l);
     glm::vec3 color = albedo * glm::vec3(light.color) * float(light.ambient) * p.ambientOcclusion;
+    color += albedo * p.irradiance * float(1.0 / 3.14159265358979323846);
     if (nl > 0.0f) {
         const glm::vec3 halfway = glm::normalize(l + p.toEye);
         const float nh = std::max(glm::dot(p.normal, halfway), 0.0f);

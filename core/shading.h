@@ -1,6 +1,7 @@
 // The shading model both renderers use (mirrored in realtime/shaders/shading.glsl): Lambert
 // diffuse x diffuse texture, Blinn-Phong specular x specular map, the emission buffer
-// (emission map + blackbody glow), city lights on the night side only, ambient times its occlusion.
+// (emission map + blackbody glow), city lights on the night side only, ambient times its occlusion,
+// the light of emitting surfaces (albedo x irradiance / pi).
 // The directional light is multiplied by its visibility (shadow). Linear radiance out.
 #pragma once
 
@@ -23,6 +24,9 @@ struct SurfacePoint {
     // The ambient occlusion: the cosine-weighted fraction of the hemisphere open within
     // light.ao_radius (1 open, 0 closed). It multiplies the ambient term.
     float ambientOcclusion = 1.0f;
+    // Linear RGB irradiance from emitting surfaces (light.emissive_light), added as
+    // albedo * irradiance / pi: the Lambert reflection of that light.
+    glm::vec3 irradiance{0.0f};
 };
 
 // Emission map at uv plus the particle glow: the value of the emission buffer.

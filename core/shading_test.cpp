@@ -49,6 +49,14 @@ TEST(Shading, LambertAmbientShadowAndCityLights) {
     EXPECT_NEAR(tc::shade(mats, light, p).x, 0.5 * 0.1 + 2.0, 1e-6);
     EXPECT_FLOAT_EQ(tc::nightFactor({0, 0, 1}, {0, 0, 1}), 0.0f);
     EXPECT_FLOAT_EQ(tc::nightFactor({1, 0, 0}, {0, 0, 1}), 0.5f);  // the terminator
+    // Light from emitting surfaces, irradiance E: the Lambert reflection albedo E / pi, on the
+    // night side as anywhere (no city lights here).
+    const auto plain = oneMaterial(0.5, 0.0, 0.0);
+    p.irradiance = {3.0f, 0.0f, 6.0f};
+    const glm::vec3 lit = tc::shade(plain, light, p);
+    EXPECT_NEAR(lit.x, 0.5 * 0.1 + 0.5 * 3.0 / M_PI, 1e-6);
+    EXPECT_NEAR(lit.y, 0.5 * 0.1, 1e-6);
+    EXPECT_NEAR(lit.z, 0.5 * 0.1 + 0.5 * 6.0 / M_PI, 1e-6);
 }
 
 TEST(Shading, TonemapAndSrgb) {

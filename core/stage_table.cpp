@@ -45,6 +45,9 @@ constexpr std::array STAGES = {
     StageInfo{.key = "ao", .renderer = "both", .cadence = StageCadence::Frame,
               .meaning = "ambient occlusion: the screen-space pass and its blur, or the "
                          "reference's occlusion rays"},
+    StageInfo{.key = "emissive", .renderer = "both", .cadence = StageCadence::Frame,
+              .meaning = "the light of emitting surfaces (light.emissive_light): the real-time "
+                         "estimate (emissive.method), or the reference's rays toward the emitters"},
     StageInfo{.key = "shade", .renderer = "realtime", .cadence = StageCadence::Frame,
               .meaning = "the lighting of every covered pixel"},
     StageInfo{.key = "post", .renderer = "realtime", .cadence = StageCadence::Frame,

@@ -21,18 +21,28 @@ double unit(std::uint64_t x) {
 
 }  // namespace
 
+void orthonormalBasis(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
+    // Frisvad's frame, with the branch of Duff et al. 2017.
+    const double sign = std::copysign(1.0, n.z);
+    const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
+    u = glm::dvec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    v = glm::dvec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+glm::dvec2 jitteredStratum(int i, int j, int side, std::uint64_t seed) {
+    const std::uint64_t h = mix(seed * 0x100000001b3ull + mix(std::uint64_t(i) * side + j));
+    return {(i + unit(h)) / side, (j + unit(mix(h))) / side};
+}
+
 std::vector<glm::dvec3> aoDirections(const glm::dvec3& normal, int side, std::uint64_t seed) {
-    // An orthonormal frame about the normal (Frisvad's, with the branch of Duff et al. 2017).
-    const double sign = std::copysign(1.0, normal.z);
-    const double a = -1.0 / (sign + normal.z), b = normal.x * normal.y * a;
-    const glm::dvec3 u(1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x);
-    const glm::dvec3 v(b, sign + normal.y * normal.y * a, -normal.y);
+    glm::dvec3 u, v;
+    orthonormalBasis(normal, u, v);
     std::vector<glm::dvec3> out;
     out.reserve(static_cast<std::size_t>(side) * side);
     for (int i = 0; i < side; ++i) {
         for (int j = 0; j < side; ++j) {
-            const std::uint64_t h = mix(seed * 0x100000001b3ull + mix(i * side + j));
-            const double s = (i + unit(h)) / side, t = (j + unit(mix(h))) / side;
+            const glm::dvec2 st = jitteredStratum(i, j, side, seed);
+            const double s = st.x, t = st.y;
             const double r = std::sqrt(s), phi = 2.0 * M_PI * t;
             const double z = std::sqrt(std::max(0.0, 1.0 - s));
             out.push_back(glm::normalize(z * normal + r * (std::cos(phi) * u + std::sin(phi) * v)));

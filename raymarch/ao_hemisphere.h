@@ -15,6 +15,13 @@ namespace twinrender::raymarch {
 // (Malley's method, so the density is cos(theta) / pi). Each is jittered inside its stratum by
 // a hash of (seed, stratum): fixed for a given seed (a pixel's index), so the result is the
 // same on every thread count.
+// Two unit vectors u, v that make (u, v, n) an orthonormal frame, for a unit n.
+void orthonormalBasis(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v);
+
+// A point of the unit square in stratum (i, j) of a side x side grid, jittered inside it by a
+// hash of (seed, stratum).
+glm::dvec2 jitteredStratum(int i, int j, int side, std::uint64_t seed);
+
 std::vector<glm::dvec3> aoDirections(const glm::dvec3& normal, int side, std::uint64_t seed);
 
 // The standard error of the unoccluded fraction `open` estimated from `samples` directions.

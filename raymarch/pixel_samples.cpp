@@ -8,7 +8,8 @@ namespace twinrender::raymarch {
 
 ShadedSample shadeHit(const SurfaceHit& hit, const glm::dvec3& direction, float visibility,
                       const std::vector<core::Material>& materials,
-                      const core::LightSettings& light, float ambientOcclusion) {
+                      const core::LightSettings& light, float ambientOcclusion,
+                      glm::vec3 irradiance) {
     core::SurfacePoint sp;
     sp.normal = hit.normal;
     sp.toEye = glm::vec3(-direction);
@@ -17,16 +18,18 @@ ShadedSample shadeHit(const SurfaceHit& hit, const glm::dvec3& direction, float 
     sp.emission = core::surfaceEmission(materials[hit.material], hit.uv, hit.glow);
     sp.visibility = visibility;
     sp.ambientOcclusion = ambientOcclusion;
+    sp.irradiance = irradiance;
     return {core::shade(materials, light, sp), sp.emission};
 }
 
 void PixelSamples::add(const ShadedSample& sample, float visibility, const SurfaceHit& hit,
-                       double hitDepth, double jx, double jy, float open) {
+                       double hitDepth, double jx, double jy, float open, glm::vec3 light) {
     beauty += glm::dvec3(sample.beauty);
     emission += glm::dvec3(sample.emission);
     coverage += 1.0;
     shadow += visibility;
     ambientOcclusion += open;
+    irradiance += glm::dvec3(light);
     const double dist = (jx - 0.5) * (jx - 0.5) + (jy - 0.5) * (jy - 0.5);
     if (dist < nearest) {
         nearest = dist;
@@ -46,7 +49,8 @@ AovChannels::AovChannels(const core::Image& image)
       id(image.requireChannel("id")),
       emission(image.requireChannel("emission.R")),
       shadow(image.requireChannel("shadow")),
-      ao(image.requireChannel("ao")) {}
+      ao(image.requireChannel("ao")),
+      irradiance(image.requireChannel("irradiance.R")) {}
 
 void writePixel(const PixelSamples& s, int spp, float exposure, int x, int y, const AovChannels& c,
                 core::Image& aov, core::Image& display) {
@@ -62,6 +66,7 @@ void writePixel(const PixelSamples& s, int spp, float exposure, int x, int y, co
         aov.at(x, y, c.beauty + k) = beauty[k];
         aov.at(x, y, c.emission + k) = static_cast<float>(s.emission[k] / s.coverage);
         aov.at(x, y, c.normal + k) = s.normal[k];
+        aov.at(x, y, c.irradiance + k) = static_cast<float>(s.irradiance[k] / s.coverage);
     }
     aov.at(x, y, c.coverage) = static_cast<float>(s.coverage * inv);
     aov.at(x, y, c.shadow) = static_cast<float>(s.shadow / s.coverage);

@@ -1,8 +1,8 @@
 // One pixel of the reference on its way into the AOV image (docs/design.md, "The frame"): each
 // sample's hit shaded with the shared model (core/shading.h), the samples of the pixel gathered,
-// then the pixel written. Beauty, coverage, emission, shadow and ambient occlusion are averaged
-// over the samples; the geometric channels (depth, normal, uv, id) are not filtered: they come from
-// the hit sample nearest the pixel centre.
+// then the pixel written. Beauty, coverage, emission, shadow, ambient occlusion and irradiance are
+// averaged over the samples; the geometric channels (depth, normal, uv, id) are not filtered: they
+// come from the hit sample nearest the pixel centre.
 #pragma once
 
 #include <cmath>
@@ -24,10 +24,12 @@ struct ShadedSample {
 };
 
 // Shades a hit seen along `direction` (the camera ray's, unit), lit with `visibility` (1 lit,
-// 0 in shadow), its ambient term times `ambientOcclusion` (the open fraction, 1: none).
+// 0 in shadow), its ambient term times `ambientOcclusion` (the open fraction, 1: none), with
+// `irradiance` from emitting surfaces (linear RGB).
 ShadedSample shadeHit(const SurfaceHit& hit, const glm::dvec3& direction, float visibility,
                       const std::vector<core::Material>& materials,
-                      const core::LightSettings& light, float ambientOcclusion = 1.0f);
+                      const core::LightSettings& light, float ambientOcclusion = 1.0f,
+                      glm::vec3 irradiance = glm::vec3(0.0f));
 
 // The hit samples of one pixel. Pixels are independent and each sums its samples in sample
 // order, so the image does not depend on the order in which pixels are traced.
@@ -37,6 +39,7 @@ struct PixelSamples {
     double coverage = 0.0;  // hit samples
     double shadow = 0.0;
     double ambientOcclusion = 0.0;
+    glm::dvec3 irradiance{0.0};
     // The kept geometric channels and the squared distance of their sample from the pixel
     // centre, in pixels.
     double nearest = INFINITY;
@@ -46,15 +49,18 @@ struct PixelSamples {
     float body = 0.0f;
 
     // Adds the hit sample at (jx, jy) in the pixel ([0, 1)^2, centre 0.5) whose eye depth is
-    // `depth`, its ambient occlusion's open fraction `ambientOcclusion`.
+    // `depth`, its ambient occlusion's open fraction `ambientOcclusion`, its irradiance from
+    // emitting surfaces `irradiance`.
     void add(const ShadedSample& sample, float visibility, const SurfaceHit& hit, double depth,
-             double jx, double jy, float ambientOcclusion = 1.0f);
+             double jx, double jy, float ambientOcclusion = 1.0f,
+             glm::vec3 irradiance = glm::vec3(0.0f));
 };
 
 // The indices of the AOV channels a pixel writes, looked up once per frame.
 struct AovChannels {
     explicit AovChannels(const core::Image& image);
-    int beauty, coverage, depth, normal, uv, id, emission, shadow, ao;  // R, A, Z, N.X, uv.U, ...
+    int beauty, coverage, depth, normal, uv, id, emission, shadow, ao,
+        irradiance;  // R, A, Z, N.X, uv.U, ...
 };
 
 // Writes pixel (x, y) of the AOV image (`spp` samples per pixel) and of the display image (R, G,

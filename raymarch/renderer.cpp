@@ -16,7 +16,10 @@
 
 #include "core/camera.h"
 #include "core/cancellation.h"
+#include "core/emitters.h"
+#include "core/shading.h"
 #include "raymarch/ao_hemisphere.h"
+#include "raymarch/emitter_cone.h"
 #include "raymarch/pixel_samples.h"
 #include "raymarch/sun_disc.h"
 #include "raymarch/surface_tracer.h"
@@ -58,14 +61,18 @@ float hashToUnit(std::uint32_t x, std::uint32_t y, std::uint32_t k, std::uint32_
     return (h >> 8) * (1.0f / 16777216.0f);
 }
 
-// Thread time of the parts of tracing, in steady-clock ticks, and the ambient occlusion's
-// standard errors.
+// Thread time of the parts of tracing, in steady-clock ticks, and the standard errors of the
+// ambient occlusion and of the emitters' irradiance.
 struct StageTicks {
-    std::int64_t trace = 0;      // camera rays and shadow rays
-    std::int64_t ao = 0;         // ambient occlusion rays
-    std::int64_t shade = 0;      // shading the hits
-    double aoErrorSum = 0.0;     // of aoStandardError over the hit samples
-    std::int64_t aoSamples = 0;  // hit samples with occlusion traced
+    std::int64_t trace = 0;         // camera rays and shadow rays
+    std::int64_t ao = 0;            // ambient occlusion rays
+    std::int64_t emissive = 0;      // rays toward the emitting bodies
+    std::int64_t shade = 0;         // shading the hits
+    double aoErrorSum = 0.0;        // of aoStandardError over the hit samples
+    std::int64_t aoSamples = 0;     // hit samples with occlusion traced
+    double lightErrorSum = 0.0;     // of the irradiance's standard error (luminance)
+    std::int64_t lightSamples = 0;  // hit samples with the emitters' light traced
+    std::int64_t lightRays = 0;     // rays traced toward emitters
 };
 
 // The pixels of one block, in rows, and the ray through the centre of the full block.
@@ -105,7 +112,13 @@ class FrameTrace {
           mSunDirections(sunDirections(-input.scene.light.direction,
                                        input.scene.light.angularRadiusDeg, settings.sunSamples)),
           mAoRadius(input.scene.light.aoRadius),
-          mAoSide(aoSide(settings)) {}
+          mAoSide(aoSide(settings)),
+          mEmitters(input.scene.light.emissiveLight
+                        ? core::emittingBodies(input.particles, input.materials)
+                        : std::vector<core::EmittingBody>{}),
+          mEmissiveSide(emissiveSide(settings)) {}
+
+    std::size_t emitterCount() const { return mEmitters.size(); }
 
     int tileCount() const { return mTilesX * mTilesY; }
 
@@ -139,6 +152,7 @@ class FrameTrace {
         SurfaceHit hits[N];
         bool found[N];
         float vis[N], open[N];
+        glm::vec3 light[N];
         const auto t0 = Clock::now();
         mTracer.tracePrimary(b.n, b.rowLength, r.rays, r.tnear, r.tfar, b.central, hits, found, w);
         if (mSettings.shadows)
@@ -149,13 +163,18 @@ class FrameTrace {
         ticks.trace += (tAo - t0).count();
         std::fill_n(open, b.n, 1.0f);
         if (mAoRadius > 0.0) traceOcclusion(b, k, hits, found, open, w, ticks);
+        const auto tLight = Clock::now();
+        ticks.ao += (tLight - tAo).count();
+        std::fill_n(light, b.n, glm::vec3(0.0f));
+        if (!mEmitters.empty()) traceEmitters(b, k, hits, found, light, w, ticks);
         const auto t1 = Clock::now();
-        ticks.ao += (t1 - tAo).count();
+        ticks.emissive += (t1 - tLight).count();
         for (int i = 0; i < b.n; ++i) {
             if (!found[i]) continue;
             const ShadedSample s = shadeHit(hits[i], r.rays[i].direction, vis[i], mInput.materials,
-                                            mInput.scene.light, open[i]);
-            pixels[i].add(s, vis[i], hits[i], hits[i].t * r.cosAxis[i], r.jx[i], r.jy[i], open[i]);
+                                            mInput.scene.light, open[i], light[i]);
+            pixels[i].add(s, vis[i], hits[i], hits[i].t * r.cosAxis[i], r.jx[i], r.jy[i], open[i],
+                          light[i]);
         }
         ticks.shade += (Clock::now() - t1).count();
     }
@@ -176,6 +195,54 @@ class FrameTrace {
             open[i] = mTracer.traceOpen(hits[i], directions.data(), samples, mAoRadius, w);
             ticks.aoErrorSum += aoStandardError(open[i], samples);
             ++ticks.aoSamples;
+        }
+    }
+
+    // The irradiance at each hit from the emitting bodies: per body, emissiveSamples rays over
+    // the cone its bounding sphere subtends (raymarch/emitter_cone.h), each taking the emitted
+    // radiance where it first meets the surface if that is the body's own (an occluder, or
+    // another emitter, whose light its own cone counts, gives 0). Stratified and jittered by the
+    // pixel, the sample and the body, so that the value does not depend on the thread. The
+    // standard error of the luminance is summed over the bodies' variances.
+    void traceEmitters(const Block& b, int k, const SurfaceHit* hits, const bool* found,
+                       glm::vec3* light, Workspace& w, StageTicks& ticks) const {
+        const int count = mEmissiveSide * mEmissiveSide;
+        for (int i = 0; i < b.n; ++i) {
+            if (!found[i]) continue;
+            const std::uint64_t pixel =
+                std::uint64_t(b.py[i]) * std::uint64_t(mCamera.width()) + std::uint64_t(b.px[i]);
+            const glm::dvec3 normal(hits[i].normal);
+            glm::dvec3 sum(0.0);
+            double variance = 0.0;
+            for (std::size_t e = 0; e < mEmitters.size(); ++e) {
+                const core::EmittingBody& emitter = mEmitters[e];
+                const std::uint64_t seed =
+                    (pixel * std::uint64_t(mSettings.spp) + std::uint64_t(k)) * mEmitters.size() +
+                    e;
+                double y = 0.0, yy = 0.0;  // of count x weight x luminance, for the variance
+                for (const EmitterSample& s :
+                     emitterSamples(hits[i].outside, normal, emitter.centre, emitter.radius,
+                                    mEmissiveSide, seed)) {
+                    if (!(s.weight > 0.0)) continue;
+                    ++ticks.lightRays;
+                    SurfaceHit at;
+                    if (!mTracer.traceFirst(hits[i], s.direction, at, w) || at.body != emitter.body)
+                        continue;
+                    const glm::dvec3 radiance(
+                        core::surfaceEmission(mInput.materials[at.material], at.uv, at.glow));
+                    sum += s.weight * radiance;
+                    const double x =
+                        count * s.weight *
+                        (0.2126 * radiance.r + 0.7152 * radiance.g + 0.0722 * radiance.b);
+                    y += x;
+                    yy += x * x;
+                }
+                if (count > 1)
+                    variance += std::max(0.0, yy - y * y / count) / (double(count) * (count - 1));
+            }
+            light[i] = glm::vec3(sum);
+            ticks.lightErrorSum += std::sqrt(variance);
+            ++ticks.lightSamples;
         }
     }
 
@@ -240,9 +307,11 @@ class FrameTrace {
     int mTilesX, mTilesY;
     int mGrid;  // strata per side of a pixel's samples
     float mExposure;
-    std::vector<glm::dvec3> mSunDirections;  // towards the light; one for a point sun
-    double mAoRadius;                        // light.ao_radius; 0: no occlusion rays
-    int mAoSide;                             // the occlusion pattern's side
+    std::vector<glm::dvec3> mSunDirections;     // towards the light; one for a point sun
+    double mAoRadius;                           // light.ao_radius; 0: no occlusion rays
+    int mAoSide;                                // the occlusion pattern's side
+    std::vector<core::EmittingBody> mEmitters;  // light.emissive_light: the emitting bodies
+    int mEmissiveSide;                          // the emitters' pattern's side
 };
 
 // The tiles in parallel on the caller's arena, on one workspace per thread; the thread time
@@ -251,10 +320,12 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
                       const core::RenderInput& input) {
     const int tiles = trace.tileCount();
     std::atomic<int> done{0};
-    std::atomic<std::int64_t> traceTicks{0}, aoTicks{0}, shadeTicks{0}, aoSamples{0};
-    // The standard errors' sum, per tile, added in tile order after the loop (a sum of
+    std::atomic<std::int64_t> traceTicks{0}, aoTicks{0}, emissiveTicks{0}, shadeTicks{0},
+        aoSamples{0}, lightSamples{0}, lightRays{0};
+    // The standard errors' sums, per tile, added in tile order after the loop (a sum of
     // doubles in the order threads finish would depend on the threads).
     std::vector<double> aoErrors(static_cast<std::size_t>(tiles), 0.0);
+    std::vector<double> lightErrors(static_cast<std::size_t>(tiles), 0.0);
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
         // Embree wants flush-to-zero and denormals-are-zero on every thread that traces.
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
@@ -268,16 +339,26 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
             trace.traceTile(t, w, ticks);
             traceTicks += ticks.trace;
             aoTicks += ticks.ao;
+            emissiveTicks += ticks.emissive;
             shadeTicks += ticks.shade;
             aoSamples += ticks.aoSamples;
+            lightSamples += ticks.lightSamples;
+            lightRays += ticks.lightRays;
             aoErrors[static_cast<std::size_t>(t)] = ticks.aoErrorSum;
+            lightErrors[static_cast<std::size_t>(t)] = ticks.lightErrorSum;
             const int finished = ++done;
             if (input.progress) input.progress(double(finished) / tiles);
         }
     });
-    StageTicks sum{.trace = traceTicks.load(), .ao = aoTicks.load(), .shade = shadeTicks.load()};
+    StageTicks sum{.trace = traceTicks.load(),
+                   .ao = aoTicks.load(),
+                   .emissive = emissiveTicks.load(),
+                   .shade = shadeTicks.load()};
     for (const double e : aoErrors) sum.aoErrorSum += e;
+    for (const double e : lightErrors) sum.lightErrorSum += e;
     sum.aoSamples = aoSamples.load();
+    sum.lightSamples = lightSamples.load();
+    sum.lightRays = lightRays.load();
     return sum;
 }
 
@@ -309,7 +390,9 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     core::throwIfCancelled(input.cancel);
     const core::Camera camera(input.scene.camera);
     const bool occlusion = input.scene.light.aoRadius > 0.0;
-    const SurfaceTracer tracer(mDevice, camera, input.particles, mSettings, occlusion);  // "build"
+    const bool emissive = input.scene.light.emissiveLight;
+    const SurfaceTracer tracer(mDevice, camera, input.particles, mSettings,
+                               occlusion || emissive);  // "build"
     core::Frame frame;
     frame.renderer = "raymarch";
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
@@ -325,10 +408,12 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     const StageTicks ticks = traceTiles(trace, workspaces, input);
     const double traceMs = msSince(start);
     // Split the parallel wall time by the thread time of each part.
-    const double sum = std::max(double(ticks.trace) + double(ticks.ao) + double(ticks.shade), 1.0);
+    const double sum = std::max(
+        double(ticks.trace) + double(ticks.ao) + double(ticks.emissive) + double(ticks.shade), 1.0);
     frame.timingsMs["build"] = tracer.buildMs();
     frame.timingsMs["trace"] = traceMs * double(ticks.trace) / sum;  // surfaces, shadow rays
     frame.timingsMs["ao"] = traceMs * double(ticks.ao) / sum;
+    if (emissive) frame.timingsMs["emissive"] = traceMs * double(ticks.emissive) / sum;
     frame.timingsMs["shade"] = traceMs * double(ticks.shade) / sum;
     frame.timingsMs["total"] = tracer.buildMs() + traceMs;
 
@@ -339,6 +424,14 @@ core::Frame Renderer::render(const core::RenderInput& input) {
         frame.counters["ao_standard_error"] =
             ticks.aoSamples > 0 ? ticks.aoErrorSum / double(ticks.aoSamples) : 0.0;
         frame.counters["ao_rays"] = double(ticks.aoSamples) * aoSide(mSettings) * aoSide(mSettings);
+    }
+    if (emissive) {
+        // The mean over the hit samples of the irradiance's standard error (luminance, the
+        // unit of the irradiance channels): the reference's own noise in indirect.rmse.
+        frame.counters["irradiance_standard_error"] =
+            ticks.lightSamples > 0 ? ticks.lightErrorSum / double(ticks.lightSamples) : 0.0;
+        frame.counters["irradiance_rays"] = double(ticks.lightRays);
+        frame.counters["emitting_bodies"] = double(trace.emitterCount());
     }
     frame.device =
         fmt::format("{} ({} threads)", cpuName(), tbb::this_task_arena::max_concurrency());

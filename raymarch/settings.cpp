@@ -22,17 +22,26 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.tileSize = static_cast<int>(t.getInt("tile_size", s.tileSize, 4, 256));
     s.sunSamples = static_cast<int>(t.getInt("sun_samples", s.sunSamples, 1, 1024));
     s.aoSamples = static_cast<int>(t.getInt("ao_samples", s.aoSamples, 1, 4096));
-    if (aoSide(s) * aoSide(s) != s.aoSamples)
-        throw core::InputError(fmt::format(
-            "{} = {} is not a square number: the directions are a side x side pattern; use one of "
-            "16, 36, 64, 100, 256, 1024",
-            t.describe("ao_samples"), s.aoSamples));
+    s.emissiveSamples = static_cast<int>(t.getInt("emissive_samples", s.emissiveSamples, 1, 4096));
+    for (const auto& [key, value] : {std::pair<const char*, int>{"ao_samples", s.aoSamples},
+                                     {"emissive_samples", s.emissiveSamples}}) {
+        const int side = static_cast<int>(std::lround(std::sqrt(double(value))));
+        if (side * side != value)
+            throw core::InputError(
+                fmt::format("{} = {} is not a square number: the directions are a side x side "
+                            "pattern; use one of 16, 36, 64, 100, 256, 1024",
+                            t.describe(key), value));
+    }
     t.checkAllRead();
     return s;
 }
 
 int aoSide(const Settings& settings) {
     return static_cast<int>(std::lround(std::sqrt(double(settings.aoSamples))));
+}
+
+int emissiveSide(const Settings& settings) {
+    return static_cast<int>(std::lround(std::sqrt(double(settings.emissiveSamples))));
 }
 
 nlohmann::json toJson(const Settings& s) {
@@ -47,7 +56,8 @@ nlohmann::json toJson(const Settings& s) {
             {"raymarch.max_iterations", s.maxIterations},
             {"raymarch.tile_size", s.tileSize},
             {"raymarch.sun_samples", s.sunSamples},
-            {"raymarch.ao_samples", s.aoSamples}};
+            {"raymarch.ao_samples", s.aoSamples},
+            {"raymarch.emissive_samples", s.emissiveSamples}};
 }
 
 }  // namespace twinrender::raymarch

@@ -26,12 +26,19 @@ struct Settings {
     // raymarch/ao_hemisphere.h). The per-pixel standard error is at most 0.5 / sqrt(ao_samples)
     // (the frame's ao_standard_error counter states the mean).
     int aoSamples = 64;
+    // Directions traced per hit sample toward each emitting body when light.emissive_light is
+    // on, a square number 1..4096 (a side x side stratified pattern over the cone the body's
+    // bounding sphere subtends, raymarch/emitter_cone.h); the frame's
+    // irradiance_standard_error counter states the resulting noise.
+    int emissiveSamples = 64;
 };
 
 // Reads every key of the table and rejects the ones it does not know.
 Settings parseSettings(const core::ParameterTable& table);
 // The side of the ambient occlusion's pattern: sqrt(ao_samples).
 int aoSide(const Settings& settings);
+// The side of the emitters' pattern: sqrt(emissive_samples).
+int emissiveSide(const Settings& settings);
 // Every setting by its scene key, for the frame's JSON.
 nlohmann::json toJson(const Settings& settings);
 

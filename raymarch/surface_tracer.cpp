@@ -749,4 +749,27 @@ float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directio
     return count > 0 ? static_cast<float>(open) / static_cast<float>(count) : 1.0f;
 }
 
+bool SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3& direction, SurfaceHit& hit,
+                               Workspace& w) const {
+    const Impl& im = *mImpl;
+    const double tEnd = im.exitDistance(from.outside, direction);
+    if (im.settings.spheres)
+        return im.traceSphere(core::Ray{from.outside, direction}, 0.0, tEnd, hit);
+    // As an occlusion ray, but keeping the crossing's attributes: a row of one ray, no hint
+    // from a neighbour or an earlier crossing.
+    MarchRay& r = w.rays[0];
+    r = MarchRay{};
+    r.ray = core::Ray{from.outside, direction};
+    r.t = 2.0 * im.settings.rootTolerance * from.hRef;
+    r.tEnd = tEnd;
+    if (!(r.t < r.tEnd)) return false;
+    r.hRef = from.hRef;
+    r.needEntry = false;
+    w.rowLength = 1;
+    w.lastCrossing = NAN;
+    const int id = 0;
+    im.march(&id, 1, direction, true, w, &hit);
+    return r.hit;
+}
+
 }  // namespace twinrender::raymarch

@@ -87,6 +87,12 @@ class SurfaceTracer {
     float traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count, double radius,
                     Workspace& w) const;
 
+    // Where the ray from just outside `from` (a hit) along `direction` (unit) first meets the
+    // surface, with its attributes: false where it leaves the scene first. A ray alone, as an
+    // occlusion ray; for the light of emitting surfaces. Needs occlusionRays.
+    bool traceFirst(const SurfaceHit& from, const glm::dvec3& direction, SurfaceHit& hit,
+                    Workspace& w) const;
+
     const TraceCounters& counters(const Workspace& w) const;
     void resetCounters(Workspace& w) const;
     double buildMs() const { return mBuildMs; }

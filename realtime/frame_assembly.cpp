@@ -16,14 +16,16 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
               cZ = channel("Z"), cNX = channel("N.X"), cNY = channel("N.Y"), cNZ = channel("N.Z"),
               cU = channel("uv.U"), cV = channel("uv.V"), cId = channel("id"),
               cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
-              cShadow = channel("shadow"), cAo = channel("ao");
+              cShadow = channel("shadow"), cAo = channel("ao"), cIR = channel("irradiance.R"),
+              cIG = channel("irradiance.G"), cIB = channel("irradiance.B");
     const std::size_t stride = static_cast<std::size_t>(aov.channelCount());
     const bool emits = !in.emission.empty();
     const bool occluded = !in.ambientOcclusion.empty();
+    const bool irradiated = !in.irradiance.empty();
     float* out = aov.pixels().data();
     float* shown = display.pixels().data();
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
-    // written in the same pass as the covered pixels: filling the 16 channels first costs
+    // written in the same pass as the covered pixels: filling the channels first costs
     // as much as the whole read-back.
     tbb::parallel_for(0, h, [&](int y) {
         // OpenGL rows run bottom-up; images top-down.
@@ -60,6 +62,9 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
             o[cER] = emits ? in.emission[g + 0] : 0.0f;
             o[cEG] = emits ? in.emission[g + 1] : 0.0f;
             o[cEB] = emits ? in.emission[g + 2] : 0.0f;
+            o[cIR] = irradiated ? in.irradiance[g + 0] : 0.0f;
+            o[cIG] = irradiated ? in.irradiance[g + 1] : 0.0f;
+            o[cIB] = irradiated ? in.irradiance[g + 2] : 0.0f;
         }
     });
 }

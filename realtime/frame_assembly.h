@@ -19,6 +19,9 @@ struct ReadBackBuffers {
     std::span<const float> display;       // display rgb (bloom, tonemapped), -
     // The ambient occlusion's open fraction, one float a pixel; empty: no occlusion (1).
     std::span<const float> ambientOcclusion;
+    // The irradiance from emitting surfaces (light.emissive_light), rgb and one unused float a
+    // pixel; empty: none (0).
+    std::span<const float> irradiance;
 };
 
 // Writes every pixel of `aov` (the core::aov channels; core::aov::makeImage's values on the

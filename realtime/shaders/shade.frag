@@ -151,6 +151,8 @@ void main() {
 #else
     const float open = 1.0;
 #endif
-    vec3 color = shadeSurface(int(s.w), normal, -normalize(position), a.zw, emission, vis, open);
+    const vec3 irradiance = vec3(0.0);  // no light from emitting surfaces
+    vec3 color = shadeSurface(int(s.w), normal, -normalize(position), a.zw, emission, vis, open,
+                              irradiance);
     outBeautyShadow = vec4(color, vis);
 }

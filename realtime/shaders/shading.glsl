@@ -1,5 +1,5 @@
 // The shading model of core/shading.cpp, line for line: ambient x albedo x its occlusion (the
-// open fraction), Lambert diffuse and
+// open fraction), the light of emitting surfaces (albedo x irradiance / pi), Lambert diffuse and
 // Blinn-Phong specular times the light's visibility, the emission buffer, city lights on the
 // night side. Needs common.glsl and textures.glsl.
 
@@ -8,13 +8,14 @@ float nightFactor(vec3 normal, vec3 towardLight) {
 }
 
 vec3 shadeSurface(int material, vec3 normal, vec3 toEye, vec2 uv, vec3 emission,
-                  float visibility, float ambientOcclusion) {
+                  float visibility, float ambientOcclusion, vec3 irradiance) {
     MaterialRecord m = materials[material];
     vec3 l = -light.xyz;
     vec3 radiance = lightColor.rgb * light.w;
     vec3 albedo = sampleTexture(m.diffuse, uv);
     float nl = dot(normal, l);
     vec3 color = albedo * lightColor.rgb * lightColor.w * ambientOcclusion;
+    color += albedo * irradiance * (1.0 / 3.14159265358979);
     if (nl > 0.0) {
         vec3 halfway = normalize(l + toEye);
         float nh = max(dot(normal, halfway), 0.0);
