@@ -513,4 +513,76 @@ AoResult aoError(const core::Image& reference, const core::Image& test, const Ma
     return result;
 }
 
+namespace {
+
+// The irradiance's luminance at a pixel (Rec. 709 weights), of channels c, c + 1, c + 2.
+double irradianceLuminance(const core::Image& image, int x, int y, int c) {
+    return 0.2126 * image.at(x, y, c) + 0.7152 * image.at(x, y, c + 1) +
+           0.0722 * image.at(x, y, c + 2);
+}
+
+}  // namespace
+
+bool hasIrradiance(const core::Image& reference, const core::Image& test) {
+    for (const core::Image* image : {&reference, &test}) {
+        if (!image->hasChannel("irradiance.R")) continue;
+        const int c = image->channelIndex("irradiance.R");
+        for (std::size_t p = 0; p < image->pixelCount(); ++p)
+            for (int k = 0; k < 3; ++k)
+                if (image->at(p, c + k) != 0.0f) return true;
+    }
+    return false;
+}
+
+IndirectResult indirectError(const core::Image& reference, const core::Image& test,
+                             const Masks& masks) {
+    requireComparable(reference, test, masks, "indirect.rmse");
+    const auto c = requireChannels<1>(reference, test, {"irradiance.R"}, "indirect.rmse");
+    const int w = reference.width(), h = reference.height();
+    IndirectResult result;
+    result.errorMap = core::Image(w, h, {"abs_error"});
+    // The threshold: a fraction of the reference's 99th percentile over the pixels covered in
+    // both (a percentile, so that a few bright pixels next to an emitter do not set it).
+    std::vector<double> lit;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (masks.coveredInBoth(x, y))
+                lit.push_back(irradianceLuminance(reference, x, y, c.ref[0]));
+    if (lit.empty()) {
+        result.rmse = result.missed = result.falseLight = NOT_A_NUMBER;
+        return result;
+    }
+    const auto rank = lit.begin() + static_cast<std::ptrdiff_t>(0.99 * double(lit.size() - 1));
+    std::nth_element(lit.begin(), rank, lit.end());
+    result.threshold = INDIRECT_LIT_FRACTION * *rank;
+    const double tau = result.threshold;
+    // Pixels, squared error sum; lit in the reference, of them dark in the test; dark in the
+    // reference, of them lit in the test.
+    const auto sums = sumRows<6>(h, [&](int y, std::array<double, 6>& s) {
+        for (int x = 0; x < w; ++x) {
+            if (!masks.coveredInBoth(x, y)) continue;
+            const double ref = irradianceLuminance(reference, x, y, c.ref[0]);
+            const double tst = irradianceLuminance(test, x, y, c.test[0]);
+            const double error = tst - ref;
+            result.errorMap.at(x, y, 0) = static_cast<float>(std::abs(error));
+            s[0] += 1.0;
+            s[1] += error * error;
+            // tau = 0 (no light in the reference): every pixel is dark in it.
+            const bool refLit = tau > 0.0 && ref >= tau,
+                       testLit = tau > 0.0 ? tst >= tau : tst > 0.0;
+            if (refLit) {
+                s[2] += 1.0;
+                s[3] += testLit ? 0.0 : 1.0;
+            } else {
+                s[4] += 1.0;
+                s[5] += testLit ? 1.0 : 0.0;
+            }
+        }
+    });
+    result.rmse = std::sqrt(sums[1] / sums[0]);
+    result.missed = ratioOrNaN(sums[3], sums[2]);
+    result.falseLight = ratioOrNaN(sums[5], sums[4]);
+    return result;
+}
+
 }  // namespace twinrender::compare

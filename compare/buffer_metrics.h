@@ -176,4 +176,30 @@ constexpr int AO_NOISE_WINDOW = 9;
 Mask depthEdgeMask(const core::Image& reference, const Mask& referenceCovered);
 AoResult aoError(const core::Image& reference, const core::Image& test, const Masks& masks);
 
+// ---- indirect.rmse, indirect.missed, indirect.false -----------------------------------------
+
+// A pixel is lit by emitting surfaces when the luminance of its irradiance (channels
+// irradiance.R/G/B, light.emissive_light) is at least this fraction of the reference's 99th
+// percentile over the pixels covered in both: light a person would see next to the brightest.
+constexpr double INDIRECT_LIT_FRACTION = 0.05;
+
+struct IndirectResult {
+    // Over the pixels covered in both, of the irradiance's luminance (Rec. 709 weights): the
+    // root mean square of test - reference, in the irradiance's units;
+    double rmse = 0.0;
+    // the fraction of the pixels lit in the reference that the test leaves dark (below the
+    // threshold): emitters hidden from the screen, off it, or not sampled;
+    double missed = 0.0;
+    // the fraction of the pixels dark in the reference that the test lights: light through
+    // occluders. NaN where the reference has no lit (missed) or no dark (false) pixel.
+    double falseLight = 0.0;
+    double threshold = 0.0;  // the luminance that counts as lit
+    core::Image errorMap;    // one channel "abs_error": |test - reference| of the luminance
+};
+// Whether either image has irradiance anywhere (else the scene casts no such light and the
+// metrics are left out).
+bool hasIrradiance(const core::Image& reference, const core::Image& test);
+IndirectResult indirectError(const core::Image& reference, const core::Image& test,
+                             const Masks& masks);
+
 }  // namespace twinrender::compare

@@ -673,5 +673,32 @@ TEST(BufferMetrics, DifferentSizesAreNotComparable) {
     EXPECT_THROW(depthError(a, b, computeMasks(a, a)), core::NotComparableError);
 }
 
+TEST(IndirectLight, MissedAndFalseLightAgainstTheReferencesLitPixels) {
+    // 10 x 10 covered pixels. The reference lights the five left columns with E = (1, 1, 1)
+    // (luminance 1, its 99th percentile, so lit means >= 0.05). The test lights three of them
+    // alike, leaves two dark (missed: 2 of 5 lit columns) and lights the two right columns
+    // with luminance 0.5 where the reference is dark (false: 2 of 5 dark columns).
+    core::Image reference = full(10, 10), test = full(10, 10);
+    const int c = reference.channelIndex("irradiance.R");
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 10; ++x)
+            for (int k = 0; k < 3; ++k) {
+                reference.at(x, y, c + k) = x < 5 ? 1.0f : 0.0f;
+                test.at(x, y, c + k) = x < 3 ? 1.0f : x >= 8 ? 0.5f : 0.0f;
+            }
+    ASSERT_TRUE(hasIrradiance(reference, test));
+    const IndirectResult r = indirectError(reference, test, computeMasks(reference, test));
+    EXPECT_NEAR(r.threshold, 0.05, 1e-6);
+    EXPECT_NEAR(r.missed, 0.4, 1e-9);
+    EXPECT_NEAR(r.falseLight, 0.4, 1e-9);
+    // 20 pixels off by 1, 20 by 0.5: sqrt((20 + 5) / 100).
+    EXPECT_NEAR(r.rmse, 0.5, 1e-6);
+    EXPECT_NEAR(r.errorMap.at(3, 0, 0), 1.0, 1e-6);
+    EXPECT_NEAR(r.errorMap.at(9, 0, 0), 0.5, 1e-6);
+    // A scene without such light has none: the metrics are left out.
+    const core::Image dark = full(10, 10);
+    EXPECT_FALSE(hasIrradiance(dark, dark));
+}
+
 }  // namespace
 }  // namespace twinrender::compare

@@ -130,6 +130,22 @@ const std::vector<MetricInfo>& metricTable() {
          .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
          .meaning = "RMS of the occlusion error's 9 px local mean about its mean: blotches and "
                     "bands coarser than the blur"},
+        {.key = "indirect.rmse", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "irradiance", .source = S::AovPair, .overview = false,
+         .machineDependent = false,
+         .meaning = "RMS error of the irradiance from emitting surfaces (its luminance, "
+                    "light.emissive_light) on the pixels covered in both"},
+        {.key = "indirect.missed", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "irradiance", .source = S::AovPair, .overview = false,
+         .machineDependent = false,
+         .meaning = "fraction of the pixels the emitters light in the reference (above 5 % of "
+                    "its 99th percentile) that the test leaves dark: hidden or off-screen "
+                    "emitters"},
+        {.key = "indirect.false", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "irradiance", .source = S::AovPair, .overview = false,
+         .machineDependent = false,
+         .meaning = "fraction of the pixels dark in the reference that the test lights: light "
+                    "through occluders"},
         {.key = "surface.beauty.flip", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
          .buffer = "beauty", .source = S::Render, .overview = false, .machineDependent = false,
          .meaning = "the error split's surface part: ꟻLIP of the real-time surface shaded with "

@@ -216,6 +216,15 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
         result.values["ao.banding"] = ao.banding;
         result.errorMaps["ao"] = std::move(ao.errorMap);
     }
+    // The light of emitting surfaces, where either frame has any (light.emissive_light).
+    if (reference.hasChannel("irradiance.R") && test.hasChannel("irradiance.R") &&
+        hasIrradiance(reference, test)) {
+        IndirectResult indirect = indirectError(reference, test, masks);
+        result.values["indirect.rmse"] = indirect.rmse;
+        result.values["indirect.missed"] = indirect.missed;
+        result.values["indirect.false"] = indirect.falseLight;
+        result.errorMaps["irradiance"] = std::move(indirect.errorMap);
+    }
     return result;
 }
 

@@ -49,9 +49,13 @@ const std::set<std::string> ALL_KEYS = {"beauty.psnr",
                                         "ao.bias",
                                         "ao.halo",
                                         "ao.grain",
-                                        "ao.banding"};
-const std::set<std::string> MAP_KEYS = {"beauty.flip", "beauty.hdrflip", "normal",   "depth", "uv",
-                                        "id",          "shadow",         "emission", "ao"};
+                                        "ao.banding",
+                                        "indirect.rmse",
+                                        "indirect.missed",
+                                        "indirect.false"};
+const std::set<std::string> MAP_KEYS = {
+    "beauty.flip", "beauty.hdrflip", "normal",   "depth", "uv",
+    "id",          "shadow",         "emission", "ao",    "irradiance"};
 
 template <typename Map>
 std::set<std::string> keys(const Map& m) {
@@ -61,7 +65,8 @@ std::set<std::string> keys(const Map& m) {
 }
 
 // Two overlapping spheres seen from +z (body 0 on the left, body 1 in front on the right), lit
-// from the upper left, shadowed where body 1 hides body 0 from the light, body 1 glowing. The
+// from the upper left, shadowed where body 1 hides body 0 from the light, body 1 glowing and
+// casting its light (irradiance 0.5 max(n.x, 0)) on body 0. The
 // test may shift everything right by `shift` pixels and perturb the normals by `noise`.
 core::Image spheres(int w, int h, int shift = 0, float noise = 0.0f) {
     core::Image img = core::aov::makeImage(w, h);
@@ -104,6 +109,7 @@ core::Image spheres(int w, int h, int shift = 0, float noise = 0.0f) {
                 set(x, y, "uv.V", 0.5f + std::asin(n.y) / std::numbers::pi_v<float>);
                 set(x, y, "id", s.id);
                 set(x, y, "emission.R", glow);
+                set(x, y, "irradiance.R", b == 0 ? 0.5f * std::max(n.x, 0.0f) : 0.0f);
                 set(x, y, "shadow", lit);
                 break;
             }

@@ -17,8 +17,8 @@ namespace twinrender::report {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& bufferNames() {
-    static const std::vector<std::string> names = {"beauty", "normal", "uv", "depth",
-                                                   "id",     "shadow", "ao", "emission"};
+    static const std::vector<std::string> names = {
+        "beauty", "normal", "uv", "depth", "id", "shadow", "ao", "emission", "irradiance"};
     return names;
 }
 
@@ -83,10 +83,20 @@ std::vector<std::string> channelsOf(std::string_view buffer) {
     if (buffer == "shadow") return {"shadow"};
     if (buffer == "ao") return {"ao"};
     if (buffer == "emission") return {"emission.R", "emission.G", "emission.B"};
+    if (buffer == "irradiance") return {"irradiance.R", "irradiance.G", "irradiance.B"};
     throw std::invalid_argument(
         fmt::format("unknown buffer '{}'; buffers are beauty, normal, "
-                    "uv, depth, id, shadow, ao, emission",
+                    "uv, depth, id, shadow, ao, emission, irradiance",
                     buffer));
+}
+
+bool anyNonZero(const core::Image& aov, const std::vector<std::string>& channels) {
+    for (const std::string& name : channels) {
+        const int c = aov.channelIndex(name);
+        for (std::size_t p = 0; p < aov.pixelCount(); ++p)
+            if (aov.at(p, c) != 0.0f) return true;
+    }
+    return false;
 }
 
 }  // namespace
@@ -167,6 +177,11 @@ core::Image visualiseBuffer(const core::Image& aov, std::string_view buffer,
                     core::tonemap(glm::vec3(aov.at(p, ch[0]), aov.at(p, ch[1]), aov.at(p, ch[2])),
                                   settings.exposure);
                 rgb[0] = c.r, rgb[1] = c.g, rgb[2] = c.b;
+            } else if (buffer == "irradiance") {
+                // As the radiance a white Lambertian surface reflects of it, E / pi.
+                const glm::vec3 e(aov.at(p, ch[0]), aov.at(p, ch[1]), aov.at(p, ch[2]));
+                const glm::vec3 c = core::tonemap(e * float(1.0 / M_PI), settings.exposure);
+                rgb[0] = c.r, rgb[1] = c.g, rgb[2] = c.b;
             }
         }
         for (int c = 0; c < 3; ++c) out.at(p, c) = rgb[c];
@@ -191,6 +206,8 @@ std::map<std::string, std::string> writeBufferImages(const core::Image& aov,
         bool has = true;
         for (const auto& c : channelsOf(buffer)) has = has && aov.hasChannel(c);
         if (!has) continue;
+        // The light of emitting surfaces only where the scene casts it (light.emissive_light).
+        if (buffer == "irradiance" && !anyNonZero(aov, channelsOf(buffer))) continue;
         core::writeImage(visualiseBuffer(aov, buffer, settings), dir / name);
         written[buffer] = name;
     }

@@ -111,9 +111,8 @@ std::vector<StudyPoint> ambientOcclusionPoints(bool quick) {
 void ambientOcclusionConclude(StudyResult& s) {
     s.chart = seriesChart(s, "ao.mean_abs");
     // The cross's points are one x each: a table below, not lines.
-    std::erase_if(s.chart.series, [](const auto& line) {
-        return line.name.find(" on ") != std::string::npos;
-    });
+    std::erase_if(s.chart.series,
+                  [](const auto& line) { return line.name.find(" on ") != std::string::npos; });
     for (auto& line : s.chart.series) line.dashed = line.name == "none";
     const auto all = bySeries(s);
     const auto* none = seriesRows(all, "none");
@@ -226,9 +225,9 @@ void ambientOcclusionConclude(StudyResult& s) {
         }
         if (bestName.empty()) continue;
         s.facts["by_surface"][ao]["best"] = bestName;
-        byFilter += fmt::format("{}{} {} on the bare impostors, {} on {}",
-                                byFilter.empty() ? "" : "; ", ao, num(unsmoothed), num(best),
-                                bestName);
+        byFilter +=
+            fmt::format("{}{} {} on the bare impostors, {} on {}", byFilter.empty() ? "" : "; ", ao,
+                        num(unsmoothed), num(best), bestName);
     }
     s.tables.push_back(std::move(cross));
     // The noise kinds under the default blur at the fewest samples, where noise matters most.

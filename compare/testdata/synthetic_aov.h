@@ -11,7 +11,8 @@
 namespace twinrender::compare::testdata {
 
 // A sphere of radius `radius` (pixels) centred at (cx, cy), seen along -z, lit from the upper
-// left; its left half is body 0, its right half body 1; the lower right quarter is shadowed.
+// left; its left half is body 0, its right half body 1; the lower right quarter is shadowed; an
+// emitter far to the right casts the irradiance 2 max(n.x, 0) (not added to the beauty).
 inline core::Image syntheticAov(int width, int height, double cx, double cy, double radius) {
     core::Image img = core::aov::makeImage(width, height);
     auto ch = [&](const char* name) { return img.channelIndex(name); };
@@ -40,6 +41,8 @@ inline core::Image syntheticAov(int width, int height, double cx, double cy, dou
             img.at(x, y, ch("emission.R")) = r2 > 0.8 ? 0.6f : 0.0f;
             img.at(x, y, ch("emission.G")) = r2 > 0.8 ? 0.2f : 0.0f;
             img.at(x, y, ch("shadow")) = static_cast<float>(lit);
+            for (const char* c : {"irradiance.R", "irradiance.G", "irradiance.B"})
+                img.at(x, y, ch(c)) = static_cast<float>(2.0 * std::max(nx, 0.0));
         }
     return img;
 }
