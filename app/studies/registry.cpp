@@ -164,6 +164,23 @@ const std::vector<StudyDef>& studies() {
             .conclude = study::ambientOcclusionConclude,
         },
         {
+            .name = "emissive_light",
+            .title = "Light of emitting surfaces",
+            .question = "A glowing ball over a slab, moved from the middle of the view past the "
+                        "screen's edge to behind the camera: the real-time estimates of the "
+                        "light it casts (none, a point light per emitting body, screen-space "
+                        "gathering at three settings) against the reference's traced "
+                        "irradiance.",
+            .scene = "emissive_light.toml",
+            .xLabel = "the lamp's angle from the view direction (degrees)",
+            .metric = "indirect.rmse",
+            .columns = {"indirect.rmse", "indirect.missed", "indirect.false", "beauty.hdrflip",
+                        "beauty.flip"},
+            .frames = 3,
+            .points = study::emissiveLightPoints,
+            .conclude = study::emissiveLightConclude,
+        },
+        {
             .name = "methods",
             .title = "Surface methods",
             .question = "Every surface method at its defaults and along its main parameter, with "

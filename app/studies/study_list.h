@@ -56,6 +56,10 @@ void collisionConclude(report::StudyResult& s);
 std::vector<StudyPoint> ambientOcclusionPoints(bool quick);
 void ambientOcclusionConclude(report::StudyResult& s);
 
+// ---- emissive_light (emissive_light.cpp) ----
+std::vector<StudyPoint> emissiveLightPoints(bool quick);
+void emissiveLightConclude(report::StudyResult& s);
+
 // ---- methods (methods.cpp) ----
 std::vector<StudyPoint> methodsPoints(bool quick);
 void methodsConclude(report::StudyResult& s);
