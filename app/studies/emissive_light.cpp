@@ -1,8 +1,8 @@
-// The emissive_light study (docs/studies.md, docs/light.md): the real-time estimates of the light
-// a glowing ball casts on a slab against the reference's traced irradiance, as the ball moves
-// around the camera from the middle of the view past the screen's edge to behind it. Screen-
-// space gathering sees only the emitters on screen; the point light sees every emitter and no
-// occluder.
+// The emissive_light and emissive_occluder studies (docs/studies.md, docs/light.md): the
+// real-time estimates of the light a glowing ball casts on a slab against the reference's traced
+// irradiance, as the ball moves around the camera from the middle of the view past the screen's
+// edge to behind it, and as a disc moves between the ball and the slab. Screen-space gathering
+// sees only the emitters on screen; the point light sees every emitter and no occluder.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -62,11 +62,50 @@ double emissiveTime(const StudyRow& r) {
     return it == r.timingsMs.end() ? NAN : it->second;
 }
 
-// The first row of `rows` (sorted by x) at or beyond x; nullptr when none.
-const StudyRow* atOrBeyond(const std::vector<const StudyRow*>& rows, double x) {
-    for (const StudyRow* r : rows)
-        if (r->x >= x) return r;
-    return nullptr;
+// Each series' line at each of `xs` (those it has) in `table`, their facts, and a finding's
+// part per series: "<x><unit> <share of metric> <word>" for each x.
+std::string tableAt(StudyResult& s, const std::vector<double>& xs, const std::string& xName,
+                    const std::string& unit, const std::string& metric, const std::string& word,
+                    report::StudyTable& table) {
+    table.labels = {"series", xName};
+    table.columns = {"indirect.rmse", "indirect.missed", "indirect.false", "beauty.hdrflip",
+                     "emissive_ms"};
+    std::string finding;
+    for (const auto& [name, rows] : bySeries(s)) {
+        std::string line;
+        for (double x : xs)
+            for (const StudyRow* r : rows) {
+                if (r->x != x) continue;
+                table.lines.push_back({{name, xNumber(x) + unit},
+                                       {{"indirect.rmse", metricOf(*r, "indirect.rmse")},
+                                        {"indirect.missed", metricOf(*r, "indirect.missed")},
+                                        {"indirect.false", metricOf(*r, "indirect.false")},
+                                        {"beauty.hdrflip", metricOf(*r, "beauty.hdrflip")},
+                                        {"emissive_ms", emissiveTime(*r)}}});
+                s.facts["series"][name][xNumber(x)] = {
+                    {"rmse", jsonOrNull(metricOf(*r, "indirect.rmse"))},
+                    {"missed", jsonOrNull(metricOf(*r, "indirect.missed"))},
+                    {"false", jsonOrNull(metricOf(*r, "indirect.false"))}};
+                line += fmt::format("{}{}{} {} {}", line.empty() ? "" : ", ", xNumber(x), unit,
+                                    percent(metricOf(*r, metric)), word);
+            }
+        if (!line.empty())
+            finding += fmt::format("{}{}: {}", finding.empty() ? "" : "; ", name, line);
+    }
+    return finding;
+}
+
+// The disc's distances from the lamp's axis, scene units: beside the lamp (no shadow of it in
+// view) to right under it.
+std::vector<double> discOffsets(bool quick) {
+    if (quick) return {1.5, 0.0};
+    return {1.5, 1.0, 0.7, 0.5, 0.3, 0.15, 0.0};
+}
+
+// Quick: a quarter of the pixels (the reference's rays dominate a study's time).
+void quickCamera(StudyPoint& p) {
+    p.sets.push_back("camera.width=64");
+    p.sets.push_back("camera.height=48");
 }
 
 }  // namespace
@@ -77,11 +116,7 @@ std::vector<StudyPoint> emissiveLightPoints(bool quick) {
         for (double deg : lampAngles(quick)) {
             StudyPoint p{series.name, deg, series.sets, ""};
             p.sets.push_back(lampCentre(deg));
-            // Quick: a quarter of the pixels (the reference's rays dominate the study's time).
-            if (quick) {
-                p.sets.push_back("camera.width=64");
-                p.sets.push_back("camera.height=48");
-            }
+            if (quick) quickCamera(p);
             pts.push_back(std::move(p));
         }
     return pts;
@@ -90,7 +125,6 @@ std::vector<StudyPoint> emissiveLightPoints(bool quick) {
 void emissiveLightConclude(StudyResult& s) {
     s.chart = seriesChart(s, "indirect.rmse");
     for (auto& line : s.chart.series) line.dashed = line.name == "none";
-    const auto all = bySeries(s);
     s.figures.push_back({"along_angle",
                          "indirect.rmse along the lamp's angle from the view direction, a line "
                          "per series; none dashed.",
@@ -100,7 +134,7 @@ void emissiveLightConclude(StudyResult& s) {
                          "reference that the test leaves dark) along the lamp's angle from the "
                          "view direction, a line per series.",
                          seriesChart(s, "indirect.missed")});
-    // The cost against the error over every point on screen (the lamp within 20 degrees).
+    // The cost against the error over every point with the lamp on screen (within 20 degrees).
     report::ScatterChart scatter;
     scatter.title = "Light of emitting surfaces: the pass's time against its error";
     scatter.xLabel = "emissive pass (ms, one frame)";
@@ -124,35 +158,51 @@ void emissiveLightConclude(StudyResult& s) {
         "Each series with the lamp in the middle of the view (0°), just past the screen's edge "
         "(30°), beside the camera (90°) and behind it (180°): the irradiance's RMS error, the "
         "share of the lit pixels missed and of the dark pixels lit, and the pass's time.",
-        {"series", "lamp"},
-        {"indirect.rmse", "indirect.missed", "indirect.false", "beauty.hdrflip", "emissive_ms"},
+        {},
+        {},
         {}};
-    std::string finding;
-    for (const auto& [name, rows] : all) {
-        std::string line;
-        for (double deg : {0.0, 30.0, 90.0, 180.0}) {
-            const StudyRow* r = atOrBeyond(rows, deg);
-            if (!r || (deg > 0.0 && r->x != deg)) continue;
-            table.lines.push_back({{name, fmt::format("{}°", xNumber(r->x))},
-                                   {{"indirect.rmse", metricOf(*r, "indirect.rmse")},
-                                    {"indirect.missed", metricOf(*r, "indirect.missed")},
-                                    {"indirect.false", metricOf(*r, "indirect.false")},
-                                    {"beauty.hdrflip", metricOf(*r, "beauty.hdrflip")},
-                                    {"emissive_ms", emissiveTime(*r)}}});
-            s.facts["series"][name][xNumber(r->x)] = {
-                {"rmse", jsonOrNull(metricOf(*r, "indirect.rmse"))},
-                {"missed", jsonOrNull(metricOf(*r, "indirect.missed"))},
-                {"false", jsonOrNull(metricOf(*r, "indirect.false"))}};
-            line += fmt::format("{}{}° {} missed", line.empty() ? "" : ", ", xNumber(r->x),
-                                percent(metricOf(*r, "indirect.missed")));
-        }
-        if (!line.empty())
-            finding += fmt::format("{}{}: {}", finding.empty() ? "" : "; ", name, line);
-    }
+    const std::string finding =
+        tableAt(s, {0.0, 30.0, 90.0, 180.0}, "lamp", "°", "indirect.missed", "missed", table);
     s.tables.push_back(std::move(table));
     s.finding =
         "share of the lamp's lit pixels left dark, by the lamp's angle from the view "
         "direction: " +
+        finding;
+}
+
+std::vector<StudyPoint> emissiveOccluderPoints(bool quick) {
+    std::vector<StudyPoint> pts;
+    for (const EmissiveSeries& series : emissiveSeries(true))
+        for (double x : discOffsets(quick)) {
+            StudyPoint p{series.name, x, series.sets, ""};
+            p.sets.push_back(set("bodies.shade.center", vec(x, 0.0, 0.45)));
+            if (quick) quickCamera(p);
+            pts.push_back(std::move(p));
+        }
+    return pts;
+}
+
+void emissiveOccluderConclude(StudyResult& s) {
+    s.chart = seriesChart(s, "indirect.false");
+    for (auto& line : s.chart.series) line.dashed = line.name == "none";
+    s.figures.push_back({"rmse",
+                         "indirect.rmse along the disc's distance from the lamp's axis, a line "
+                         "per series; none dashed.",
+                         seriesChart(s, "indirect.rmse")});
+    report::StudyTable table{"by_offset",
+                             "Each series with the disc beside the lamp (1.5) and right under it "
+                             "(0): the irradiance's RMS error, the share of the lit pixels "
+                             "missed and of the dark pixels lit (through the disc), and the "
+                             "pass's time.",
+                             {},
+                             {},
+                             {}};
+    const std::string finding =
+        tableAt(s, {1.5, 0.0}, "disc", "", "indirect.false", "lit through the disc", table);
+    s.tables.push_back(std::move(table));
+    s.finding =
+        "share of the pixels dark in the reference that the test lights, by the disc's "
+        "distance from the lamp's axis: " +
         finding;
 }
 

@@ -181,6 +181,22 @@ const std::vector<StudyDef>& studies() {
             .conclude = study::emissiveLightConclude,
         },
         {
+            .name = "emissive_occluder",
+            .title = "Light of emitting surfaces through an occluder",
+            .question = "A grey disc moved between a glowing ball and the slab it lights, from "
+                        "beside the ball to right under it: whether each real-time estimate "
+                        "(none, a point light per emitting body, screen-space gathering) lights "
+                        "what the disc shadows in the reference's traced irradiance.",
+            .scene = "emissive_occluder.toml",
+            .xLabel = "the disc's distance from the lamp's axis (scene units)",
+            .metric = "indirect.false",
+            .columns = {"indirect.rmse", "indirect.missed", "indirect.false", "beauty.hdrflip",
+                        "beauty.flip"},
+            .frames = 3,
+            .points = study::emissiveOccluderPoints,
+            .conclude = study::emissiveOccluderConclude,
+        },
+        {
             .name = "methods",
             .title = "Surface methods",
             .question = "Every surface method at its defaults and along its main parameter, with "

@@ -56,9 +56,11 @@ void collisionConclude(report::StudyResult& s);
 std::vector<StudyPoint> ambientOcclusionPoints(bool quick);
 void ambientOcclusionConclude(report::StudyResult& s);
 
-// ---- emissive_light (emissive_light.cpp) ----
+// ---- emissive_light, emissive_occluder (emissive_light.cpp) ----
 std::vector<StudyPoint> emissiveLightPoints(bool quick);
 void emissiveLightConclude(report::StudyResult& s);
+std::vector<StudyPoint> emissiveOccluderPoints(bool quick);
+void emissiveOccluderConclude(report::StudyResult& s);
 
 // ---- methods (methods.cpp) ----
 std::vector<StudyPoint> methodsPoints(bool quick);
