@@ -22,6 +22,8 @@ std::string_view toString(Resource resource) {
             return "surface";
         case Resource::Occlusion:
             return "occlusion";
+        case Resource::Irradiance:
+            return "irradiance";
         case Resource::Beauty:
             return "beauty";
         case Resource::Display:

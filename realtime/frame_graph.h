@@ -17,16 +17,17 @@
 namespace twinrender::realtime {
 
 enum class Resource {
-    ShadowMap,  // the light's depth map, or its filtered moments
-    GBuffer,    // the G-buffer pass's targets as drawn (struct GBuffer), its depth among them
-    NormalUv,   // octahedral normal + uv: the G-buffer's, then each surface pass's
-    Emission,   // the emission buffer: the G-buffer's, then SSSS's or the user shader's
-    Surface,    // eye depth, body, radius, material: the G-buffer's, or a depth filter's
-    Occlusion,  // the ambient occlusion's open fraction
-    Beauty,     // linear beauty and the sun's visibility
-    Display,    // bloom and tonemap
+    ShadowMap,   // the light's depth map, or its filtered moments
+    GBuffer,     // the G-buffer pass's targets as drawn (struct GBuffer), its depth among them
+    NormalUv,    // octahedral normal + uv: the G-buffer's, then each surface pass's
+    Emission,    // the emission buffer: the G-buffer's, then SSSS's or the user shader's
+    Surface,     // eye depth, body, radius, material: the G-buffer's, or a depth filter's
+    Occlusion,   // the ambient occlusion's open fraction
+    Irradiance,  // the emissive light's irradiance
+    Beauty,      // linear beauty and the sun's visibility
+    Display,     // bloom and tonemap
 };
-inline constexpr std::size_t RESOURCE_COUNT = 8;
+inline constexpr std::size_t RESOURCE_COUNT = 9;
 std::string_view toString(Resource resource);
 
 // Every resource's current version, and what keeps each alive until the frame ends.

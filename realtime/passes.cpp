@@ -56,12 +56,13 @@ std::string shadowDefine(ShadowMode mode) {
 }
 
 std::vector<std::string> shadeDefines(ShadowMode mode, const ShadowMapSettings& shadowMap,
-                                      bool emission, bool ambientOcclusion) {
+                                      bool emission, bool ambientOcclusion, bool emissiveLight) {
     std::vector<std::string> defines = {shadowDefine(mode)};
     if (mode == ShadowMode::Esm && shadowMap.esmForm == EsmForm::Seed)
         defines.emplace_back("ESM_SEED");
     if (emission) defines.emplace_back("EMISSION");
     if (ambientOcclusion) defines.emplace_back("AMBIENT_OCCLUSION");
+    if (emissiveLight) defines.emplace_back("EMISSIVE_LIGHT");
     return defines;
 }
 

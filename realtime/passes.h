@@ -7,11 +7,14 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/particles.h"
+#include "core/texture.h"
 #include "realtime/gl/buffer.h"
 #include "realtime/gl/buffer_texture.h"
 #include "realtime/gl/framebuffer.h"
@@ -74,9 +77,11 @@ const char* depthDefine(DepthMode mode);
 // The shade pass's define for the shadows: SHADOWS_ and the mode's name in capitals.
 std::string shadowDefine(ShadowMode mode);
 // The shade pass's defines: the shadows' (with ESM_SEED for the seed's form of ESM), EMISSION
-// when anything emits, AMBIENT_OCCLUSION when the ambient occlusion pass runs.
+// when anything emits, AMBIENT_OCCLUSION when the ambient occlusion pass runs, EMISSIVE_LIGHT
+// when the emissive pass does.
 std::vector<std::string> shadeDefines(ShadowMode mode, const ShadowMapSettings& shadowMap,
-                                      bool emission, bool ambientOcclusion = false);
+                                      bool emission, bool ambientOcclusion = false,
+                                      bool emissiveLight = false);
 
 // shadow: the impostors seen from the light into a resolution^2 float depth map holding
 // linear light depth in [0, 1]; for the filtered modes ("esm", "vsm", "evsm") that map turned
@@ -161,6 +166,36 @@ gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& s
 // The defines of shaders/ao.frag for these settings (the method's and the noise's).
 std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings);
 
+// emissive (usesEmissiveLight): the irradiance E (rgb, linear; a unused) that emitting
+// surfaces cast on each covered pixel, from the surface, normals and emission the shade pass
+// reads, by emissive.method (realtime/emissive_pass.cpp). RGBA32F, background texels 0.
+// "point_lights": `emitters` (pointLights), with no shadowing; "ssem": rays marched on screen,
+// then blurred (emissive.blur).
+struct PointLight {
+    glm::vec3 centre{0.0f};     // camera-relative
+    float radius = 0.0f;        // the body's surface radius R (core::EmittingBody)
+    glm::vec3 intensity{0.0f};  // pi R^2 L, L the body's mean radiance (linear RGB)
+    std::uint32_t body = 0;     // its own surface is not lit by it
+};
+// At most this many point lights: the brightest by intensity (the sum of its channels).
+inline constexpr std::size_t MAX_POINT_LIGHTS = 16;
+// The point lights of the scene's emitting bodies (core::emittingBodies), positions relative
+// to `camera`, the brightest MAX_POINT_LIGHTS of them.
+std::vector<PointLight> pointLights(const core::SceneParticles& particles,
+                                    const std::vector<core::Material>& materials,
+                                    const glm::dvec3& camera);
+gl::Texture runEmissivePass(ProgramCache& programs, const gl::Texture& surface,
+                            const gl::Texture& normalUv, const gl::Texture& emission,
+                            const EmissiveSettings& settings,
+                            const std::vector<PointLight>& emitters);
+// The fragment shaders (with fullscreen.vert) the emissive pass draws with these settings, in
+// order: the estimate, then the blur's.
+struct EmissiveProgram {
+    const char* fragment = nullptr;
+    std::vector<std::string> defines = {};
+};
+std::vector<EmissiveProgram> emissivePrograms(const EmissiveSettings& settings);
+
 // shade: beauty (rgb) and light visibility (a). `shadowMap` may be null (no map).
 struct ShadeInputs {
     const gl::Texture* normalUv = nullptr;
@@ -175,6 +210,8 @@ struct ShadeInputs {
     // The ambient occlusion pass's open fraction (binding 4), multiplying the ambient term;
     // null: no occlusion.
     const gl::Texture* ambientOcclusion = nullptr;
+    // The emissive pass's irradiance (binding 5), lighting the albedo; null: none.
+    const gl::Texture* irradiance = nullptr;
     // The sun's visibility per pixel (R32F, binding 3) instead of the shadows' test: the error
     // split's exact light (VISIBILITY_TEXTURE). Null: the shadows of `shadows`.
     const gl::Texture* visibility = nullptr;

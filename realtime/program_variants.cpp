@@ -78,7 +78,8 @@ void surfaceVariants(const SurfaceSettings& s, std::vector<ProgramVariant>& out)
 
 }  // namespace
 
-std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits) {
+std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits,
+                                            bool emissiveLight) {
     std::vector<ProgramVariant> out;
     auto add = [&](const char* vertex, const char* fragment, std::vector<std::string> defines) {
         out.push_back(ProgramVariant::draw(vertex, fragment, std::move(defines)));
@@ -116,8 +117,12 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
                 settings.ao.blur == AoBlur::DepthAware ? std::vector<std::string>{"AO_DEPTH_AWARE"}
                                                        : std::vector<std::string>{});
     }
+    if (emissiveLight)
+        for (EmissiveProgram& p : emissivePrograms(settings.emissive))
+            add("fullscreen.vert", p.fragment, std::move(p.defines));
     add("fullscreen.vert", "shade.frag",
-        shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings)));
+        shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings),
+                     emissiveLight));
     // The bloom's levels exist where the image is large enough; the composite without them
     // either way.
     if (settings.bloom.enabled && settings.bloom.strength > 0.0) {
@@ -190,6 +195,20 @@ std::vector<ProgramVariant> allProgramVariants() {
                         for (ProgramVariant& v : programVariants(a, emits))
                             all.try_emplace(v.name(), std::move(v));
                     }
+    // The emissive light's, with and without occlusion and shadows (it lights only where
+    // something emits).
+    for (EmissiveMethod method : {EmissiveMethod::PointLights, EmissiveMethod::Ssem})
+        for (EmissiveBlur blur : {EmissiveBlur::None, EmissiveBlur::DepthAware})
+            for (AoMethod ao : {AoMethod::None, AoMethod::Gtao})
+                for (ShadowMode shadows : {ShadowMode::None, ShadowMode::Map}) {
+                    Settings a;
+                    a.emissive.method = method;
+                    a.emissive.blur = blur;
+                    a.ao.method = ao;
+                    a.shadows = shadows;
+                    for (ProgramVariant& v : programVariants(a, true, true))
+                        all.try_emplace(v.name(), std::move(v));
+                }
     // The error split's (error_split.h): the reference's depth, and shade with its light.
     for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
         ProgramVariant v =
@@ -197,12 +216,15 @@ std::vector<ProgramVariant> allProgramVariants() {
         all.try_emplace(v.name(), std::move(v));
     }
     for (bool emits : {false, true})
-        for (bool occlusion : {false, true}) {
-            std::vector<std::string> defines = shadeDefines(ShadowMode::None, {}, emits, occlusion);
-            defines.front() = "VISIBILITY_TEXTURE";
-            ProgramVariant v = ProgramVariant::draw("fullscreen.vert", "shade.frag", defines);
-            all.try_emplace(v.name(), std::move(v));
-        }
+        for (bool occlusion : {false, true})
+            for (bool emissiveLight : {false, true}) {
+                if (emissiveLight && !emits) continue;
+                std::vector<std::string> defines =
+                    shadeDefines(ShadowMode::None, {}, emits, occlusion, emissiveLight);
+                defines.front() = "VISIBILITY_TEXTURE";
+                ProgramVariant v = ProgramVariant::draw("fullscreen.vert", "shade.frag", defines);
+                all.try_emplace(v.name(), std::move(v));
+            }
     std::vector<ProgramVariant> out;
     for (auto& [name, v] : all) out.push_back(std::move(v));
     return out;

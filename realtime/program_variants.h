@@ -31,12 +31,15 @@ struct ProgramVariant {
     const gl::Program& build(ProgramCache& programs, const IncludedFile* user = nullptr) const;
 };
 
-// The programs a frame with `settings` builds; `emits`: whether anything in the scene emits.
-std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits);
+// The programs a frame with `settings` builds; `emits`: whether anything in the scene emits;
+// `emissiveLight`: whether the emissive pass runs (usesEmissiveLight).
+std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits,
+                                            bool emissiveLight = false);
 
 // The union of programVariants over every value of every setting that changes a program
 // (depth, shadows, shape, normal, radius, droplets, surface method and its separable and
-// normals flags, SSSS, emission, bloom, culling, per_set), each once, in name order.
+// normals flags, SSSS, emission, bloom, culling, per_set; ambient occlusion and the emissive
+// light beside the defaults), each once, in name order.
 std::vector<ProgramVariant> allProgramVariants();
 
 // The surface filter that changes nothing (examples/surface_pass_through.glsl, embedded): the

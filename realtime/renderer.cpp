@@ -144,8 +144,9 @@ void checkLimits(const core::RenderInput& in, const Settings& settings, const De
 
 // Compiles (once per device) every program a frame with these settings builds
 // (program_variants.h), so that none is compiled inside a frame.
-void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits) {
-    for (const ProgramVariant& v : programVariants(settings, emits)) {
+void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits,
+                     bool emissiveLight) {
+    for (const ProgramVariant& v : programVariants(settings, emits, emissiveLight)) {
         if (v.userShader)
             userSurfaceProgram(programs, settings.surface);  // its errors are bad input
         else
@@ -243,6 +244,9 @@ struct PassInputs {
     GpuPerSet* gradientGrid = nullptr;
     glm::dvec3 camera{0.0};
     double aoRadius = 0.0;  // light.ao_radius
+    // Whether the emissive pass runs (usesEmissiveLight), and, for "point_lights", the lights.
+    bool emissiveLight = false;
+    std::vector<PointLight> pointLights = {};
 };
 
 // The frame's resources after its passes (frame_graph.h), and the timer query of each pass
@@ -268,6 +272,7 @@ ShadeInputs shadeInputs(const PassInputs& in, const Resources& r) {
     s.shadowSettings = in.settings.shadowMap;
     s.spheres = in.spheres;
     s.ambientOcclusion = r.find(Resource::Occlusion);
+    s.irradiance = r.find(Resource::Irradiance);
     return s;
 }
 
@@ -293,8 +298,10 @@ constexpr std::array SSSS_WRITES{R::NormalUv, R::Emission};
 constexpr std::array FILTER_WRITES{R::NormalUv, R::Emission, R::Surface};
 constexpr std::array AO_READS{R::Surface, R::NormalUv};
 constexpr std::array AO_WRITES{R::Occlusion};
-constexpr std::array SHADE_READS{R::GBuffer, R::NormalUv,  R::Emission,
-                                 R::Surface, R::ShadowMap, R::Occlusion};
+constexpr std::array EMISSIVE_READS{R::Surface, R::NormalUv, R::Emission};
+constexpr std::array EMISSIVE_WRITES{R::Irradiance};
+constexpr std::array SHADE_READS{R::GBuffer,   R::NormalUv,  R::Emission,  R::Surface,
+                                 R::ShadowMap, R::Occlusion, R::Irradiance};
 constexpr std::array SHADE_WRITES{R::Beauty};
 constexpr std::array POST_READS{R::Beauty};
 constexpr std::array POST_WRITES{R::Display};
@@ -359,6 +366,13 @@ const Pass PASSES[] = {
                  runAmbientOcclusionPass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
                                          in.settings.ao, in.aoRadius));
      }},
+    {"emissive", EMISSIVE_READS, EMISSIVE_WRITES,
+     [](const PassInputs& in) { return in.emissiveLight; },
+     [](const PassInputs& in, PassResources& r) {
+         r.write(R::Irradiance,
+                 runEmissivePass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
+                                 r.read(R::Emission), in.settings.emissive, in.pointLights));
+     }},
     {"shade", SHADE_READS, SHADE_WRITES, always,
      [](const PassInputs& in, PassResources& r) {
          r.write(R::Beauty, runShadePass(in.programs, shadeInputs(in, r)));
@@ -418,7 +432,15 @@ void readBack(DeviceState& d, const FrameResources& t, bool emits, int w, int h,
               core::Frame& frame) {
     const auto start = Clock::now();
     // Every read queued, then one wait (gl/readback.h).
-    enum Slot : std::size_t { NORMAL_UV, EMISSION, SURFACE, BEAUTY_SHADOW, DISPLAY, OCCLUSION };
+    enum Slot : std::size_t {
+        NORMAL_UV,
+        EMISSION,
+        SURFACE,
+        BEAUTY_SHADOW,
+        DISPLAY,
+        OCCLUSION,
+        IRRADIANCE
+    };
     gl::TextureReadback& r = d.readback;
     r.read(NORMAL_UV, t.read(Resource::NormalUv));
     // Without emitters the emission buffer is zero, as the image's channels already are.
@@ -428,6 +450,9 @@ void readBack(DeviceState& d, const FrameResources& t, bool emits, int w, int h,
     r.read(DISPLAY, t.read(Resource::Display));
     const gl::Texture* occlusion = t.find(Resource::Occlusion);
     if (occlusion) r.read(OCCLUSION, *occlusion, 1);
+    // Without the emissive pass the irradiance is zero, as the image's channels already are.
+    const gl::Texture* irradiance = t.find(Resource::Irradiance);
+    if (irradiance) r.read(IRRADIANCE, *irradiance);
     r.wait();
     frame.image = reuseOrCreate(d.spareImage, w, h, core::aov::channelNames());
     frame.display = reuseOrCreate(d.spareDisplay, w, h, {"R", "G", "B"});
@@ -440,6 +465,7 @@ void readBack(DeviceState& d, const FrameResources& t, bool emits, int w, int h,
     buffers.beautyShadow = r.pixels(BEAUTY_SHADOW);
     buffers.display = r.pixels(DISPLAY);
     if (occlusion) buffers.ambientOcclusion = r.pixels(OCCLUSION);
+    if (irradiance) buffers.irradiance = r.pixels(IRRADIANCE);
     assembleFrame(buffers, frame.image, frame.display);
     frame.timingsMs["readback"] = msSince(start);
 }
@@ -469,6 +495,11 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     if (usesAmbientOcclusion(in.settings))
         occlusion.emplace(runAmbientOcclusionPass(d.programs, g.surface, g.normalUv, in.settings.ao,
                                                   in.aoRadius));
+    // Its emissive light too.
+    std::optional<gl::Texture> irradiance;
+    if (in.emissiveLight)
+        irradiance.emplace(runEmissivePass(d.programs, g.surface, g.normalUv, g.emission,
+                                           in.settings.emissive, in.pointLights));
     ShadeInputs lighting = shadeInputs(in, t);
     lighting.normalUv = &g.normalUv;
     lighting.emissionBuffer = &g.emission;
@@ -476,6 +507,7 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     lighting.surface = &g.surface;
     lighting.depth = &g.depth;
     lighting.ambientOcclusion = occlusion ? &*occlusion : nullptr;
+    lighting.irradiance = irradiance ? &*irradiance : nullptr;
     // The real-time surface with the exact light, pixel by pixel.
     ShadeInputs surface = shadeInputs(in, t);
     surface.visibility = &exact.visibility;
@@ -533,7 +565,8 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     const bool emits = sceneEmits(in.particles.particles, in.materials);
     // Compiling programs is set-up, like creating the context: not part of the render time.
     const auto compileStart = Clock::now();
-    compilePrograms(d.programs, mSettings, emits);
+    const bool emissiveLight = usesEmissiveLight(mSettings, in.scene.light.emissiveLight, emits);
+    compilePrograms(d.programs, mSettings, emits, emissiveLight);
     frame.timingsMs["compile"] = msSince(compileStart);
 
     const auto totalStart = Clock::now();
@@ -549,6 +582,11 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.gradientGrid = uploaded.draws.gradientGrid;
     passInputs.camera = in.scene.camera.position;
     passInputs.aoRadius = in.scene.light.aoRadius;
+    passInputs.emissiveLight = emissiveLight;
+    if (emissiveLight && mSettings.emissive.method == EmissiveMethod::PointLights) {
+        passInputs.pointLights = pointLights(in.particles, in.materials, in.scene.camera.position);
+        frame.counters["point_lights"] = static_cast<double>(passInputs.pointLights.size());
+    }
     passInputs.exposure = static_cast<float>(in.scene.camera.exposure);
     frame.counters["gbuffer_bytes"] =
         static_cast<double>(gbufferBytesPerPixel(mSettings.gbufferFormat, mSettings.depth)) *

@@ -59,6 +59,24 @@ AoSettings parseAo(const core::ParameterTable& t) {
     return a;
 }
 
+EmissiveSettings parseEmissive(const core::ParameterTable& t) {
+    const EmissiveSettings d;
+    EmissiveSettings e;
+    e.method =
+        byName(t.getEnum("emissive.method", std::string(toString(d.method)),
+                         {"none", "point_lights", "ssem"}),
+               std::array{EmissiveMethod::None, EmissiveMethod::PointLights, EmissiveMethod::Ssem});
+    e.directions = static_cast<int>(t.getInt("emissive.directions", d.directions, 1, 64));
+    e.steps = static_cast<int>(t.getInt("emissive.steps", d.steps, 1, 64));
+    e.maxPixels = t.getDouble("emissive.max_pixels", d.maxPixels, 4.0, 4096.0);
+    e.thickness = t.getDouble("emissive.thickness", d.thickness, 1e-6, 1000.0);
+    e.blur =
+        byName(t.getEnum("emissive.blur", std::string(toString(d.blur)), {"none", "depth_aware"}),
+               std::array{EmissiveBlur::None, EmissiveBlur::DepthAware});
+    e.blurRadius = static_cast<int>(t.getInt("emissive.blur_radius", d.blurRadius, 1, 16));
+    return e;
+}
+
 }  // namespace
 
 std::string_view toString(AoMethod method) {
@@ -101,6 +119,32 @@ std::string_view toString(AoNoise noise) {
 
 bool usesAmbientOcclusion(const Settings& settings) {
     return settings.ao.method != AoMethod::None;
+}
+
+std::string_view toString(EmissiveMethod method) {
+    switch (method) {
+        case EmissiveMethod::None:
+            return "none";
+        case EmissiveMethod::PointLights:
+            return "point_lights";
+        case EmissiveMethod::Ssem:
+            return "ssem";
+    }
+    return "point_lights";
+}
+
+std::string_view toString(EmissiveBlur blur) {
+    switch (blur) {
+        case EmissiveBlur::None:
+            return "none";
+        case EmissiveBlur::DepthAware:
+            return "depth_aware";
+    }
+    return "depth_aware";
+}
+
+bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits) {
+    return emissiveLight && emits && settings.emissive.method != EmissiveMethod::None;
 }
 
 std::string_view toString(DepthMode mode) {
@@ -393,6 +437,7 @@ Settings parseSettings(const core::ParameterTable& t) {
 
     s.surface = parseSurface(t);
     s.ao = parseAo(t);
+    s.emissive = parseEmissive(t);
     s.ssss.enabled = t.getBool("ssss.enabled", d.ssss.enabled);
     s.ssss.radiusScale = t.getDouble("ssss.radius_scale", d.ssss.radiusScale, 0.0, 16.0);
     s.ssss.depthLimit = t.getDouble("ssss.depth_limit", d.ssss.depthLimit, 1e-6, 1000.0);
@@ -446,6 +491,13 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.ao.noise", toString(s.ao.noise)},
         {"realtime.ao.max_pixels", s.ao.maxPixels},
         {"realtime.ao.angle_bias", s.ao.angleBiasDeg},
+        {"realtime.emissive.method", toString(s.emissive.method)},
+        {"realtime.emissive.directions", s.emissive.directions},
+        {"realtime.emissive.steps", s.emissive.steps},
+        {"realtime.emissive.max_pixels", s.emissive.maxPixels},
+        {"realtime.emissive.thickness", s.emissive.thickness},
+        {"realtime.emissive.blur", toString(s.emissive.blur)},
+        {"realtime.emissive.blur_radius", s.emissive.blurRadius},
         {"realtime.surface.method", toString(s.surface.method)},
         {"realtime.surface.shader", s.surface.shaderPath},
         {"realtime.surface.shader_passes", s.surface.shaderPasses},

@@ -328,6 +328,37 @@ struct AoSettings {
     bool operator==(const AoSettings&) const = default;
 };
 
+// emissive.*: the real-time estimate of the light that emitting surfaces cast on the others,
+// the irradiance E the shading adds as albedo E / pi (realtime/emissive_pass.cpp). It runs only
+// under the scene's light.emissive_light, which the reference integrates exactly.
+enum class EmissiveMethod {
+    None,         // "none": no estimate; E = 0 even under light.emissive_light
+    PointLights,  // "point_lights": each emitting body a point source at its centre, unshadowed
+    Ssem,         // "ssem": screen-space emissive, rays marched against the depth buffer
+};
+enum class EmissiveBlur {
+    None,        // "none": the raw, noisy estimate
+    DepthAware,  // "depth_aware": ao_blur.frag's Gaussian within a body and its depth
+};
+struct EmissiveSettings {
+    // emissive.method: "none" | "point_lights" | "ssem". The point lights are the cheap
+    // baseline: the screen-space rays see occluders but not what lies off screen.
+    EmissiveMethod method = EmissiveMethod::PointLights;
+    int directions = 16;  // emissive.directions: "ssem" cosine-weighted rays per pixel, 1..64
+    int steps = 8;        // emissive.steps: "ssem" samples along each ray, 1..64
+    // emissive.max_pixels: "ssem" a ray's reach, the world length that spans this many pixels
+    // at the receiver's depth, cut to this many pixels on screen and at the near plane, 4..4096.
+    double maxPixels = 256.0;
+    // emissive.thickness: "ssem" how far a sample may lie behind the depth buffer and still meet
+    // the surface there, in radii of the particle drawn at that pixel (so the same at every
+    // scale and distance), (0, 1000]. Deeper, it passed behind a body and marches on.
+    double thickness = 4.0;
+    // emissive.blur: "none" | "depth_aware"; emissive.blur_radius: pixels, 1..16.
+    EmissiveBlur blur = EmissiveBlur::DepthAware;
+    int blurRadius = 4;
+    bool operator==(const EmissiveSettings&) const = default;
+};
+
 struct Settings {
     DepthMode depth = DepthMode::Log;                   // depth: "log" | "standard" | "reversed"
     GBufferFormat gbufferFormat = GBufferFormat::Full;  // gbuffer.format: "full" | "compact"
@@ -340,10 +371,14 @@ struct Settings {
     SsssSettings ssss;
     BloomSettings bloom;
     AoSettings ao;
+    EmissiveSettings emissive;
 };
 
 // Whether the ambient occlusion pass runs (ao.method is not "none").
 bool usesAmbientOcclusion(const Settings& settings);
+// Whether the emissive pass runs: the scene asks for the light of emitting surfaces
+// (light.emissive_light), something emits, and emissive.method is not "none".
+bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits);
 // Whether a surface method's pass replaces the normals by those of its depth: the G-buffer's,
 // the gradient pass's or the field normals are then thrown away (and not computed).
 enum class NormalRebuild {
@@ -398,5 +433,7 @@ std::string_view toString(PerSetDevice device);
 std::string_view toString(AoMethod method);
 std::string_view toString(AoBlur blur);
 std::string_view toString(AoNoise noise);
+std::string_view toString(EmissiveMethod method);
+std::string_view toString(EmissiveBlur blur);
 
 }  // namespace twinrender::realtime

@@ -85,7 +85,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
-    EXPECT_EQ(j.size(), 63u);
+    EXPECT_EQ(j.size(), 70u);
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {
@@ -113,6 +113,52 @@ TEST(Settings, ReadsTheAmbientOcclusionKeys) {
     EXPECT_EQ(j.at("realtime.ao.blur"), "flat");
     EXPECT_THROW(parseSettings(table({{"ao.method", std::string("hbao+")}})),
                  twinrender::core::InputError);
+}
+
+TEST(Settings, ReadsTheEmissiveKeys) {
+    const Settings d = parseSettings(table({}));
+    EXPECT_EQ(d.emissive.method, EmissiveMethod::PointLights);
+    EXPECT_EQ(d.emissive.blur, EmissiveBlur::DepthAware);
+    // Only the scene's light.emissive_light with something emitting runs the pass.
+    EXPECT_FALSE(usesEmissiveLight(d, false, true));
+    EXPECT_FALSE(usesEmissiveLight(d, true, false));
+    EXPECT_TRUE(usesEmissiveLight(d, true, true));
+    const Settings s = parseSettings(table({{"emissive.method", std::string("ssem")},
+                                            {"emissive.directions", std::int64_t(32)},
+                                            {"emissive.steps", std::int64_t(12)},
+                                            {"emissive.max_pixels", 100.0},
+                                            {"emissive.thickness", 2.5},
+                                            {"emissive.blur", std::string("none")},
+                                            {"emissive.blur_radius", std::int64_t(3)}}));
+    EXPECT_EQ(s.emissive.method, EmissiveMethod::Ssem);
+    EXPECT_EQ(s.emissive.directions, 32);
+    EXPECT_EQ(s.emissive.steps, 12);
+    EXPECT_DOUBLE_EQ(s.emissive.maxPixels, 100.0);
+    EXPECT_DOUBLE_EQ(s.emissive.thickness, 2.5);
+    EXPECT_EQ(s.emissive.blur, EmissiveBlur::None);
+    EXPECT_EQ(s.emissive.blurRadius, 3);
+    EXPECT_FALSE(s.emissive == d.emissive);
+    const nlohmann::json j = toJson(s);
+    EXPECT_EQ(j.at("realtime.emissive.method"), "ssem");
+    EXPECT_EQ(j.at("realtime.emissive.directions"), 32);
+    EXPECT_EQ(j.at("realtime.emissive.blur"), "none");
+    EXPECT_EQ(j.at("realtime.emissive.thickness"), 2.5);
+    const Settings none = parseSettings(table({{"emissive.method", std::string("none")}}));
+    EXPECT_FALSE(usesEmissiveLight(none, true, true));
+    const std::vector<std::pair<std::string, core::ParameterTable::Value>> bad = {
+        {"emissive.method", std::string("ssgi")},
+        {"emissive.directions", std::int64_t(0)},
+        {"emissive.steps", std::int64_t(65)},
+        {"emissive.thickness", 0.0},
+        {"emissive.blur", std::string("flat")}};
+    for (const auto& [key, value] : bad) {
+        try {
+            parseSettings(table({{key, value}}));
+            ADD_FAILURE() << key << " accepted";
+        } catch (const core::InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(Settings, ReadsTheParticleShapeKeys) {

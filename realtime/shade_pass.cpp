@@ -23,7 +23,8 @@ gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& in) {
     // With a visibility per pixel no shadow mode is read: its define takes the mode's place.
     const ShadowMode shadows = in.visibility ? ShadowMode::None : in.shadows;
     std::vector<std::string> defines =
-        shadeDefines(shadows, in.shadowSettings, in.emission, in.ambientOcclusion != nullptr);
+        shadeDefines(shadows, in.shadowSettings, in.emission, in.ambientOcclusion != nullptr,
+                     in.irradiance != nullptr);
     if (in.visibility) defines.front() = "VISIBILITY_TEXTURE";
     const gl::Program& program = programs.get("fullscreen.vert", "shade.frag", defines);
     program.use();
@@ -35,6 +36,7 @@ gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& in) {
     else if (in.shadowMap)
         in.shadowMap->bind(3);
     if (in.ambientOcclusion) in.ambientOcclusion->bind(4);
+    if (in.irradiance) in.irradiance->bind(5);
     if (usesFilteredShadowMap(shadows)) {
         program.set("uExponents", shadowExponents(in.shadows, in.shadowSettings));
         program.set("uBleedReduction", static_cast<float>(in.shadowSettings.vsmBleedReduction));

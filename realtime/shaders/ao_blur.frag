@@ -1,10 +1,19 @@
 // One direction of the ambient occlusion's separable blur (realtime/ao_pass.cpp): Gaussian
 // weights (sigma = half the radius) over the covered pixels within uRadius; AO_DEPTH_AWARE
 // also weighs each tap by its depth's closeness, exp(-(dz / (0.02 z))^2), and drops taps of
-// another body, so that occlusion does not bleed across a silhouette.
+// another body, so that occlusion does not bleed across a silhouette. RGB: the same over the
+// three channels of the emissive light's irradiance (realtime/emissive_pass.cpp).
 #include "common.glsl"
 
-layout(binding = 0) uniform sampler2D uOpen;     // the open fraction (r)
+#ifdef RGB
+#define Value vec3
+#define pick(t) (t).rgb
+#else
+#define Value float
+#define pick(t) (t).r
+#endif
+
+layout(binding = 0) uniform sampler2D uOpen;     // the open fraction (r), RGB: irradiance
 layout(binding = 2) uniform sampler2D uSurface;  // eye depth, body
 uniform ivec2 uDirection;                        // (1, 0), then (0, 1)
 uniform int uRadius;                             // pixels, >= 1
@@ -19,7 +28,8 @@ void main() {
     ivec2 size = ivec2(viewport.xy);
     vec4 centre = texelFetch(uSurface, p, 0);
     float sigma = 0.5 * float(uRadius);
-    float sum = 0.0, weights = 0.0;
+    Value sum = Value(0.0);
+    float weights = 0.0;
     for (int i = -uRadius; i <= uRadius; ++i) {
         ivec2 q = p + uDirection * i;
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
@@ -31,8 +41,13 @@ void main() {
         float dz = (s.x - centre.x) / (DEPTH_SCALE * centre.x);
         w *= exp(-dz * dz);
 #endif
-        sum += w * texelFetch(uOpen, q, 0).r;
+        sum += w * pick(texelFetch(uOpen, q, 0));
         weights += w;
     }
-    outOpen = vec4(weights > 0.0 ? sum / weights : texelFetch(uOpen, p, 0).r);
+    Value value = weights > 0.0 ? sum / weights : pick(texelFetch(uOpen, p, 0));
+#ifdef RGB
+    outOpen = vec4(value, 0.0);
+#else
+    outOpen = vec4(value);
+#endif
 }

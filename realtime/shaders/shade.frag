@@ -3,7 +3,8 @@
 // not, SHADOWS_VSM, SHADOWS_EVSM), the occlusion spheres (SHADOWS_SPHERES) or none. Output:
 // linear beauty and the visibility (the shadow AOV). VISIBILITY_TEXTURE: the visibility read
 // per pixel instead (the error split). AMBIENT_OCCLUSION: the ambient term times the ambient
-// occlusion pass's open fraction.
+// occlusion pass's open fraction. EMISSIVE_LIGHT: the emissive pass's irradiance from emitting
+// surfaces, lighting the albedo (light.emissive_light).
 #include "common.glsl"
 #include "textures.glsl"
 #include "shading.glsl"
@@ -20,6 +21,9 @@ layout(binding = 2) uniform sampler2D uSurface;
 layout(binding = 3) uniform sampler2D uShadowMap;
 #ifdef AMBIENT_OCCLUSION
 layout(binding = 4) uniform sampler2D uAmbientOcclusion;  // the open fraction (ao.frag)
+#endif
+#ifdef EMISSIVE_LIGHT
+layout(binding = 5) uniform sampler2D uIrradiance;  // E from emitting surfaces (rgb, linear)
 #endif
 
 #ifdef SHADOWS_SPHERES
@@ -151,7 +155,11 @@ void main() {
 #else
     const float open = 1.0;
 #endif
+#ifdef EMISSIVE_LIGHT
+    vec3 irradiance = texelFetch(uIrradiance, p, 0).rgb;
+#else
     const vec3 irradiance = vec3(0.0);  // no light from emitting surfaces
+#endif
     vec3 color = shadeSurface(int(s.w), normal, -normalize(position), a.zw, emission, vis, open,
                               irradiance);
     outBeautyShadow = vec4(color, vis);
