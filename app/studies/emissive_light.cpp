@@ -32,6 +32,10 @@ std::vector<EmissiveSeries> emissiveSeries(bool quick) {
         {"none", {"realtime.emissive.method=\"none\""}},
         {"point lights", {"realtime.emissive.method=\"point_lights\""}},
         {"ssem 16 x 8", {ssem}},
+        // A sample behind the depth buffer by less than the thickness meets the surface there:
+        // at the default (4 particle radii) the rays from under the lamp pass behind its
+        // front; at 16 they meet it, and also meet what they should pass behind.
+        {"ssem 16 x 8, thickness 16", {ssem, "realtime.emissive.thickness=16"}},
     };
     if (!quick) {
         out.push_back(
