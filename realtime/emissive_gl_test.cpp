@@ -73,11 +73,14 @@ Settings withMethod(EmissiveMethod method) {
 }
 
 // The screen-space rays' settings for a 160 x 90 image where the ball is 8 pixels across:
-// steps of under 2 pixels, so that a ray does not step over it.
+// steps of under 2 pixels, so that a ray does not step over it, and a shell of 4 particle
+// radii, half the ball's depth. Seen face-on from above, a thicker one stands a column under
+// the ball that rays passing below it meet (the default 16: 3.7 times the closed form at 0.6).
 Settings screenSpace() {
     Settings s = withMethod(EmissiveMethod::Ssem);
     s.emissive.steps = 32;
     s.emissive.maxPixels = 48.0;
+    s.emissive.thickness = 4.0;
     return s;
 }
 

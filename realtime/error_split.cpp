@@ -29,11 +29,13 @@ ExactPlanes exactPlanes(const core::Image& aov, const core::RenderInput& in,
     const int cA = channel("A"), cZ = channel("Z"), cN = channel("N.X"), cU = channel("uv.U"),
               cId = channel("id"), cE = channel("emission.R"), cShadow = channel("shadow");
     const int cAo = aov.channelIndex("ao");  // frames written before it: open everywhere
+    const int cIrradiance = aov.channelIndex("irradiance.R");  // before it: none
     const core::Camera camera(in.scene.camera);
     const double pixelsPerUnit = 0.5 * h / camera.tanHalfFovY();  // times 1 / depth
     const std::size_t n = static_cast<std::size_t>(w) * h * 4;
     ExactPlanes p{std::vector<float>(n, 0.0f), std::vector<float>(n, 0.0f),
-                  std::vector<float>(n, 0.0f), std::vector<float>(n, 0.0f)};
+                  std::vector<float>(n, 0.0f), std::vector<float>(n, 0.0f),
+                  std::vector<float>(n, 0.0f)};
     const auto& bodies = in.particles.bodies;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -63,6 +65,8 @@ ExactPlanes exactPlanes(const core::Image& aov, const core::RenderInput& in,
             for (int k = 0; k < 3; ++k) p.emission[g + k] = aov.at(x, y, cE + k);
             p.light[g] = aov.at(x, y, cShadow);
             p.light[g + 1] = cAo >= 0 ? aov.at(x, y, cAo) : 1.0f;
+            if (cIrradiance >= 0)
+                for (int k = 0; k < 3; ++k) p.irradiance[g + k] = aov.at(x, y, cIrradiance + k);
         }
     return p;
 }
@@ -98,7 +102,8 @@ ExactSurface uploadExactSurface(ProgramCache& programs, const core::Image& aov,
                         mode == DepthMode::Standard ? gl::Format::Depth24 : gl::Format::Depth32F),
                     .framebuffer = {}},
         .visibility = uploaded(w, h, gl::Format::R32F, channelOf(p.light, 0)),
-        .ambientOcclusion = uploaded(w, h, gl::Format::R32F, channelOf(p.light, 1))};
+        .ambientOcclusion = uploaded(w, h, gl::Format::R32F, channelOf(p.light, 1)),
+        .irradiance = uploaded(w, h, gl::Format::RGBA32F, p.irradiance)};
     // The depth buffer: the window depth of each covered pixel, as the G-buffer pass leaves it.
     e.gbuffer.framebuffer = gl::Framebuffer("exact depth", {}, gl::Attachment{&e.gbuffer.depth});
     e.gbuffer.framebuffer.bind();

@@ -508,14 +508,19 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     lighting.depth = &g.depth;
     lighting.ambientOcclusion = occlusion ? &*occlusion : nullptr;
     lighting.irradiance = irradiance ? &*irradiance : nullptr;
-    // The real-time surface with the exact light, pixel by pixel.
+    // The real-time surface with the exact light, pixel by pixel: the reference's emissive
+    // light too, where the scene asks for it and something emits (else it is 0).
+    const gl::Texture* exactIrradiance =
+        input.scene.light.emissiveLight && in.emits ? &exact.irradiance : nullptr;
     ShadeInputs surface = shadeInputs(in, t);
     surface.visibility = &exact.visibility;
     surface.ambientOcclusion = &exact.ambientOcclusion;
+    surface.irradiance = exactIrradiance;
     // The exact surface with the exact light.
     ShadeInputs shading = lighting;
     shading.visibility = &exact.visibility;
     shading.ambientOcclusion = &exact.ambientOcclusion;
+    shading.irradiance = exactIrradiance;
     const std::pair<const char*, const ShadeInputs*> parts[] = {
         {"surface", &surface}, {"lighting", &lighting}, {"shading", &shading}};
     std::vector<gl::Texture> beauty;
