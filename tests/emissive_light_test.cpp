@@ -39,11 +39,10 @@ TEST(EmissiveLight, EachMethodLowersTheErrorAgainstNoneWithTheLampOnScreen) {
         const auto r = runWith(dir, method, {"realtime.emissive.method=\"" + method + "\""});
         ASSERT_TRUE(r.contains("indirect.rmse")) << method;
         EXPECT_LT(r.at("indirect.rmse"), none.at("indirect.rmse")) << method;
-        // Screen-space rays meet the lamp's front only: those from the slab under it pass
-        // behind that surface (deeper than realtime.emissive.thickness) and miss it, so ssem
-        // misses much of the light (0.60 of the lit pixels at the default thickness, 4 particle
-        // radii, against 1 for none; 0.09 at 16 radii).
-        EXPECT_LT(r.at("indirect.missed"), 0.8) << method;
+        // Measured: point_lights misses 0.02 of the lit pixels, ssem 0.09 (at the default
+        // thickness, 16 particle radii; 0.60 at 4, where the rays from under the lamp pass
+        // behind its front).
+        EXPECT_LT(r.at("indirect.missed"), 0.3) << method;
         std::printf("%s: indirect.rmse %.4f missed %.3f false %.3f (none %.4f)\n", method.c_str(),
                     r.at("indirect.rmse"), r.at("indirect.missed"), r.at("indirect.false"),
                     none.at("indirect.rmse"));
