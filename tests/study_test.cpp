@@ -519,7 +519,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
               std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
-    ASSERT_EQ(all["studies"].size(), 9u);
+    ASSERT_EQ(all["studies"].size(), 11u);
     const std::string page = readText(out / "studies" / "index.html");
     for (const json& s : all["studies"]) {
         EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;
