@@ -24,6 +24,7 @@ flat in vec3 vDvdx;
 flat in vec4 vGlowMaterial;
 flat in float vBody;
 flat in ivec4 vEmissionTexture;
+flat in float vEmissionScale;
 
 layout(location = 0) out vec4 outNormalUv;  // world normal (octahedral), u, v
 layout(location = 1) out vec4 outEmission;  // emission (linear RGB), 0
@@ -79,6 +80,6 @@ void main() {
                                 dot(vec3(h.y, h.z, d.z), offset));
     outNormalUv =
         vec4(octEncode(normalize(mix(model, worldFromView * impostorNormal, misc.z))), u, v);
-    outEmission = vec4(emission, 0.0);
+    outEmission = vec4(emission * vEmissionScale, 0.0);
     outSurface = vec4(z, vBody, vRadius * pixelsPerUnitAt(-vCentre.z), vGlowMaterial.w);
 }

@@ -42,6 +42,7 @@ flat out vec3 vDvdx;
 flat out vec4 vGlowMaterial;  // glow; material as float
 flat out float vBody;
 flat out ivec4 vEmissionTexture;
+flat out float vEmissionScale;  // realtime.particles.min_pixels: true / drawn projected area
 #endif
 
 // A zero-area quad outside the clip volume: the particle is not drawn.
@@ -65,6 +66,7 @@ void main() {
 #ifndef SHADOW_PASS
     mat3 toEye = mat3(viewFromWorld);
     vec3 c = toEye * pr.xyz;
+    vEmissionScale = 1.0;
 #ifdef ELLIPSOID
     EllipsoidRecord e = ellipsoids[particle];
     mat3 axes = ellipsoidAxes(e, toEye);
@@ -88,6 +90,21 @@ void main() {
         return;
     }
     vec3 axis = c / d;
+    // realtime.particles.min_pixels (misc.w): a sphere projected smaller than that many pixels
+    // is drawn at that radius with its emission scaled by the ratio of the areas, so that a
+    // sub-pixel emitter keeps its flux instead of vanishing between pixel centres. Off (0),
+    // the branch is never taken and the scale is exactly 1.
+    float projected = r * pixelsPerUnitAt(-c.z);
+    if (misc.w > 0.0 && c.z < 0.0 && projected < misc.w) {
+        float drawn = misc.w / pixelsPerUnitAt(-c.z);
+        vEmissionScale = (r / drawn) * (r / drawn);
+        r = drawn;
+        vRadius = r;
+        if (d <= r * 1.0001) {
+            dropQuad();
+            return;
+        }
+    }
 #endif
     vCentreDistance = d;
     Particle p = particles[particle];
