@@ -149,14 +149,15 @@ struct ParticleSettings {
     // neighbours' (realtime/occlusion_culling.h); the image does not change, only the cost.
     // Spheres only: the test is exact for spheres, so ellipsoids are never culled.
     bool cullHidden = true;
-    // particles.min_pixels: an impostor sphere whose projected radius is below this many pixels
-    // is drawn at this radius, its emission scaled by (true projected area / drawn area) so that
-    // the light it emits into the image stays the same, 0..64 (0: off, every impostor at its own
-    // size). A glowing body smaller than a pixel otherwise covers no pixel centre and its light
-    // vanishes or flickers as it moves, while the reference integrates its coverage. Only the
-    // emission is scaled: the G-buffer holds one opaque surface per pixel, and a sub-pixel
-    // body's reflected light is a small part of its flux. Per impostor: a body of many
-    // particles keeps only the front one's share (the others lie behind it). Spheres only.
+    // particles.min_pixels: a sphere impostor projected smaller than this radius (pixels) is
+    // drawn as a splat of its flux (projected area times emission) over the pixels within one
+    // of its centre, weighted by a bilinear tent whose weights sum to 1 wherever the centre
+    // lies, 0..64 (0: off, every impostor drawn as its sphere; about 1 is meant). Drawn as a
+    // sphere it covers few pixel centres or none: its light vanishes or flickers as it moves,
+    // while the reference integrates its coverage (study subpixel_emitters). Only the emission
+    // keeps its flux: the G-buffer holds one opaque surface per pixel, so the splat's pixels
+    // reflect light as the whole surface would and hide what lies behind them. Per impostor: a
+    // body of many particles keeps only the front one's flux. Spheres only.
     double minPixels = 0.0;
     // particles.shape: "sphere" | "ellipsoid".
     ParticleShape shape = ParticleShape::Sphere;

@@ -42,7 +42,10 @@ flat out vec3 vDvdx;
 flat out vec4 vGlowMaterial;  // glow; material as float
 flat out float vBody;
 flat out ivec4 vEmissionTexture;
-flat out float vEmissionScale;  // realtime.particles.min_pixels: true / drawn projected area
+// realtime.particles.min_pixels: the flux of a sub-pixel sphere, in pixel areas times its
+// emission (0: drawn as a sphere), and its centre in window coordinates (pixels).
+flat out float vSplatFlux;
+flat out vec2 vSplatCentre;
 #endif
 
 // A zero-area quad outside the clip volume: the particle is not drawn.
@@ -66,7 +69,8 @@ void main() {
 #ifndef SHADOW_PASS
     mat3 toEye = mat3(viewFromWorld);
     vec3 c = toEye * pr.xyz;
-    vEmissionScale = 1.0;
+    vSplatFlux = 0.0;
+    vSplatCentre = vec2(0.0);
 #ifdef ELLIPSOID
     EllipsoidRecord e = ellipsoids[particle];
     mat3 axes = ellipsoidAxes(e, toEye);
@@ -90,15 +94,19 @@ void main() {
         return;
     }
     vec3 axis = c / d;
-    // realtime.particles.min_pixels (misc.w): a sphere projected smaller than that many pixels
-    // is drawn at that radius with its emission scaled by the ratio of the areas, so that a
-    // sub-pixel emitter keeps its flux instead of vanishing between pixel centres. Off (0),
-    // the branch is never taken and the scale is exactly 1.
+    // realtime.particles.min_pixels (misc.w): a sphere projected smaller than that radius in
+    // pixels covers few pixel centres or none, so its light would flicker or vanish. It is drawn
+    // instead as a splat of its flux (its projected area in pixels times its emission) over the
+    // pixels within one of its centre, weighted by a bilinear tent, whose weights sum to 1
+    // wherever the centre lies (gbuffer.frag). The quad must then reach those pixel centres, up
+    // to sqrt(2) pixels away: its radius is at least 1.5 pixels. Off (0), the branch is never
+    // taken and vSplatFlux stays 0.
     float projected = r * pixelsPerUnitAt(-c.z);
     if (misc.w > 0.0 && c.z < 0.0 && projected < misc.w) {
-        float drawn = misc.w / pixelsPerUnitAt(-c.z);
-        vEmissionScale = (r / drawn) * (r / drawn);
-        r = drawn;
+        vSplatFlux = 3.14159265 * projected * projected;
+        vec4 clip = clipFromView * vec4(c, 1.0);
+        vSplatCentre = (clip.xy / clip.w * 0.5 + 0.5) * viewport.xy;
+        r = max(misc.w, 1.5) / pixelsPerUnitAt(-c.z);
         vRadius = r;
         if (d <= r * 1.0001) {
             dropQuad();
