@@ -27,19 +27,19 @@ std::vector<double> emitterDiameters(bool quick) {
                  : std::vector<double>{100.0, 30.0, 10.0, 3.0, 1.0, 0.5, 0.3, 0.1};
 }
 
-// Focal length in pixels of the scene's camera (fov_y 40 degrees) at `height` pixels.
-double focalPixels(double height) {
-    return 0.5 * height / std::tan(20.0 * std::numbers::pi / 180.0);
+// Focal length in pixels of a camera `height` pixels high with that vertical field of view.
+double focalPixels(double height, double fovYDeg) {
+    return 0.5 * height / std::tan(0.5 * fovYDeg * std::numbers::pi / 180.0);
 }
 
 }  // namespace
 
 std::vector<StudyPoint> subpixelEmittersPoints(bool quick) {
-    const double height = quick ? 48.0 : 96.0;
+    const double height = quick ? 48.0 : 96.0;  // the scene's fov_y is 40 degrees
     std::vector<StudyPoint> pts;
     for (const double minPixels : {0.0, 1.0})
         for (const double diameter : emitterDiameters(quick)) {
-            const double distance = 2.0 * EMITTER_RADIUS * focalPixels(height) / diameter;
+            const double distance = 2.0 * EMITTER_RADIUS * focalPixels(height, 40.0) / diameter;
             StudyPoint p{minPixels == 0.0 ? "impostors" : "min_pixels 1",
                          NAN,
                          {set("realtime.particles.min_pixels", fmt::format("{}", minPixels)),
@@ -68,35 +68,43 @@ double subpixelEmitterPixels(const LoadedScene& s) {
     const auto& c = s.scene.camera;
     const glm::dvec3 p(ps.position[0]);
     const double d = glm::length(c.position - p);
-    return 2.0 * lo * focalPixels(c.height) / d;
+    return 2.0 * lo * focalPixels(c.height, c.fovYDeg) / d;
 }
 
 void subpixelEmittersConclude(StudyResult& s) {
     s.chart = seriesChart(s, "flux.ratio");
-    const auto all = bySeries(s);
+    const auto within = [](double ratio) { return std::abs(ratio - 1.0) <= 0.10; };
     std::string finding;
-    for (const auto& [name, rows] : all) {
+    for (const auto& [name, rows] : bySeries(s)) {
+        if (rows.empty()) continue;
+        for (const StudyRow* r : rows)
+            s.facts["flux_ratio"][name][fmt::format("{:.4g}", r->x)] =
+                jsonOrNull(metricOf(*r, "flux.ratio"));
         // From the largest ball down: the smallest size down to which every row keeps the
-        // flux within 10 % of the reference's.
-        double keeps = NAN, smallest = NAN, last = NAN;
-        for (auto it = rows.rbegin(); it != rows.rend(); ++it) {
-            const double ratio = metricOf(**it, "flux.ratio");
-            s.facts["flux_ratio"][name][fmt::format("{:.4g}", (*it)->x)] = jsonOrNull(ratio);
-            if (!(std::abs(ratio - 1.0) <= 0.10)) break;
-            keeps = (*it)->x;
-        }
-        if (!rows.empty()) {
-            smallest = rows.front()->x;
-            last = metricOf(*rows.front(), "flux.ratio");
-        }
-        s.facts["within_10_percent_down_to_px"][name] = jsonOrNull(keeps);
-        finding +=
-            fmt::format("{}{}: the flux within 10 % of the reference's {}, {} of it at {} px",
-                        finding.empty() ? "" : "; ", name,
-                        std::isfinite(keeps) ? fmt::format("down to {} px across", num(keeps))
-                                             : std::string("at no size"),
-                        percent(last), num(smallest));
-        if (std::isfinite(keeps)) s.chart.xMarks.push_back({keeps, name + " within 10 %"});
+        // flux within 10 % of the reference's. From the smallest up: the largest size up to
+        // which every row does (the sizes a sub-pixel option is for).
+        double downTo = NAN, upTo = NAN;
+        for (auto it = rows.rbegin(); it != rows.rend() && within(metricOf(**it, "flux.ratio"));
+             ++it)
+            downTo = (*it)->x;
+        for (auto it = rows.begin(); it != rows.end() && within(metricOf(**it, "flux.ratio")); ++it)
+            upTo = (*it)->x;
+        s.facts["within_10_percent_down_to_px"][name] = jsonOrNull(downTo);
+        s.facts["within_10_percent_up_to_px"][name] = jsonOrNull(upTo);
+        const double smallest = rows.front()->x;
+        finding += fmt::format("{}{}: the flux within 10 % of the reference's ",
+                               finding.empty() ? "" : "; ", name);
+        if (std::isfinite(upTo) && upTo == rows.back()->x)
+            finding += "at every size";
+        else if (std::isfinite(upTo))
+            finding += fmt::format("at every size up to {} px across", num(upTo));
+        else if (std::isfinite(downTo))
+            finding += fmt::format("down to {} px across", num(downTo));
+        else
+            finding += "at no size";
+        finding += fmt::format(", {} of it at {} px",
+                               percent(metricOf(*rows.front(), "flux.ratio")), num(smallest));
+        if (std::isfinite(upTo)) s.chart.xMarks.push_back({upTo, name + " within 10 % below"});
     }
     s.finding = finding.empty() ? "no rows to compare" : finding;
 }
