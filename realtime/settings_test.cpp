@@ -88,7 +88,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
-    EXPECT_EQ(j.size(), 63u);
+    EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
+    EXPECT_EQ(j.size(), 64u);
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {
