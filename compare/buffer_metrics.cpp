@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "compare/distance_transform.h"
+#include "compare/image_pair.h"
 #include "core/error.h"
 
 namespace twinrender::compare {
@@ -309,6 +310,22 @@ EmissionResult emissionError(const core::Image& reference, const core::Image& te
     });
     result.rmse = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : NOT_A_NUMBER;
     return result;
+}
+
+// ---- flux.ratio ---------------------------------------------------------------------------
+
+double fluxRatio(const core::Image& reference, const core::Image& test) {
+    requireSameSize("flux.ratio", reference, test);
+    const auto c = requireChannels<3>(reference, test, {"R", "G", "B"}, "flux.ratio");
+    const int w = reference.width();
+    const auto sums = sumRows<2>(reference.height(), [&](int y, std::array<double, 2>& s) {
+        for (int x = 0; x < w; ++x)
+            for (int k = 0; k < 3; ++k) {
+                s[0] += static_cast<double>(reference.at(x, y, c.ref[k]));
+                s[1] += static_cast<double>(test.at(x, y, c.test[k]));
+            }
+    });
+    return sums[0] != 0.0 ? sums[1] / sums[0] : NOT_A_NUMBER;
 }
 
 // ---- smoothness.ratio ---------------------------------------------------------------------

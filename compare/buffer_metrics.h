@@ -95,6 +95,14 @@ struct EmissionResult {
 EmissionResult emissionError(const core::Image& reference, const core::Image& test,
                              const Masks& masks);
 
+// ---- flux.ratio ---------------------------------------------------------------------------
+// The light the test image holds over the reference's: the sum over every pixel of the linear
+// beauty R + G + B of the test over the same sum of the reference. 1 when the two hold the same
+// flux, below 1 when light is lost (a sub-pixel emitter whose impostor covers no pixel centre,
+// realtime.particles.min_pixels). Summed over the whole image, so it measures one emitter on a
+// black background honestly, not one among others. NaN when the reference's sum is 0.
+double fluxRatio(const core::Image& reference, const core::Image& test);
+
 // ---- smoothness.ratio ---------------------------------------------------------------------
 struct SmoothnessResult {
     // testRoughnessDeg / referenceRoughnessDeg: 1 as smooth as the reference, > 1 rougher

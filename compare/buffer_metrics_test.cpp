@@ -401,6 +401,27 @@ TEST(Emission, ConstantDifference) {
     EXPECT_FLOAT_EQ(r.errorMap.at(4, 4, 0), static_cast<float>(expected));
 }
 
+// ---- flux.ratio ---------------------------------------------------------------------------
+
+TEST(FluxRatio, SumOfTheBeautyOverTheReferences) {
+    // The reference: one pixel of (3, 2, 1), sum 6. The test spreads less light over four
+    // pixels of (0.5, 0.25, 0) each, sum 3: ratio 0.5, wherever the pixels lie.
+    core::Image ref = core::aov::makeImage(8, 6);
+    core::Image test = core::aov::makeImage(8, 6);
+    auto set = [](core::Image& img, int x, int y, float r, float g, float b) {
+        img.at(x, y, img.channelIndex("R")) = r;
+        img.at(x, y, img.channelIndex("G")) = g;
+        img.at(x, y, img.channelIndex("B")) = b;
+    };
+    set(ref, 3, 2, 3.0f, 2.0f, 1.0f);
+    for (int y = 4; y < 6; ++y)
+        for (int x = 0; x < 2; ++x) set(test, x, y, 0.5f, 0.25f, 0.0f);
+    EXPECT_DOUBLE_EQ(fluxRatio(ref, test), 0.5);
+    EXPECT_DOUBLE_EQ(fluxRatio(ref, ref), 1.0);
+    EXPECT_DOUBLE_EQ(fluxRatio(test, core::aov::makeImage(8, 6)), 0.0);  // all light lost
+    EXPECT_TRUE(isNaN(fluxRatio(core::aov::makeImage(8, 6), test)));     // nothing to keep
+}
+
 // ---- smoothness.ratio ---------------------------------------------------------------------
 
 // A field turning by `step` radians per column about the y axis: every horizontal neighbour

@@ -85,6 +85,10 @@ const std::vector<MetricInfo>& metricTable() {
          .buffer = "emission", .source = S::AovPair, .overview = false, .machineDependent = false,
          .meaning = "root mean square error of the emitted radiance on the pixels covered in "
                     "both"},
+        {.key = "flux.ratio", .unit = "", .better = B::Closer, .origin = 1.0, .noise = 1e-3,
+         .buffer = "beauty", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "sum of the test's linear beauty (R + G + B, every pixel) over the "
+                    "reference's: 1 the same light, below 1 light lost (a sub-pixel emitter)"},
         {.key = "smoothness.ratio", .unit = "", .better = B::Closer, .origin = 1.0, .noise = 0.01,
          .buffer = "N", .source = S::AovPair, .overview = false, .machineDependent = false,
          .meaning = "roughness of the test's normal field over the reference's: 1 as smooth, "

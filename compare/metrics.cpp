@@ -196,6 +196,7 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
     result.values["emission.rmse"] = emission.rmse;
     result.errorMaps["emission"] = std::move(emission.errorMap);
 
+    result.values["flux.ratio"] = fluxRatio(reference, test);
     result.values["smoothness.ratio"] = smoothness(reference, test, masks).ratio;
 
     ShadowResult shadow = shadowError(reference, test, masks);

@@ -93,7 +93,7 @@ struct FrameUniforms {
     glm::vec4 lightColor{0.0f};
     glm::vec4 shadowRange{0.0f};
     glm::vec4 shadowBias{0.0f};
-    glm::vec4 misc{0.0f};
+    glm::vec4 misc{0.0f};  // exposure, radius scale, sphere normal weight, min impostor px
 };
 static_assert(sizeof(FrameUniforms) == 4 * 64 + 7 * 16);
 

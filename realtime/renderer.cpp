@@ -100,7 +100,8 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
                                       ? settings.particles.sphereNormalWeight
                                   : settings.particles.normal == NormalModel::Sphere ? 1.0
                                                                                      : 0.0;
-    u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale, impostorNormal, 0.0);
+    u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale, impostorNormal,
+                       settings.particles.minPixels);
     return u;
 }
 

@@ -399,6 +399,7 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.particles.sphereNormalWeight =
         t.getDouble("particles.sphere_normal_weight", d.particles.sphereNormalWeight, 0.0, 1.0);
     s.particles.cullHidden = t.getBool("particles.cull_hidden", d.particles.cullHidden);
+    s.particles.minPixels = t.getDouble("particles.min_pixels", d.particles.minPixels, 0.0, 64.0);
     s.particles.shape = t.getEnum("particles.shape", std::string(toString(d.particles.shape)),
                                   {"sphere", "ellipsoid"}) == "ellipsoid"
                             ? ParticleShape::Ellipsoid
@@ -468,6 +469,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.normal", toString(s.particles.normal)},
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},
+        {"realtime.particles.min_pixels", s.particles.minPixels},
         {"realtime.particles.shape", toString(s.particles.shape)},
         {"realtime.particles.anisotropy.smoothing", s.particles.anisotropy.smoothing},
         {"realtime.particles.anisotropy.max_axis_ratio", s.particles.anisotropy.maxAxisRatio},

@@ -149,6 +149,16 @@ struct ParticleSettings {
     // neighbours' (realtime/occlusion_culling.h); the image does not change, only the cost.
     // Spheres only: the test is exact for spheres, so ellipsoids are never culled.
     bool cullHidden = true;
+    // particles.min_pixels: a sphere impostor projected smaller than this radius (pixels) is
+    // drawn as a splat of its flux (projected area times emission) over the pixels within one
+    // of its centre, weighted by a bilinear tent whose weights sum to 1 wherever the centre
+    // lies, 0..64 (0: off, every impostor drawn as its sphere; about 1 is meant). Drawn as a
+    // sphere it covers few pixel centres or none: its light vanishes or flickers as it moves,
+    // while the reference integrates its coverage (study subpixel_emitters). Only the emission
+    // keeps its flux: the G-buffer holds one opaque surface per pixel, so the splat's pixels
+    // reflect light as the whole surface would and hide what lies behind them. Per impostor: a
+    // body of many particles keeps only the front one's flux. Spheres only.
+    double minPixels = 0.0;
     // particles.shape: "sphere" | "ellipsoid".
     ParticleShape shape = ParticleShape::Sphere;
     AnisotropySettings anisotropy;  // shape = "ellipsoid"

@@ -27,6 +27,7 @@ TEST(Settings, DefaultsFollowScenesMd) {
     EXPECT_TRUE(s.ssss.enabled);
     EXPECT_TRUE(s.ssss.separable);
     EXPECT_TRUE(s.particles.cullHidden);
+    EXPECT_EQ(s.particles.minPixels, 0.0);  // off: every impostor at its own size
 }
 
 TEST(Settings, ReadsEveryKey) {
@@ -40,6 +41,7 @@ TEST(Settings, ReadsEveryKey) {
                                             {"particles.sphere_normal_weight", 0.5},
                                             {"particles.droplet_atoms", std::int64_t(5)},
                                             {"particles.interior_level", 0.9},
+                                            {"particles.min_pixels", 1.5},
                                             {"shadow_map.resolution", std::int64_t(512)},
                                             {"shadow_map.bias", 0.25},
                                             {"shadow_map.slope_bias", 3.0},
@@ -63,6 +65,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_DOUBLE_EQ(s.particles.sphereNormalWeight, 0.5);
     EXPECT_EQ(s.particles.dropletAtoms, 5);
     EXPECT_DOUBLE_EQ(s.particles.interiorLevel, 0.9);
+    EXPECT_DOUBLE_EQ(s.particles.minPixels, 1.5);
     EXPECT_EQ(s.shadowMap.resolution, 512);
     EXPECT_DOUBLE_EQ(s.shadowMap.bias, 0.25);
     EXPECT_DOUBLE_EQ(s.shadowMap.slopeBias, 3.0);
@@ -85,7 +88,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
-    EXPECT_EQ(j.size(), 70u);
+    EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
+    EXPECT_EQ(j.size(), 71u);
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {

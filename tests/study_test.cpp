@@ -272,6 +272,32 @@ TEST(Study, ParticleSizeFromFortyPixelsToBelowOne) {
     }
 }
 
+TEST(Study, SubpixelEmittersTheSplatKeepsTheFluxTheSpheresLose) {
+    const json s = runStudy("subpixel_emitters", 2 * 3, "flux.ratio");
+    ASSERT_FALSE(s.is_discarded());
+    const auto spheres = series(s, "impostors"), splat = series(s, "min_pixels 1");
+    ASSERT_EQ(spheres.size(), 3u);
+    ASSERT_EQ(splat.size(), 3u);
+    double lo = INFINITY, hi = 0.0;
+    for (const json& r : s["rows"]) {
+        lo = std::min(lo, r["x"].get<double>());
+        hi = std::max(hi, r["x"].get<double>());
+    }
+    EXPECT_GT(hi, 10.0);
+    EXPECT_LT(lo, 0.5);
+    // At the smallest size the spheres lose most of the light, the splat keeps it.
+    const auto smallest = [](const std::vector<json>& rows) {
+        return *std::min_element(rows.begin(), rows.end(), [](const json& a, const json& b) {
+            return a["x"].get<double>() < b["x"].get<double>();
+        });
+    };
+    EXPECT_LT(metric(smallest(spheres), "flux.ratio"), 0.5);
+    EXPECT_NEAR(metric(smallest(splat), "flux.ratio"), 1.0, 0.10);
+    // The facts are the rows': the splat keeps 10 % at the smallest size, the spheres do not.
+    EXPECT_TRUE(s["facts"]["within_10_percent_up_to_px"]["min_pixels 1"].is_number());
+    EXPECT_TRUE(s["facts"]["within_10_percent_up_to_px"]["impostors"].is_null());
+}
+
 TEST(Study, ViewAngleFromFaceOnToGrazing) {
     const json s = runStudy("view_angle", 2 * 3, "normal.mean_deg");
     ASSERT_FALSE(s.is_discarded());
@@ -519,7 +545,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
               std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
-    ASSERT_EQ(all["studies"].size(), 11u);
+    ASSERT_EQ(all["studies"].size(), 12u);
     const std::string page = readText(out / "studies" / "index.html");
     for (const json& s : all["studies"]) {
         EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;

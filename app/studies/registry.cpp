@@ -197,6 +197,23 @@ const std::vector<StudyDef>& studies() {
             .conclude = study::emissiveOccluderConclude,
         },
         {
+            .name = "subpixel_emitters",
+            .title = "Sub-pixel emitters",
+            .question = "A glowing ball on black, the camera backing away until it is a tenth of "
+                        "a pixel across: how much of its emitted light (flux.ratio: the image's "
+                        "summed linear beauty over the reference's at 16 samples per pixel) the "
+                        "real-time impostors keep, drawn as spheres and with "
+                        "realtime.particles.min_pixels = 1.",
+            .scene = "subpixel_emitters.toml",
+            .xLabel = "the ball's diameter on screen (px)",
+            .xLog = true,
+            .metric = "flux.ratio",
+            .columns = {"flux.ratio", "beauty.hdrflip", "beauty.flip", "count.unbracketed_rays"},
+            .points = study::subpixelEmittersPoints,
+            .xOf = study::subpixelEmitterPixels,
+            .conclude = study::subpixelEmittersConclude,
+        },
+        {
             .name = "methods",
             .title = "Surface methods",
             .question = "Every surface method at its defaults and along its main parameter, with "

@@ -62,6 +62,12 @@ void emissiveLightConclude(report::StudyResult& s);
 std::vector<StudyPoint> emissiveOccluderPoints(bool quick);
 void emissiveOccluderConclude(report::StudyResult& s);
 
+// ---- subpixel_emitters (subpixel_emitters.cpp) ----
+std::vector<StudyPoint> subpixelEmittersPoints(bool quick);
+void subpixelEmittersConclude(report::StudyResult& s);
+// The glowing ball's diameter on screen (pixels): the x of a point of its scene.
+double subpixelEmitterPixels(const LoadedScene& s);
+
 // ---- methods (methods.cpp) ----
 std::vector<StudyPoint> methodsPoints(bool quick);
 void methodsConclude(report::StudyResult& s);

@@ -17,7 +17,7 @@ layout(std140, binding = 0) uniform FrameUniforms {
     vec4 shadowBias;     // x: constant bias, y: slope bias (both in max(particle radius, texel));
                          // z: PCF radius (texels); w: tan(sun angular radius)
     vec4 misc;           // x: exposure; y: particle radius scale; z: sphere normal weight;
-                         // w: unused
+                         // w: smallest drawn impostor radius (pixels; 0: off)
 };
 
 float cameraNear() { return camera.x; }

@@ -24,12 +24,24 @@ flat in vec3 vDvdx;
 flat in vec4 vGlowMaterial;
 flat in float vBody;
 flat in ivec4 vEmissionTexture;
+flat in float vSplatFlux;
+flat in vec2 vSplatCentre;
 
 layout(location = 0) out vec4 outNormalUv;  // world normal (octahedral), u, v
 layout(location = 1) out vec4 outEmission;  // emission (linear RGB), 0
 layout(location = 2) out vec4 outSurface;   // eye depth, body, projected radius (px), material
 
 void main() {
+    // realtime.particles.min_pixels: a sub-pixel sphere's flux spread by a bilinear tent over
+    // the pixels within one of its centre (impostor.vert). The tent's weights at the pixel
+    // centres sum to 1 wherever the centre lies, so the image holds the sphere's flux whatever
+    // its position: no loss and no flicker as it moves. Elsewhere the pixel is not covered.
+    float splat = 1.0;
+    if (vSplatFlux > 0.0) {
+        vec2 tent = max(1.0 - abs(gl_FragCoord.xy - vSplatCentre), 0.0);
+        splat = vSplatFlux * tent.x * tent.y;
+        if (splat <= 0.0) discard;
+    }
 #ifdef ELLIPSOID
     // The eye ray as q + s dir from the quad point q, in the ellipsoid's unit-sphere space
     // o + s m with o = A^-1 (q - centre): o is of order 1 whatever the distance to the
@@ -79,6 +91,6 @@ void main() {
                                 dot(vec3(h.y, h.z, d.z), offset));
     outNormalUv =
         vec4(octEncode(normalize(mix(model, worldFromView * impostorNormal, misc.z))), u, v);
-    outEmission = vec4(emission, 0.0);
+    outEmission = vec4(emission * splat, 0.0);
     outSurface = vec4(z, vBody, vRadius * pixelsPerUnitAt(-vCentre.z), vGlowMaterial.w);
 }

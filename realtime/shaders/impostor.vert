@@ -42,6 +42,10 @@ flat out vec3 vDvdx;
 flat out vec4 vGlowMaterial;  // glow; material as float
 flat out float vBody;
 flat out ivec4 vEmissionTexture;
+// realtime.particles.min_pixels: the flux of a sub-pixel sphere, in pixel areas times its
+// emission (0: drawn as a sphere), and its centre in window coordinates (pixels).
+flat out float vSplatFlux;
+flat out vec2 vSplatCentre;
 #endif
 
 // A zero-area quad outside the clip volume: the particle is not drawn.
@@ -65,6 +69,8 @@ void main() {
 #ifndef SHADOW_PASS
     mat3 toEye = mat3(viewFromWorld);
     vec3 c = toEye * pr.xyz;
+    vSplatFlux = 0.0;
+    vSplatCentre = vec2(0.0);
 #ifdef ELLIPSOID
     EllipsoidRecord e = ellipsoids[particle];
     mat3 axes = ellipsoidAxes(e, toEye);
@@ -88,6 +94,25 @@ void main() {
         return;
     }
     vec3 axis = c / d;
+    // realtime.particles.min_pixels (misc.w): a sphere projected smaller than that radius in
+    // pixels covers few pixel centres or none, so its light would flicker or vanish. It is drawn
+    // instead as a splat of its flux (its projected area in pixels times its emission) over the
+    // pixels within one of its centre, weighted by a bilinear tent, whose weights sum to 1
+    // wherever the centre lies (gbuffer.frag). The quad must then reach those pixel centres, up
+    // to sqrt(2) pixels away: its radius is at least 1.5 pixels. Off (0), the branch is never
+    // taken and vSplatFlux stays 0.
+    float projected = r * pixelsPerUnitAt(-c.z);
+    if (misc.w > 0.0 && c.z < 0.0 && projected < misc.w) {
+        vSplatFlux = 3.14159265 * projected * projected;
+        vec4 clip = clipFromView * vec4(c, 1.0);
+        vSplatCentre = (clip.xy / clip.w * 0.5 + 0.5) * viewport.xy;
+        r = max(misc.w, 1.5) / pixelsPerUnitAt(-c.z);
+        vRadius = r;
+        if (d <= r * 1.0001) {
+            dropQuad();
+            return;
+        }
+    }
 #endif
     vCentreDistance = d;
     Particle p = particles[particle];
