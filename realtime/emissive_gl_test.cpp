@@ -223,6 +223,17 @@ TEST_F(RendererTest, ScreenSpaceEmissiveTargetSeesEmittersBesideTheView) {
     EXPECT_GT(floor, 5000);
     EXPECT_EQ(offMost, 0.0);
     EXPECT_GT(wideMost, 0.0);
+    // A square target of the image's height (emissive.target_aspect = false) is narrower but
+    // still reaches the ball here (measured: its largest E 0.99 times the aspect target's).
+    Settings square = target;
+    square.emissive.targetAspect = false;
+    const Channels q{render(beside, square).image};
+    double squareMost = 0.0;
+    for (int y = 0; y < off.image.height(); ++y)
+        for (int x = 0; x < off.image.width(); ++x)
+            if (o(x, y, "id") == 0.0f)
+                squareMost = std::max(squareMost, double(q(x, y, "irradiance.R")));
+    EXPECT_GT(squareMost, 0.0);
     // Near the edge next to the ball: lit, within a factor 3 of the point lights' closed form
     // (measured: 0.44 of it; the target's pixels are twice as wide, and the blur mixes in the
     // edge's neighbours farther from the ball).
