@@ -14,9 +14,11 @@ void SceneBuffers::bind() const {
 }
 
 void SceneBuffers::drawImpostors(ProgramCache& programs, const char* fragment,
-                                 const std::vector<std::string>& defines) const {
+                                 const std::vector<std::string>& defines,
+                                 const gl::Buffer* frame) const {
     programs.get("impostor.vert", fragment, impostorDefines(ellipsoids != nullptr, defines)).use();
     bind();
+    if (frame) frame->bindUniform(0);
     draw.draw();
     if (!droplets) return;
     programs.get("impostor.vert", fragment, impostorDefines(true, defines)).use();

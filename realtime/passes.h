@@ -20,6 +20,7 @@
 #include "realtime/gl/framebuffer.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gl/texture.h"
+#include "realtime/gpu_scene.h"
 #include "realtime/occlusion_spheres.h"
 #include "realtime/settings.h"
 #include "realtime/shader_library.h"
@@ -63,9 +64,11 @@ struct SceneBuffers {
 
     void bind() const;
     // Draws the particles with impostor.vert and FRAGMENT (impostorDefines with `defines`),
-    // then the droplets' ellipsoids; leaves the particles' buffers bound.
+    // then the droplets' ellipsoids; leaves the particles' buffers bound. `frame`: other
+    // frame uniforms than `uniforms` (another projection), left bound.
     void drawImpostors(ProgramCache& programs, const char* fragment,
-                       const std::vector<std::string>& defines) const;
+                       const std::vector<std::string>& defines,
+                       const gl::Buffer* frame = nullptr) const;
 };
 
 // `defines` with the one that selects the impostor shape of impostor.vert, gbuffer.frag and
@@ -170,7 +173,8 @@ std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings);
 // surfaces cast on each covered pixel, from the surface, normals and emission the shade pass
 // reads, by emissive.method (realtime/emissive_pass.cpp). RGBA32F, background texels 0.
 // "point_lights": `emitters` (pointLights), with no shadowing; "ssem": rays marched on screen,
-// then blurred (emissive.blur).
+// then blurred (emissive.blur); "ssem_target": rays marched in the emitter target (the
+// emitting impostors alone, drawn with `frame` widened by emitterTargetUniforms), then blurred.
 struct PointLight {
     glm::vec3 centre{0.0f};     // camera-relative
     float radius = 0.0f;        // the body's surface radius R (core::EmittingBody)
@@ -187,7 +191,15 @@ std::vector<PointLight> pointLights(const core::SceneParticles& particles,
 gl::Texture runEmissivePass(ProgramCache& programs, const gl::Texture& surface,
                             const gl::Texture& normalUv, const gl::Texture& emission,
                             const EmissiveSettings& settings,
-                            const std::vector<PointLight>& emitters);
+                            const std::vector<PointLight>& emitters, const SceneBuffers& scene,
+                            const FrameUniforms& frame, DepthMode mode);
+// "ssem_target": the frame uniforms the emitter target is drawn with: the camera's position and
+// orientation, tan(fov' / 2) = emissive.target_fov_scale tan(fov / 2), the camera's aspect and
+// resolution (emissive.target_aspect) or a square of its height.
+FrameUniforms emitterTargetUniforms(const FrameUniforms& frame, const EmissiveSettings& settings,
+                                    DepthMode mode);
+// The impostor defines (with impostorDefines) the emitter target is drawn with.
+std::vector<std::string> emitterTargetDefines(DepthMode mode);
 // The fragment shaders (with fullscreen.vert) the emissive pass draws with these settings, in
 // order: the estimate, then the blur's.
 struct EmissiveProgram {

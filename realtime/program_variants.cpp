@@ -93,6 +93,9 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
             add("impostor.vert", "shadow.frag", impostorDefines(ellipsoids, {"SHADOW_PASS"}));
         add("impostor.vert", "gbuffer.frag",
             impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
+        if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
+            add("impostor.vert", "gbuffer.frag",
+                impostorDefines(ellipsoids, emitterTargetDefines(settings.depth)));
     }
     if (settings.particles.normal == NormalModel::Gradient) {
         add("support.vert", "gradient_splat.frag", {depthDefine(settings.depth)});
@@ -197,7 +200,8 @@ std::vector<ProgramVariant> allProgramVariants() {
                     }
     // The emissive light's, with and without occlusion and shadows (it lights only where
     // something emits).
-    for (EmissiveMethod method : {EmissiveMethod::PointLights, EmissiveMethod::Ssem})
+    for (EmissiveMethod method :
+         {EmissiveMethod::PointLights, EmissiveMethod::Ssem, EmissiveMethod::SsemTarget})
         for (EmissiveBlur blur : {EmissiveBlur::None, EmissiveBlur::DepthAware})
             for (AoMethod ao : {AoMethod::None, AoMethod::Gtao})
                 for (ShadowMode shadows : {ShadowMode::None, ShadowMode::Map}) {

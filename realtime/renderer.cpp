@@ -191,6 +191,7 @@ void checkBufferLimits(const core::RenderInput& in, const DeviceState& d, std::s
 struct Uploaded {
     SceneBuffers scene;
     PerSetDraws draws;
+    FrameUniforms uniforms{};  // what scene.uniforms holds
 };
 
 // The frame uniforms, the materials and the per-set work's draws (per_set.h), uploaded.
@@ -219,6 +220,7 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
         d.programs, in, camera, settings,
         [&](std::size_t records) { checkBufferLimits(in, d, records, texels, settings.perSet); },
         frame);
+    out.uniforms = uniforms;
     out.scene.particles = out.draws.particles;
     out.scene.draw = out.draws.draw;
     out.scene.ellipsoids = out.draws.ellipsoids;
@@ -248,6 +250,7 @@ struct PassInputs {
     // Whether the emissive pass runs (usesEmissiveLight), and, for "point_lights", the lights.
     bool emissiveLight = false;
     std::vector<PointLight> pointLights = {};
+    FrameUniforms uniforms{};  // the frame's ("ssem_target" widens them for its target)
 };
 
 // The frame's resources after its passes (frame_graph.h), and the timer query of each pass
@@ -372,7 +375,8 @@ const Pass PASSES[] = {
      [](const PassInputs& in, PassResources& r) {
          r.write(R::Irradiance,
                  runEmissivePass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
-                                 r.read(R::Emission), in.settings.emissive, in.pointLights));
+                                 r.read(R::Emission), in.settings.emissive, in.pointLights,
+                                 in.scene, in.uniforms, in.settings.depth));
      }},
     {"shade", SHADE_READS, SHADE_WRITES, always,
      [](const PassInputs& in, PassResources& r) {
@@ -500,7 +504,8 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     std::optional<gl::Texture> irradiance;
     if (in.emissiveLight)
         irradiance.emplace(runEmissivePass(d.programs, g.surface, g.normalUv, g.emission,
-                                           in.settings.emissive, in.pointLights));
+                                           in.settings.emissive, in.pointLights, in.scene,
+                                           in.uniforms, in.settings.depth));
     ShadeInputs lighting = shadeInputs(in, t);
     lighting.normalUv = &g.normalUv;
     lighting.emissionBuffer = &g.emission;
@@ -589,6 +594,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.camera = in.scene.camera.position;
     passInputs.aoRadius = in.scene.light.aoRadius;
     passInputs.emissiveLight = emissiveLight;
+    passInputs.uniforms = uploaded.uniforms;
     if (emissiveLight && mSettings.emissive.method == EmissiveMethod::PointLights) {
         passInputs.pointLights = pointLights(in.particles, in.materials, in.scene.camera.position);
         frame.counters["point_lights"] = static_cast<double>(passInputs.pointLights.size());

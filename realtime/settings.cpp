@@ -62,10 +62,10 @@ AoSettings parseAo(const core::ParameterTable& t) {
 EmissiveSettings parseEmissive(const core::ParameterTable& t) {
     const EmissiveSettings d;
     EmissiveSettings e;
-    e.method =
-        byName(t.getEnum("emissive.method", std::string(toString(d.method)),
-                         {"none", "point_lights", "ssem"}),
-               std::array{EmissiveMethod::None, EmissiveMethod::PointLights, EmissiveMethod::Ssem});
+    e.method = byName(t.getEnum("emissive.method", std::string(toString(d.method)),
+                                {"none", "point_lights", "ssem", "ssem_target"}),
+                      std::array{EmissiveMethod::None, EmissiveMethod::PointLights,
+                                 EmissiveMethod::Ssem, EmissiveMethod::SsemTarget});
     e.directions = static_cast<int>(t.getInt("emissive.directions", d.directions, 1, 64));
     e.steps = static_cast<int>(t.getInt("emissive.steps", d.steps, 1, 64));
     e.maxPixels = t.getDouble("emissive.max_pixels", d.maxPixels, 4.0, 4096.0);
@@ -74,6 +74,8 @@ EmissiveSettings parseEmissive(const core::ParameterTable& t) {
         byName(t.getEnum("emissive.blur", std::string(toString(d.blur)), {"none", "depth_aware"}),
                std::array{EmissiveBlur::None, EmissiveBlur::DepthAware});
     e.blurRadius = static_cast<int>(t.getInt("emissive.blur_radius", d.blurRadius, 1, 16));
+    e.targetFovScale = t.getDouble("emissive.target_fov_scale", d.targetFovScale, 1.0, 8.0);
+    e.targetAspect = t.getBool("emissive.target_aspect", d.targetAspect);
     return e;
 }
 
@@ -129,6 +131,8 @@ std::string_view toString(EmissiveMethod method) {
             return "point_lights";
         case EmissiveMethod::Ssem:
             return "ssem";
+        case EmissiveMethod::SsemTarget:
+            return "ssem_target";
     }
     return "point_lights";
 }
@@ -500,6 +504,8 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.emissive.thickness", s.emissive.thickness},
         {"realtime.emissive.blur", toString(s.emissive.blur)},
         {"realtime.emissive.blur_radius", s.emissive.blurRadius},
+        {"realtime.emissive.target_fov_scale", s.emissive.targetFovScale},
+        {"realtime.emissive.target_aspect", s.emissive.targetAspect},
         {"realtime.surface.method", toString(s.surface.method)},
         {"realtime.surface.shader", s.surface.shaderPath},
         {"realtime.surface.shader_passes", s.surface.shaderPasses},

@@ -345,14 +345,18 @@ enum class EmissiveMethod {
     None,         // "none": no estimate; E = 0 even under light.emissive_light
     PointLights,  // "point_lights": each emitting body a point source at its centre, unshadowed
     Ssem,         // "ssem": screen-space emissive, rays marched against the depth buffer
+    // "ssem_target": the same rays marched against a target of the emitting bodies alone, drawn
+    // from the camera with a wider field of view (emissive.target_fov_scale): an emitter beside
+    // the view still lights what is in view; occluders that do not emit cast no shadow.
+    SsemTarget,
 };
 enum class EmissiveBlur {
     None,        // "none": the raw, noisy estimate
     DepthAware,  // "depth_aware": ao_blur.frag's Gaussian within a body and its depth
 };
 struct EmissiveSettings {
-    // emissive.method: "none" | "point_lights" | "ssem". The point lights are the cheap
-    // baseline: the screen-space rays see occluders but not what lies off screen.
+    // emissive.method: "none" | "point_lights" | "ssem" | "ssem_target". The point lights are the
+    // cheap baseline: the screen-space rays see occluders but not what lies off screen.
     EmissiveMethod method = EmissiveMethod::PointLights;
     int directions = 16;  // emissive.directions: "ssem" cosine-weighted rays per pixel, 1..64
     int steps = 8;        // emissive.steps: "ssem" samples along each ray, 1..64
@@ -368,6 +372,14 @@ struct EmissiveSettings {
     // emissive.blur: "none" | "depth_aware"; emissive.blur_radius: pixels, 1..16.
     EmissiveBlur blur = EmissiveBlur::DepthAware;
     int blurRadius = 4;
+    // emissive.target_fov_scale: "ssem_target" the emitter target's field of view against the
+    // camera's, tan(fov' / 2) = scale tan(fov / 2), 1..8; 2 sees as far beside the view again
+    // as the view's own half-width.
+    double targetFovScale = 2.0;
+    // emissive.target_aspect: "ssem_target" true: the target keeps the camera's aspect and
+    // resolution; false: a square target of the camera's height (the same vertical field of
+    // view), to measure what the aspect correction brings.
+    bool targetAspect = true;
     bool operator==(const EmissiveSettings&) const = default;
 };
 

@@ -89,7 +89,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
     EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
-    EXPECT_EQ(j.size(), 71u);
+    EXPECT_EQ(j.size(), 73u);
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {
@@ -147,14 +147,23 @@ TEST(Settings, ReadsTheEmissiveKeys) {
     EXPECT_EQ(j.at("realtime.emissive.directions"), 32);
     EXPECT_EQ(j.at("realtime.emissive.blur"), "none");
     EXPECT_EQ(j.at("realtime.emissive.thickness"), 2.5);
+    // "ssem_target": the emitter target's field of view and aspect.
+    EXPECT_DOUBLE_EQ(d.emissive.targetFovScale, 2.0);
+    EXPECT_TRUE(d.emissive.targetAspect);
+    const Settings target = parseSettings(table({{"emissive.method", std::string("ssem_target")},
+                                                 {"emissive.target_fov_scale", 3.0},
+                                                 {"emissive.target_aspect", false}}));
+    EXPECT_EQ(target.emissive.method, EmissiveMethod::SsemTarget);
+    EXPECT_DOUBLE_EQ(target.emissive.targetFovScale, 3.0);
+    EXPECT_FALSE(target.emissive.targetAspect);
+    EXPECT_EQ(toJson(target).at("realtime.emissive.method"), "ssem_target");
+    EXPECT_EQ(toJson(target).at("realtime.emissive.target_aspect"), false);
     const Settings none = parseSettings(table({{"emissive.method", std::string("none")}}));
     EXPECT_FALSE(usesEmissiveLight(none, true, true));
     const std::vector<std::pair<std::string, core::ParameterTable::Value>> bad = {
-        {"emissive.method", std::string("ssgi")},
-        {"emissive.directions", std::int64_t(0)},
-        {"emissive.steps", std::int64_t(65)},
-        {"emissive.thickness", 0.0},
-        {"emissive.blur", std::string("flat")}};
+        {"emissive.method", std::string("ssgi")}, {"emissive.directions", std::int64_t(0)},
+        {"emissive.steps", std::int64_t(65)},     {"emissive.thickness", 0.0},
+        {"emissive.blur", std::string("flat")},   {"emissive.target_fov_scale", 0.5}};
     for (const auto& [key, value] : bad) {
         try {
             parseSettings(table({{key, value}}));

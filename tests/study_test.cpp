@@ -213,26 +213,29 @@ TEST(Study, AmbientOcclusionMethodsAgainstTheTracedTruth) {
 }
 
 TEST(Study, EmissiveLightFromTheViewsCentreToBesideTheCamera) {
-    // Four series at 0 and 90 degrees. Without an estimate every lit pixel is missed; beside
-    // the camera the screen-space rays see no emitter, the point light still does.
-    const json s = runStudy("emissive_light", 4 * 2, "indirect.rmse");
+    // Five series at 0, 30 and 90 degrees. Without an estimate every lit pixel is missed;
+    // beside the camera the screen-space rays see no emitter, the point light still does; just
+    // past the screen's edge the emitter target's wider view still sees the lamp.
+    const json s = runStudy("emissive_light", 5 * 3, "indirect.rmse");
     ASSERT_FALSE(s.is_discarded());
-    EXPECT_EQ(s["references"], 2);
+    EXPECT_EQ(s["references"], 3);
     const json& f = s["facts"]["series"];
     EXPECT_DOUBLE_EQ(f["none"]["0"]["missed"].get<double>(), 1.0);
     EXPECT_DOUBLE_EQ(f["none"]["90"]["missed"].get<double>(), 1.0);
     EXPECT_GT(f["ssem 16 x 8"]["90"]["missed"].get<double>(), 0.95);
     EXPECT_LT(f["point lights"]["90"]["missed"].get<double>(),
               f["ssem 16 x 8"]["90"]["missed"].get<double>());
+    EXPECT_LT(f["ssem target"]["30"]["missed"].get<double>(),
+              f["ssem 16 x 8"]["30"]["missed"].get<double>());
     for (const json& r : series(s, "point lights"))
         EXPECT_LT(metric(r, "indirect.rmse"), metric(series(s, "none")[0], "indirect.rmse"));
     EXPECT_FALSE(s["facts"]["pareto_front"].empty());
 }
 
 TEST(Study, EmissiveLightThroughAnOccluder) {
-    // Four series with the disc beside the lamp and right under it. A point light has no
+    // Five series with the disc beside the lamp and right under it. A point light has no
     // shadow: with the disc under the lamp it lights what the disc shadows.
-    const json s = runStudy("emissive_occluder", 4 * 2, "indirect.false");
+    const json s = runStudy("emissive_occluder", 5 * 2, "indirect.false");
     ASSERT_FALSE(s.is_discarded());
     const json& f = s["facts"]["series"];
     EXPECT_GT(f["point lights"]["0"]["false"].get<double>(),

@@ -36,8 +36,15 @@ std::vector<EmissiveSeries> emissiveSeries(bool quick) {
         // at the default (16 particle radii) the rays from under the lamp meet its front, and
         // also what they should pass behind; at 4 they pass behind the lamp's front.
         {"ssem 16 x 8, thickness 4", {ssem, "realtime.emissive.thickness=4"}},
+        // The same rays in a target of the emitters alone with twice the view's tan(fov / 2):
+        // a lamp just past the screen's edge still lights what is in view; nothing shadows.
+        {"ssem target", {"realtime.emissive.method=\"ssem_target\""}},
     };
     if (!quick) {
+        // A square target of the camera's height: what the aspect correction brings.
+        out.push_back({"ssem target, square",
+                       {"realtime.emissive.method=\"ssem_target\"",
+                        "realtime.emissive.target_aspect=false"}});
         out.push_back(
             {"ssem 4 x 4", {ssem, "realtime.emissive.directions=4", "realtime.emissive.steps=4"}});
         out.push_back({"ssem 32 x 16",
@@ -47,9 +54,10 @@ std::vector<EmissiveSeries> emissiveSeries(bool quick) {
 }
 
 // The lamp's angle from the view direction, seen from above the camera, degrees: 0 in the
-// middle of the view, the screen's edge at about 26, 90 beside the camera, 180 behind it.
+// middle of the view, the screen's edge at about 26, 90 beside the camera, 180 behind it; quick:
+// 30 too, just past the edge, inside "ssem target"'s wider view.
 std::vector<double> lampAngles(bool quick) {
-    if (quick) return {0.0, 90.0};
+    if (quick) return {0.0, 30.0, 90.0};
     return {0.0, 10.0, 20.0, 30.0, 45.0, 60.0, 90.0, 135.0, 180.0};
 }
 

@@ -81,6 +81,10 @@ void main() {
     float u = fract(vUv.x + dot(vDudx, offset));
     float v = clamp(vUv.y + dot(vDvdx, offset), 0.0, 1.0);
     vec3 emission = sampleTexture(vEmissionTexture, vec2(u, v)) + vGlowMaterial.rgb;
+#if defined(EMITTERS_ONLY)
+    // The emissive pass's emitter target ("ssem_target"): only what emits.
+    if (emission == vec3(0.0)) discard;
+#endif
     // realtime.particles.normal: "field", the colour field's gradient modelled to first order
     // over the impostor (realtime/field_normal.h), misc.z = 0; "blend", the particle's normal
     // (no Hessian) tilted towards the impostor's own normal by misc.z: at a surface point the

@@ -6,6 +6,10 @@
 // each ray carries L cos(theta) d(omega) / pdf = pi L / N, so E = pi / N sum L. A ray that
 // leaves the image or meets nothing brings 0: an emitter off screen, or hidden behind a
 // nearer surface, lights nothing (what the reference, tracing the scene, does not miss).
+// With EMITTER_TARGET ("ssem_target") the rays are marched in the emitter target's projection
+// instead: the emitting bodies alone, drawn from the camera with a wider field of view
+// (emissive_pass.cpp), so that an emitter beside the view still lights what is in view; a ray
+// then passes through every surface that does not emit (no shadowing).
 // Output: E (rgb, linear).
 #include "common.glsl"
 
@@ -16,6 +20,12 @@ uniform int uDirections;   // rays per pixel
 uniform int uSteps;        // samples along each
 uniform float uMaxPixels;  // a ray's reach on screen, pixels
 uniform float uThickness;  // particle radii
+#if defined(EMITTER_TARGET)
+layout(binding = 3) uniform sampler2D uTargetSurface;   // the emitters' surface, as uSurface
+layout(binding = 4) uniform sampler2D uTargetEmission;  // the emitters' radiance (rgb)
+uniform vec2 uTargetTan;   // the target's tan(fov / 2), horizontal and vertical
+uniform vec2 uTargetSize;  // the target's pixels
+#endif
 
 layout(location = 0) out vec4 outIrradiance;
 
@@ -34,6 +44,10 @@ vec2 noise(ivec2 p) {
 vec3 project(vec3 position) {
     vec3 eye = mat3(viewFromWorld) * position;
     float z = -eye.z;
+#if defined(EMITTER_TARGET)
+    // In the emitter target's pixels.
+    return vec3((eye.xy / (z * uTargetTan) * 0.5 + 0.5) * uTargetSize, z);
+#endif
     float aspect = viewport.x * viewport.w;
     vec2 ndc = vec2(eye.x / (z * camera.z * aspect), eye.y / (z * camera.z));
     return vec3((ndc * 0.5 + 0.5) * viewport.xy, z);
@@ -53,7 +67,11 @@ vec3 march(vec3 position, vec3 dir, float body, float reach, float jitter) {
     float pixels = length(end.xy - start.xy);
     if (pixels < 1.0) return vec3(0.0);  // along the view ray: nothing on screen to meet
     float span = min(pixels, uMaxPixels);
+#if defined(EMITTER_TARGET)
+    ivec2 size = ivec2(uTargetSize);
+#else
     ivec2 size = ivec2(viewport.xy);
+#endif
     for (int j = 0; j < uSteps; ++j) {
         // From a pixel off the receiver to the ray's reach on screen; the eye depth of the ray
         // there by perspective-correct interpolation of 1 / z.
@@ -61,11 +79,20 @@ vec3 march(vec3 position, vec3 dir, float body, float reach, float jitter) {
         ivec2 q = ivec2(floor(mix(start.xy, end.xy, f)));
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return vec3(0.0);
         float z = 1.0 / mix(1.0 / start.z, 1.0 / end.z, f);
+#if defined(EMITTER_TARGET)
+        vec4 s = texelFetch(uTargetSurface, q, 0);
+        if (s.y < 0.0) continue;
+        float behind = z - s.x;
+        // The radius in the target's pixels, and the target's pixels per unit at that depth.
+        if (behind > 0.0 && behind < uThickness * s.z * uTargetTan.y * s.x * 2.0 / uTargetSize.y)
+            return s.y == body ? vec3(0.0) : texelFetch(uTargetEmission, q, 0).rgb;
+#else
         vec4 s = texelFetch(uSurface, q, 0);
         if (s.y < 0.0) continue;
         float behind = z - s.x;
         if (behind > 0.0 && behind < uThickness * s.z / pixelsPerUnitAt(s.x))
             return s.y == body ? vec3(0.0) : texelFetch(uEmission, q, 0).rgb;
+#endif
     }
     return vec3(0.0);
 }
