@@ -75,11 +75,21 @@ void subpixelEmittersConclude(StudyResult& s) {
     s.chart = seriesChart(s, "flux.ratio");
     const auto within = [](double ratio) { return std::abs(ratio - 1.0) <= 0.10; };
     std::string finding;
+    // A line per series and size: the flux kept.
+    report::StudyTable table{"flux",
+                             "Each series at each of the ball's sizes on screen: the flux of the "
+                             "real-time image over the reference's (flux.ratio).",
+                             {"series", "diameter (px)"},
+                             {"flux.ratio"},
+                             {}};
     for (const auto& [name, rows] : bySeries(s)) {
         if (rows.empty()) continue;
-        for (const StudyRow* r : rows)
+        for (const StudyRow* r : rows) {
             s.facts["flux_ratio"][name][fmt::format("{:.4g}", r->x)] =
                 jsonOrNull(metricOf(*r, "flux.ratio"));
+            table.lines.push_back(
+                {{name, num(r->x)}, {{"flux.ratio", metricOf(*r, "flux.ratio")}}});
+        }
         // From the largest ball down: the smallest size down to which every row keeps the
         // flux within 10 % of the reference's. From the smallest up: the largest size up to
         // which every row does (the sizes a sub-pixel option is for).
@@ -106,6 +116,7 @@ void subpixelEmittersConclude(StudyResult& s) {
                                percent(metricOf(*rows.front(), "flux.ratio")), num(smallest));
         if (std::isfinite(upTo)) s.chart.xMarks.push_back({upTo, name + " within 10 % below"});
     }
+    s.tables.push_back(std::move(table));
     s.finding = finding.empty() ? "no rows to compare" : finding;
 }
 
