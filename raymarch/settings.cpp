@@ -14,7 +14,7 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.shadows = t.getBool("shadows", s.shadows);
     s.spheres = t.getBool("spheres", s.spheres);
     s.sphereRadius = t.getDouble("sphere_radius", s.sphereRadius, 1e-3, 2.0);
-    s.spp = static_cast<int>(t.getInt("spp", s.spp, 1, 1024));
+    s.spp = static_cast<int>(t.getInt("spp", s.spp, 1, 16384));
     s.rootTolerance = t.getDouble("root_tolerance", s.rootTolerance, 1e-8, 0.1);
     s.segmentLength = t.getDouble("segment_length", s.segmentLength, 0.5, 64.0);
     s.stepWindow = t.getDouble("step_window", s.stepWindow, 0.01, 4.0);

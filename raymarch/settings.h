@@ -12,7 +12,7 @@ struct Settings {
     bool shadows = true;          // trace shadow rays
     bool spheres = false;         // plain spheres instead of the implicit surface (cost floor)
     double sphereRadius = 0.5;    // spheres mode: sphere radius in units of h, (0, 2]
-    int spp = 1;                  // samples per pixel, 1..1024; 1 = the pixel centre
+    int spp = 1;                  // samples per pixel, 1..16384; 1 = the pixel centre
     double rootTolerance = 1e-4;  // root accuracy along the ray, in units of h, [1e-8, 0.1]
     double segmentLength = 2.0;   // candidates are gathered per segment of this many h, [0.5, 64]
     double stepWindow = 0.5;      // window of the curvature bound, in units of h, [0.01, 4]

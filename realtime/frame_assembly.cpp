@@ -43,6 +43,11 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
                 std::fill(o, o + stride, 0.0f);  // a recycled image holds an older frame
                 o[cZ] = std::numeric_limits<float>::infinity();
                 o[cId] = -1.0f;
+                // The shade pass leaves the background black; a sub-pixel emitter's halo
+                // (particles.halo_pixels) may light it.
+                o[cR] = in.beautyShadow[g + 0];
+                o[cG] = in.beautyShadow[g + 1];
+                o[cB] = in.beautyShadow[g + 2];
                 continue;
             }
             o[cR] = in.beautyShadow[g + 0];

@@ -25,7 +25,8 @@ struct ReadBackBuffers {
 };
 
 // Writes every pixel of `aov` (the core::aov channels; core::aov::makeImage's values on the
-// background) and of `display` (R, G, B). Both must have the buffers' size; their old values
+// background, but for the beauty: a halo, particles.halo_pixels, may light it) and of
+// `display` (R, G, B). Both must have the buffers' size; their old values
 // (a recycled frame's) are all overwritten.
 void assembleFrame(const ReadBackBuffers& buffers, core::Image& aov, core::Image& display);
 

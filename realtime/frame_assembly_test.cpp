@@ -106,6 +106,24 @@ TEST(FrameAssembly, BackgroundOverwritesAnOlderFrame) {
         }
 }
 
+TEST(FrameAssembly, ABackgroundPixelKeepsTheLightOfAHalo) {
+    ReadBack rb;
+    // GL pixel (0, 0), on the background: a sub-pixel emitter's halo lit it.
+    rb.beautyShadow[0] = 0.125f;
+    rb.beautyShadow[1] = 0.25f;
+    rb.beautyShadow[2] = 0.5f;
+    core::Image aov = staleAov(), display(ReadBack::W, ReadBack::H, {"R", "G", "B"});
+    assembleFrame(rb.buffers(true), aov, display);
+    const int y = ReadBack::H - 1;  // GL's bottom row
+    EXPECT_EQ(channel(aov, 0, y, "R"), 0.125f);
+    EXPECT_EQ(channel(aov, 0, y, "G"), 0.25f);
+    EXPECT_EQ(channel(aov, 0, y, "B"), 0.5f);
+    // Still the background in every other channel.
+    EXPECT_EQ(channel(aov, 0, y, "A"), 0.0f);
+    EXPECT_EQ(channel(aov, 0, y, "id"), -1.0f);
+    EXPECT_TRUE(std::isinf(channel(aov, 0, y, "Z")));
+}
+
 TEST(FrameAssembly, WithoutEmittersTheEmissionIsZero) {
     const ReadBack rb;  // its emission buffer holds values, as a stale read-back buffer can
     core::Image aov = staleAov(), display(ReadBack::W, ReadBack::H, {"R", "G", "B"});

@@ -93,8 +93,9 @@ struct FrameUniforms {
     glm::vec4 lightColor{0.0f};
     glm::vec4 shadowRange{0.0f};
     glm::vec4 shadowBias{0.0f};
-    glm::vec4 misc{0.0f};  // exposure, radius scale, sphere normal weight, min impostor px
+    glm::vec4 misc{0.0f};      // exposure, radius scale, sphere normal weight, min impostor px
+    glm::vec4 subpixel{0.0f};  // x: halo radius px (realtime.particles.halo_pixels); yzw: 0
 };
-static_assert(sizeof(FrameUniforms) == 4 * 64 + 7 * 16);
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 8 * 16);
 
 }  // namespace twinrender::realtime

@@ -232,6 +232,13 @@ struct ShadeInputs {
 };
 gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& inputs);
 
+// halo (realtime.particles.halo_pixels, spheres): each sphere impostor projected smaller than
+// that radius that emits adds its flux to `beauty` as a Gaussian of its own spread (its G-buffer
+// pixels emit nothing), where `surface` (the G-buffer's eye depth) holds nothing nearer than
+// its front.
+void runHaloPass(ProgramCache& programs, const SceneBuffers& scene, const gl::Texture& surface,
+                 const gl::Texture& beauty);
+
 // post: bloom (when enabled) and the tonemapper into display values (RGBA32F, a = 1).
 gl::Texture runPostPass(ProgramCache& programs, const gl::Texture& beauty,
                         const BloomSettings& bloom, float exposure);

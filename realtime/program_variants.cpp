@@ -123,6 +123,7 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     if (emissiveLight)
         for (EmissiveProgram& p : emissivePrograms(settings.emissive))
             add("fullscreen.vert", p.fragment, std::move(p.defines));
+    if (usesHalo(settings, emits)) add("halo.vert", "halo.frag", {});
     add("fullscreen.vert", "shade.frag",
         shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings),
                      emissiveLight));
@@ -213,6 +214,12 @@ std::vector<ProgramVariant> allProgramVariants() {
                     for (ProgramVariant& v : programVariants(a, true, true))
                         all.try_emplace(v.name(), std::move(v));
                 }
+    // The sub-pixel emitters' halo (particles.halo_pixels).
+    {
+        Settings a;
+        a.particles.haloPixels = 1.0;
+        for (ProgramVariant& v : programVariants(a, true)) all.try_emplace(v.name(), std::move(v));
+    }
     // The error split's (error_split.h): the reference's depth, and shade with its light.
     for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
         ProgramVariant v =

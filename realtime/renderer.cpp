@@ -102,6 +102,7 @@ FrameUniforms makeUniforms(const core::Scene& scene, const core::Camera& camera,
                                                                                      : 0.0;
     u.misc = glm::vec4(cs.exposure, settings.particles.radiusScale, impostorNormal,
                        settings.particles.minPixels);
+    u.subpixel = glm::vec4(settings.particles.haloPixels, 0.0f, 0.0f, 0.0f);
     return u;
 }
 
@@ -307,6 +308,8 @@ constexpr std::array EMISSIVE_WRITES{R::Irradiance};
 constexpr std::array SHADE_READS{R::GBuffer,   R::NormalUv,  R::Emission,  R::Surface,
                                  R::ShadowMap, R::Occlusion, R::Irradiance};
 constexpr std::array SHADE_WRITES{R::Beauty};
+constexpr std::array HALO_READS{R::GBuffer, R::Beauty};
+constexpr std::array HALO_WRITES{R::Beauty};
 constexpr std::array POST_READS{R::Beauty};
 constexpr std::array POST_WRITES{R::Display};
 
@@ -381,6 +384,12 @@ const Pass PASSES[] = {
     {"shade", SHADE_READS, SHADE_WRITES, always,
      [](const PassInputs& in, PassResources& r) {
          r.write(R::Beauty, runShadePass(in.programs, shadeInputs(in, r)));
+     }},
+    // Adds to the beauty in place: the shade pass's texture stays the current version.
+    {"halo", HALO_READS, HALO_WRITES,
+     [](const PassInputs& in) { return usesHalo(in.settings, in.emits); },
+     [](const PassInputs& in, PassResources& r) {
+         runHaloPass(in.programs, in.scene, r.gbuffer().surface, r.read(R::Beauty));
      }},
     {"post", POST_READS, POST_WRITES, always,
      [](const PassInputs& in, PassResources& r) {

@@ -151,6 +151,11 @@ bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits)
     return emissiveLight && emits && settings.emissive.method != EmissiveMethod::None;
 }
 
+bool usesHalo(const Settings& settings, bool emits) {
+    return emits && settings.particles.haloPixels > 0.0 &&
+           settings.particles.shape == ParticleShape::Sphere;
+}
+
 std::string_view toString(DepthMode mode) {
     switch (mode) {
         case DepthMode::Standard:
@@ -404,6 +409,13 @@ Settings parseSettings(const core::ParameterTable& t) {
         t.getDouble("particles.sphere_normal_weight", d.particles.sphereNormalWeight, 0.0, 1.0);
     s.particles.cullHidden = t.getBool("particles.cull_hidden", d.particles.cullHidden);
     s.particles.minPixels = t.getDouble("particles.min_pixels", d.particles.minPixels, 0.0, 64.0);
+    s.particles.haloPixels =
+        t.getDouble("particles.halo_pixels", d.particles.haloPixels, 0.0, 64.0);
+    if (s.particles.minPixels > 0.0 && s.particles.haloPixels > 0.0)
+        throw core::InputError(fmt::format(
+            "{}: particles.halo_pixels and particles.min_pixels are two ways to draw a sub-pixel "
+            "emitter; set one of them (the other 0)",
+            t.describe("particles.halo_pixels")));
     s.particles.shape = t.getEnum("particles.shape", std::string(toString(d.particles.shape)),
                                   {"sphere", "ellipsoid"}) == "ellipsoid"
                             ? ParticleShape::Ellipsoid
@@ -474,6 +486,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},
         {"realtime.particles.min_pixels", s.particles.minPixels},
+        {"realtime.particles.halo_pixels", s.particles.haloPixels},
         {"realtime.particles.shape", toString(s.particles.shape)},
         {"realtime.particles.anisotropy.smoothing", s.particles.anisotropy.smoothing},
         {"realtime.particles.anisotropy.max_axis_ratio", s.particles.anisotropy.maxAxisRatio},

@@ -159,6 +159,16 @@ struct ParticleSettings {
     // reflect light as the whole surface would and hide what lies behind them. Per impostor: a
     // body of many particles keeps only the front one's flux. Spheres only.
     double minPixels = 0.0;
+    // particles.halo_pixels: a sphere impostor projected smaller than this radius (pixels)
+    // gives its emitted light to a halo instead, 0..64 (0: off; the alternative to min_pixels,
+    // not to be set with it). The halo is a Gaussian of the disc's own spread (sigma = its
+    // projected radius / sqrt(2), at least 0.7 px), carrying its flux (projected area times
+    // emission), added to the linear beauty after shading where nothing nearer hides the
+    // sphere's front (realtime/halo_pass.cpp). A sampled Gaussian of sigma >= 0.7 px sums to 1
+    // within 0.03 % wherever its centre lies, so the flux is kept at any position and size below
+    // the threshold; the sphere is still drawn, reflecting light, with no emission of its own.
+    // Per impostor, spheres only (droplets' ellipsoids keep their emission).
+    double haloPixels = 0.0;
     // particles.shape: "sphere" | "ellipsoid".
     ParticleShape shape = ParticleShape::Sphere;
     AnisotropySettings anisotropy;  // shape = "ellipsoid"
@@ -403,6 +413,9 @@ bool usesAmbientOcclusion(const Settings& settings);
 // Whether the emissive pass runs: the scene asks for the light of emitting surfaces
 // (light.emissive_light), something emits, and emissive.method is not "none".
 bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits);
+// Whether the halo pass runs: particles.halo_pixels is set, the impostors are spheres and
+// something emits.
+bool usesHalo(const Settings& settings, bool emits);
 // Whether a surface method's pass replaces the normals by those of its depth: the G-buffer's,
 // the gradient pass's or the field normals are then thrown away (and not computed).
 enum class NormalRebuild {

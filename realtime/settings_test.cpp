@@ -89,7 +89,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
     EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
-    EXPECT_EQ(j.size(), 73u);
+    EXPECT_EQ(j.size(), 74u);
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {

@@ -209,7 +209,7 @@ TEST(BadInput, OverridesOutOfRangeOrOfTheWrongTypeNameTheOverride) {
          "key 'materials.rock.shininess' is out of range: 0 (allowed: 1..10000)"},
         {"light.ambient=-1", "key 'light.ambient' is out of range: -1 (allowed: 0..1000000000)"},
         {"camera.height=tall", "key 'camera.height' has the wrong type: expected an integer"},
-        {"raymarch.spp=0", "key 'raymarch.spp' is out of range: 0 (allowed: 1..1024)"},
+        {"raymarch.spp=0", "key 'raymarch.spp' is out of range: 0 (allowed: 1..16384)"},
         {"raymarch.shadows=7", "key 'raymarch.shadows' has the wrong type: expected true or false"},
         {"realtime.depth=linear",
          "key 'realtime.depth' is out of range: \"linear\" (allowed: log | standard | reversed)"},
@@ -235,6 +235,15 @@ TEST(BadInput, OverridesOutOfRangeOrOfTheWrongTypeNameTheOverride) {
               std::string::npos)
         << r.output;
     EXPECT_EQ(tt::countFiles(dir / "out"), 0u);
+}
+
+TEST(BadInput, TwoSubpixelOptionsAtOnceAreNamed) {
+    const auto r = renderBroken("two_subpixel_options", sceneText(),
+                                "--set realtime.particles.min_pixels=1 --set "
+                                "realtime.particles.halo_pixels=2");
+    EXPECT_NE(r.output.find("particles.halo_pixels and particles.min_pixels"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.filesWritten, 0u);
 }
 
 TEST(BadInput, MissingSceneFile) {

@@ -49,6 +49,9 @@ std::vector<EmissiveSeries> emissiveSeries(bool quick) {
             {"ssem 4 x 4", {ssem, "realtime.emissive.directions=4", "realtime.emissive.steps=4"}});
         out.push_back({"ssem 32 x 16",
                        {ssem, "realtime.emissive.directions=32", "realtime.emissive.steps=16"}});
+        // The blur: none (the rays' noise as it is) and twice the default radius.
+        out.push_back({"ssem 16 x 8, no blur", {ssem, "realtime.emissive.blur=\"none\""}});
+        out.push_back({"ssem 16 x 8, blur 8", {ssem, "realtime.emissive.blur_radius=8"}});
     }
     return out;
 }

@@ -200,10 +200,12 @@ const std::vector<StudyDef>& studies() {
             .name = "subpixel_emitters",
             .title = "Sub-pixel emitters",
             .question = "A glowing ball on black, the camera backing away until it is a tenth of "
-                        "a pixel across: how much of its emitted light (flux.ratio: the image's "
-                        "summed linear beauty over the reference's at 16 samples per pixel) the "
-                        "real-time impostors keep, drawn as spheres and with "
-                        "realtime.particles.min_pixels = 1.",
+                        "a pixel across, and at each size moved across a pixel frame by frame: "
+                        "how much of its emitted light the real-time image keeps (flux.ratio: "
+                        "its summed linear beauty over the reference's, at 16 to 16384 samples "
+                        "per pixel) and how much that changes from frame to frame, drawn as "
+                        "impostor spheres, with realtime.particles.min_pixels = 1 and with "
+                        "realtime.particles.halo_pixels = 2.",
             .scene = "subpixel_emitters.toml",
             .xLabel = "the ball's diameter on screen (px)",
             .xLog = true,

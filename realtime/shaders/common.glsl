@@ -18,6 +18,8 @@ layout(std140, binding = 0) uniform FrameUniforms {
                          // z: PCF radius (texels); w: tan(sun angular radius)
     vec4 misc;           // x: exposure; y: particle radius scale; z: sphere normal weight;
                          // w: smallest drawn impostor radius (pixels; 0: off)
+    vec4 subpixel;       // x: impostors projected smaller than this radius (pixels) give their
+                         // emission to a halo (0: off); yzw: unused
 };
 
 float cameraNear() { return camera.x; }

@@ -36,7 +36,9 @@ void main() {
     // the pixels within one of its centre (impostor.vert). The tent's weights at the pixel
     // centres sum to 1 wherever the centre lies, so the image holds the sphere's flux whatever
     // its position: no loss and no flicker as it moves. Elsewhere the pixel is not covered.
-    float splat = 1.0;
+    // realtime.particles.halo_pixels: a sphere whose halo carries its light (vSplatFlux < 0)
+    // emits nothing here.
+    float splat = vSplatFlux < 0.0 ? 0.0 : 1.0;
     if (vSplatFlux > 0.0) {
         vec2 tent = max(1.0 - abs(gl_FragCoord.xy - vSplatCentre), 0.0);
         splat = vSplatFlux * tent.x * tent.y;

@@ -113,6 +113,10 @@ void main() {
             return;
         }
     }
+    // realtime.particles.halo_pixels (subpixel.x): a sphere projected smaller than that radius
+    // gives its emitted light to its halo (halo.vert), added after shading; drawn here, it
+    // emits nothing (vSplatFlux < 0).
+    if (subpixel.x > 0.0 && c.z < 0.0 && projected < subpixel.x) vSplatFlux = -1.0;
 #endif
     vCentreDistance = d;
     Particle p = particles[particle];
