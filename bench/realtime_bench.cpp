@@ -51,15 +51,19 @@ struct LoadedScene {
     tr::realtime::Settings settings;
 };
 
-const LoadedScene& planet(int particles, int width, int height) {
+// The planet scene with that many particles at that size; `more`: further overrides.
+const LoadedScene& planet(int particles, int width, int height,
+                          const std::vector<std::string>& more = {}) {
     static std::map<std::string, std::unique_ptr<LoadedScene>> cache;
-    const std::string key = fmt::format("{}@{}x{}", particles, width, height);
+    std::string key = fmt::format("{}@{}x{}", particles, width, height);
+    for (const std::string& m : more) key += " " + m;
     auto& slot = cache[key];
     if (!slot) {
         slot = std::make_unique<LoadedScene>();
-        const std::vector<std::string> overrides = {fmt::format("bodies.0.particles={}", particles),
-                                                    fmt::format("camera.width={}", width),
-                                                    fmt::format("camera.height={}", height)};
+        std::vector<std::string> overrides = {fmt::format("bodies.0.particles={}", particles),
+                                              fmt::format("camera.width={}", width),
+                                              fmt::format("camera.height={}", height)};
+        overrides.insert(overrides.end(), more.begin(), more.end());
         slot->scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/planet.toml", overrides);
         slot->settings = tr::realtime::parseSettings(slot->scene.realtime);
         slot->particles = tr::core::buildParticles(slot->scene);
@@ -89,8 +93,8 @@ void addStageCounters(benchmark::State& state, const std::map<std::string, doubl
 }
 
 void frame(benchmark::State& state, int particles, int width, int height,
-           void (*adjust)(tr::realtime::Settings&)) {
-    const LoadedScene& s = planet(particles, width, height);
+           void (*adjust)(tr::realtime::Settings&), const std::vector<std::string>& more = {}) {
+    const LoadedScene& s = planet(particles, width, height, more);
     tr::realtime::Settings settings = s.settings;
     if (adjust) adjust(settings);
     tr::realtime::Device device(context());
@@ -157,6 +161,22 @@ void BM_Planet100k720pEllipsoids(benchmark::State& state) {
         s.particles.shape = tr::realtime::ParticleShape::Ellipsoid;
     });
 }
+// A distant glowing planet (blackbody glow at 3000 K), 100k particles 25 px across at 720p:
+// its surface particles are 0.5 px in radius, drawn as impostors (most cover no pixel centre),
+// as flux splats (particles.min_pixels = 1) or with halos (particles.halo_pixels = 2). The
+// "gbuffer" counter is the impostors' pass, "halo" the halos'.
+void BM_DistantGlowingPlanet100k720p(benchmark::State& state, double minPixels, double halo) {
+    static double chosenMin, chosenHalo;
+    chosenMin = minPixels;
+    chosenHalo = halo;
+    frame(state, 100000, 1280, 720,
+          [](tr::realtime::Settings& s) {
+              s.particles.minPixels = chosenMin;
+              s.particles.haloPixels = chosenHalo;
+          },
+          {"camera.position=[0.0, -88.0, 25.0]", "bodies.0.temperature=3000"});
+}
+
 // The GPU target of the issue (slow on llvmpipe: run it where a GPU is present).
 void BM_Planet1M1080p(benchmark::State& state) {
     frame(state, 1000000, 1920, 1080, nullptr);
@@ -312,6 +332,15 @@ BENCHMARK(BM_Planet100k720pNoCulling)->Unit(benchmark::kMillisecond)->Iterations
 BENCHMARK(BM_PerSet1MGpu)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Cull100k)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Planet1M1080p)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(BM_DistantGlowingPlanet100k720p, impostors, 0.0, 0.0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_DistantGlowingPlanet100k720p, min_pixels_1, 1.0, 0.0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_DistantGlowingPlanet100k720p, halo_2, 0.0, 2.0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK_CAPTURE(BM_Planet100k720pNewSet, gpu, tr::realtime::PerSetDevice::Gpu)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
