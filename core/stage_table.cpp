@@ -50,6 +50,8 @@ constexpr std::array STAGES = {
                          "estimate (emissive.method), or the reference's rays toward the emitters"},
     StageInfo{.key = "shade", .renderer = "realtime", .cadence = StageCadence::Frame,
               .meaning = "the lighting of every covered pixel"},
+    StageInfo{.key = "halo", .renderer = "realtime", .cadence = StageCadence::Frame,
+              .meaning = "sub-pixel emitters' flux as Gaussian halos (particles.halo_pixels)"},
     StageInfo{.key = "post", .renderer = "realtime", .cadence = StageCadence::Frame,
               .meaning = "glow, bloom and tonemapping"},
     StageInfo{.key = "readback", .renderer = "realtime", .cadence = StageCadence::Frame,

@@ -85,16 +85,7 @@ gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& s
     std::vector<std::string> defines;
     if (settings.blur == AoBlur::DepthAware) defines.emplace_back("AO_DEPTH_AWARE");
     const gl::Program& blur = programs.get("fullscreen.vert", "ao_blur.frag", defines);
-    blur.use();
-    blur.set("uRadius", settings.blurRadius);
-    blur.set("uDepth", 0.0f);
-    // Horizontal into the second target, vertical back into the first.
-    for (int pass = 0; pass < 2; ++pass) {
-        open[pass].bind(0);
-        blur.set("uDirection", pass == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1));
-        targets[1 - pass].bind();
-        gl::drawFullscreenTriangle();
-    }
+    blurSeparably(blur, settings.blurRadius, open, targets);
     return std::move(open[0]);
 }
 

@@ -199,16 +199,7 @@ gl::Texture runEmissivePass(ProgramCache& programs, const gl::Texture& surface,
     const EmissiveProgram blurProgram = emissivePrograms(settings).back();
     const gl::Program& blur =
         programs.get("fullscreen.vert", blurProgram.fragment, blurProgram.defines);
-    blur.use();
-    blur.set("uRadius", settings.blurRadius);
-    blur.set("uDepth", 0.0f);
-    // Horizontal into the second target, vertical back into the first.
-    for (int pass = 0; pass < 2; ++pass) {
-        open[pass].bind(0);
-        blur.set("uDirection", pass == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1));
-        targets[1 - pass].bind();
-        gl::drawFullscreenTriangle();
-    }
+    blurSeparably(blur, settings.blurRadius, open, targets);
     return std::move(open[0]);
 }
 

@@ -2,6 +2,9 @@
 #include "realtime/passes.h"
 
 #include <cctype>
+#include <glm/vec2.hpp>
+
+#include "realtime/gl/pipeline.h"
 
 namespace twinrender::realtime {
 
@@ -79,6 +82,19 @@ gl::PipelineState coveredOnlyState(DepthMode mode) {
 float coveredOnlyDepth(DepthMode mode) {
     // Window depth 1 is clip depth +1 in [-1, 1]; window depth 0 is clip depth 0 in [0, 1].
     return mode == DepthMode::Reversed ? 0.0f : 1.0f;
+}
+
+void blurSeparably(const gl::Program& blur, int radius, const gl::Texture (&open)[2],
+                   const gl::Framebuffer (&targets)[2]) {
+    blur.use();
+    blur.set("uRadius", radius);
+    blur.set("uDepth", 0.0f);
+    for (int pass = 0; pass < 2; ++pass) {
+        open[pass].bind(0);
+        blur.set("uDirection", pass == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1));
+        targets[1 - pass].bind();
+        gl::drawFullscreenTriangle();
+    }
 }
 
 }  // namespace twinrender::realtime

@@ -208,6 +208,12 @@ struct EmissiveProgram {
 };
 std::vector<EmissiveProgram> emissivePrograms(const EmissiveSettings& settings);
 
+// A separable blur of `open[0]` (fullscreen.vert with ao_blur.frag's variants: the image at
+// binding 0, uniforms uRadius, uDirection, uDepth) by `radius` pixels: horizontally into `open[1]`
+// through `targets[1]`, then vertically back into `open[0]` through `targets[0]`.
+void blurSeparably(const gl::Program& blur, int radius, const gl::Texture (&open)[2],
+                   const gl::Framebuffer (&targets)[2]);
+
 // shade: beauty (rgb) and light visibility (a). `shadowMap` may be null (no map).
 struct ShadeInputs {
     const gl::Texture* normalUv = nullptr;
