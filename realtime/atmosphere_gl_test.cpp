@@ -11,6 +11,7 @@
 
 #include "core/atmosphere.h"
 #include "core/camera.h"
+#include "realtime/passes.h"
 #include "realtime/program_variants.h"
 #include "realtime/testing/gl_test_scene.h"
 
@@ -104,10 +105,11 @@ TEST_F(RendererTest, TheSphereEndPointIsTheModelAtTheAnalyticSphere) {
             return core::sphereEntry(glm::vec3(ray.origin - a.centre), glm::vec3(ray.direction),
                                      a.innerRadius);
         });
-    EXPECT_GT(compared, 3000);
+    EXPECT_GT(compared, 1000);
     const Channels c{f.image};
-    // A sky pixel inside the shell, off the ball: beauty = in-scatter.
-    const int x = testing::WIDTH / 2 + 31, y = testing::HEIGHT / 2;
+    // A sky pixel inside the shell, off the ball (its inner sphere 18 pixels in radius, its outer
+    // 23): beauty = in-scatter.
+    const int x = testing::WIDTH / 2 + 20, y = testing::HEIGHT / 2;
     ASSERT_LT(c(x, y, "id"), 0.0f);
     EXPECT_GT(c(x, y, "inscatter.B"), 0.0f);
     EXPECT_EQ(c(x, y, "B"), c(x, y, "inscatter.B"));
@@ -123,13 +125,13 @@ TEST_F(RendererTest, TheDepthEndPointsAreTheModelAtTheDepthSeen) {
     for (AtmosphereEndPoint endPoint :
          {AtmosphereEndPoint::Impostor, AtmosphereEndPoint::Filtered}) {
         const core::Frame f = render(t, withEndPoint(endPoint));
-        EXPECT_GT(expectTheModel(t, f, 0.05, atDepth(f, camera)), 3000) << toString(endPoint);
+        EXPECT_GT(expectTheModel(t, f, 0.05, atDepth(f, camera)), 1000) << toString(endPoint);
     }
     Settings near = withEndPoint(AtmosphereEndPoint::Blend);
     near.atmosphere.blendNear = 100.0;
     near.atmosphere.blendFar = 200.0;
     const core::Frame depth = render(t, near);
-    EXPECT_GT(expectTheModel(t, depth, 0.05, atDepth(depth, camera)), 3000);
+    EXPECT_GT(expectTheModel(t, depth, 0.05, atDepth(depth, camera)), 1000);
     Settings far = near;
     far.atmosphere.blendNear = 0.0;
     far.atmosphere.blendFar = 1.0;
@@ -151,7 +153,7 @@ TEST_F(RendererTest, TheFilteredEndPointFollowsTheDepthFilter) {
     impostor.atmosphere.endPoint = AtmosphereEndPoint::Impostor;
     const core::Frame a = render(t, filtered), b = render(t, impostor);
     const core::Camera camera(t.scene.camera);
-    EXPECT_GT(expectTheModel(t, a, 0.05, atDepth(a, camera)), 3000);
+    EXPECT_GT(expectTheModel(t, a, 0.05, atDepth(a, camera)), 1000);
     int differ = 0;
     const Channels ca{a.image}, cb{b.image};
     for (int y = 0; y < a.image.height(); ++y)
