@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/sph_kernel.h"
+
 namespace tc = twinrender::core;
 
 namespace {
@@ -104,4 +106,24 @@ TEST(Atmosphere, SphereEntryIsTheNearIntersectionAhead) {
     EXPECT_NEAR(tc::sphereEntry({0.0f, 0.6f, -5.0f}, {0.0f, 0.0f, 1.0f}, 1.0f), 4.2f, 1e-5f);
     EXPECT_TRUE(std::isinf(tc::sphereEntry({0.0f, 1.5f, -5.0f}, {0.0f, 0.0f, 1.0f}, 1.0f)));
     EXPECT_TRUE(std::isinf(tc::sphereEntry({0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 1.0f}, 1.0f)));
+}
+
+// One particle's colour field is a sphere of the radius where v W(r, h) = level: the inner
+// sphere a body's atmosphere takes when atmosphere.radius is not given.
+TEST(Atmosphere, TheInnerRadiusIsTheLevelSetsOfOneParticle) {
+    tc::ParticleSet ps;
+    ps.resize(1);
+    ps.position[0] = {0.5f, -0.2f, 0.1f};
+    ps.h[0] = 0.4f;
+    ps.volume[0] = 0.02f;
+    const tc::BodyInfo body{.name = "one", .begin = 0, .end = 1};
+    const double level = 0.13;
+    double lo = 0.0, hi = 0.8;
+    for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (0.02 * tc::m4Kernel(mid, 0.4) > level ? lo : hi) = mid;
+    }
+    // Bisection to 1e-6 of the field's reach (0.8) in each direction.
+    EXPECT_NEAR(tc::levelSetRadius(ps, body, glm::dvec3(ps.position[0]), level), lo, 1e-6);
+    EXPECT_EQ(tc::levelSetRadius(ps, body, glm::dvec3(ps.position[0]), 1e9), 0.0);
 }

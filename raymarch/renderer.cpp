@@ -120,7 +120,7 @@ class FrameTrace {
                         ? core::emittingBodies(input.particles, input.materials)
                         : std::vector<core::EmittingBody>{}),
           mEmissiveSide(emissiveSide(settings)),
-          mAtmosphere(core::sceneAtmosphere(input.scene, input.particles)),
+          mAtmosphere(core::sceneAtmosphere(input.scene, input.particles, settings.surfaceLevel)),
           mSun(core::atmosphereSun(input.scene.light)) {}
 
     bool hasAtmosphere() const { return mAtmosphere.has_value(); }

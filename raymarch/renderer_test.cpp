@@ -603,7 +603,8 @@ TEST(Raymarch, InScatterOnAPerfectSphereIsTheModelEndedAtTheAnalyticHit) {
     const auto frame = render(a.s, a.settings);
     const Image& img = frame.image;
     const int cS = img.channelIndex("inscatter.R"), cA = img.channelIndex("A");
-    const auto atmosphere = tr::core::sceneAtmosphere(a.s.scene, a.s.particles);
+    const auto atmosphere =
+        tr::core::sceneAtmosphere(a.s.scene, a.s.particles, a.settings.surfaceLevel);
     ASSERT_TRUE(atmosphere);
     const tr::core::AtmosphereSun sun = tr::core::atmosphereSun(a.s.scene.light);
     const tr::core::Camera camera(a.s.scene.camera);

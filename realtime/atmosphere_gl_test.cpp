@@ -57,7 +57,8 @@ Settings withEndPoint(AtmosphereEndPoint endPoint) {
 // pixel centre grazes the sphere; returns the pixels compared.
 template <typename End>
 int expectTheModel(const TestScene& t, const core::Frame& f, double rim, End end) {
-    const auto atmosphere = core::sceneAtmosphere(t.scene, t.particles);
+    const auto atmosphere =
+        core::sceneAtmosphere(t.scene, t.particles, quiet().particles.surfaceLevel);
     EXPECT_TRUE(atmosphere);
     if (!atmosphere) return 0;
     const core::AtmosphereSun sun = core::atmosphereSun(t.scene.light);

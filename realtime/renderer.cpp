@@ -599,7 +599,8 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     // Compiling programs is set-up, like creating the context: not part of the render time.
     const auto compileStart = Clock::now();
     const bool emissiveLight = usesEmissiveLight(mSettings, in.scene.light.emissiveLight, emits);
-    std::optional<core::Atmosphere> atmosphere = core::sceneAtmosphere(in.scene, in.particles);
+    std::optional<core::Atmosphere> atmosphere =
+        core::sceneAtmosphere(in.scene, in.particles, mSettings.particles.surfaceLevel);
     if (atmosphere && mSettings.atmosphere.steps > 0)
         atmosphere->steps = mSettings.atmosphere.steps;
     compilePrograms(d.programs, mSettings, emits, emissiveLight, atmosphere.has_value());
