@@ -41,24 +41,29 @@ TEST(AtmosphereRun, TheSphereEndPointIsTheReferenceOnAPerfectSphere) {
     ASSERT_TRUE(r.contains("inscatter.rel"));
     std::printf("perfect sphere: inscatter.rmse %.3g rel %.3g\n", r.at("inscatter.rmse"),
                 r.at("inscatter.rel"));
-    // TOLERANCE
-    EXPECT_LT(r.at("inscatter.rel"), 0.01);
+    // Measured 0.0021: float rounding over 24 x 24 steps, and the few rim pixels whose centre
+    // grazes the sphere, where the reference's root (refined to 1e-4 h) and the analytic entry
+    // can fall on either side of it.
+    EXPECT_LT(r.at("inscatter.rel"), 0.005);
 }
 
-// On the lattice ball seen whole, the impostors' caps stand above the surface and their
-// creases below it; a grazing ray through the thin shell magnifies both. The analytic sphere
-// stays within BOUND of the reference and below the impostors' error.
+// A ball whose level set is round (h = 0.25, about 1.8 particle spacings) drawn by impostors
+// whose caps are its facets: a grazing ray through the thin shell magnifies each cap's step. The
+// analytic sphere's in-scatter stays near the reference's and well below the impostors'.
 TEST(AtmosphereRun, TheSphereEndPointBeatsTheImpostorsOnAFacetedBall) {
     const fs::path dir = tt::freshDir("atmosphere_faceted_ball");
     std::map<std::string, std::map<std::string, double>> r;
     for (const std::string name : {"impostor", "sphere"}) {
-        r[name] = runWith(dir, name, {endPoint(name)});
+        r[name] =
+            runWith(dir, name,
+                    {"bodies.ball.smoothing=0.25", "bodies.ball.particles=1500", endPoint(name)});
         ASSERT_TRUE(r[name].contains("inscatter.rmse")) << name;
         std::printf("%s: inscatter.rmse %.4g rel %.4g beauty.hdrflip %.4g\n", name.c_str(),
                     r[name].at("inscatter.rmse"), r[name].at("inscatter.rel"),
                     r[name].at("beauty.hdrflip"));
     }
-    EXPECT_LT(r["sphere"].at("inscatter.rmse"), r["impostor"].at("inscatter.rmse"));
-    // BOUND
-    EXPECT_LT(r["sphere"].at("inscatter.rel"), 0.5);
+    // Measured: sphere 0.0032 (rel 0.18), impostor 0.0064 (rel 0.36). The sphere's rest is the
+    // level set's own departure from round and the limb's pixels.
+    EXPECT_LT(r["sphere"].at("inscatter.rmse"), 0.7 * r["impostor"].at("inscatter.rmse"));
+    EXPECT_LT(r["sphere"].at("inscatter.rel"), 0.25);
 }
