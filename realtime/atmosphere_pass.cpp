@@ -20,7 +20,7 @@ std::vector<std::string> atmosphereDefines(const AtmosphereSettings& settings) {
         case AtmosphereEndPoint::Blend:
             return {"END_BLEND"};
     }
-    return {"END_SPHERE"};
+    return {"END_FILTERED"};
 }
 
 AtmosphereTargets runAtmospherePass(ProgramCache& programs, const AtmosphereInputs& in) {

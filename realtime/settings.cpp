@@ -174,7 +174,7 @@ std::string_view toString(AtmosphereEndPoint endPoint) {
         case AtmosphereEndPoint::Blend:
             return "blend";
     }
-    return "sphere";
+    return "filtered";
 }
 
 bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits) {

@@ -394,10 +394,10 @@ enum class AtmosphereEndPoint {
                // mixed by distance between
 };
 struct AtmosphereSettings {
-    // atmosphere.end_point: "impostor" | "filtered" | "sphere" | "blend". The sphere by default:
-    // exact wherever the body is round, at every distance, and unmoved by the impostors'
-    // facets, which a grazing ray through a thin shell magnifies.
-    AtmosphereEndPoint endPoint = AtmosphereEndPoint::Sphere;
+    // atmosphere.end_point: "impostor" | "filtered" | "sphere" | "blend". Filtered by default:
+    // the surface the shade pass drew, which a particle body's relief follows; the analytic
+    // sphere wins only where the level set is round (docs/light.md, the atmosphere study).
+    AtmosphereEndPoint endPoint = AtmosphereEndPoint::Filtered;
     double blendNear = 2.0;  // atmosphere.blend_near: scene units from the camera, >= 0
     double blendFar = 4.0;   // atmosphere.blend_far: scene units, > blend_near
     int steps = 0;  // atmosphere.steps: quadrature steps, 0..256; 0: the scene's atmosphere.steps

@@ -94,7 +94,7 @@ TEST(Settings, ReadsEveryKey) {
 
 TEST(Settings, ReadsTheAtmosphereKeys) {
     const Settings d = parseSettings(table({}));
-    EXPECT_EQ(d.atmosphere.endPoint, AtmosphereEndPoint::Sphere);
+    EXPECT_EQ(d.atmosphere.endPoint, AtmosphereEndPoint::Filtered);
     EXPECT_EQ(d.atmosphere.steps, 0);
     const Settings s = parseSettings(table({{"atmosphere.end_point", std::string("blend")},
                                             {"atmosphere.blend_near", 1.5},
