@@ -599,14 +599,18 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     // Compiling programs is set-up, like creating the context: not part of the render time.
     const auto compileStart = Clock::now();
     const bool emissiveLight = usesEmissiveLight(mSettings, in.scene.light.emissiveLight, emits);
+    const bool hasAtmosphere =
+        std::any_of(in.scene.bodies.begin(), in.scene.bodies.end(),
+                    [](const core::BodyDesc& b) { return b.atmosphere.has_value(); });
+    compilePrograms(d.programs, mSettings, emits, emissiveLight, hasAtmosphere);
+    frame.timingsMs["compile"] = msSince(compileStart);
+
+    const auto totalStart = Clock::now();
+    // The atmosphere's shell (its inner radius from the particles, core/atmosphere.h).
     std::optional<core::Atmosphere> atmosphere =
         core::sceneAtmosphere(in.scene, in.particles, mSettings.particles.surfaceLevel);
     if (atmosphere && mSettings.atmosphere.steps > 0)
         atmosphere->steps = mSettings.atmosphere.steps;
-    compilePrograms(d.programs, mSettings, emits, emissiveLight, atmosphere.has_value());
-    frame.timingsMs["compile"] = msSince(compileStart);
-
-    const auto totalStart = Clock::now();
     const Uploaded uploaded = upload(d, in, camera, mSettings, frame);
     PassInputs passInputs{.programs = d.programs,
                           .scene = uploaded.scene,
