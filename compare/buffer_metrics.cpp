@@ -538,17 +538,53 @@ double irradianceLuminance(const core::Image& image, int x, int y, int c) {
            0.0722 * image.at(x, y, c + 2);
 }
 
-}  // namespace
-
-bool hasIrradiance(const core::Image& reference, const core::Image& test) {
+// Whether either image has a non-zero value in the three channels from `first` anywhere.
+bool hasAnyOf(const core::Image& reference, const core::Image& test, const char* first) {
     for (const core::Image* image : {&reference, &test}) {
-        if (!image->hasChannel("irradiance.R")) continue;
-        const int c = image->channelIndex("irradiance.R");
+        if (!image->hasChannel(first)) continue;
+        const int c = image->channelIndex(first);
         for (std::size_t p = 0; p < image->pixelCount(); ++p)
             for (int k = 0; k < 3; ++k)
                 if (image->at(p, c + k) != 0.0f) return true;
     }
     return false;
+}
+
+}  // namespace
+
+bool hasIrradiance(const core::Image& reference, const core::Image& test) {
+    return hasAnyOf(reference, test, "irradiance.R");
+}
+
+bool hasInscatter(const core::Image& reference, const core::Image& test) {
+    return hasAnyOf(reference, test, "inscatter.R");
+}
+
+InscatterResult inscatterError(const core::Image& reference, const core::Image& test) {
+    if (reference.width() != test.width() || reference.height() != test.height())
+        throw core::NotComparableError(fmt::format("inscatter.rmse: the images are {}x{} and {}x{}",
+                                                   reference.width(), reference.height(),
+                                                   test.width(), test.height()));
+    const auto c = requireChannels<1>(reference, test, {"inscatter.R"}, "inscatter.rmse");
+    const int w = reference.width(), h = reference.height();
+    InscatterResult result;
+    result.errorMap = core::Image(w, h, {"abs_error"});
+    // Pixels, squared error sum, squared reference sum.
+    const auto sums = sumRows<3>(h, [&](int y, std::array<double, 3>& s) {
+        for (int x = 0; x < w; ++x) {
+            const double ref = irradianceLuminance(reference, x, y, c.ref[0]);
+            const double tst = irradianceLuminance(test, x, y, c.test[0]);
+            if (ref == 0.0 && tst == 0.0) continue;
+            const double error = tst - ref;
+            result.errorMap.at(x, y, 0) = static_cast<float>(std::abs(error));
+            s[0] += 1.0;
+            s[1] += error * error;
+            s[2] += ref * ref;
+        }
+    });
+    result.rmse = sums[0] > 0.0 ? std::sqrt(sums[1] / sums[0]) : NOT_A_NUMBER;
+    result.rel = sums[2] > 0.0 ? std::sqrt(sums[1] / sums[2]) : NOT_A_NUMBER;
+    return result;
 }
 
 IndirectResult indirectError(const core::Image& reference, const core::Image& test,

@@ -210,4 +210,20 @@ bool hasIrradiance(const core::Image& reference, const core::Image& test);
 IndirectResult indirectError(const core::Image& reference, const core::Image& test,
                              const Masks& masks);
 
+// ---- inscatter.rmse, inscatter.rel ----------------------------------------------------------
+
+struct InscatterResult {
+    // Over the pixels where either frame has in-scatter (channels inscatter.R/G/B, a body's
+    // atmosphere), covered or not, of its luminance (Rec. 709 weights): the root mean square of
+    // test - reference, in radiance units;
+    double rmse = 0.0;
+    // that over the reference's root mean square on the same pixels (NaN where it is 0).
+    double rel = 0.0;
+    core::Image errorMap;  // one channel "abs_error": |test - reference| of the luminance
+};
+// Whether either image has in-scatter anywhere (else the scene has no atmosphere and the
+// metrics are left out).
+bool hasInscatter(const core::Image& reference, const core::Image& test);
+InscatterResult inscatterError(const core::Image& reference, const core::Image& test);
+
 }  // namespace twinrender::compare

@@ -721,5 +721,30 @@ TEST(IndirectLight, MissedAndFalseLightAgainstTheReferencesLitPixels) {
     EXPECT_FALSE(hasIrradiance(dark, dark));
 }
 
+TEST(Inscatter, ErrorOverThePixelsWhereEitherFrameHasAny) {
+    // 10 x 10 pixels, covered or not. The reference's atmosphere covers the four left columns
+    // with in-scatter (0.2, 0.2, 0.2) (luminance 0.2); the test's the same, but 0.3 in column 0
+    // and it also lights column 4 with 0.1; the five right columns have none in either and are
+    // left out: 50 pixels, 10 off by 0.1 and 10 by 0.1.
+    core::Image reference = full(10, 10), test = full(10, 10);
+    const int c = reference.channelIndex("inscatter.R");
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 10; ++x)
+            for (int k = 0; k < 3; ++k) {
+                reference.at(x, y, c + k) = x < 4 ? 0.2f : 0.0f;
+                test.at(x, y, c + k) = x == 0 ? 0.3f : x < 4 ? 0.2f : x == 4 ? 0.1f : 0.0f;
+            }
+    ASSERT_TRUE(hasInscatter(reference, test));
+    const InscatterResult r = inscatterError(reference, test);
+    // sqrt(20 x 0.01 / 50); over the reference's sqrt(40 x 0.04 / 50).
+    EXPECT_NEAR(r.rmse, std::sqrt(0.2 / 50.0), 1e-6);
+    EXPECT_NEAR(r.rel, std::sqrt(0.2 / 1.6), 1e-5);
+    EXPECT_NEAR(r.errorMap.at(0, 3, 0), 0.1, 1e-6);
+    EXPECT_NEAR(r.errorMap.at(2, 3, 0), 0.0, 1e-6);
+    // Without an atmosphere, no in-scatter: the metrics are left out.
+    const core::Image clear = full(10, 10);
+    EXPECT_FALSE(hasInscatter(clear, clear));
+}
+
 }  // namespace
 }  // namespace twinrender::compare

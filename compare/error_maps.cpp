@@ -12,7 +12,8 @@ const std::vector<ErrorMapStyle>& errorMapStyles() {
     // mid-range: ꟻLIP is in [0, 1]; normals beyond 30 degrees are plainly wrong; 5 % depth
     // and 0.05 of uv are far beyond smoothing noise; shadow codes are 1 (false) and 2 (missed);
     // a quarter of the hemisphere is a plain occlusion error; an irradiance error of 1 is a
-    // third of what a surface of radiance 1 casts on its own plane's neighbours (pi).
+    // third of what a surface of radiance 1 casts on its own plane's neighbours (pi); an
+    // in-scatter error of 0.1 is a tenth of a sky of radiance 1.
     static const std::vector<ErrorMapStyle> styles = {
         {"beauty.flip", "beauty", "ꟻLIP error", 0.0, 1.0, ""},
         {"beauty.hdrflip", "beauty.hdrflip", "HDR-ꟻLIP error", 0.0, 1.0, ""},
@@ -24,6 +25,7 @@ const std::vector<ErrorMapStyle>& errorMapStyles() {
         {"emission", "emission", "emission error", 0.0, 1.0, ""},
         {"ao", "ao", "ambient occlusion error", 0.0, 0.25, ""},
         {"irradiance", "irradiance", "irradiance error (luminance)", 0.0, 1.0, ""},
+        {"inscatter", "inscatter", "in-scatter error (luminance)", 0.0, 0.1, ""},
     };
     return styles;
 }

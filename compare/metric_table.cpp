@@ -150,6 +150,16 @@ const std::vector<MetricInfo>& metricTable() {
          .machineDependent = false,
          .meaning = "fraction of the pixels dark in the reference that the test lights: light "
                     "through occluders"},
+        {.key = "inscatter.rmse", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-4,
+         .buffer = "inscatter", .source = S::AovPair, .overview = false,
+         .machineDependent = false,
+         .meaning = "RMS error of a body's atmosphere's in-scatter (its luminance) on the pixels "
+                    "where either frame has any: the real-time end point against the exact hit"},
+        {.key = "inscatter.rel", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "inscatter", .source = S::AovPair, .overview = false,
+         .machineDependent = false,
+         .meaning = "inscatter.rmse over the RMS of the reference's in-scatter on the same "
+                    "pixels"},
         {.key = "surface.beauty.flip", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
          .buffer = "beauty", .source = S::Render, .overview = false, .machineDependent = false,
          .meaning = "the error split's surface part: ꟻLIP of the real-time surface shaded with "

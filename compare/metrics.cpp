@@ -226,6 +226,14 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
         result.values["indirect.false"] = indirect.falseLight;
         result.errorMaps["irradiance"] = std::move(indirect.errorMap);
     }
+    // A body's atmosphere, where either frame has in-scatter.
+    if (reference.hasChannel("inscatter.R") && test.hasChannel("inscatter.R") &&
+        hasInscatter(reference, test)) {
+        InscatterResult inscatter = inscatterError(reference, test);
+        result.values["inscatter.rmse"] = inscatter.rmse;
+        result.values["inscatter.rel"] = inscatter.rel;
+        result.errorMaps["inscatter"] = std::move(inscatter.errorMap);
+    }
     return result;
 }
 

@@ -34,7 +34,10 @@ inline const std::vector<std::string>& channelNames() {
                                                    "ao",
                                                    "irradiance.R",
                                                    "irradiance.G",
-                                                   "irradiance.B"};
+                                                   "irradiance.B",
+                                                   "inscatter.R",
+                                                   "inscatter.G",
+                                                   "inscatter.B"};
     return names;
 }
 // An image with every AOV channel set to its background (Z = +inf, id = -1, others 0).

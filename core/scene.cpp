@@ -269,6 +269,36 @@ MaterialDesc parseMaterial(const ParameterTable& t, const fs::path& dir) {
     return m;
 }
 
+// bodies[].atmosphere.* (AtmosphereDesc), when any such key is given.
+std::optional<AtmosphereDesc> parseAtmosphere(const ParameterTable& t) {
+    bool given = false;
+    for (const auto& [key, entry] : t.entries()) given = given || key.starts_with("atmosphere.");
+    if (!given) return std::nullopt;
+    const AtmosphereDesc d;
+    AtmosphereDesc a;
+    const double big = 1e15;
+    a.thickness = t.getDouble("atmosphere.thickness", d.thickness, 0.0, big);
+    a.scaleHeight = t.getDouble("atmosphere.scale_height", d.scaleHeight, 0.0, big);
+    a.scattering = t.getVec3("atmosphere.scattering", d.scattering);
+    a.absorption = t.getVec3("atmosphere.absorption", d.absorption);
+    a.phaseG = t.getDouble("atmosphere.phase_g", d.phaseG, -0.99, 0.99);
+    if (auto r = t.findDouble("atmosphere.radius")) {
+        if (!(*r > 0.0 && *r < big))
+            throw InputError(fmt::format("{} must be > 0", t.describe("atmosphere.radius")));
+        a.radius = *r;
+    }
+    a.steps = static_cast<int>(t.getInt("atmosphere.steps", d.steps, 1, 256));
+    for (const auto& [key, v] : {std::pair{"atmosphere.thickness", a.thickness},
+                                 std::pair{"atmosphere.scale_height", a.scaleHeight}})
+        if (!(v > 0.0)) throw InputError(fmt::format("{} must be > 0", t.describe(key)));
+    for (int c = 0; c < 3; ++c)
+        for (const auto& [key, v] : {std::pair{"atmosphere.scattering", a.scattering},
+                                     std::pair{"atmosphere.absorption", a.absorption}})
+            if (!(v[c] >= 0.0 && v[c] < big))
+                throw InputError(fmt::format("{} must be >= 0 and finite", t.describe(key)));
+    return a;
+}
+
 BodyDesc parseBody(const ParameterTable& t, const fs::path& dir,
                    const std::vector<MaterialDesc>& mats, std::size_t index) {
     BodyDesc b;
@@ -294,6 +324,7 @@ BodyDesc parseBody(const ParameterTable& t, const fs::path& dir,
         }
     }
     b.temperature = t.getDouble("temperature", 0.0, 0.0, 1e6);
+    b.atmosphere = parseAtmosphere(t);
     b.normal = unitVec3(t, "normal", glm::dvec3(0.0, 0.0, 1.0));
     if (auto s = t.findDouble("smoothing")) {
         if (!(*s > 0.0 && std::isfinite(*s)))
@@ -522,6 +553,14 @@ Scene loadScene(const fs::path& path, std::span<const std::string> overrides) {
             flatten(*node.as_table(), "", fmt::format("bodies.{}", i), fileName, located, t);
             scene.bodies.push_back(parseBody(t, dir, scene.materials, i));
             t.checkAllRead();
+            if (scene.bodies.back().atmosphere)
+                for (std::size_t j = 0; j + 1 < scene.bodies.size(); ++j)
+                    if (scene.bodies[j].atmosphere)
+                        throw InputError(fmt::format(
+                            "{}: bodies '{}' and '{}' both have an atmosphere; a scene has one "
+                            "at most",
+                            t.describe("atmosphere"), scene.bodies[j].name,
+                            scene.bodies.back().name));
             ++i;
         }
     }

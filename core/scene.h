@@ -71,6 +71,22 @@ struct MaterialDesc {
 };
 
 enum class Shape { Ball, Shell, Ring, File };
+
+// A thin scattering shell around a body (bodies[].atmosphere.*, core/atmosphere.h): between the
+// body's surface sphere and that sphere grown by `thickness`, with a density that falls
+// exponentially with the height above the inner sphere. Coefficients are per scene unit at the
+// inner sphere.
+struct AtmosphereDesc {
+    double thickness = 0.1;                // atmosphere.thickness: scene units, > 0
+    double scaleHeight = 0.03;             // atmosphere.scale_height: scene units, > 0
+    glm::dvec3 scattering{0.6, 1.4, 3.3};  // atmosphere.scattering: per scene unit, >= 0
+    glm::dvec3 absorption{0.0};            // atmosphere.absorption: per scene unit, >= 0
+    double phaseG = 0.0;  // atmosphere.phase_g: Henyey-Greenstein asymmetry, [-0.99, 0.99]
+    // atmosphere.radius: the inner sphere's radius, scene units; unset: the body's level-set
+    // radius (core/atmosphere.h, levelSetRadius).
+    std::optional<double> radius;
+    int steps = 32;  // atmosphere.steps: quadrature steps along a view ray and a sun path, 1..256
+};
 enum class Lattice { Hcp, Cubic, Random };
 
 struct BodyDesc {
@@ -101,7 +117,9 @@ struct BodyDesc {
                                // the vector's direction (right-handed)
     double churn = 0.0;        // a new random displacement each frame, up to churn x h, >= 0
     double scale = 1.0;        // file: multiplies positions and smoothing lengths
-    std::string where;         // "file:line" of the [[bodies]] entry, for messages
+    // atmosphere.*: the body's scattering shell; at most one body of a scene has one.
+    std::optional<AtmosphereDesc> atmosphere;
+    std::string where;  // "file:line" of the [[bodies]] entry, for messages
 };
 
 // How the camera moves over a sequence.

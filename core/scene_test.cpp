@@ -234,3 +234,35 @@ TEST(Parameters, TypesRangesAndUnreadKeys) {
             << e.what();
     }
 }
+
+// bodies[].atmosphere = { ... }: a body's scattering shell; unknown keys under it are errors
+// naming them, and a second body with an atmosphere is refused.
+TEST(Scene, ReadsABodysAtmosphereAndRefusesASecond) {
+    const tc::Scene s = tc::loadScene(
+        writeScene("atmosphere",
+                   "[[bodies]]\nname = \"planet\"\natmosphere = { thickness = 0.2, "
+                   "scale_height = 0.05, scattering = [1.0, 2.0, 3.0], phase_g = 0.3 }\n"
+                   "[[bodies]]\nname = \"moon\"\n"));
+    ASSERT_TRUE(s.bodies[0].atmosphere);
+    EXPECT_FALSE(s.bodies[1].atmosphere);
+    EXPECT_DOUBLE_EQ(s.bodies[0].atmosphere->thickness, 0.2);
+    EXPECT_DOUBLE_EQ(s.bodies[0].atmosphere->scaleHeight, 0.05);
+    EXPECT_DOUBLE_EQ(s.bodies[0].atmosphere->scattering.z, 3.0);
+    EXPECT_DOUBLE_EQ(s.bodies[0].atmosphere->phaseG, 0.3);
+    EXPECT_EQ(s.bodies[0].atmosphere->steps, 32);
+    EXPECT_FALSE(s.bodies[0].atmosphere->radius);
+    EXPECT_NE(
+        messageOf(writeScene("atmosphere_typo", "[[bodies]]\natmosphere = { thicknes = 0.2 }\n"))
+            .find("atmosphere.thicknes"),
+        std::string::npos);
+    EXPECT_NE(messageOf(writeScene("atmosphere_zero",
+                                   "[[bodies]]\natmosphere = { scale_height = 0.0 }\n"))
+                  .find("scale_height"),
+              std::string::npos);
+    EXPECT_NE(messageOf(writeScene("atmosphere_two",
+                                   "[[bodies]]\nname = \"a\"\natmosphere = "
+                                   "{ steps = 8 }\n[[bodies]]\nname = \"b\"\n"
+                                   "atmosphere = { steps = 8 }\n"))
+                  .find("both have an atmosphere"),
+              std::string::npos);
+}

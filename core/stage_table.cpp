@@ -52,6 +52,9 @@ constexpr std::array STAGES = {
               .meaning = "the lighting of every covered pixel"},
     StageInfo{.key = "halo", .renderer = "realtime", .cadence = StageCadence::Frame,
               .meaning = "sub-pixel emitters' flux as Gaussian halos (particles.halo_pixels)"},
+    StageInfo{.key = "atmosphere", .renderer = "both", .cadence = StageCadence::Frame,
+              .meaning = "a body's atmosphere (bodies[].atmosphere): the real-time pass from its "
+                         "end point (atmosphere.end_point), or the reference's from the exact hit"},
     StageInfo{.key = "post", .renderer = "realtime", .cadence = StageCadence::Frame,
               .meaning = "glow, bloom and tonemapping"},
     StageInfo{.key = "readback", .renderer = "realtime", .cadence = StageCadence::Frame,

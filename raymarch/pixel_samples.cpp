@@ -40,6 +40,11 @@ void PixelSamples::add(const ShadedSample& sample, float visibility, const Surfa
     }
 }
 
+void PixelSamples::addSky(glm::vec3 light) {
+    beauty += glm::dvec3(light);
+    inscatter += glm::dvec3(light);
+}
+
 AovChannels::AovChannels(const core::Image& image)
     : beauty(image.requireChannel("R")),
       coverage(image.requireChannel("A")),
@@ -50,20 +55,38 @@ AovChannels::AovChannels(const core::Image& image)
       emission(image.requireChannel("emission.R")),
       shadow(image.requireChannel("shadow")),
       ao(image.requireChannel("ao")),
-      irradiance(image.requireChannel("irradiance.R")) {}
+      irradiance(image.requireChannel("irradiance.R")),
+      inscatter(image.requireChannel("inscatter.R")) {}
+
+namespace {
+
+// The beauty, the in-scatter it holds and the beauty's display value.
+void writeLight(glm::vec3 beauty, glm::dvec3 inscatter, float exposure, int x, int y,
+                const AovChannels& c, core::Image& aov, core::Image& display) {
+    const glm::vec3 shown = core::tonemap(beauty, exposure);
+    for (int k = 0; k < 3; ++k) {
+        aov.at(x, y, c.beauty + k) = beauty[k];
+        aov.at(x, y, c.inscatter + k) = static_cast<float>(inscatter[k]);
+        display.at(x, y, k) = shown[k];
+    }
+}
+
+}  // namespace
 
 void writePixel(const PixelSamples& s, int spp, float exposure, int x, int y, const AovChannels& c,
                 core::Image& aov, core::Image& display) {
+    const double inv = 1.0 / spp;
+    glm::vec3 beauty;
+    for (int k = 0; k < 3; ++k) beauty[k] = static_cast<float>(s.beauty[k] * inv);
     if (s.coverage == 0.0) {
         aov.at(x, y, c.depth) = std::numeric_limits<float>::infinity();
         aov.at(x, y, c.id) = -1.0f;
+        if (s.inscatter == glm::dvec3(0.0)) return;
+        // The sky seen through an atmosphere.
+        writeLight(beauty, s.inscatter * inv, exposure, x, y, c, aov, display);
         return;
     }
-    const double inv = 1.0 / spp;
-    glm::vec3 beauty;
     for (int k = 0; k < 3; ++k) {
-        beauty[k] = static_cast<float>(s.beauty[k] * inv);
-        aov.at(x, y, c.beauty + k) = beauty[k];
         aov.at(x, y, c.emission + k) = static_cast<float>(s.emission[k] / s.coverage);
         aov.at(x, y, c.normal + k) = s.normal[k];
         aov.at(x, y, c.irradiance + k) = static_cast<float>(s.irradiance[k] / s.coverage);
@@ -75,9 +98,7 @@ void writePixel(const PixelSamples& s, int spp, float exposure, int x, int y, co
     aov.at(x, y, c.uv) = s.uv.x;
     aov.at(x, y, c.uv + 1) = s.uv.y;
     aov.at(x, y, c.id) = s.body;
-    // The background's display value, tonemap(0), is 0: the new image's.
-    const glm::vec3 shown = core::tonemap(beauty, exposure);
-    for (int k = 0; k < 3; ++k) display.at(x, y, k) = shown[k];
+    writeLight(beauty, s.inscatter * inv, exposure, x, y, c, aov, display);
 }
 
 }  // namespace twinrender::raymarch

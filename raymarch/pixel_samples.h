@@ -40,6 +40,9 @@ struct PixelSamples {
     double shadow = 0.0;
     double ambientOcclusion = 0.0;
     glm::dvec3 irradiance{0.0};
+    // The atmosphere's in-scatter (core/atmosphere.h) over every sample, hit or not; the beauty
+    // holds it too.
+    glm::dvec3 inscatter{0.0};
     // The kept geometric channels and the squared distance of their sample from the pixel
     // centre, in pixels.
     double nearest = INFINITY;
@@ -54,18 +57,21 @@ struct PixelSamples {
     void add(const ShadedSample& sample, float visibility, const SurfaceHit& hit, double depth,
              double jx, double jy, float ambientOcclusion = 1.0f,
              glm::vec3 irradiance = glm::vec3(0.0f));
+    // Adds a sample that met no surface but saw the atmosphere's in-scatter.
+    void addSky(glm::vec3 light);
 };
 
 // The indices of the AOV channels a pixel writes, looked up once per frame.
 struct AovChannels {
     explicit AovChannels(const core::Image& image);
-    int beauty, coverage, depth, normal, uv, id, emission, shadow, ao,
-        irradiance;  // R, A, Z, N.X, uv.U, ...
+    int beauty, coverage, depth, normal, uv, id, emission, shadow, ao, irradiance,
+        inscatter;  // R, A, Z, N.X, uv.U, ...
 };
 
 // Writes pixel (x, y) of the AOV image (`spp` samples per pixel) and of the display image (R, G,
 // B; core::tonemap of the beauty). Both images are new (zero): a pixel without a hit sample
-// gets the background of core::aov::makeImage by its Z = +inf and id = -1 alone.
+// gets the background of core::aov::makeImage by its Z = +inf and id = -1 alone, and the
+// atmosphere's in-scatter its samples saw as its beauty.
 void writePixel(const PixelSamples& samples, int spp, float exposure, int x, int y,
                 const AovChannels& channels, core::Image& aov, core::Image& display);
 

@@ -13,7 +13,9 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <optional>
 
+#include "core/atmosphere.h"
 #include "core/camera.h"
 #include "core/cancellation.h"
 #include "core/emitters.h"
@@ -68,6 +70,7 @@ struct StageTicks {
     std::int64_t ao = 0;            // ambient occlusion rays
     std::int64_t emissive = 0;      // rays toward the emitting bodies
     std::int64_t shade = 0;         // shading the hits
+    std::int64_t atmosphere = 0;    // the atmosphere's quadrature along the camera rays
     double aoErrorSum = 0.0;        // of aoStandardError over the hit samples
     std::int64_t aoSamples = 0;     // hit samples with occlusion traced
     double lightErrorSum = 0.0;     // of the irradiance's standard error (luminance)
@@ -116,7 +119,11 @@ class FrameTrace {
           mEmitters(input.scene.light.emissiveLight
                         ? core::emittingBodies(input.particles, input.materials)
                         : std::vector<core::EmittingBody>{}),
-          mEmissiveSide(emissiveSide(settings)) {}
+          mEmissiveSide(emissiveSide(settings)),
+          mAtmosphere(core::sceneAtmosphere(input.scene, input.particles, settings.surfaceLevel)),
+          mSun(core::atmosphereSun(input.scene.light)) {}
+
+    bool hasAtmosphere() const { return mAtmosphere.has_value(); }
 
     std::size_t emitterCount() const { return mEmitters.size(); }
 
@@ -137,8 +144,9 @@ class FrameTrace {
     // Every sample of a block's pixels, then the pixels.
     void traceBlock(const Block& b, Workspace& w, StageTicks& ticks) const {
         PixelSamples pixels[N];
-        // Where no ray of the block can meet a surface, its pixels keep the background.
-        if (mTracer.blockMayHit(b.central))
+        // Where no ray of the block can meet a surface, its pixels keep the background (unless
+        // they see an atmosphere).
+        if (mAtmosphere || mTracer.blockMayHit(b.central))
             for (int k = 0; k < mSettings.spp; ++k) traceSample(b, k, pixels, w, ticks);
         for (int i = 0; i < b.n; ++i)
             writePixel(pixels[i], mSettings.spp, mExposure, b.px[i], b.py[i], mChannels, mAov,
@@ -167,12 +175,23 @@ class FrameTrace {
         ticks.ao += (tLight - tAo).count();
         std::fill_n(light, b.n, glm::vec3(0.0f));
         if (!mEmitters.empty()) traceEmitters(b, k, hits, found, light, w, ticks);
+        const auto tAir = Clock::now();
+        ticks.emissive += (tAir - tLight).count();
+        core::AtmosphereSample air[N];
+        if (mAtmosphere) traceAtmosphere(b, r, hits, found, air);
         const auto t1 = Clock::now();
-        ticks.emissive += (t1 - tLight).count();
+        ticks.atmosphere += (t1 - tAir).count();
         for (int i = 0; i < b.n; ++i) {
-            if (!found[i]) continue;
-            const ShadedSample s = shadeHit(hits[i], r.rays[i].direction, vis[i], mInput.materials,
-                                            mInput.scene.light, open[i], light[i]);
+            if (!found[i]) {
+                if (mAtmosphere) pixels[i].addSky(air[i].inscatter);
+                continue;
+            }
+            ShadedSample s = shadeHit(hits[i], r.rays[i].direction, vis[i], mInput.materials,
+                                      mInput.scene.light, open[i], light[i]);
+            if (mAtmosphere) {
+                s.beauty = s.beauty * air[i].transmittance + air[i].inscatter;
+                pixels[i].inscatter += glm::dvec3(air[i].inscatter);
+            }
             pixels[i].add(s, vis[i], hits[i], hits[i].t * r.cosAxis[i], r.jx[i], r.jy[i], open[i],
                           light[i]);
         }
@@ -180,6 +199,18 @@ class FrameTrace {
     }
 
   private:
+    // The atmosphere along each camera ray up to its end point: the exact hit, or the shell's
+    // exit where the ray meets no surface.
+    void traceAtmosphere(const Block& b, const SampleRays& r, const SurfaceHit* hits,
+                         const bool* found, core::AtmosphereSample* air) const {
+        for (int i = 0; i < b.n; ++i) {
+            const glm::vec3 origin(r.rays[i].origin - mAtmosphere->centre);
+            const float end = found[i] ? static_cast<float>(hits[i].t) : INFINITY;
+            air[i] = core::integrateAtmosphere(*mAtmosphere, mSun, origin,
+                                               glm::vec3(r.rays[i].direction), end);
+        }
+    }
+
     // The open fraction of each hit's hemisphere within light.ao_radius: aoSamples
     // cosine-weighted directions, stratified and jittered by the pixel and the sample, so
     // that the value does not depend on the thread.
@@ -307,11 +338,13 @@ class FrameTrace {
     int mTilesX, mTilesY;
     int mGrid;  // strata per side of a pixel's samples
     float mExposure;
-    std::vector<glm::dvec3> mSunDirections;     // towards the light; one for a point sun
-    double mAoRadius;                           // light.ao_radius; 0: no occlusion rays
-    int mAoSide;                                // the occlusion pattern's side
-    std::vector<core::EmittingBody> mEmitters;  // light.emissive_light: the emitting bodies
-    int mEmissiveSide;                          // the emitters' pattern's side
+    std::vector<glm::dvec3> mSunDirections;       // towards the light; one for a point sun
+    double mAoRadius;                             // light.ao_radius; 0: no occlusion rays
+    int mAoSide;                                  // the occlusion pattern's side
+    std::vector<core::EmittingBody> mEmitters;    // light.emissive_light: the emitting bodies
+    int mEmissiveSide;                            // the emitters' pattern's side
+    std::optional<core::Atmosphere> mAtmosphere;  // a body's atmosphere, if the scene has one
+    core::AtmosphereSun mSun;
 };
 
 // The tiles in parallel on the caller's arena, on one workspace per thread; the thread time
@@ -321,7 +354,7 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
     const int tiles = trace.tileCount();
     std::atomic<int> done{0};
     std::atomic<std::int64_t> traceTicks{0}, aoTicks{0}, emissiveTicks{0}, shadeTicks{0},
-        aoSamples{0}, lightSamples{0}, lightRays{0};
+        atmosphereTicks{0}, aoSamples{0}, lightSamples{0}, lightRays{0};
     // The standard errors' sums, per tile, added in tile order after the loop (a sum of
     // doubles in the order threads finish would depend on the threads).
     std::vector<double> aoErrors(static_cast<std::size_t>(tiles), 0.0);
@@ -341,6 +374,7 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
             aoTicks += ticks.ao;
             emissiveTicks += ticks.emissive;
             shadeTicks += ticks.shade;
+            atmosphereTicks += ticks.atmosphere;
             aoSamples += ticks.aoSamples;
             lightSamples += ticks.lightSamples;
             lightRays += ticks.lightRays;
@@ -353,7 +387,8 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
     StageTicks sum{.trace = traceTicks.load(),
                    .ao = aoTicks.load(),
                    .emissive = emissiveTicks.load(),
-                   .shade = shadeTicks.load()};
+                   .shade = shadeTicks.load(),
+                   .atmosphere = atmosphereTicks.load()};
     for (const double e : aoErrors) sum.aoErrorSum += e;
     for (const double e : lightErrors) sum.lightErrorSum += e;
     sum.aoSamples = aoSamples.load();
@@ -408,12 +443,15 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     const StageTicks ticks = traceTiles(trace, workspaces, input);
     const double traceMs = msSince(start);
     // Split the parallel wall time by the thread time of each part.
-    const double sum = std::max(
-        double(ticks.trace) + double(ticks.ao) + double(ticks.emissive) + double(ticks.shade), 1.0);
+    const double sum = std::max(double(ticks.trace) + double(ticks.ao) + double(ticks.emissive) +
+                                    double(ticks.shade) + double(ticks.atmosphere),
+                                1.0);
     frame.timingsMs["build"] = tracer.buildMs();
     frame.timingsMs["trace"] = traceMs * double(ticks.trace) / sum;  // surfaces, shadow rays
     frame.timingsMs["ao"] = traceMs * double(ticks.ao) / sum;
     if (emissive) frame.timingsMs["emissive"] = traceMs * double(ticks.emissive) / sum;
+    if (trace.hasAtmosphere())
+        frame.timingsMs["atmosphere"] = traceMs * double(ticks.atmosphere) / sum;
     frame.timingsMs["shade"] = traceMs * double(ticks.shade) / sum;
     frame.timingsMs["total"] = tracer.buildMs() + traceMs;
 

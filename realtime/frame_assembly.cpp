@@ -17,11 +17,13 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
               cU = channel("uv.U"), cV = channel("uv.V"), cId = channel("id"),
               cER = channel("emission.R"), cEG = channel("emission.G"), cEB = channel("emission.B"),
               cShadow = channel("shadow"), cAo = channel("ao"), cIR = channel("irradiance.R"),
-              cIG = channel("irradiance.G"), cIB = channel("irradiance.B");
+              cIG = channel("irradiance.G"), cIB = channel("irradiance.B"),
+              cSR = channel("inscatter.R");
     const std::size_t stride = static_cast<std::size_t>(aov.channelCount());
     const bool emits = !in.emission.empty();
     const bool occluded = !in.ambientOcclusion.empty();
     const bool irradiated = !in.irradiance.empty();
+    const bool scattered = !in.inscatter.empty();
     float* out = aov.pixels().data();
     float* shown = display.pixels().data();
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
@@ -44,10 +46,12 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
                 o[cZ] = std::numeric_limits<float>::infinity();
                 o[cId] = -1.0f;
                 // The shade pass leaves the background black; a sub-pixel emitter's halo
-                // (particles.halo_pixels) may light it.
+                // (particles.halo_pixels) may light it, and the sky seen through an atmosphere.
                 o[cR] = in.beautyShadow[g + 0];
                 o[cG] = in.beautyShadow[g + 1];
                 o[cB] = in.beautyShadow[g + 2];
+                if (scattered)
+                    for (int c = 0; c < 3; ++c) o[cSR + c] = in.inscatter[g + c];
                 continue;
             }
             o[cR] = in.beautyShadow[g + 0];
@@ -70,6 +74,7 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
             o[cIR] = irradiated ? in.irradiance[g + 0] : 0.0f;
             o[cIG] = irradiated ? in.irradiance[g + 1] : 0.0f;
             o[cIB] = irradiated ? in.irradiance[g + 2] : 0.0f;
+            for (int c = 0; c < 3; ++c) o[cSR + c] = scattered ? in.inscatter[g + c] : 0.0f;
         }
     });
 }

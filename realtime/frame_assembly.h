@@ -22,6 +22,9 @@ struct ReadBackBuffers {
     // The irradiance from emitting surfaces (light.emissive_light), rgb and one unused float a
     // pixel; empty: none (0).
     std::span<const float> irradiance;
+    // The atmosphere's in-scatter, rgb and one unused float a pixel, the beauty holding it on
+    // the background too; empty: no atmosphere (0, and a black background).
+    std::span<const float> inscatter;
 };
 
 // Writes every pixel of `aov` (the core::aov channels; core::aov::makeImage's values on the

@@ -26,6 +26,8 @@ std::string_view toString(Resource resource) {
             return "irradiance";
         case Resource::Beauty:
             return "beauty";
+        case Resource::Inscatter:
+            return "inscatter";
         case Resource::Display:
             return "display";
     }

@@ -25,9 +25,10 @@ enum class Resource {
     Occlusion,   // the ambient occlusion's open fraction
     Irradiance,  // the emissive light's irradiance
     Beauty,      // linear beauty and the sun's visibility
+    Inscatter,   // the atmosphere's in-scatter
     Display,     // bloom and tonemap
 };
-inline constexpr std::size_t RESOURCE_COUNT = 9;
+inline constexpr std::size_t RESOURCE_COUNT = 10;
 std::string_view toString(Resource resource);
 
 // Every resource's current version, and what keeps each alive until the frame ends.

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/atmosphere.h"
 #include "core/particles.h"
 #include "core/texture.h"
 #include "realtime/gl/buffer.h"
@@ -244,6 +245,26 @@ gl::Texture runShadePass(ProgramCache& programs, const ShadeInputs& inputs);
 // its front.
 void runHaloPass(ProgramCache& programs, const SceneBuffers& scene, const gl::Texture& surface,
                  const gl::Texture& beauty);
+
+// atmosphere (a body of the scene has one, core/atmosphere.h): each pixel's view ray through
+// the shell up to the end point settings.endPoint picks (the G-buffer's impostor depth, the
+// depth the shade pass read, the analytic inner sphere, or the seed's blend of the last two by
+// distance), with core's quadrature mirrored in shaders/atmosphere.glsl.
+struct AtmosphereInputs {
+    const gl::Texture* beauty = nullptr;    // the shade pass's
+    const gl::Texture* impostor = nullptr;  // the G-buffer's surface (eye depth, body)
+    const gl::Texture* filtered = nullptr;  // the surface the shade pass read
+    core::Atmosphere atmosphere;  // its steps: atmosphere.steps where set, else the scene's
+    glm::dvec3 camera{0.0};       // world position
+    AtmosphereSettings settings;
+};
+// RGBA32F both: beauty x T + L_in (a: the visibility, kept), and L_in (a: 0).
+struct AtmosphereTargets {
+    gl::Texture beauty, inscatter;
+};
+AtmosphereTargets runAtmospherePass(ProgramCache& programs, const AtmosphereInputs& inputs);
+// The #define selecting the end point in shaders/atmosphere.frag.
+std::vector<std::string> atmosphereDefines(const AtmosphereSettings& settings);
 
 // post: bloom (when enabled) and the tonemapper into display values (RGBA32F, a = 1).
 gl::Texture runPostPass(ProgramCache& programs, const gl::Texture& beauty,

@@ -79,7 +79,7 @@ void surfaceVariants(const SurfaceSettings& s, std::vector<ProgramVariant>& out)
 }  // namespace
 
 std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits,
-                                            bool emissiveLight) {
+                                            bool emissiveLight, bool atmosphere) {
     std::vector<ProgramVariant> out;
     auto add = [&](const char* vertex, const char* fragment, std::vector<std::string> defines) {
         out.push_back(ProgramVariant::draw(vertex, fragment, std::move(defines)));
@@ -127,6 +127,8 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     add("fullscreen.vert", "shade.frag",
         shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings),
                      emissiveLight));
+    if (atmosphere)
+        add("fullscreen.vert", "atmosphere.frag", atmosphereDefines(settings.atmosphere));
     // The bloom's levels exist where the image is large enough; the composite without them
     // either way.
     if (settings.bloom.enabled && settings.bloom.strength > 0.0) {
@@ -219,6 +221,14 @@ std::vector<ProgramVariant> allProgramVariants() {
         Settings a;
         a.particles.haloPixels = 1.0;
         for (ProgramVariant& v : programVariants(a, true)) all.try_emplace(v.name(), std::move(v));
+    }
+    // The atmosphere's, one per end point.
+    for (AtmosphereEndPoint endPoint : {AtmosphereEndPoint::Impostor, AtmosphereEndPoint::Filtered,
+                                        AtmosphereEndPoint::Sphere, AtmosphereEndPoint::Blend}) {
+        Settings a;
+        a.atmosphere.endPoint = endPoint;
+        for (ProgramVariant& v : programVariants(a, false, false, true))
+            all.try_emplace(v.name(), std::move(v));
     }
     // The error split's (error_split.h): the reference's depth, and shade with its light.
     for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {

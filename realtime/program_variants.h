@@ -32,14 +32,15 @@ struct ProgramVariant {
 };
 
 // The programs a frame with `settings` builds; `emits`: whether anything in the scene emits;
-// `emissiveLight`: whether the emissive pass runs (usesEmissiveLight).
+// `emissiveLight`: whether the emissive pass runs (usesEmissiveLight); `atmosphere`: whether a
+// body has an atmosphere (the atmosphere pass runs).
 std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits,
-                                            bool emissiveLight = false);
+                                            bool emissiveLight = false, bool atmosphere = false);
 
 // The union of programVariants over every value of every setting that changes a program
 // (depth, shadows, shape, normal, radius, droplets, surface method and its separable and
 // normals flags, SSSS, emission, bloom, culling, per_set; ambient occlusion and the emissive
-// light beside the defaults), each once, in name order.
+// light and the atmosphere's end points beside the defaults), each once, in name order.
 std::vector<ProgramVariant> allProgramVariants();
 
 // The surface filter that changes nothing (examples/surface_pass_through.glsl, embedded): the

@@ -147,8 +147,8 @@ void checkLimits(const core::RenderInput& in, const Settings& settings, const De
 // Compiles (once per device) every program a frame with these settings builds
 // (program_variants.h), so that none is compiled inside a frame.
 void compilePrograms(ProgramCache& programs, const Settings& settings, bool emits,
-                     bool emissiveLight) {
-    for (const ProgramVariant& v : programVariants(settings, emits, emissiveLight)) {
+                     bool emissiveLight, bool atmosphere) {
+    for (const ProgramVariant& v : programVariants(settings, emits, emissiveLight, atmosphere)) {
         if (v.userShader)
             userSurfaceProgram(programs, settings.surface);  // its errors are bad input
         else
@@ -252,6 +252,8 @@ struct PassInputs {
     bool emissiveLight = false;
     std::vector<PointLight> pointLights = {};
     FrameUniforms uniforms{};  // the frame's ("ssem_target" widens them for its target)
+    // A body's atmosphere (its steps as atmosphere.steps says), when the scene has one.
+    std::optional<core::Atmosphere> atmosphere = std::nullopt;
 };
 
 // The frame's resources after its passes (frame_graph.h), and the timer query of each pass
@@ -310,6 +312,8 @@ constexpr std::array SHADE_READS{R::GBuffer,   R::NormalUv,  R::Emission,  R::Su
 constexpr std::array SHADE_WRITES{R::Beauty};
 constexpr std::array HALO_READS{R::GBuffer, R::Beauty};
 constexpr std::array HALO_WRITES{R::Beauty};
+constexpr std::array ATMOSPHERE_READS{R::GBuffer, R::Surface, R::Beauty};
+constexpr std::array ATMOSPHERE_WRITES{R::Beauty, R::Inscatter};
 constexpr std::array POST_READS{R::Beauty};
 constexpr std::array POST_WRITES{R::Display};
 
@@ -391,6 +395,19 @@ const Pass PASSES[] = {
      [](const PassInputs& in, PassResources& r) {
          runHaloPass(in.programs, in.scene, r.gbuffer().surface, r.read(R::Beauty));
      }},
+    {"atmosphere", ATMOSPHERE_READS, ATMOSPHERE_WRITES,
+     [](const PassInputs& in) { return in.atmosphere.has_value(); },
+     [](const PassInputs& in, PassResources& r) {
+         auto t = std::make_shared<const AtmosphereTargets>(
+             runAtmospherePass(in.programs, {.beauty = &r.read(R::Beauty),
+                                             .impostor = &r.gbuffer().surface,
+                                             .filtered = &r.read(R::Surface),
+                                             .atmosphere = *in.atmosphere,
+                                             .camera = in.camera,
+                                             .settings = in.settings.atmosphere}));
+         r.write(R::Beauty, t, t->beauty);
+         r.write(R::Inscatter, t, t->inscatter);
+     }},
     {"post", POST_READS, POST_WRITES, always,
      [](const PassInputs& in, PassResources& r) {
          r.write(R::Display,
@@ -453,7 +470,8 @@ void readBack(DeviceState& d, const FrameResources& t, bool emits, int w, int h,
         BEAUTY_SHADOW,
         DISPLAY,
         OCCLUSION,
-        IRRADIANCE
+        IRRADIANCE,
+        INSCATTER
     };
     gl::TextureReadback& r = d.readback;
     r.read(NORMAL_UV, t.read(Resource::NormalUv));
@@ -467,6 +485,9 @@ void readBack(DeviceState& d, const FrameResources& t, bool emits, int w, int h,
     // Without the emissive pass the irradiance is zero, as the image's channels already are.
     const gl::Texture* irradiance = t.find(Resource::Irradiance);
     if (irradiance) r.read(IRRADIANCE, *irradiance);
+    // Without an atmosphere the in-scatter is zero, as the image's channels already are.
+    const gl::Texture* inscatter = t.find(Resource::Inscatter);
+    if (inscatter) r.read(INSCATTER, *inscatter);
     r.wait();
     frame.image = reuseOrCreate(d.spareImage, w, h, core::aov::channelNames());
     frame.display = reuseOrCreate(d.spareDisplay, w, h, {"R", "G", "B"});
@@ -480,6 +501,7 @@ void readBack(DeviceState& d, const FrameResources& t, bool emits, int w, int h,
     buffers.display = r.pixels(DISPLAY);
     if (occlusion) buffers.ambientOcclusion = r.pixels(OCCLUSION);
     if (irradiance) buffers.irradiance = r.pixels(IRRADIANCE);
+    if (inscatter) buffers.inscatter = r.pixels(INSCATTER);
     assembleFrame(buffers, frame.image, frame.display);
     frame.timingsMs["readback"] = msSince(start);
 }
@@ -586,10 +608,18 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     // Compiling programs is set-up, like creating the context: not part of the render time.
     const auto compileStart = Clock::now();
     const bool emissiveLight = usesEmissiveLight(mSettings, in.scene.light.emissiveLight, emits);
-    compilePrograms(d.programs, mSettings, emits, emissiveLight);
+    const bool hasAtmosphere =
+        std::any_of(in.scene.bodies.begin(), in.scene.bodies.end(),
+                    [](const core::BodyDesc& b) { return b.atmosphere.has_value(); });
+    compilePrograms(d.programs, mSettings, emits, emissiveLight, hasAtmosphere);
     frame.timingsMs["compile"] = msSince(compileStart);
 
     const auto totalStart = Clock::now();
+    // The atmosphere's shell (its inner radius from the particles, core/atmosphere.h).
+    std::optional<core::Atmosphere> atmosphere =
+        core::sceneAtmosphere(in.scene, in.particles, mSettings.particles.surfaceLevel);
+    if (atmosphere && mSettings.atmosphere.steps > 0)
+        atmosphere->steps = mSettings.atmosphere.steps;
     const Uploaded uploaded = upload(d, in, camera, mSettings, frame);
     PassInputs passInputs{.programs = d.programs,
                           .scene = uploaded.scene,
@@ -604,6 +634,7 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.aoRadius = in.scene.light.aoRadius;
     passInputs.emissiveLight = emissiveLight;
     passInputs.uniforms = uploaded.uniforms;
+    passInputs.atmosphere = atmosphere;
     if (emissiveLight && mSettings.emissive.method == EmissiveMethod::PointLights) {
         passInputs.pointLights = pointLights(in.particles, in.materials, in.scene.camera.position);
         frame.counters["point_lights"] = static_cast<double>(passInputs.pointLights.size());

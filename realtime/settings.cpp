@@ -59,6 +59,22 @@ AoSettings parseAo(const core::ParameterTable& t) {
     return a;
 }
 
+AtmosphereSettings parseAtmosphere(const core::ParameterTable& t) {
+    const AtmosphereSettings d;
+    AtmosphereSettings a;
+    a.endPoint = byName(t.getEnum("atmosphere.end_point", std::string(toString(d.endPoint)),
+                                  {"impostor", "filtered", "sphere", "blend"}),
+                        std::array{AtmosphereEndPoint::Impostor, AtmosphereEndPoint::Filtered,
+                                   AtmosphereEndPoint::Sphere, AtmosphereEndPoint::Blend});
+    a.blendNear = t.getDouble("atmosphere.blend_near", d.blendNear, 0.0, 1e15);
+    a.blendFar = t.getDouble("atmosphere.blend_far", d.blendFar, 0.0, 1e15);
+    if (!(a.blendFar > a.blendNear))
+        throw core::InputError(fmt::format("{} must be larger than atmosphere.blend_near ({})",
+                                           t.describe("atmosphere.blend_far"), a.blendNear));
+    a.steps = static_cast<int>(t.getInt("atmosphere.steps", d.steps, 0, 256));
+    return a;
+}
+
 EmissiveSettings parseEmissive(const core::ParameterTable& t) {
     const EmissiveSettings d;
     EmissiveSettings e;
@@ -145,6 +161,20 @@ std::string_view toString(EmissiveBlur blur) {
             return "depth_aware";
     }
     return "depth_aware";
+}
+
+std::string_view toString(AtmosphereEndPoint endPoint) {
+    switch (endPoint) {
+        case AtmosphereEndPoint::Impostor:
+            return "impostor";
+        case AtmosphereEndPoint::Filtered:
+            return "filtered";
+        case AtmosphereEndPoint::Sphere:
+            return "sphere";
+        case AtmosphereEndPoint::Blend:
+            return "blend";
+    }
+    return "filtered";
 }
 
 bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits) {
@@ -455,6 +485,7 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.surface = parseSurface(t);
     s.ao = parseAo(t);
     s.emissive = parseEmissive(t);
+    s.atmosphere = parseAtmosphere(t);
     s.ssss.enabled = t.getBool("ssss.enabled", d.ssss.enabled);
     s.ssss.radiusScale = t.getDouble("ssss.radius_scale", d.ssss.radiusScale, 0.0, 16.0);
     s.ssss.depthLimit = t.getDouble("ssss.depth_limit", d.ssss.depthLimit, 1e-6, 1000.0);
@@ -519,6 +550,10 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.emissive.blur_radius", s.emissive.blurRadius},
         {"realtime.emissive.target_fov_scale", s.emissive.targetFovScale},
         {"realtime.emissive.target_aspect", s.emissive.targetAspect},
+        {"realtime.atmosphere.end_point", toString(s.atmosphere.endPoint)},
+        {"realtime.atmosphere.blend_near", s.atmosphere.blendNear},
+        {"realtime.atmosphere.blend_far", s.atmosphere.blendFar},
+        {"realtime.atmosphere.steps", s.atmosphere.steps},
         {"realtime.surface.method", toString(s.surface.method)},
         {"realtime.surface.shader", s.surface.shaderPath},
         {"realtime.surface.shader_passes", s.surface.shaderPasses},

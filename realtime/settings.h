@@ -393,6 +393,27 @@ struct EmissiveSettings {
     bool operator==(const EmissiveSettings&) const = default;
 };
 
+// atmosphere.*: where the real-time atmosphere pass ends each view ray in a body's atmosphere
+// (bodies[].atmosphere, core/atmosphere.h; realtime/atmosphere_pass.cpp). The reference ends
+// it at the exact hit.
+enum class AtmosphereEndPoint {
+    Impostor,  // "impostor": the G-buffer's impostor depth, as drawn
+    Filtered,  // "filtered": the depth the shade pass read (a depth filter's; else as drawn)
+    Sphere,    // "sphere": the analytic inner sphere (another body's pixels: the filtered depth)
+    Blend,     // "blend": the filtered depth nearer than blend_near, the sphere beyond blend_far,
+               // mixed by distance between
+};
+struct AtmosphereSettings {
+    // atmosphere.end_point: "impostor" | "filtered" | "sphere" | "blend". Filtered by default:
+    // the surface the shade pass drew, which a particle body's relief follows; the analytic
+    // sphere wins only where the level set is round (docs/light.md, the atmosphere study).
+    AtmosphereEndPoint endPoint = AtmosphereEndPoint::Filtered;
+    double blendNear = 2.0;  // atmosphere.blend_near: scene units from the camera, >= 0
+    double blendFar = 4.0;   // atmosphere.blend_far: scene units, > blend_near
+    int steps = 0;  // atmosphere.steps: quadrature steps, 0..256; 0: the scene's atmosphere.steps
+    bool operator==(const AtmosphereSettings&) const = default;
+};
+
 struct Settings {
     DepthMode depth = DepthMode::Log;                   // depth: "log" | "standard" | "reversed"
     GBufferFormat gbufferFormat = GBufferFormat::Full;  // gbuffer.format: "full" | "compact"
@@ -406,6 +427,7 @@ struct Settings {
     BloomSettings bloom;
     AoSettings ao;
     EmissiveSettings emissive;
+    AtmosphereSettings atmosphere;
 };
 
 // Whether the ambient occlusion pass runs (ao.method is not "none").
@@ -472,5 +494,6 @@ std::string_view toString(AoBlur blur);
 std::string_view toString(AoNoise noise);
 std::string_view toString(EmissiveMethod method);
 std::string_view toString(EmissiveBlur blur);
+std::string_view toString(AtmosphereEndPoint endPoint);
 
 }  // namespace twinrender::realtime

@@ -89,7 +89,25 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
     EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
-    EXPECT_EQ(j.size(), 74u);
+    EXPECT_EQ(j.size(), 78u);
+}
+
+TEST(Settings, ReadsTheAtmosphereKeys) {
+    const Settings d = parseSettings(table({}));
+    EXPECT_EQ(d.atmosphere.endPoint, AtmosphereEndPoint::Filtered);
+    EXPECT_EQ(d.atmosphere.steps, 0);
+    const Settings s = parseSettings(table({{"atmosphere.end_point", std::string("blend")},
+                                            {"atmosphere.blend_near", 1.5},
+                                            {"atmosphere.blend_far", 6.0},
+                                            {"atmosphere.steps", std::int64_t(12)}}));
+    EXPECT_EQ(s.atmosphere.endPoint, AtmosphereEndPoint::Blend);
+    EXPECT_DOUBLE_EQ(s.atmosphere.blendNear, 1.5);
+    EXPECT_DOUBLE_EQ(s.atmosphere.blendFar, 6.0);
+    EXPECT_EQ(s.atmosphere.steps, 12);
+    EXPECT_EQ(toJson(s).at("realtime.atmosphere.end_point"), "blend");
+    EXPECT_THROW(parseSettings(table({{"atmosphere.blend_near", 5.0}})), core::InputError);
+    EXPECT_THROW(parseSettings(table({{"atmosphere.end_point", std::string("depth")}})),
+                 core::InputError);
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {

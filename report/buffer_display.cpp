@@ -17,8 +17,9 @@ namespace twinrender::report {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& bufferNames() {
-    static const std::vector<std::string> names = {
-        "beauty", "normal", "uv", "depth", "id", "shadow", "ao", "emission", "irradiance"};
+    static const std::vector<std::string> names = {"beauty",     "normal",   "uv", "depth",
+                                                   "id",         "shadow",   "ao", "emission",
+                                                   "irradiance", "inscatter"};
     return names;
 }
 
@@ -84,9 +85,10 @@ std::vector<std::string> channelsOf(std::string_view buffer) {
     if (buffer == "ao") return {"ao"};
     if (buffer == "emission") return {"emission.R", "emission.G", "emission.B"};
     if (buffer == "irradiance") return {"irradiance.R", "irradiance.G", "irradiance.B"};
+    if (buffer == "inscatter") return {"inscatter.R", "inscatter.G", "inscatter.B"};
     throw std::invalid_argument(
         fmt::format("unknown buffer '{}'; buffers are beauty, normal, "
-                    "uv, depth, id, shadow, ao, emission, irradiance",
+                    "uv, depth, id, shadow, ao, emission, irradiance, inscatter",
                     buffer));
 }
 
@@ -172,7 +174,7 @@ core::Image visualiseBuffer(const core::Image& aov, std::string_view buffer,
                 }
             } else if (buffer == "shadow" || buffer == "ao") {
                 rgb[0] = rgb[1] = rgb[2] = 0.3f + 0.7f * clamp01(aov.at(p, ch[0]));
-            } else if (buffer == "emission") {
+            } else if (buffer == "emission" || buffer == "inscatter") {
                 const glm::vec3 c =
                     core::tonemap(glm::vec3(aov.at(p, ch[0]), aov.at(p, ch[1]), aov.at(p, ch[2])),
                                   settings.exposure);
@@ -207,7 +209,10 @@ std::map<std::string, std::string> writeBufferImages(const core::Image& aov,
         for (const auto& c : channelsOf(buffer)) has = has && aov.hasChannel(c);
         if (!has) continue;
         // The light of emitting surfaces only where the scene casts it (light.emissive_light).
-        if (buffer == "irradiance" && !anyNonZero(aov, channelsOf(buffer))) continue;
+        // The in-scatter only where a body has an atmosphere.
+        if ((buffer == "irradiance" || buffer == "inscatter") &&
+            !anyNonZero(aov, channelsOf(buffer)))
+            continue;
         core::writeImage(visualiseBuffer(aov, buffer, settings), dir / name);
         written[buffer] = name;
     }

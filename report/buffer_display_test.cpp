@@ -71,11 +71,13 @@ TEST(BufferImages, VisualisationsFollowTheirConventions) {
 TEST(BufferImages, WritesOnePngPerAvailableBuffer) {
     const fs::path dir = twinrender::testing::freshDir("buffer_display");
     core::Image aov = testdata::syntheticAov(16, 12, 8.0, 6.0, 5.0);
-    // Without light from emitting surfaces, every buffer but the irradiance.
+    // Without light from emitting surfaces nor an atmosphere, every buffer but the irradiance
+    // and the in-scatter.
     core::Image dark = aov;
-    for (const char* c : {"irradiance.R", "irradiance.G", "irradiance.B"})
+    for (const char* c : {"irradiance.R", "irradiance.G", "irradiance.B", "inscatter.R",
+                          "inscatter.G", "inscatter.B"})
         for (std::size_t p = 0; p < dark.pixelCount(); ++p) dark.at(p, dark.channelIndex(c)) = 0.0f;
-    EXPECT_EQ(writeBufferImages(dark, nullptr, dir, "dark").size(), bufferNames().size() - 1);
+    EXPECT_EQ(writeBufferImages(dark, nullptr, dir, "dark").size(), bufferNames().size() - 2);
     const auto files = writeBufferImages(aov, nullptr, dir, "realtime");
     ASSERT_EQ(files.size(), bufferNames().size());
     for (const auto& [buffer, name] : files) {

@@ -324,6 +324,26 @@ TEST(Study, SubpixelEmittersTheOptionsKeepTheFluxTheSpheresLose) {
     EXPECT_LT(s["facts"]["flicker"]["halo 2"][smallest].get<double>(), 0.1);
 }
 
+TEST(Study, AtmosphereEveryEndPointAlongTheCameraDistance) {
+    // Four end points at three distances; every row has in-scatter in both frames, the pass's
+    // time, and the finding names a winner at each distance.
+    const json s = runStudy("atmosphere", 4 * 3, "inscatter.rmse");
+    ASSERT_FALSE(s.is_discarded());
+    for (const char* name : {"impostor", "filtered", "sphere", "blend"}) {
+        const auto rows = series(s, name);
+        ASSERT_EQ(rows.size(), 3u) << name;
+        for (const json& r : rows) {
+            EXPECT_GT(metric(r, "inscatter.rmse"), 0.0) << name;
+            EXPECT_LT(metric(r, "inscatter.rel"), 1.0) << name;
+            EXPECT_GT(r["timings_ms"]["atmosphere"].get<double>(), 0.0) << name;
+        }
+    }
+    int won = 0;
+    for (const auto& [name, runs] : s["facts"]["wins"].items()) won += int(runs.size());
+    EXPECT_GE(won, 1);
+    EXPECT_NE(s["finding"].get<std::string>().find(" wins "), std::string::npos);
+}
+
 TEST(Study, ViewAngleFromFaceOnToGrazing) {
     const json s = runStudy("view_angle", 2 * 3, "normal.mean_deg");
     ASSERT_FALSE(s.is_discarded());
@@ -571,7 +591,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
               std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
-    ASSERT_EQ(all["studies"].size(), 12u);
+    ASSERT_EQ(all["studies"].size(), 13u);
     const std::string page = readText(out / "studies" / "index.html");
     for (const json& s : all["studies"]) {
         EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;

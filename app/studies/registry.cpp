@@ -216,6 +216,24 @@ const std::vector<StudyDef>& studies() {
             .conclude = study::subpixelEmittersConclude,
         },
         {
+            .name = "atmosphere",
+            .title = "Atmosphere",
+            .question = "A planet with a thin atmosphere, the camera backing away from just above "
+                        "its limb to where it is a few pixels across: where does each real-time "
+                        "end point of the view rays (the impostor depth, the filtered depth, the "
+                        "analytic sphere, the seed's blend of the two by distance) give the "
+                        "in-scatter closest to the reference's, which ends them at the exact "
+                        "hit?",
+            .scene = "atmosphere.toml",
+            .xLabel = "the camera's distance from the planet's centre (planet radii)",
+            .xLog = true,
+            .metric = "inscatter.rmse",
+            .columns = {"inscatter.rmse", "inscatter.rel", "beauty.hdrflip", "beauty.flip",
+                        "count.unbracketed_rays"},
+            .points = study::atmospherePoints,
+            .conclude = study::atmosphereConclude,
+        },
+        {
             .name = "methods",
             .title = "Surface methods",
             .question = "Every surface method at its defaults and along its main parameter, with "

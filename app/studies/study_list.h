@@ -68,6 +68,10 @@ void subpixelEmittersConclude(report::StudyResult& s);
 // The glowing ball's diameter on screen (pixels): the x of a point of its scene.
 double subpixelEmitterPixels(const LoadedScene& s);
 
+// ---- atmosphere (atmosphere.cpp) ----
+std::vector<StudyPoint> atmospherePoints(bool quick);
+void atmosphereConclude(report::StudyResult& s);
+
 // ---- methods (methods.cpp) ----
 std::vector<StudyPoint> methodsPoints(bool quick);
 void methodsConclude(report::StudyResult& s);

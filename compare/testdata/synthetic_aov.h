@@ -12,7 +12,8 @@ namespace twinrender::compare::testdata {
 
 // A sphere of radius `radius` (pixels) centred at (cx, cy), seen along -z, lit from the upper
 // left; its left half is body 0, its right half body 1; the lower right quarter is shadowed; an
-// emitter far to the right casts the irradiance 2 max(n.x, 0) (not added to the beauty).
+// emitter far to the right casts the irradiance 2 max(n.x, 0) (not added to the beauty); its
+// atmosphere scatters 0.05 (0.1 blue) over the disc's outer ring (0.9 < r^2 < 1; not added).
 inline core::Image syntheticAov(int width, int height, double cx, double cy, double radius) {
     core::Image img = core::aov::makeImage(width, height);
     auto ch = [&](const char* name) { return img.channelIndex(name); };
@@ -43,6 +44,10 @@ inline core::Image syntheticAov(int width, int height, double cx, double cy, dou
             img.at(x, y, ch("shadow")) = static_cast<float>(lit);
             for (const char* c : {"irradiance.R", "irradiance.G", "irradiance.B"})
                 img.at(x, y, ch(c)) = static_cast<float>(2.0 * std::max(nx, 0.0));
+            if (r2 > 0.9) {
+                img.at(x, y, ch("inscatter.R")) = img.at(x, y, ch("inscatter.G")) = 0.05f;
+                img.at(x, y, ch("inscatter.B")) = 0.1f;
+            }
         }
     return img;
 }
