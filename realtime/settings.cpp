@@ -404,6 +404,13 @@ Settings parseSettings(const core::ParameterTable& t) {
         t.getDouble("particles.sphere_normal_weight", d.particles.sphereNormalWeight, 0.0, 1.0);
     s.particles.cullHidden = t.getBool("particles.cull_hidden", d.particles.cullHidden);
     s.particles.minPixels = t.getDouble("particles.min_pixels", d.particles.minPixels, 0.0, 64.0);
+    s.particles.bodySpherePixels =
+        t.getDouble("particles.body_sphere_pixels", d.particles.bodySpherePixels, 0.0, 4096.0);
+    if (s.particles.bodySpherePixels > 0.0 && s.perSet == PerSetDevice::Gpu)
+        throw core::InputError(fmt::format(
+            "{}: the whole-body sphere is chosen per body on the CPU; set realtime.per_set = "
+            "\"cpu\" with it",
+            t.describe("particles.body_sphere_pixels")));
     s.particles.shape = t.getEnum("particles.shape", std::string(toString(d.particles.shape)),
                                   {"sphere", "ellipsoid"}) == "ellipsoid"
                             ? ParticleShape::Ellipsoid
@@ -474,6 +481,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.sphere_normal_weight", s.particles.sphereNormalWeight},
         {"realtime.particles.cull_hidden", s.particles.cullHidden},
         {"realtime.particles.min_pixels", s.particles.minPixels},
+        {"realtime.particles.body_sphere_pixels", s.particles.bodySpherePixels},
         {"realtime.particles.shape", toString(s.particles.shape)},
         {"realtime.particles.anisotropy.smoothing", s.particles.anisotropy.smoothing},
         {"realtime.particles.anisotropy.max_axis_ratio", s.particles.anisotropy.maxAxisRatio},

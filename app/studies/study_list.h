@@ -68,6 +68,12 @@ void subpixelEmittersConclude(report::StudyResult& s);
 // The glowing ball's diameter on screen (pixels): the x of a point of its scene.
 double subpixelEmitterPixels(const LoadedScene& s);
 
+// ---- body_sphere (body_sphere.cpp) ----
+std::vector<StudyPoint> bodySpherePoints(bool quick);
+void bodySphereConclude(report::StudyResult& s);
+// The x of a point: the ball's level-set sphere's radius on screen, pixels.
+double bodySphereRadiusPixels(const LoadedScene& s);
+
 // ---- methods (methods.cpp) ----
 std::vector<StudyPoint> methodsPoints(bool quick);
 void methodsConclude(report::StudyResult& s);

@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -27,11 +26,6 @@ std::vector<double> emitterDiameters(bool quick) {
                  : std::vector<double>{100.0, 30.0, 10.0, 3.0, 1.0, 0.5, 0.3, 0.1};
 }
 
-// Focal length in pixels of a camera `height` pixels high with that vertical field of view.
-double focalPixels(double height, double fovYDeg) {
-    return 0.5 * height / std::tan(0.5 * fovYDeg * std::numbers::pi / 180.0);
-}
-
 }  // namespace
 
 std::vector<StudyPoint> subpixelEmittersPoints(bool quick) {
@@ -40,16 +34,11 @@ std::vector<StudyPoint> subpixelEmittersPoints(bool quick) {
     for (const double minPixels : {0.0, 1.0})
         for (const double diameter : emitterDiameters(quick)) {
             const double distance = 2.0 * EMITTER_RADIUS * focalPixels(height, 40.0) / diameter;
-            StudyPoint p{minPixels == 0.0 ? "impostors" : "min_pixels 1",
-                         NAN,
-                         {set("realtime.particles.min_pixels", fmt::format("{}", minPixels)),
-                          set("camera.position", vec(0.0, -distance, 0.0))},
-                         ""};
-            if (quick) {
-                p.sets.push_back(set("camera.width", "64"));
-                p.sets.push_back(set("camera.height", "48"));
-            }
-            pts.push_back(std::move(p));
+            pts.push_back(
+                {minPixels == 0.0 ? "impostors" : "min_pixels 1", NAN,
+                 backedAway(set("realtime.particles.min_pixels", fmt::format("{}", minPixels)),
+                            distance, quick),
+                 ""});
         }
     return pts;
 }
