@@ -39,8 +39,8 @@ TEST(BodySphere, TheSphereCoversTheReferencesBall) {
     std::printf("30 px: coverage.iou particles %.4f, sphere %.4f\n", particles.at("coverage.iou"),
                 sphere.at("coverage.iou"));
     // The level set's outline is scalloped by the outer particles (about a tenth of the radius
-    // apart, 3 px here) around the mean radius the sphere takes: about 5 % of the disc's
-    // pixels lie in the scallops, half of them on each side.
+    // apart, 3 px here) around the mean radius the sphere takes; the pixels in the scallops
+    // differ: 0.989 on llvmpipe (the particles 0.975), 0.95 leaves room for another device.
     EXPECT_GT(sphere.at("coverage.iou"), 0.95);
     EXPECT_GT(sphere.at("coverage.iou"), particles.at("coverage.iou") - 0.03);
 }
