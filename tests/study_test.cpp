@@ -326,7 +326,7 @@ TEST(Study, BodySphereMatchesTheParticlesWhenSmall) {
         EXPECT_LE(upTo.get<double>(), hi);
         EXPECT_TRUE(s["facts"]["total_saved_at_threshold"].is_number());
     }
-    EXPECT_TRUE(s["facts"]["surface_ms"]["sphere"].is_object());
+    EXPECT_TRUE(s["facts"]["draw_ms"]["sphere"].is_object());
     EXPECT_TRUE(s["facts"].contains("normals_no_worse_up_to_px"));
 }
 
