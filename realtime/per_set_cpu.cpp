@@ -162,7 +162,8 @@ class CpuPerSetWork final : public PerSetWork {
         if (!bodySpheres.drawn.empty()) {
             if (!nothingDrawn) drawn = withoutReplaced(drawn, ps.body, bodySpheres.replaced);
             nothingDrawn = drawn.empty();
-            dropletFirsts = withoutReplaced(dropletFirsts, ps.body, bodySpheres.replaced);
+            if (droplets)
+                dropletFirsts = withoutReplaced(dropletFirsts, ps.body, bodySpheres.replaced);
         }
         if (droplets) {
             // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly: the droplets
