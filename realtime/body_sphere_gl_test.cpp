@@ -177,5 +177,33 @@ TEST_F(RendererTest, ABodyLargerThanTheThresholdIsDrawnAsItsParticles) {
     EXPECT_FALSE(same(off.image, below.image));
 }
 
+// A droplet of two sparse particles (body 1, a few pixels across) beside the ball (37 px): at
+// a threshold of 10 px the droplet becomes its body's sphere and the ball is drawn as before,
+// pixel for pixel.
+TEST_F(RendererTest, AReplacedBodyLeavesTheOtherBodiesDrawn) {
+    TestScene t = ball();
+    const std::size_t first = t.add(1, {1.8f, 0.5f, 0.0f}, 0.13f);
+    t.add(1, {1.95f, 0.5f, 0.0f}, 0.13f);
+    t.particles.bodies[1] = {.name = "pair", .begin = first, .end = first + 2};
+    t.finish();
+    const core::Frame off = render(t, cpuSettings(0.0));
+    const core::Frame on = render(t, cpuSettings(10.0));
+    EXPECT_EQ(on.counters.at("body_spheres"), 1.0);
+    EXPECT_GE(off.counters.at("droplets"), 1.0);
+    EXPECT_EQ(on.counters.at("droplets"), off.counters.at("droplets") - 1.0);
+    const Channels a{off.image}, b{on.image};
+    int ball = 0, pair = 0;
+    for (int y = 0; y < testing::HEIGHT; ++y)
+        for (int x = 0; x < testing::WIDTH; ++x) {
+            pair += b(x, y, "id") == 1.0f;
+            if (a(x, y, "id") != 0.0f) continue;
+            ++ball;
+            EXPECT_EQ(b(x, y, "id"), 0.0f) << x << " " << y;
+            EXPECT_EQ(b(x, y, "Z"), a(x, y, "Z")) << x << " " << y;
+        }
+    EXPECT_GT(ball, 3000);
+    EXPECT_GT(pair, 0);
+}
+
 }  // namespace
 }  // namespace twinrender::realtime

@@ -162,8 +162,10 @@ class CpuPerSetWork final : public PerSetWork {
         if (!bodySpheres.drawn.empty()) {
             if (!nothingDrawn) drawn = withoutReplaced(drawn, ps.body, bodySpheres.replaced);
             nothingDrawn = drawn.empty();
-            if (droplets)
+            if (droplets) {
                 dropletFirsts = withoutReplaced(dropletFirsts, ps.body, bodySpheres.replaced);
+                frame.counters["droplets"] = static_cast<double>(dropletFirsts.size());
+            }
         }
         if (droplets) {
             // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly: the droplets
