@@ -6,8 +6,7 @@
 #include <glm/geometric.hpp>
 #include <vector>
 
-#include "core/emitters.h"
-#include "core/sph_kernel.h"
+#include "core/body_sphere.h"
 
 namespace twinrender::core {
 
@@ -52,66 +51,17 @@ glm::vec3 sunTransmittance(const Atmosphere& a, const AtmosphereSun& sun, glm::v
 
 }  // namespace
 
-double levelSetRadius(const ParticleSet& ps, const BodyInfo& body, const glm::dvec3& centre,
-                      double surfaceLevel) {
-    if (body.end <= body.begin) return 0.0;
-    double reach = 0.0, hMin = INFINITY;
-    for (std::size_t i = body.begin; i < body.end; ++i) {
-        reach = std::max(reach, glm::length(glm::dvec3(ps.position[i]) - centre) + 2.0 * ps.h[i]);
-        hMin = std::min(hMin, double(ps.h[i]));
-    }
-    double sum = 0.0;
-    int directions = 0;
-    std::vector<std::size_t> near;
-    for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                if (dx == 0 && dy == 0 && dz == 0) continue;
-                const glm::dvec3 d = glm::normalize(glm::dvec3(dx, dy, dz));
-                // The particles whose support meets the ray from the centre.
-                near.clear();
-                for (std::size_t i = body.begin; i < body.end; ++i) {
-                    const glm::dvec3 p = glm::dvec3(ps.position[i]) - centre;
-                    const double along = std::max(glm::dot(p, d), 0.0);
-                    if (glm::length(p - along * d) < 2.0 * ps.h[i]) near.push_back(i);
-                }
-                const auto field = [&](double r) {
-                    double phi = 0.0;
-                    for (std::size_t i : near)
-                        phi += ps.volume[i] *
-                               m4Kernel(glm::length(centre + r * d - glm::dvec3(ps.position[i])),
-                                        double(ps.h[i]));
-                    return phi;
-                };
-                // From outside inward by a quarter of the smallest h to the first point at the
-                // level, then bisection to 1e-6 of the reach.
-                double hi = reach, lo = reach;
-                while (lo > 0.0 && field(lo) < surfaceLevel) {
-                    hi = lo;
-                    lo = std::max(lo - 0.25 * hMin, 0.0);
-                }
-                if (field(lo) < surfaceLevel) continue;  // the field never reaches the level
-                while (hi - lo > 1e-6 * reach) {
-                    const double mid = 0.5 * (lo + hi);
-                    (field(mid) >= surfaceLevel ? lo : hi) = mid;
-                }
-                sum += 0.5 * (lo + hi);
-                ++directions;
-            }
-    return directions > 0 ? sum / directions : 0.0;
-}
-
 std::optional<Atmosphere> sceneAtmosphere(const Scene& scene, const SceneParticles& particles,
                                           double surfaceLevel) {
     for (std::uint32_t b = 0; b < scene.bodies.size() && b < particles.bodies.size(); ++b) {
         if (!scene.bodies[b].atmosphere) continue;
         const AtmosphereDesc& d = *scene.bodies[b].atmosphere;
-        const BodySphere sphere = bodySphere(particles.particles, particles.bodies[b]);
-        const double inner = d.radius ? *d.radius
-                                      : levelSetRadius(particles.particles, particles.bodies[b],
-                                                       sphere.centre, surfaceLevel);
+        const BodyBounds bounds = bodyBounds(particles.particles, particles.bodies[b]);
+        const double inner =
+            d.radius ? *d.radius
+                     : levelSetRadius(particles.particles, particles.bodies[b], surfaceLevel);
         return Atmosphere{.body = b,
-                          .centre = sphere.centre,
+                          .centre = bounds.centre,
                           .innerRadius = float(inner),
                           .outerRadius = float(inner + d.thickness),
                           .scaleHeight = float(d.scaleHeight),

@@ -37,21 +37,13 @@ struct Atmosphere {
     int steps = 32;
 };
 
-// The scene's atmosphere, if a body has one: its shell about the centre of the body's sphere
-// (bodySphere, core/emitters.h), the inner radius atmosphere.radius when given, else the body's
-// level-set radius at `surfaceLevel` (levelSetRadius; each renderer gives its own level, the
+// The scene's atmosphere, if a body has one: its shell about the centre of the body's bounds
+// (core/body_sphere.h, bodyBounds), the inner radius atmosphere.radius when given, else the
+// body's level-set radius at `surfaceLevel` (levelSetRadius; each renderer gives its own level, the
 // raymarcher's raymarch.surface_level and the real-time particles.surface_level, both 0.13 by
 // default).
 std::optional<Atmosphere> sceneAtmosphere(const Scene& scene, const SceneParticles& particles,
                                           double surfaceLevel);
-
-// Where the body's colour field (sum of v W(|x - x_j|, h_j) over its particles) falls to
-// `surfaceLevel` seen from outside, along 26 directions from `centre` (the cube's faces, edges
-// and corners), averaged: the radius of the sphere its surface lies about. A packed ball's level
-// set lies about 0.9 h above its outermost particles, not at them. 0 for a body without
-// particles.
-double levelSetRadius(const ParticleSet& particles, const BodyInfo& body, const glm::dvec3& centre,
-                      double surfaceLevel);
 
 // The sun as the model sees it: the unit direction toward the sun and its irradiance.
 struct AtmosphereSun {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/body_sphere.h"
 #include "core/sph_kernel.h"
 
 namespace tc = twinrender::core;
@@ -123,7 +124,7 @@ TEST(Atmosphere, TheInnerRadiusIsTheLevelSetsOfOneParticle) {
         const double mid = 0.5 * (lo + hi);
         (0.02 * tc::m4Kernel(mid, 0.4) > level ? lo : hi) = mid;
     }
-    // Bisection to 1e-6 of the field's reach (0.8) in each direction.
-    EXPECT_NEAR(tc::levelSetRadius(ps, body, glm::dvec3(ps.position[0]), level), lo, 1e-6);
-    EXPECT_EQ(tc::levelSetRadius(ps, body, glm::dvec3(ps.position[0]), 1e9), 0.0);
+    // Bisection to 1e-7 of the field's reach (0.8) in each direction, the field in floats.
+    EXPECT_NEAR(tc::levelSetRadius(ps, body, level), lo, 1e-6);
+    EXPECT_EQ(tc::levelSetRadius(ps, body, 1e9), 0.0);
 }

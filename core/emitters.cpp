@@ -1,33 +1,9 @@
 #include "core/emitters.h"
 
-#include <algorithm>
-#include <glm/geometric.hpp>
-
+#include "core/body_sphere.h"
 #include "core/shading.h"
 
 namespace twinrender::core {
-
-BodySphere bodySphere(const ParticleSet& ps, const BodyInfo& info) {
-    BodySphere out;
-    if (info.end <= info.begin) return out;
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    double hSum = 0.0;
-    for (std::size_t i = info.begin; i < info.end; ++i) {
-        const glm::dvec3 p(ps.position[i]);
-        lo = glm::min(lo, p - 2.0 * double(ps.h[i]));
-        hi = glm::max(hi, p + 2.0 * double(ps.h[i]));
-        hSum += ps.h[i];
-    }
-    out.centre = 0.5 * (lo + hi);
-    double centres = 0.0;
-    for (std::size_t i = info.begin; i < info.end; ++i) {
-        const double d = glm::length(glm::dvec3(ps.position[i]) - out.centre);
-        out.radius = std::max(out.radius, d + 2.0 * double(ps.h[i]));
-        centres = std::max(centres, d);
-    }
-    out.surfaceRadius = centres + 0.5 * hSum / double(info.end - info.begin);
-    return out;
-}
 
 std::vector<EmittingBody> emittingBodies(const SceneParticles& particles,
                                          const std::vector<Material>& materials) {
@@ -45,12 +21,15 @@ std::vector<EmittingBody> emittingBodies(const SceneParticles& particles,
             sum += glm::dvec3(e);
         }
         if (!emits) continue;
-        const BodySphere sphere = bodySphere(ps, info);
-        out.push_back({.body = b,
-                       .centre = sphere.centre,
-                       .radius = sphere.radius,
-                       .surfaceRadius = sphere.surfaceRadius,
-                       .meanRadiance = sum / double(info.end - info.begin)});
+        const double n = double(info.end - info.begin);
+        const BodyBounds bounds = bodyBounds(ps, info);
+        EmittingBody e;
+        e.body = b;
+        e.centre = bounds.centre;
+        e.radius = bounds.radius;
+        e.surfaceRadius = bounds.particles + 0.5 * bounds.meanH;
+        e.meanRadiance = sum / n;
+        out.push_back(e);
     }
     return out;
 }

@@ -28,16 +28,6 @@ struct EmittingBody {
     glm::dvec3 meanRadiance{0.0};
 };
 
-// The spheres of one body's particles (EmittingBody's centre, radius and surfaceRadius): the
-// sphere around its supports and the sphere its surface about lies on. Also the inner sphere of
-// an atmosphere (core/atmosphere.h). A body without particles gives radius 0.
-struct BodySphere {
-    glm::dvec3 centre{0.0};
-    double radius = 0.0;
-    double surfaceRadius = 0.0;
-};
-BodySphere bodySphere(const ParticleSet& particles, const BodyInfo& body);
-
 // The bodies that emit anywhere (a particle with non-zero emission), in body order.
 std::vector<EmittingBody> emittingBodies(const SceneParticles& particles,
                                          const std::vector<Material>& materials);

@@ -83,7 +83,7 @@ struct AtmosphereDesc {
     glm::dvec3 absorption{0.0};            // atmosphere.absorption: per scene unit, >= 0
     double phaseG = 0.0;  // atmosphere.phase_g: Henyey-Greenstein asymmetry, [-0.99, 0.99]
     // atmosphere.radius: the inner sphere's radius, scene units; unset: the body's level-set
-    // radius (core/atmosphere.h, levelSetRadius).
+    // radius (core/body_sphere.h, levelSetRadius).
     std::optional<double> radius;
     int steps = 32;  // atmosphere.steps: quadrature steps along a view ray and a sun path, 1..256
 };

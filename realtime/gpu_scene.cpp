@@ -47,6 +47,28 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& ps, const glm::d
     return out;
 }
 
+std::vector<GpuParticle> packBodySpheres(std::span<const core::BodySphere> spheres,
+                                         std::span<const core::BodyInfo> bodies,
+                                         const glm::dvec3& camera) {
+    std::vector<GpuParticle> out(spheres.size());
+    for (std::size_t k = 0; k < spheres.size(); ++k) {
+        const core::BodySphere& s = spheres[k];
+        const core::BodyInfo& body = bodies[s.body];
+        if (s.body >= MAX_EXACT_INDEX || body.material >= MAX_EXACT_INDEX)
+            throw std::invalid_argument(
+                fmt::format("body {}: its index or material {} is not exact as a float id", s.body,
+                            body.material));
+        GpuParticle& g = out[k];
+        g.positionRadius = glm::vec4(glm::vec3(s.centre - camera), static_cast<float>(s.radius));
+        g.normalU = glm::vec4(glm::vec3(body.frame[0]), 0.0f);
+        g.dudxV = glm::vec4(glm::vec3(body.frame[1]), 0.0f);
+        g.dvdxBody = glm::vec4(glm::vec3(body.frame[2]), static_cast<float>(s.body));
+        g.glowMaterial = glm::vec4(s.glow, static_cast<float>(body.material));
+        g.hessianDiagonal = glm::vec4(glm::vec3(body.center - s.centre), 0.0f);
+    }
+    return out;
+}
+
 std::vector<GpuEllipsoid> packEllipsoids(std::span<const Ellipsoid> ellipsoids,
                                          std::span<const std::uint32_t> indices) {
     const std::size_t n = indices.empty() ? ellipsoids.size() : indices.size();

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "core/body_sphere.h"
 #include "core/particles.h"
 #include "core/texture.h"
 #include "realtime/anisotropy.h"
@@ -38,6 +39,15 @@ std::vector<GpuParticle> packParticles(const core::ParticleSet& particles,
                                        std::span<const float> radii,
                                        std::span<const std::uint32_t> indices = {},
                                        std::span<const FieldNormal> fieldNormals = {});
+
+// realtime.particles.body_sphere_pixels: whole bodies drawn as one sphere each, in GpuParticle
+// records that the BODY_SPHERE programs read (shaders/particles.glsl): positionRadius the
+// sphere's centre (camera-relative) and radius, normalU, dudxV and dvdxBody.xyz the columns of
+// the body's uv frame (core::BodyInfo::frame), hessianDiagonal.xyz the uv frame's origin
+// relative to the sphere's centre, glowMaterial the particles' mean glow and the body's material.
+std::vector<GpuParticle> packBodySpheres(std::span<const core::BodySphere> spheres,
+                                         std::span<const core::BodyInfo> bodies,
+                                         const glm::dvec3& cameraPosition);
 
 // shaders/particles.glsl, struct EllipsoidRecord (std430; realtime.particles.shape =
 // "ellipsoid"): the semi-axis vectors of one packed particle's ellipsoid (world space, scene

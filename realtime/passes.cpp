@@ -23,10 +23,17 @@ void SceneBuffers::drawImpostors(ProgramCache& programs, const char* fragment,
     bind();
     if (frame) frame->bindUniform(0);
     draw.draw();
-    if (!droplets) return;
-    programs.get("impostor.vert", fragment, impostorDefines(true, defines)).use();
-    droplets->ellipsoids->bindStorage(4);
-    droplets->draw.draw();
+    if (droplets) {
+        programs.get("impostor.vert", fragment, impostorDefines(true, defines)).use();
+        droplets->ellipsoids->bindStorage(4);
+        droplets->draw.draw();
+    }
+    if (bodySpheres) {
+        programs.get("impostor.vert", fragment, bodySphereDefines(defines)).use();
+        bodySpheres->records->bindStorage(0);
+        bodySpheres->draw.draw();
+        particles->bindStorage(0);
+    }
 }
 
 void DrawList::draw() const {
@@ -38,6 +45,11 @@ void DrawList::draw() const {
 
 std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::string> defines) {
     if (ellipsoids) defines.emplace_back("ELLIPSOID");
+    return defines;
+}
+
+std::vector<std::string> bodySphereDefines(std::vector<std::string> defines) {
+    defines.emplace_back("BODY_SPHERE");
     return defines;
 }
 

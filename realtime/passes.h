@@ -62,11 +62,18 @@ struct SceneBuffers {
         DrawList draw;
     };
     std::optional<Droplets> droplets;
+    // realtime.particles.body_sphere_pixels: the bodies drawn as one sphere each
+    // (packBodySpheres), after the particles, with the BODY_SPHERE variant (bodySphereDefines).
+    struct BodySpheres {
+        const gl::Buffer* records;  // GpuParticle[] as packBodySpheres fills them
+        DrawList draw;
+    };
+    std::optional<BodySpheres> bodySpheres;
 
     void bind() const;
     // Draws the particles with impostor.vert and FRAGMENT (impostorDefines with `defines`),
-    // then the droplets' ellipsoids; leaves the particles' buffers bound. `frame`: other
-    // frame uniforms than `uniforms` (another projection), left bound.
+    // then the droplets' ellipsoids, then the body spheres; leaves the particles' buffers bound.
+    // `frame`: other frame uniforms than `uniforms` (another projection), left bound.
     void drawImpostors(ProgramCache& programs, const char* fragment,
                        const std::vector<std::string>& defines,
                        const gl::Buffer* frame = nullptr) const;
@@ -75,6 +82,9 @@ struct SceneBuffers {
 // `defines` with the one that selects the impostor shape of impostor.vert, gbuffer.frag and
 // shadow.frag: ELLIPSOID when `ellipsoids`.
 std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::string> defines);
+
+// `defines` with BODY_SPHERE: the whole-body sphere's variant of impostor.vert and its fragment.
+std::vector<std::string> bodySphereDefines(std::vector<std::string> defines);
 
 // The #define selecting the depth encoding in common.glsl.
 const char* depthDefine(DepthMode mode);

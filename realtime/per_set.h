@@ -34,6 +34,8 @@ struct PerSetDraws {
     DrawList draw;                                   // the particles drawn
     const gl::Buffer* ellipsoids = nullptr;          // GpuEllipsoid[] (shape = "ellipsoid")
     std::optional<SceneBuffers::Droplets> droplets;  // droplets drawn apart from spheres
+    // particles.body_sphere_pixels: the bodies drawn as one sphere each (per_set = "cpu").
+    std::optional<SceneBuffers::BodySpheres> bodySpheres;
     // normal = "gradient": the kernels to splat (the CPU's), or the grid to gather the gradient
     // through (the GPU's).
     const gl::Buffer* kernels = nullptr;  // GpuKernel[]

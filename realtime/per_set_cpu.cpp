@@ -7,6 +7,7 @@
 
 #include "core/derived_attributes.h"
 #include "realtime/anisotropy.h"
+#include "realtime/body_sphere_lod.h"
 #include "realtime/droplets.h"
 #include "realtime/field_normal.h"
 #include "realtime/gl/error.h"
@@ -132,12 +133,23 @@ class CpuPerSetWork final : public PerSetWork {
                 ellipsoids = &anisotropicWithDroplets;
             }
         }
+        // realtime.particles.body_sphere_pixels: the bodies small on screen drawn as one sphere.
+        BodySphereChoice bodySpheres;
+        if (settings.particles.bodySpherePixels > 0.0)
+            bodySpheres = chooseBodySpheres(
+                mBodySpheres.get(
+                    ps,
+                    [&] {
+                        return core::bodySpheres(in.particles, settings.particles.surfaceLevel);
+                    },
+                    settings.particles.surfaceLevel, std::span<const glm::vec3>(ps.glow)),
+                in.particles.bodies.size(), camera, settings.particles.bodySpherePixels);
         // The culling test is exact for spheres only: an ellipsoid inside the union of its
         // neighbours' bounding spheres may still show between their ellipsoids. Droplets are
         // culled as nothing and drawn whatever the spheres hide.
         std::span<const float> cullRadii = droplets ? droplets->cullRadii : radii;
         std::span<const std::uint32_t> culled;
-        if (settings.particles.cullHidden && !anisotropic &&
+        if (settings.particles.cullHidden && !anisotropic && !bodySpheres.touchesOthers &&
             cullingIsExact(ps, camera, cullRadii)) {
             culled = timed(
                 "cull", [&]() -> auto& { return mCuller.unoccluded(ps, cullRadii); });
@@ -145,19 +157,29 @@ class CpuPerSetWork final : public PerSetWork {
         }
         bool nothingDrawn = false;
         std::vector<std::uint32_t> drawn = withSurface(culled, cullRadii, nothingDrawn);
+        std::vector<std::uint32_t> dropletFirsts;
+        if (droplets) dropletFirsts = droplets->firsts;
+        if (!bodySpheres.drawn.empty()) {
+            if (!nothingDrawn) drawn = withoutReplaced(drawn, ps.body, bodySpheres.replaced);
+            nothingDrawn = drawn.empty();
+            if (droplets) {
+                dropletFirsts = withoutReplaced(dropletFirsts, ps.body, bodySpheres.replaced);
+                frame.counters["droplets"] = static_cast<double>(dropletFirsts.size());
+            }
+        }
         if (droplets) {
             // cullRadii holds zeros, so `drawn` lists the spheres drawn explicitly: the droplets
             // go first (apart) or in index order (every particle an ellipsoid).
             std::vector<std::uint32_t> all;
             if (dropletsApart) {
-                all = droplets->firsts;
+                all = dropletFirsts;
                 all.insert(all.end(), drawn.begin(), drawn.end());
             } else {
-                std::merge(drawn.begin(), drawn.end(), droplets->firsts.begin(),
-                           droplets->firsts.end(), std::back_inserter(all));
+                std::merge(drawn.begin(), drawn.end(), dropletFirsts.begin(), dropletFirsts.end(),
+                           std::back_inserter(all));
             }
             drawn = std::move(all);
-            nothingDrawn = false;
+            nothingDrawn = drawn.empty();
         }
         frame.counters["particles_drawn"] =
             nothingDrawn ? 0.0 : static_cast<double>(drawn.empty() ? ps.size() : drawn.size());
@@ -173,8 +195,7 @@ class CpuPerSetWork final : public PerSetWork {
                 // A droplet's normal is its ellipsoid's, not a model about its first particle.
                 withDropletNormals.assign(fieldNormalModels.begin(), fieldNormalModels.end());
                 for (std::size_t k = 0; k < drawn.size(); ++k)
-                    if (std::binary_search(droplets->firsts.begin(), droplets->firsts.end(),
-                                           drawn[k]))
+                    if (std::binary_search(dropletFirsts.begin(), dropletFirsts.end(), drawn[k]))
                         withDropletNormals[k] = dropletNormalModel(droplets->ellipsoids[drawn[k]]);
                 fieldNormalModels = withDropletNormals;
             }
@@ -189,9 +210,9 @@ class CpuPerSetWork final : public PerSetWork {
         out.particles = &mParticles;
         out.draw.count = gpuParticles.size();
         if (dropletsApart) {
-            const std::size_t count = droplets->firsts.size();
+            const std::size_t count = dropletFirsts.size();
             const std::vector<GpuEllipsoid> packed =
-                packEllipsoids(droplets->ellipsoids, droplets->firsts);
+                packEllipsoids(droplets->ellipsoids, dropletFirsts);
             mEllipsoids = gl::Buffer::of(std::span<const GpuEllipsoid>(packed));
             out.droplets = SceneBuffers::Droplets{&mEllipsoids, {count}};
             out.draw = {gpuParticles.size() - count, nullptr, 0, count};
@@ -201,12 +222,25 @@ class CpuPerSetWork final : public PerSetWork {
             mEllipsoids = gl::Buffer::of(std::span<const GpuEllipsoid>(packed));
             out.ellipsoids = &mEllipsoids;
         }
+        frame.counters["body_spheres"] = static_cast<double>(bodySpheres.drawn.size());
+        if (!bodySpheres.drawn.empty()) {
+            const std::vector<GpuParticle> packed =
+                packBodySpheres(bodySpheres.drawn, in.particles.bodies, in.scene.camera.position);
+            mBodySphereRecords = gl::Buffer::of(std::span<const GpuParticle>(packed));
+            out.bodySpheres = SceneBuffers::BodySpheres{&mBodySphereRecords, {packed.size()}};
+        }
         if (usesKernels(settings)) {
-            const std::vector<std::uint32_t>& reaching = timed(
+            const std::vector<std::uint32_t>& surfaceKernels = timed(
                 "kernels", [&]() -> auto& {
                     return mSurfaceKernels.kernels(ps, settings.particles.surfaceLevel);
                 });
             built |= !mSurfaceKernels.reused();
+            // A body sphere keeps its own normal: its body's kernels are not splatted.
+            std::vector<std::uint32_t> withoutSpheres;
+            if (!bodySpheres.drawn.empty() && !surfaceKernels.empty())
+                withoutSpheres = withoutReplaced(surfaceKernels, ps.body, bodySpheres.replaced);
+            const std::vector<std::uint32_t>& reaching =
+                bodySpheres.drawn.empty() ? surfaceKernels : withoutSpheres;
             frame.counters["kernels_splatted"] = static_cast<double>(reaching.size());
             if (!reaching.empty()) {
                 const std::vector<GpuKernel> packed =
@@ -233,7 +267,10 @@ class CpuPerSetWork final : public PerSetWork {
     OcclusionCuller mCuller;             // the culling (view-independent)
     FieldNormalCache mFieldNormals;      // the G-buffer's field normal models
     SurfaceKernelCache mSurfaceKernels;  // the kernels the gradient pass adds
-    gl::Buffer mParticles, mEllipsoids, mKernels;  // the frame's records
+    // The bodies' level-set spheres (particles.body_sphere_pixels), and their inputs: the surface
+    // level and the glow they average.
+    SetCache<std::vector<core::BodySphere>, double, std::span<const glm::vec3>> mBodySpheres;
+    gl::Buffer mParticles, mEllipsoids, mKernels, mBodySphereRecords;  // the frame's records
 };
 
 }  // namespace

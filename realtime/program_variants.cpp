@@ -97,6 +97,15 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
             add("impostor.vert", "gbuffer.frag",
                 impostorDefines(ellipsoids, emitterTargetDefines(settings.depth)));
     }
+    // Bodies drawn as one sphere each (particles.body_sphere_pixels), after the particles.
+    if (settings.particles.bodySpherePixels > 0.0) {
+        if (usesShadowMap(settings.shadows))
+            add("impostor.vert", "shadow.frag", bodySphereDefines({"SHADOW_PASS"}));
+        add("impostor.vert", "gbuffer.frag", bodySphereDefines({depthDefine(settings.depth)}));
+        if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
+            add("impostor.vert", "gbuffer.frag",
+                bodySphereDefines(emitterTargetDefines(settings.depth)));
+    }
     if (settings.particles.normal == NormalModel::Gradient) {
         add("support.vert", "gradient_splat.frag", {depthDefine(settings.depth)});
         add("fullscreen.vert", "gradient_resolve.frag", {});
@@ -228,6 +237,17 @@ std::vector<ProgramVariant> allProgramVariants() {
         Settings a;
         a.atmosphere.endPoint = endPoint;
         for (ProgramVariant& v : programVariants(a, false, false, true))
+            all.try_emplace(v.name(), std::move(v));
+    }
+    // The whole-body sphere's, in every depth encoding, with the shadow map and the emitter
+    // target.
+    for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
+        Settings a;
+        a.depth = depth;
+        a.perSet = PerSetDevice::Cpu;
+        a.particles.bodySpherePixels = 1.0;
+        a.emissive.method = EmissiveMethod::SsemTarget;
+        for (ProgramVariant& v : programVariants(a, true, true))
             all.try_emplace(v.name(), std::move(v));
     }
     // The error split's (error_split.h): the reference's depth, and shade with its light.

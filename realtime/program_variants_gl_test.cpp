@@ -62,6 +62,8 @@ TEST_F(RendererTest, AFrameBuildsOnlyTheProgramsItsSettingsList) {
     cases[4].depth = DepthMode::Standard;
     cases[5].particles.radius = RadiusModel::Fixed;
     cases[5].bloom.enabled = false;
+    cases[5].perSet = PerSetDevice::Cpu;
+    cases[5].particles.bodySpherePixels = 4096.0;  // the slab drawn as one sphere
     for (const Settings& s : cases) {
         Device device(context);
         Renderer renderer(device, s);

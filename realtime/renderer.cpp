@@ -214,7 +214,8 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
                   .materials = gl::Buffer::of(std::span<const GpuMaterial>(gpuMaterials.records)),
                   .draw = {},
                   .ellipsoids = nullptr,
-                  .droplets = std::nullopt},
+                  .droplets = std::nullopt,
+                  .bodySpheres = std::nullopt},
         .draws = {}};
     const double sceneMs = msSince(start);
     out.draws = d.perSet(settings).prepare(
@@ -226,6 +227,7 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     out.scene.draw = out.draws.draw;
     out.scene.ellipsoids = out.draws.ellipsoids;
     out.scene.droplets = out.draws.droplets;
+    out.scene.bodySpheres = out.draws.bodySpheres;
     frame.timingsMs["upload"] += sceneMs;  // the uniforms and materials too
     return out;
 }

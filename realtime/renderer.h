@@ -49,11 +49,11 @@ class Renderer final : public core::Renderer {
     // The AOV image (linear beauty without bloom, Z = eye depth, ...), the display image (bloom
     // when enabled, then core's tonemapper), renderer "realtime", device = GL_RENDERER,
     // settings by dotted key, counters (particles_drawn, kernels_splatted, occlusion_spheres,
-    // point_lights), timingsMs: total, radius, anisotropy, cull, upload, shadow, gbuffer,
-    // normals, ssss, ao, emissive, shade, post, readback (GPU timer queries for the passes; wall
-    // clock for the rest; a stage that did not run reports 0) and compile (not part of total).
-    // Never calls `progress`. Throws core::InputError when the image or shadow map exceeds the
-    // device's limits, gl::Error (naming the pass) when GL fails.
+    // point_lights, body_spheres), timingsMs: total, radius, anisotropy, cull, upload, shadow,
+    // gbuffer, normals, ssss, ao, emissive, shade, post, readback (GPU timer queries for the
+    // passes; wall clock for the rest; a stage that did not run reports 0) and compile (not part of
+    // total). Never calls `progress`. Throws core::InputError when the image or shadow map exceeds
+    // the device's limits, gl::Error (naming the pass) when GL fails.
     core::Frame render(const core::RenderInput& input) override;
 
     // The next render of the same size on this device writes its images into the old

@@ -446,6 +446,13 @@ Settings parseSettings(const core::ParameterTable& t) {
             "{}: particles.halo_pixels and particles.min_pixels are two ways to draw a sub-pixel "
             "emitter; set one of them (the other 0)",
             t.describe("particles.halo_pixels")));
+    s.particles.bodySpherePixels =
+        t.getDouble("particles.body_sphere_pixels", d.particles.bodySpherePixels, 0.0, 4096.0);
+    if (s.particles.bodySpherePixels > 0.0 && s.perSet == PerSetDevice::Gpu)
+        throw core::InputError(fmt::format(
+            "{}: the whole-body sphere is chosen per body on the CPU; set realtime.per_set = "
+            "\"cpu\" with it",
+            t.describe("particles.body_sphere_pixels")));
     s.particles.shape = t.getEnum("particles.shape", std::string(toString(d.particles.shape)),
                                   {"sphere", "ellipsoid"}) == "ellipsoid"
                             ? ParticleShape::Ellipsoid
@@ -518,6 +525,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.particles.cull_hidden", s.particles.cullHidden},
         {"realtime.particles.min_pixels", s.particles.minPixels},
         {"realtime.particles.halo_pixels", s.particles.haloPixels},
+        {"realtime.particles.body_sphere_pixels", s.particles.bodySpherePixels},
         {"realtime.particles.shape", toString(s.particles.shape)},
         {"realtime.particles.anisotropy.smoothing", s.particles.anisotropy.smoothing},
         {"realtime.particles.anisotropy.max_axis_ratio", s.particles.anisotropy.maxAxisRatio},

@@ -169,6 +169,12 @@ struct ParticleSettings {
     // the threshold; the sphere is still drawn, reflecting light, with no emission of its own.
     // Per impostor, spheres only (droplets' ellipsoids keep their emission).
     double haloPixels = 0.0;
+    // particles.body_sphere_pixels: a body whose level-set sphere (core/body_sphere.h) projects
+    // to a radius below this many pixels is drawn as that one analytic sphere (its normal the
+    // sphere's, uv its body-local spherical angles, glow its particles' mean) instead of its
+    // particles, 0..4096 (0: off, every particle drawn). Decided per body per frame on the CPU:
+    // per_set = "cpu" only. Study body_sphere.
+    double bodySpherePixels = 0.0;
     // particles.shape: "sphere" | "ellipsoid".
     ParticleShape shape = ParticleShape::Sphere;
     AnisotropySettings anisotropy;  // shape = "ellipsoid"

@@ -27,7 +27,8 @@ TEST(Settings, DefaultsFollowScenesMd) {
     EXPECT_TRUE(s.ssss.enabled);
     EXPECT_TRUE(s.ssss.separable);
     EXPECT_TRUE(s.particles.cullHidden);
-    EXPECT_EQ(s.particles.minPixels, 0.0);  // off: every impostor at its own size
+    EXPECT_EQ(s.particles.minPixels, 0.0);         // off: every impostor at its own size
+    EXPECT_EQ(s.particles.bodySpherePixels, 0.0);  // off: every body drawn as its particles
 }
 
 TEST(Settings, ReadsEveryKey) {
@@ -42,6 +43,7 @@ TEST(Settings, ReadsEveryKey) {
                                             {"particles.droplet_atoms", std::int64_t(5)},
                                             {"particles.interior_level", 0.9},
                                             {"particles.min_pixels", 1.5},
+                                            {"particles.body_sphere_pixels", 8.0},
                                             {"shadow_map.resolution", std::int64_t(512)},
                                             {"shadow_map.bias", 0.25},
                                             {"shadow_map.slope_bias", 3.0},
@@ -66,6 +68,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(s.particles.dropletAtoms, 5);
     EXPECT_DOUBLE_EQ(s.particles.interiorLevel, 0.9);
     EXPECT_DOUBLE_EQ(s.particles.minPixels, 1.5);
+    EXPECT_DOUBLE_EQ(s.particles.bodySpherePixels, 8.0);
     EXPECT_EQ(s.shadowMap.resolution, 512);
     EXPECT_DOUBLE_EQ(s.shadowMap.bias, 0.25);
     EXPECT_DOUBLE_EQ(s.shadowMap.slopeBias, 3.0);
@@ -89,7 +92,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
     EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
-    EXPECT_EQ(j.size(), 78u);
+    EXPECT_EQ(j.at("realtime.particles.body_sphere_pixels"), 8.0);
+    EXPECT_EQ(j.size(), 79u);
 }
 
 TEST(Settings, ReadsTheAtmosphereKeys) {
@@ -108,6 +112,13 @@ TEST(Settings, ReadsTheAtmosphereKeys) {
     EXPECT_THROW(parseSettings(table({{"atmosphere.blend_near", 5.0}})), core::InputError);
     EXPECT_THROW(parseSettings(table({{"atmosphere.end_point", std::string("depth")}})),
                  core::InputError);
+}
+
+// The spheres replace particles in the CPU's packing; the GPU's packs every particle.
+TEST(Settings, TheWholeBodySphereNeedsThePerSetWorkOnTheCpu) {
+    EXPECT_THROW(parseSettings(table({{"particles.body_sphere_pixels", 4.0}})),
+                 twinrender::core::InputError);
+    EXPECT_NO_THROW(parseSettings(table({{"particles.body_sphere_pixels", 0.0}})));
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {

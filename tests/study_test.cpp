@@ -344,6 +344,35 @@ TEST(Study, AtmosphereEveryEndPointAlongTheCameraDistance) {
     EXPECT_NE(s["finding"].get<std::string>().find(" wins "), std::string::npos);
 }
 
+TEST(Study, BodySphereMatchesTheParticlesWhenSmall) {
+    const json s = runStudy("body_sphere", 2 * 3, "coverage.iou");
+    ASSERT_FALSE(s.is_discarded());
+    const auto particles = series(s, "particles"), sphere = series(s, "sphere");
+    ASSERT_EQ(particles.size(), 3u);
+    ASSERT_EQ(sphere.size(), 3u);
+    // The x is the ball's measured radius on screen, the same for both series.
+    for (std::size_t i = 0; i < 3; ++i)
+        EXPECT_DOUBLE_EQ(particles[i]["x"].get<double>(), sphere[i]["x"].get<double>());
+    double lo = INFINITY, hi = 0.0;
+    for (const json& r : s["rows"]) {
+        lo = std::min(lo, r["x"].get<double>());
+        hi = std::max(hi, r["x"].get<double>());
+        EXPECT_GT(metric(r, "coverage.iou"), 0.5) << r;
+    }
+    EXPECT_GT(hi, 10.0);
+    EXPECT_LT(lo, 3.0);
+    // The facts are the rows': the largest size up to which the sphere is no worse is one of
+    // them (or none), and the time saved is there.
+    const json& upTo = s["facts"]["no_worse_up_to_px"];
+    if (upTo.is_number()) {
+        EXPECT_GE(upTo.get<double>(), lo);
+        EXPECT_LE(upTo.get<double>(), hi);
+        EXPECT_TRUE(s["facts"]["total_saved_at_threshold"].is_number());
+    }
+    EXPECT_TRUE(s["facts"]["draw_ms"]["sphere"].is_object());
+    EXPECT_TRUE(s["facts"].contains("normals_no_worse_up_to_px"));
+}
+
 TEST(Study, ViewAngleFromFaceOnToGrazing) {
     const json s = runStudy("view_angle", 2 * 3, "normal.mean_deg");
     ASSERT_FALSE(s.is_discarded());
@@ -591,7 +620,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
               std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
-    ASSERT_EQ(all["studies"].size(), 13u);
+    ASSERT_EQ(all["studies"].size(), 14u);
     const std::string page = readText(out / "studies" / "index.html");
     for (const json& s : all["studies"]) {
         EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;

@@ -5,11 +5,26 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <numbers>
 
 #include "compare/metric_table.h"
 #include "compare/thresholds.h"
 
 namespace twinrender::app::study {
+
+double focalPixels(double height, double fovYDeg) {
+    return 0.5 * height / std::tan(0.5 * fovYDeg * std::numbers::pi / 180.0);
+}
+
+std::vector<std::string> backedAway(std::string first, double distance, bool quick) {
+    std::vector<std::string> sets = {std::move(first),
+                                     set("camera.position", vec(0.0, -distance, 0.0))};
+    if (quick) {
+        sets.push_back(set("camera.width", "64"));
+        sets.push_back(set("camera.height", "48"));
+    }
+    return sets;
+}
 
 double metricOf(const StudyRow& r, const std::string& metric) {
     const auto it = r.metrics.find(metric);

@@ -21,6 +21,12 @@ using report::StudyRow;
 std::string set(const std::string& key, const std::string& value);  // "KEY=VALUE"
 std::string vec(double x, double y, double z);                      // "[x, y, z]"
 
+// Focal length in pixels of a camera `height` pixels high with that vertical field of view.
+double focalPixels(double height, double fovYDeg);
+// `first`, then the camera `distance` along -y from the origin (a scene looking along +y at its
+// one body backs away), on a 64 x 48 image when `quick`.
+std::vector<std::string> backedAway(std::string first, double distance, bool quick);
+
 // ---- a conclusion's rows ----------------------------------------------------------------------
 
 // A row's value of a metric; NaN when it has none.

@@ -234,6 +234,24 @@ const std::vector<StudyDef>& studies() {
             .conclude = study::atmosphereConclude,
         },
         {
+            .name = "body_sphere",
+            .title = "Whole-body sphere",
+            .question = "A ball of 3000 particles, the camera backing away until it is about a "
+                        "pixel in radius on screen, drawn as its particles and as one analytic "
+                        "sphere (realtime.particles.body_sphere_pixels): below which size one "
+                        "sphere matches the truth as well as the particles do (coverage IoU, "
+                        "mean normal error), and the time it saves (the fastest of 3 frames).",
+            .scene = "body_sphere.toml",
+            .xLabel = "the ball's radius on screen (px)",
+            .xLog = true,
+            .metric = "coverage.iou",
+            .columns = {"coverage.iou", "silhouette.mean_px", "normal.mean_deg", "beauty.flip"},
+            .frames = 3,
+            .points = study::bodySpherePoints,
+            .xOf = study::bodySphereRadiusPixels,
+            .conclude = study::bodySphereConclude,
+        },
+        {
             .name = "methods",
             .title = "Surface methods",
             .question = "Every surface method at its defaults and along its main parameter, with "

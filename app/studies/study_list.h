@@ -72,6 +72,12 @@ double subpixelEmitterPixels(const LoadedScene& s);
 std::vector<StudyPoint> atmospherePoints(bool quick);
 void atmosphereConclude(report::StudyResult& s);
 
+// ---- body_sphere (body_sphere.cpp) ----
+std::vector<StudyPoint> bodySpherePoints(bool quick);
+void bodySphereConclude(report::StudyResult& s);
+// The x of a point: the ball's level-set sphere's radius on screen, pixels.
+double bodySphereRadiusPixels(const LoadedScene& s);
+
 // ---- methods (methods.cpp) ----
 std::vector<StudyPoint> methodsPoints(bool quick);
 void methodsConclude(report::StudyResult& s);

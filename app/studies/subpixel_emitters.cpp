@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -46,11 +45,6 @@ struct Option {
 const Option OPTIONS[] = {{"impostors", "", 0.0},
                           {"min_pixels 1", "realtime.particles.min_pixels", 1.0},
                           {"halo 2", "realtime.particles.halo_pixels", 2.0}};
-
-// Focal length in pixels of a camera `height` pixels high with that vertical field of view.
-double focalPixels(double height, double fovYDeg) {
-    return 0.5 * height / std::tan(0.5 * fovYDeg * std::numbers::pi / 180.0);
-}
 
 // The reference's samples per pixel at a diameter: enough that the ball covers about 400 of
 // the stratified sample cells (a square count, at least 16, at most raymarch.spp's 16384).

@@ -3,6 +3,8 @@
 // model of realtime.particles.normal, blended with the impostor's own), uv extrapolated to
 // the hit point with d(uv)/dx, body and material, projected radius, emission (emission map at
 // uv + blackbody glow).
+// BODY_SPHERE (realtime.particles.body_sphere_pixels): a whole body as one sphere
+// (gpu_scene.h, packBodySpheres): its own normal, uv its body-local spherical angles.
 #include "common.glsl"
 #include "textures.glsl"
 
@@ -80,8 +82,18 @@ void main() {
 
     mat3 worldFromView = transpose(mat3(viewFromWorld));
     vec3 offset = worldFromView * (hit - vCentre);
+#ifdef BODY_SPHERE
+    // The generated particles' uv (core::sphericalUv): longitude about the body's pole axis
+    // (frame z) from its x axis -> u, latitude -> v, about the uv frame's origin; the frame's
+    // columns come in vNormal, vDudx, vDvdx, the origin relative to the centre in
+    // vHessianDiagonal.
+    vec3 local = transpose(mat3(vNormal, vDudx, vDvdx)) * (offset - vHessianDiagonal);
+    float u = fract(atan(local.y, local.x) / 6.28318531);
+    float v = atan(local.z, length(local.xy)) / 3.14159265 + 0.5;
+#else
     float u = fract(vUv.x + dot(vDudx, offset));
     float v = clamp(vUv.y + dot(vDvdx, offset), 0.0, 1.0);
+#endif
     vec3 emission = sampleTexture(vEmissionTexture, vec2(u, v)) + vGlowMaterial.rgb;
 #if defined(EMITTERS_ONLY)
     // The emissive pass's emitter target ("ssem_target"): only what emits.
@@ -92,11 +104,15 @@ void main() {
     // (no Hessian) tilted towards the impostor's own normal by misc.z: at a surface point the
     // particle's own kernel adds a gradient along (x - x_i), which the normal taken at the
     // particle's centre lacks; "sphere", the impostor's own normal, misc.z = 1.
+#ifdef BODY_SPHERE
+    outNormalUv = vec4(octEncode(normalize(worldFromView * impostorNormal)), u, v);
+#else
     vec3 d = vHessianDiagonal, h = vHessianOffDiagonal;
     vec3 model = vNormal + vec3(dot(vec3(d.x, h.x, h.y), offset), dot(vec3(h.x, d.y, h.z), offset),
                                 dot(vec3(h.y, h.z, d.z), offset));
     outNormalUv =
         vec4(octEncode(normalize(mix(model, worldFromView * impostorNormal, misc.z))), u, v);
+#endif
     outEmission = vec4(emission * splat, 0.0);
     outSurface = vec4(z, vBody, vRadius * pixelsPerUnitAt(-vCentre.z), vGlowMaterial.w);
 }

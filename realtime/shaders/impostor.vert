@@ -8,6 +8,8 @@
 // silhouette (Sigg et al. 2006, "GPU-Based Ray-Casting of Quadratic Surfaces": the roots of
 // the quadric's projection), written with every length divided by D so that no square of a
 // large distance appears.
+// BODY_SPHERE: the records are whole bodies' spheres (packBodySpheres), drawn as spheres; only
+// the fragment shader reads them otherwise.
 // SHADOW_PASS: orthographic from the light; the quad is perpendicular to the light, half-size r
 // (ELLIPSOID: the ellipsoid's half-extents along the light's x and y).
 #include "common.glsl"

@@ -1,4 +1,6 @@
-// The particle storage buffer (realtime/gpu_scene.h, GpuParticle, std430, 112 bytes).
+// The particle storage buffer (realtime/gpu_scene.h, GpuParticle, std430, 112 bytes). With
+// BODY_SPHERE the records are whole bodies' spheres, some fields read otherwise
+// (packBodySpheres).
 struct Particle {
     vec4 positionRadius;  // camera-relative world position; impostor radius (scene units)
     vec4 normalU;         // normal (world; not unit for the "field" model); u
