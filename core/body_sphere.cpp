@@ -37,7 +37,9 @@ double crossing(const ColourField& field, const BodyBounds& b, const glm::dvec3&
                 double level) {
     const double step = 0.25 * b.meanH;
     double outside = b.radius;
-    for (double r = b.radius - step; r > 0.0; r -= step) {
+    // Down to the centre itself: a level set smaller than a step (one particle barely above
+    // the level) is found too.
+    for (double r = std::max(b.radius - step, 0.0);; r = std::max(r - step, 0.0)) {
         if (field.value(b.centre + r * dir) >= level) {
             double inside = r;
             while (outside - inside > 1e-7 * b.radius) {
@@ -46,9 +48,9 @@ double crossing(const ColourField& field, const BodyBounds& b, const glm::dvec3&
             }
             return 0.5 * (inside + outside);
         }
+        if (r == 0.0) return 0.0;
         outside = r;
     }
-    return 0.0;
 }
 
 }  // namespace

@@ -36,5 +36,27 @@ TEST(BodySphere, OneParticlesSphereIsItsKernelsLevelSet) {
     EXPECT_NEAR(0.1 * m4Kernel(spheres[1].radius, 0.5), level, 1e-4);
 }
 
+// A particle whose field barely reaches the level: its level set is smaller than a step of the
+// inward walk (a quarter of h), and is still found.
+TEST(BodySphere, ALevelSetSmallerThanAStepIsFound) {
+    SceneParticles sp;
+    ParticleSet& ps = sp.particles;
+    ps.resize(1);
+    ps.position = {{1.0f, 2.0f, 3.0f}};
+    ps.h = {1.0f};
+    ps.volume = {0.44f};  // peak 0.44 / pi = 0.140, just above the level
+    ps.body = {0};
+    ps.glow = {glm::vec3(0.0f)};
+    sp.bodies.resize(1);
+    sp.bodies[0].end = 1;
+    const double level = 0.13;
+    const std::vector<BodySphere> spheres = bodySpheres(sp, level);
+    ASSERT_EQ(spheres.size(), 1u);
+    EXPECT_GT(spheres[0].radius, 0.0);
+    EXPECT_LT(spheres[0].radius, 0.25);
+    EXPECT_NEAR(0.44 * m4Kernel(spheres[0].radius, 1.0), level, 1e-4);
+    EXPECT_NEAR(levelSetRadius(ps, sp.bodies[0], level), spheres[0].radius, 1e-12);
+}
+
 }  // namespace
 }  // namespace twinrender::core

@@ -112,9 +112,10 @@ TEST_F(ReportInBrowser, EveryPageLoadsWithoutErrors) {
             << stderrTail(work) << ")";
     }
     // The scene pages show every buffer of both renders and the ꟻLIP and HDR-ꟻLIP maps:
-    // 2 x 9 + 2 panels, and the two images of the swap view.
+    // 2 x 10 + 2 panels (the synthetic frames have irradiance and in-scatter), and the two
+    // images of the swap view.
     const PageResult scene = openPage(chromium, report / "sphere" / "index.html", work);
-    EXPECT_NE(scene.selftest.find("(22 images)"), std::string::npos) << scene.selftest;
+    EXPECT_NE(scene.selftest.find("(24 images)"), std::string::npos) << scene.selftest;
     // The page script ran: the buffer switch is set to the first buffer.
     EXPECT_NE(scene.dom.find("data-buffer=\"beauty\" aria-pressed=\"true\""), std::string::npos);
 }
