@@ -62,7 +62,7 @@ TEST(AtmosphereRun, TheSphereEndPointBeatsTheImpostorsOnAFacetedBall) {
                     r[name].at("inscatter.rmse"), r[name].at("inscatter.rel"),
                     r[name].at("beauty.hdrflip"));
     }
-    // Measured: sphere 0.0032 (rel 0.18), impostor 0.0064 (rel 0.36). The sphere's rest is the
+    // Measured: sphere 0.0037 (rel 0.22), impostor 0.0064 (rel 0.38). The sphere's rest is the
     // level set's own departure from round and the limb's pixels.
     EXPECT_LT(r["sphere"].at("inscatter.rmse"), 0.7 * r["impostor"].at("inscatter.rmse"));
     EXPECT_LT(r["sphere"].at("inscatter.rel"), 0.25);

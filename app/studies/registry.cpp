@@ -169,7 +169,8 @@ const std::vector<StudyDef>& studies() {
             .question = "A glowing ball over a slab, moved from the middle of the view past the "
                         "screen's edge to behind the camera: the real-time estimates of the "
                         "light it casts (none, a point light per emitting body, screen-space "
-                        "gathering at three settings) against the reference's traced "
+                        "gathering at several directions x steps, thicknesses and blurs, in the "
+                        "view and in a wider emitter target) against the reference's traced "
                         "irradiance.",
             .scene = "emissive_light.toml",
             .xLabel = "the lamp's angle from the view direction (degrees)",
