@@ -53,13 +53,19 @@ glm::vec3 sunTransmittance(const Atmosphere& a, const AtmosphereSun& sun, glm::v
 
 std::optional<Atmosphere> sceneAtmosphere(const Scene& scene, const SceneParticles& particles,
                                           double surfaceLevel) {
+    return sceneAtmosphere(scene, particles, [&](std::uint32_t body) {
+        return levelSetRadius(particles.particles, particles.bodies[body], surfaceLevel);
+    });
+}
+
+std::optional<Atmosphere> sceneAtmosphere(
+    const Scene& scene, const SceneParticles& particles,
+    const std::function<double(std::uint32_t body)>& levelSetRadiusOf) {
     for (std::uint32_t b = 0; b < scene.bodies.size() && b < particles.bodies.size(); ++b) {
         if (!scene.bodies[b].atmosphere) continue;
         const AtmosphereDesc& d = *scene.bodies[b].atmosphere;
         const BodyBounds bounds = bodyBounds(particles.particles, particles.bodies[b]);
-        const double inner =
-            d.radius ? *d.radius
-                     : levelSetRadius(particles.particles, particles.bodies[b], surfaceLevel);
+        const double inner = d.radius ? *d.radius : levelSetRadiusOf(b);
         return Atmosphere{.body = b,
                           .centre = bounds.centre,
                           .innerRadius = float(inner),

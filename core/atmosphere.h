@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <glm/vec3.hpp>
 #include <optional>
 
@@ -44,6 +45,12 @@ struct Atmosphere {
 // default).
 std::optional<Atmosphere> sceneAtmosphere(const Scene& scene, const SceneParticles& particles,
                                           double surfaceLevel);
+// The same with the body's level-set radius from `levelSetRadiusOf(body)` (called only where
+// atmosphere.radius is not given): a frame loop keeps it while the particles stay the same,
+// rather than walk the body's field every frame.
+std::optional<Atmosphere> sceneAtmosphere(
+    const Scene& scene, const SceneParticles& particles,
+    const std::function<double(std::uint32_t body)>& levelSetRadiusOf);
 
 // The sun as the model sees it: the unit direction toward the sun and its irradiance.
 struct AtmosphereSun {

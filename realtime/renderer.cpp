@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/body_sphere.h"
 #include "core/camera.h"
 #include "core/cancellation.h"
 #include "core/derived_attributes.h"
@@ -617,9 +618,21 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     frame.timingsMs["compile"] = msSince(compileStart);
 
     const auto totalStart = Clock::now();
-    // The atmosphere's shell (its inner radius from the particles, core/atmosphere.h).
-    std::optional<core::Atmosphere> atmosphere =
-        core::sceneAtmosphere(in.scene, in.particles, mSettings.particles.surfaceLevel);
+    // The atmosphere's shell (its inner radius from the particles, core/atmosphere.h), the
+    // level-set radius kept while the particle set stays the same.
+    std::optional<core::Atmosphere> atmosphere;
+    if (hasAtmosphere) {
+        const double level = mSettings.particles.surfaceLevel;
+        atmosphere = core::sceneAtmosphere(in.scene, in.particles, [&](std::uint32_t body) {
+            return mLevelSetRadius.get(
+                in.particles.particles,
+                [&] {
+                    return core::levelSetRadius(in.particles.particles, in.particles.bodies[body],
+                                                level);
+                },
+                body, level);
+        });
+    }
     if (atmosphere && mSettings.atmosphere.steps > 0)
         atmosphere->steps = mSettings.atmosphere.steps;
     const Uploaded uploaded = upload(d, in, camera, mSettings, frame);

@@ -4,11 +4,13 @@
 // read back the AOV image.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/renderer.h"
+#include "realtime/particle_set_key.h"
 #include "realtime/settings.h"
 
 namespace twinrender::realtime {
@@ -64,6 +66,9 @@ class Renderer final : public core::Renderer {
   private:
     DeviceState& mDevice;
     Settings mSettings;
+    // The atmosphere's inner radius (core::levelSetRadius of its body at the surface level),
+    // kept while the particle set stays the same.
+    SetCache<double, std::uint32_t, double> mLevelSetRadius;
 };
 
 }  // namespace twinrender::realtime
