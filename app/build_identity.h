@@ -6,5 +6,8 @@
 namespace twinrender::app {
 
 const char* referenceBuildIdentity();
+// The same of the real-time renderer (core/ and realtime/ with its shaders): part of the key
+// under which a per-set self-check's verdict is remembered (app/per_set_check.h).
+const char* realtimeBuildIdentity();
 
 }  // namespace twinrender::app

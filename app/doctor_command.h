@@ -20,8 +20,7 @@ struct DoctorOptions {
 };
 ExitCode runDoctor(const DoctorOptions& options);
 
-// The self-check of `render` / `run --self-check` on a scene (its own settings): prints the
-// table, returns Pass or Fail.
+// The doctor's self-check on a scene (its own settings): prints the table, returns Pass or Fail.
 ExitCode selfCheckScene(const LoadedScene& scene, Devices& devices);
 
 }  // namespace twinrender::app

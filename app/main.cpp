@@ -39,6 +39,7 @@ struct CommonOptions {
     int threads = 0;  // 0: every core
     std::string out = "out";
     bool requireGpu = false;
+    bool selfCheck = false;
 };
 
 void addCommon(CLI::App* cmd, CommonOptions& o) {
@@ -49,6 +50,10 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
     cmd->add_option("--out", o.out, "output folder")->capture_default_str();
     cmd->add_flag("--require-gpu", o.requireGpu,
                   "refuse to run the real-time renderer on a software rasteriser");
+    cmd->add_flag("--self-check", o.selfCheck,
+                  "run the per-set self-check (both per-set paths, compared) before the first "
+                  "real-time frame on any device, llvmpipe too, and not from --cache; where they "
+                  "disagree the real-time renderer runs its per-set work on the CPU and says so");
 }
 
 // ꟻLIP's viewing condition, for the commands that compare.
@@ -93,7 +98,7 @@ void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
 }
 
 ExitCode runRender(const std::string& scenePath, const std::string& renderer,
-                   const std::string& frames, const CommonOptions& o, bool selfCheck) {
+                   const std::string& frames, const CommonOptions& o) {
     std::vector<std::string> sets = o.sets;
     if (!frames.empty()) {
         const auto range = tr::app::framesOverrides(frames);
@@ -105,11 +110,10 @@ ExitCode runRender(const std::string& scenePath, const std::string& renderer,
         renderer == "both" ? tr::app::rendererNames() : std::vector<std::string>{renderer};
     // Every renderer first: without a GL context there is nothing to render in real time, and
     // the error should come before minutes of raymarching.
-    tr::app::Devices devices(o.requireGpu);
-    if (selfCheck && tr::app::selfCheckScene(loaded, devices) != ExitCode::Pass)
-        return ExitCode::Fail;
+    tr::app::Devices devices(o.requireGpu, {.force = o.selfCheck});
     if (!frames.empty()) {
-        if (std::find(names.begin(), names.end(), "realtime") != names.end()) devices.realtime();
+        if (std::find(names.begin(), names.end(), "realtime") != names.end())
+            devices.realtimeFor(loaded);
         tr::app::renderFrames(loaded, names, devices, dir);
         return ExitCode::Pass;
     }
@@ -150,10 +154,6 @@ int main(int argc, char** argv) {
                      "OUT/<scene>/<frame>/")
         ->type_name("A:B");
     addCommon(render, renderOpts);
-    bool renderSelfCheck = false;
-    render->add_flag("--self-check", renderSelfCheck,
-                     "first render the scene through both per-set paths (cpu, gpu) and compare "
-                     "them; exit 2 without rendering when they disagree");
 
     tr::app::CompareOptions compareOpts;
     auto* compareCmd =
@@ -188,9 +188,6 @@ int main(int argc, char** argv) {
     runCmd->add_option("--cache", runOpts.cache,
                        "reference cache folder for every scene and --studies (default: "
                        "sequences only, in OUT/reference_cache)");
-    runCmd->add_flag("--self-check", runOpts.selfCheck,
-                     "first render each scene through both per-set paths (cpu, gpu) and compare "
-                     "them; exit 2 without a report when they disagree");
     addPpd(runCmd, runOpts.ppd);
     addFlipOver(runCmd, runOpts.flipOver);
     runCmd
@@ -308,8 +305,7 @@ int main(int argc, char** argv) {
         tbb::task_arena arena(threads);
         ExitCode rc = ExitCode::Pass;
         arena.execute([&] {
-            if (*render)
-                rc = runRender(scenePath, rendererName, renderFrames, renderOpts, renderSelfCheck);
+            if (*render) rc = runRender(scenePath, rendererName, renderFrames, renderOpts);
             if (*doctorCmd) rc = tr::app::runDoctor(doctorOpts);
             if (*compareCmd) rc = tr::app::runCompare(compareOpts);
             if (*blessCmd) rc = tr::app::runBless(blessDir, blessOut);
@@ -317,6 +313,7 @@ int main(int argc, char** argv) {
                 runOpts.out = runCommon.out;
                 runOpts.sets = runCommon.sets;
                 runOpts.requireGpu = runCommon.requireGpu;
+                runOpts.selfCheck = runCommon.selfCheck;
                 runOpts.commandLine = commandLine;
                 runOpts.linkStudies = !runStudies.empty();
                 if (runOpts.linkStudies && !runOpts.shard.empty())
@@ -331,6 +328,7 @@ int main(int argc, char** argv) {
                     so.out = (std::filesystem::path(runCommon.out) / "studies").string();
                     so.quick = runStudies == "quick";
                     so.requireGpu = runCommon.requireGpu;
+                    so.selfCheck = runCommon.selfCheck;
                     so.ppd = runOpts.ppd;
                     // One reference cache for the suite and its studies (scripts/run keeps it
                     // across runs).
@@ -343,6 +341,7 @@ int main(int argc, char** argv) {
                 sweepOpts.out = sweepCommon.out;
                 sweepOpts.sets = sweepCommon.sets;
                 sweepOpts.requireGpu = sweepCommon.requireGpu;
+                sweepOpts.selfCheck = sweepCommon.selfCheck;
                 sweepOpts.commandLine = commandLine;
                 rc = tr::app::runSweep(sweepOpts);
             }
@@ -350,6 +349,7 @@ int main(int argc, char** argv) {
                 studyOpts.out = studyCommon.out;
                 studyOpts.sets = studyCommon.sets;
                 studyOpts.requireGpu = studyCommon.requireGpu;
+                studyOpts.selfCheck = studyCommon.selfCheck;
                 studyOpts.commandLine = commandLine;
                 rc = tr::app::runStudies(studyOpts);
             }

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "app/build_identity.h"
+#include "app/content_hash.h"
 #include "core/error.h"
 #include "core/frame.h"
 #include "core/image_io.h"
@@ -29,30 +30,6 @@ constexpr const char* CACHE_KEY_VERSION = "twinrender-reference-v1";
 bool startsWith(const std::string& s, const char* prefix) {
     return s.rfind(prefix, 0) == 0;
 }
-
-// FNV-1a, 64 bits: a cache key, not a security boundary.
-class Hash {
-  public:
-    void add(std::string_view bytes) {
-        for (unsigned char c : bytes) {
-            mState ^= c;
-            mState *= 0x100000001b3ULL;
-        }
-        // A separator, so that ("ab", "c") and ("a", "bc") differ.
-        mState ^= 0xff;
-        mState *= 0x100000001b3ULL;
-    }
-    void addFile(const fs::path& file) {
-        std::ifstream in(file, std::ios::binary);
-        if (!in) throw core::InputError(fmt::format("{}: cannot be read", file.string()));
-        add(file.string());
-        add(std::string(std::istreambuf_iterator<char>(in), {}));
-    }
-    std::string hex() const { return fmt::format("{:016x}", mState); }
-
-  private:
-    std::uint64_t mState = 0xcbf29ce484222325ULL;
-};
 
 }  // namespace
 

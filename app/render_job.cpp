@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <utility>
 #include <vector>
 
 #include "app/interruption.h"
+#include "app/per_set_check.h"
 #include "app/progress.h"
 #include "core/error.h"
 #include "core/particle_file.h"
@@ -56,7 +58,8 @@ LoadedScene loadScene(const std::filesystem::path& file,
     return s;
 }
 
-Devices::Devices(bool requireGpu) : mRequireGpu(requireGpu) {}
+Devices::Devices(bool requireGpu, SelfCheckPolicy selfCheck)
+    : mRequireGpu(requireGpu), mSelfCheck(std::move(selfCheck)) {}
 
 Devices::~Devices() = default;
 
@@ -77,6 +80,15 @@ realtime::Device& Devices::realtime() {
     return *mRealtime;
 }
 
+realtime::Device& Devices::realtimeFor(const LoadedScene& scene) {
+    realtime::Device& device = realtime();
+    if (!mPerSetChecked) {
+        mPerSetChecked = true;
+        checkPerSetOnce(device, *mContext, scene, mSelfCheck);
+    }
+    return device;
+}
+
 const realtime::gl::Context& Devices::glContext() {
     realtime();
     return *mContext;
@@ -92,7 +104,7 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
     if (name == "raymarch")
         return std::make_unique<raymarch::Renderer>(devices.embree(), s.raymarch);
     if (name == "realtime")
-        return std::make_unique<realtime::Renderer>(devices.realtime(), s.realtime);
+        return std::make_unique<realtime::Renderer>(devices.realtimeFor(s), s.realtime);
     throw core::InputError(fmt::format("no renderer named '{}'; the renderers are {}", name,
                                        fmt::join(rendererNames(), ", ")));
 }

@@ -45,11 +45,20 @@ struct LoadedScene {
 // reading every frame's files once).
 LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
+// When the per-set self-check runs before a command's first real-time frame
+// (app/per_set_check.h).
+struct SelfCheckPolicy {
+    bool force = false;  // --self-check: on every device (llvmpipe too), the verdict not remembered
+    // --cache: the folder where the verdict is remembered per device, driver and build (empty:
+    // once per process)
+    std::filesystem::path cache{};
+};
+
 // The devices the renderers run on, each created on first use (a command that renders no
 // real-time frame opens no GL context) and kept for the command's life.
 class Devices {
   public:
-    explicit Devices(bool requireGpu = false);
+    explicit Devices(bool requireGpu = false, SelfCheckPolicy selfCheck = {});
     ~Devices();
     Devices(const Devices&) = delete;
     Devices& operator=(const Devices&) = delete;
@@ -58,11 +67,17 @@ class Devices {
     // The GL context (throws core::InputError when none can be had) and the compiled programs
     // and caches that the real-time renderers made on it share.
     realtime::Device& realtime();
+    // realtime(), its per-set self-check run first where the policy asks for one and none has
+    // run on it (checkPerSetOnce, with `scene` drawn small): every real-time renderer of a
+    // command is made through this.
+    realtime::Device& realtimeFor(const LoadedScene& scene);
     // The GL context realtime() made (made by it when there is none yet).
     const realtime::gl::Context& glContext();
 
   private:
     bool mRequireGpu;
+    SelfCheckPolicy mSelfCheck;
+    bool mPerSetChecked = false;
     std::unique_ptr<raymarch::EmbreeDevice> mEmbree;
     std::unique_ptr<realtime::gl::Context> mContext;
     std::unique_ptr<realtime::Device> mRealtime;

@@ -17,6 +17,7 @@ struct StudyOptions {
     bool quick = false;  // fewer points and particles (tests, scripts/run)
     std::vector<std::string> sets;
     bool requireGpu = false;
+    bool selfCheck = false;  // --self-check (app/per_set_check.h)
     double ppd = 67.0;
     std::string scenesDir;  // empty: scenes/studies of the working folder or the source tree
     std::string commandLine;

@@ -16,7 +16,6 @@
 #include <string_view>
 
 #include "app/comparison.h"
-#include "app/doctor_command.h"
 #include "app/interruption.h"
 #include "app/output_folder.h"
 #include "app/progress.h"
@@ -203,7 +202,7 @@ ExitCode runSuite(const RunOptions& o) {
             break;
         }
     // The GL context before the first render: without one, nothing can be compared.
-    Devices devices(o.requireGpu);
+    Devices devices(o.requireGpu, {.force = o.selfCheck, .cache = o.cache});
     devices.realtime();
     // Sequences take their references from the cache, frame by frame; with --cache, every
     // scene does.
@@ -215,10 +214,6 @@ ExitCode runSuite(const RunOptions& o) {
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
         if (selected[i]) makeRenderer("realtime", devices, scenes[i]);
-    if (o.selfCheck)
-        for (std::size_t i = 0; i < scenes.size(); ++i)
-            if (selected[i] && selfCheckScene(scenes[i], devices) != ExitCode::Pass)
-                return ExitCode::Fail;
     const fs::path out(o.out);
     prepareOutputFolder(out);
 

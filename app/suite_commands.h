@@ -42,8 +42,8 @@ struct RunOptions {
     // the scenes: `run --studies`).
     bool linkStudies = false;
     std::string annotations;  // "github" | "none"; "": printAnnotations decides
-    // Each scene first rendered through both per-set paths and compared (app/doctor_command.h):
-    // a disagreement fails the run before any report is written.
+    // --self-check: the per-set self-check on any device, not taken from the cache
+    // (app/per_set_check.h).
     bool selfCheck = false;
 };
 ExitCode runSuite(const RunOptions& options);

@@ -364,7 +364,7 @@ ExitCode runSweep(const SweepOptions& o) {
 
     const fs::path out(o.out);
     const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
-    Devices devices(o.requireGpu);
+    Devices devices(o.requireGpu, {.force = o.selfCheck, .cache = o.cache});
     if (!convergence) devices.realtime();  // no GL context: fail before the first render
     prepareOutputFolder(out);
     prepareOutputFolder(cacheDir);

@@ -33,7 +33,8 @@ struct SweepOptions {
     double ppd = 67.0;
     double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
     bool requireGpu = false;
-    std::string shard;  // "K/N"; empty: all
+    bool selfCheck = false;  // --self-check (app/per_set_check.h)
+    std::string shard;       // "K/N"; empty: all
     std::string commandLine;
 };
 ExitCode runSweep(const SweepOptions& options);

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -19,6 +20,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "core/derived_attributes.h"
 #include "realtime/field_normal.h"
@@ -72,6 +74,30 @@ void stageAttributes(const core::ParticleSet& ps, std::span<std::byte> out) {
     });
 }
 
+// The Header's first contents (per_set_layout.h), given when it is made: zero counters and
+// no work groups in the walk lists' and the sparse list's dispatches (each of their y and z 1).
+// INIT, the first stage, sets the rest.
+std::vector<std::uint32_t> initialHeader() {
+    std::vector<std::uint32_t> words(HEADER_BYTES / 4, 0u);
+    for (const std::size_t dispatch : {WALK_DISPATCH, NEXT_WALK_DISPATCH, SPARSE_DISPATCH}) {
+        words[dispatch / 4 + 1] = 1u;
+        words[dispatch / 4 + 2] = 1u;
+    }
+    return words;
+}
+
+// TWINRENDER_TEST_PER_SET_FAULT=zero_positions (a test hook, read once per process): after
+// every upload the particles' positions are cleared to zero on the device, the fault an NVIDIA
+// H200 run showed (every particle at one point while h and the volume were right), so that
+// the tests can see the self-check, the doctor's stage trace and the CPU fallback find it.
+bool zeroPositionsFault() {
+    static const bool on = [] {
+        const char* value = std::getenv("TWINRENDER_TEST_PER_SET_FAULT");
+        return value != nullptr && std::string_view(value) == "zero_positions";
+    }();
+    return on;
+}
+
 bool sameRadiusSettings(const ParticleSettings& a, const ParticleSettings& b) {
     return a.radius == b.radius && a.radiusScale == b.radiusScale &&
            a.surfaceLevel == b.surfaceLevel && a.crossingScale == b.crossingScale &&
@@ -97,6 +123,12 @@ Resized resized(std::optional<gl::Buffer>& buffer, std::size_t bytes) {
 }
 
 }  // namespace
+
+std::vector<std::uint32_t> attributeWords(const core::ParticleSet& particles) {
+    std::vector<std::uint32_t> words(ATTRIBUTE_FLOATS * particles.size());
+    stageAttributes(particles, std::as_writable_bytes(std::span<std::uint32_t>(words)));
+    return words;
+}
 
 std::size_t perSetTexels(std::size_t particles) {
     // The cells' offsets, one per cell and one more; the entries take 2 per particle.
@@ -242,7 +274,8 @@ void GpuPerSet::upload(const core::ParticleSet& ps) {
     // Into the staging buffer here; buildGrid's first command copies it to the device.
     mStagedBytes = ATTRIBUTE_FLOATS * n * sizeof(float);
     stageAttributes(ps, mStaging.map(mStagedBytes));
-    mHeader = gl::Buffer::zeros(HEADER_BYTES);
+    const std::vector<std::uint32_t> header = initialHeader();
+    mHeader = gl::Buffer::writableOf(std::span<const std::uint32_t>(header));
     resized(mCells, (mMaxCells + 1) * sizeof(std::uint32_t));
     resized(mCellOf, (n + mMaxCells) * sizeof(std::uint32_t));
     resized(mSorted, n * sizeof(std::uint32_t));
@@ -306,8 +339,9 @@ void GpuPerSet::buildGrid(ProgramCache& programs) {
         gl::computeBarrier();
     };
     mStaging.copyTo(mAttributes, 0, mStagedBytes);  // upload()'s attributes
-    mCells.clear();                                 // COUNT's counts
-    mCellOf.clear();                                // SCATTER's fill counts
+    if (zeroPositionsFault()) mAttributes.clearRange(0, 3 * mCount * sizeof(float));
+    mCells.clear();   // COUNT's counts
+    mCellOf.clear();  // SCATTER's fill counts
     bindStorage();
     run("INIT", 1);
     run("H_MIN", groups(mCount, GROUP * REDUCED));

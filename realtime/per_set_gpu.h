@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 #include <map>
 #include <optional>
 #include <span>
@@ -52,6 +53,11 @@ struct FrameRequest {
 // The most texels a set of `particles` has GpuPerSet view as one buffer texture (its grid's
 // cells), for the device's GL_MAX_TEXTURE_BUFFER_SIZE.
 std::size_t perSetTexels(std::size_t particles);
+
+// The Attributes buffer's words for `particles`, as GpuPerSet lays them out
+// (shaders/per_set.glsl: each attribute a run of n values, those a set lacks zero); the
+// doctor's check of the upload compares the buffer with them.
+std::vector<std::uint32_t> attributeWords(const core::ParticleSet& particles);
 
 // What a frame with these settings asks of the per-set work (per_set = "gpu").
 PerSetRequest perSetRequest(const Settings& settings);
@@ -159,6 +165,25 @@ class GpuPerSet {
         std::vector<glm::vec3> entryPosition;
     };
     Grid grid() const;
+    // The Attributes buffer's words as the stages left them (attributeWords()'s layout).
+    std::vector<std::uint32_t> attributes() const;
+    // The grid's levels as H_MIN, LEVELS and LAYOUT left them in the Header: the least h, the
+    // cells of all levels, and per level (MAX_LEVELS, per_set_layout.h) its particles' box,
+    // count and largest h, its grid's corner and cell size, and its cells along x, y, z and
+    // first cell.
+    struct Level {
+        glm::vec3 low{0.0f}, high{0.0f};
+        std::uint32_t count = 0;
+        float hMax = 0.0f;
+        glm::vec4 originCell{0.0f};
+        glm::ivec4 dims{0};
+    };
+    struct Levels {
+        float hMin = 0.0f;
+        std::uint32_t totalCells = 0;
+        std::vector<Level> levels;
+    };
+    Levels levels() const;
     std::vector<std::uint32_t> flags() const;
     std::vector<std::uint32_t> drawnPrefix() const;
 

@@ -97,4 +97,34 @@ std::vector<glm::vec4> GpuPerSet::models() const {
     return mModelBuffer->read<glm::vec4>(0, 3 * mCount);
 }
 
+std::vector<std::uint32_t> GpuPerSet::attributes() const {
+    return mAttributes.read<std::uint32_t>(0, ATTRIBUTE_FLOATS * mCount);
+}
+
+GpuPerSet::Levels GpuPerSet::levels() const {
+    Levels out;
+    if (mCount == 0) return out;
+    const std::vector<std::uint32_t> head = mHeader.read<std::uint32_t>(0, 4);
+    out.hMin = std::bit_cast<float>(head[0]);  // the Header's hMinBits
+    out.totalCells = head[2];
+    auto fromOrderedKey = [](std::uint32_t k) {
+        return std::bit_cast<float>((k & 0x80000000u) ? (k & 0x7FFFFFFFu) : ~k);
+    };
+    // Level (shaders/per_set.glsl): 8 uints, originCell, dims; 16 words.
+    const std::vector<std::uint32_t> w = mHeader.read<std::uint32_t>(LEVELS / 4, 16 * MAX_LEVELS);
+    for (int L = 0; L < MAX_LEVELS; ++L) {
+        const std::uint32_t* l = &w[16 * static_cast<std::size_t>(L)];
+        out.levels.push_back(
+            {.low = {fromOrderedKey(l[0]), fromOrderedKey(l[1]), fromOrderedKey(l[2])},
+             .high = {fromOrderedKey(l[4]), fromOrderedKey(l[5]), fromOrderedKey(l[6])},
+             .count = l[3],
+             .hMax = std::bit_cast<float>(l[7]),
+             .originCell = {std::bit_cast<float>(l[8]), std::bit_cast<float>(l[9]),
+                            std::bit_cast<float>(l[10]), std::bit_cast<float>(l[11])},
+             .dims = {static_cast<int>(l[12]), static_cast<int>(l[13]), static_cast<int>(l[14]),
+                      static_cast<int>(l[15])}});
+    }
+    return out;
+}
+
 }  // namespace twinrender::realtime

@@ -578,11 +578,31 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
 }  // namespace
 
 Renderer::Renderer(Device& device, const Settings& settings)
-    : mDevice(*device.mState), mSettings(settings) {
+    : mOwner(device), mDevice(*device.mState), mSettings(settings) {
     // A user's shader that does not compile is bad input: said before anything renders.
     if (settings.surface.method == SurfaceMethod::Shader) {
         mDevice.context.makeCurrent();
         userSurfaceProgram(mDevice.programs, settings.surface);
+    }
+}
+
+void Renderer::settlePerSet() {
+    const std::optional<Device::PerSetCheck>& check = mOwner.perSetCheck();
+    if (mPerSetNote || !check || check->passed || mSettings.perSet != PerSetDevice::Gpu) return;
+    // Settled for the renderer's life: the device's verdict does not change.
+    if (mSettings.perSetFallback) {
+        mSettings.perSet = PerSetDevice::Cpu;
+        mPerSetNote = PerSetNote{
+            .fellBack = true,
+            .text = fmt::format(" (per-set work on the CPU: the GPU per-set path failed the "
+                                "self-check: {})",
+                                check->summary)};
+    } else {
+        mPerSetNote = PerSetNote{
+            .fellBack = false,
+            .text = fmt::format(" (the GPU per-set path failed the self-check and is kept, "
+                                "per_set_fallback = false: {})",
+                                check->summary)};
     }
 }
 
@@ -599,7 +619,12 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     const core::Camera camera(in.scene.camera);
     core::Frame frame;
     frame.renderer = "realtime";
+    settlePerSet();
     frame.device = d.context.renderer();
+    if (mPerSetNote) {
+        frame.device += mPerSetNote->text;
+        frame.counters["per_set_fallback"] = mPerSetNote->fellBack ? 1.0 : 0.0;
+    }
     frame.settings = toJson(mSettings);
     frame.particleCount = in.particles.particles.size();
     for (const std::string& stage : perSetStages()) frame.timingsMs[stage] = 0.0;

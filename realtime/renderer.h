@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/renderer.h"
@@ -38,9 +40,23 @@ class Device {
     // The names of the programs compiled on it so far (program_variants.h names them alike).
     std::vector<std::string> programNames() const;
 
+    // The per-set self-check's verdict on this device (self_check.h's selfCheck, which app/
+    // runs once per device, driver and build): passed, or failed with a summary (the checks
+    // that failed, the first stage apart). After a failure, a renderer whose settings ask for
+    // per_set = "gpu" runs the CPU's per-set work (per_set_fallback) or keeps the GPU's; either
+    // way its frames say so in frame.device and counters.per_set_fallback (1 when it fell back,
+    // 0 when it kept the GPU's).
+    struct PerSetCheck {
+        bool passed = true;
+        std::string summary{};
+    };
+    void setPerSetCheck(PerSetCheck check) { mPerSetCheck = std::move(check); }
+    const std::optional<PerSetCheck>& perSetCheck() const { return mPerSetCheck; }
+
   private:
     friend class Renderer;
     std::unique_ptr<DeviceState> mState;
+    std::optional<PerSetCheck> mPerSetCheck;
 };
 
 class Renderer final : public core::Renderer {
@@ -64,8 +80,18 @@ class Renderer final : public core::Renderer {
     void recycle(core::Frame&& old) override;
 
   private:
+    // Applies the device's per-set self-check (Device::PerSetCheck) to mSettings once it has
+    // failed: per_set = "gpu" becomes "cpu" where per_set_fallback, and mPerSetNote says so.
+    void settlePerSet();
+    struct PerSetNote {
+        bool fellBack = false;
+        std::string text{};  // added to frame.device
+    };
+
+    Device& mOwner;
     DeviceState& mDevice;
     Settings mSettings;
+    std::optional<PerSetNote> mPerSetNote;
     // The atmosphere's inner radius (core::levelSetRadius of its body at the surface level),
     // kept while the particle set stays the same.
     SetCache<double, std::uint32_t, double> mLevelSetRadius;

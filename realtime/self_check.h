@@ -22,6 +22,11 @@ struct SelfCheck {
         double bound = 0.0;  // the largest difference (or measure) that passes
         bool pass = false;
         std::string why{};  // what the bound allows, in words
+        // perSetStageCheck: the stage whose records or answers this check reads ("upload",
+        // "levels", "layout", "grid", "radius", "cull", "draw_list"), and where a failed check
+        // found its first difference (the particle, level or slot, both values).
+        std::string stage{};
+        std::string first{};
     };
     std::vector<Check> checks;
     // What a failed check found, for whoever mends it (the first particles apart, ...).
@@ -51,8 +56,18 @@ SelfCheck selfCheck(Device& device, const Settings& settings, const core::Render
 // takes; with a glFinish after every stage (a check that fails only the first way points at a
 // missing barrier or a race, not at the arithmetic); and on the first run's buffers again, for
 // the set moved by one ulp (as BM_PerSet1MGpu runs it: a check that fails only on fresh
-// buffers points at a read of memory no stage wrote, or wrote too late). The first particles
-// whose radius is apart go to the notes. A GL context must be current.
+// buffers points at a read of memory no stage wrote, or wrote too late). Each run reads back
+// what each stage received and produced in the order they run, against the CPU's: the
+// Attributes buffer after the upload (word for word), the levels' boxes, counts and largest h
+// (H_MIN, LEVELS), their grids' corners and sizes and the cell count (LAYOUT: cells along each
+// axis within one of the CPU's float mirror, whose pow() may round otherwise), the grid's
+// records, the radii, the culling, the draw list; the notes name, per run, the first stage
+// apart and its first particle (firstStageApart()). The first particles whose radius is apart
+// go to the notes too. A GL context must be current.
+// The first failed check of `check` (in the order perSetStageCheck adds them) whose name ends
+// in `suffix` ("" for the first run's), as "STAGE: CHECK: FIRST"; empty where all passed.
+std::string firstStageApart(const SelfCheck& check, const std::string& suffix);
+
 SelfCheck perSetStageCheck(const core::SceneParticles& particles, const Settings& settings,
                            const glm::dvec3& camera);
 

@@ -412,6 +412,7 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.perSet = t.getEnum("per_set", std::string(toString(d.perSet)), {"gpu", "cpu"}) == "cpu"
                    ? PerSetDevice::Cpu
                    : PerSetDevice::Gpu;
+    s.perSetFallback = t.getBool("per_set_fallback", d.perSetFallback);
     s.shadows = parseShadowMode(t.getEnum("shadows", std::string(toString(d.shadows)),
                                           {"map", "pcf", "spheres", "none", "esm", "vsm", "evsm"}));
     s.particles.radiusScale =
@@ -514,6 +515,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.gbuffer.format", toString(s.gbufferFormat)},
         {"realtime.shadows", toString(s.shadows)},
         {"realtime.per_set", toString(s.perSet)},
+        {"realtime.per_set_fallback", s.perSetFallback},
         {"realtime.particles.radius_scale", s.particles.radiusScale},
         {"realtime.particles.radius", toString(s.particles.radius)},
         {"realtime.particles.surface_level", s.particles.surfaceLevel},

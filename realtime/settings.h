@@ -424,6 +424,10 @@ struct Settings {
     DepthMode depth = DepthMode::Log;                   // depth: "log" | "standard" | "reversed"
     GBufferFormat gbufferFormat = GBufferFormat::Full;  // gbuffer.format: "full" | "compact"
     PerSetDevice perSet = PerSetDevice::Gpu;            // per_set: "gpu" | "cpu"
+    // per_set_fallback: where the device failed the per-set self-check (Device::perSetCheck),
+    // a frame asking for per_set = "gpu" runs the CPU's per-set work (true) or keeps the GPU's,
+    // for whoever debugs it (false); either way the frame says so.
+    bool perSetFallback = true;
     // shadows: "map" | "pcf" | "spheres" | "none" | "esm" | "vsm" | "evsm"
     ShadowMode shadows = ShadowMode::Map;
     ParticleSettings particles;

@@ -35,6 +35,7 @@ TEST(Settings, ReadsEveryKey) {
     const Settings s = parseSettings(table({{"depth", std::string("reversed")},
                                             {"gbuffer.format", std::string("compact")},
                                             {"per_set", std::string("cpu")},
+                                            {"per_set_fallback", false},
                                             {"shadows", std::string("pcf")},
                                             {"particles.radius_scale", 1.1},
                                             {"particles.cull_hidden", false},
@@ -60,6 +61,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(s.depth, DepthMode::Reversed);
     EXPECT_EQ(s.gbufferFormat, GBufferFormat::Compact);
     EXPECT_EQ(s.perSet, PerSetDevice::Cpu);
+    EXPECT_FALSE(s.perSetFallback);
     EXPECT_EQ(s.shadows, ShadowMode::Pcf);
     EXPECT_DOUBLE_EQ(s.particles.radiusScale, 1.1);
     EXPECT_FALSE(s.particles.cullHidden);
@@ -88,12 +90,13 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.ssss.iterations"), 3);
     EXPECT_EQ(j.at("realtime.particles.normal"), "blend");
     EXPECT_EQ(j.at("realtime.per_set"), "cpu");
+    EXPECT_EQ(j.at("realtime.per_set_fallback"), false);
     EXPECT_EQ(j.at("realtime.particles.droplet_atoms"), 5);
     EXPECT_EQ(j.at("realtime.particles.interior_level"), 0.9);
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
     EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
     EXPECT_EQ(j.at("realtime.particles.body_sphere_pixels"), 8.0);
-    EXPECT_EQ(j.size(), 79u);
+    EXPECT_EQ(j.size(), 80u);
 }
 
 TEST(Settings, ReadsTheAtmosphereKeys) {

@@ -22,16 +22,28 @@ class Buffer {
         return Buffer(std::as_bytes(items));
     }
 
-    // A buffer of `bytes` zero bytes (at least 16) that shaders fill; write() and clear() may
-    // change it later.
+    // A buffer whose first contents are `data` (at least 16 bytes: zeros after a shorter
+    // span), given when it is made; write() and clear() may change it later.
+    static Buffer writable(std::span<const std::byte> data);
+    template <typename T>
+    static Buffer writableOf(std::span<const T> items) {
+        return writable(std::as_bytes(items));
+    }
+    // A buffer of `bytes` zero bytes (at least 16), given when it is made; write() and clear()
+    // may change it later.
     static Buffer zeros(std::size_t bytes);
     // A buffer of `bytes` (at least 16) whose contents mean nothing until shaders or write()
-    // set them: zeros, or the poison pattern in poison mode (poison.h).
+    // set them: zeros (cleared on the device, a command ordered before any that uses it), or the
+    // poison pattern in poison mode (poison.h), given when it is made.
     static Buffer storage(std::size_t bytes);
     // Fills it with the poison pattern in poison mode (a buffer kept for new contents); else
     // nothing.
     void poison();
-    // Sets bytes [offset, offset + data.size()) (a buffer made by zeros() only).
+    // Every command below that writes the buffer from the client side is ordered after the
+    // shader writes issued before it (glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first).
+    //
+    // Sets bytes [offset, offset + data.size()) (a buffer made by writable(), zeros() or
+    // storage()).
     void write(std::size_t offset, std::span<const std::byte> data);
     template <typename T>
     void write(std::size_t offset, std::span<const T> items) {
@@ -39,6 +51,8 @@ class Buffer {
     }
     // Sets every byte to 0.
     void clear();
+    // Sets bytes [offset, offset + bytes) to 0 (offset and bytes multiples of 4).
+    void clearRange(std::size_t offset, std::size_t bytes);
     // Copies bytes [offset, offset + out.size()) back (waits for the writes before it).
     void read(std::size_t offset, std::span<std::byte> out) const;
     template <typename T>
@@ -66,7 +80,8 @@ class Buffer {
 };
 
 // Host memory the CPU writes through a persistent mapping and the GPU copies from into a
-// Buffer (glCopyNamedBufferSubData): an upload that changes every frame costs one copy by the
+// Buffer (glCopyNamedBufferSubData, after glFlushMappedNamedBufferRange of what was written):
+// an upload that changes every frame costs one copy by the
 // CPU, into memory the GPU reads by DMA, instead of glNamedBufferSubData's copy into the
 // driver's own staging and the driver's transfer after it. map() waits until the GPU has
 // finished the copies issued from the last mapping (a fence after them).

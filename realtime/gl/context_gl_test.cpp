@@ -1,8 +1,13 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "realtime/gl/buffer.h"
@@ -66,8 +71,53 @@ void main() {
         program.set("uWrites", writes);
         program.dispatch(1);
         EXPECT_EQ(data.overrun(), writes > 4) << writes << " writes";
-        EXPECT_EQ(data.read<std::uint32_t>(0, 1)[0], POISON_WORD);
+        EXPECT_EQ(data.read<std::uint32_t>(0, 1)[0], poisonWord());
     }
+}
+
+// Every buffer holds its first contents from the moment it is made (buffer.h), and a client
+// write after a shader's is ordered after it; in poison mode a buffer shaders are to fill holds
+// the pattern, NaN or finite (poison.h).
+TEST(Buffer, HoldsItsFirstContentsFromTheMomentItIsMade) {
+    Context context(ContextOptions{.debug = true});
+    const std::vector<std::uint32_t> words = {1u, 2u, 3u, 4u, 5u, 6u};
+    Buffer header = Buffer::writableOf(std::span<const std::uint32_t>(words));
+    EXPECT_EQ(header.read<std::uint32_t>(0, 6), words);
+    const Buffer zeros = Buffer::zeros(64);
+    EXPECT_EQ(zeros.read<std::uint32_t>(0, 16), std::vector<std::uint32_t>(16, 0u));
+    const Buffer storage = Buffer::storage(64);
+    EXPECT_EQ(storage.read<std::uint32_t>(0, 16),
+              std::vector<std::uint32_t>(16, poisonMode() ? poisonWord() : 0u));
+    // A shader writes word 0; the client's write of word 1 after it keeps the shader's.
+    const Program program("write_first", ShaderSource{.text = R"(#version 450
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) buffer Data { uint data[]; };
+void main() { data[0] = 42u; })",
+                                                      .files = {},
+                                                      .spans = {}});
+    header.bindStorage(0);
+    program.dispatch(1);
+    const std::uint32_t seven = 7u;
+    header.write(4, std::span<const std::uint32_t>(&seven, 1));
+    EXPECT_EQ(header.read<std::uint32_t>(0, 3), (std::vector<std::uint32_t>{42u, 7u, 3u}));
+    checkErrors("test");
+}
+
+// The upload's path: the client writes through the staging buffer's mapping, copyTo() flushes
+// and copies; a second mapping waits for the first copy, so the first set arrives whole.
+TEST(Buffer, StagedWritesArriveWholeAndInOrder) {
+    Context context(ContextOptions{.debug = true});
+    StagingBuffer staging;
+    Buffer a = Buffer::storage(4096), b = Buffer::storage(4096);
+    for (const auto& [target, value] : {std::pair{&a, 11u}, std::pair{&b, 22u}}) {
+        const std::span<std::byte> mapped = staging.map(4096);
+        const std::vector<std::uint32_t> words(1024, value);
+        std::memcpy(mapped.data(), words.data(), 4096);
+        staging.copyTo(*target, 0, 4096);
+    }
+    EXPECT_EQ(a.read<std::uint32_t>(0, 1024), std::vector<std::uint32_t>(1024, 11u));
+    EXPECT_EQ(b.read<std::uint32_t>(0, 1024), std::vector<std::uint32_t>(1024, 22u));
+    checkErrors("test");
 }
 
 TEST(Context, HandlesAreMoveOnlyAndMovingEmptiesTheSource) {

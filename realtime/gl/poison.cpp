@@ -5,12 +5,22 @@
 
 namespace twinrender::realtime::gl {
 
-bool poisonMode() {
-    static const bool on = [] {
+PoisonPattern poisonPattern() {
+    static const PoisonPattern pattern = [] {
         const char* value = std::getenv("TWINRENDER_GL_POISON");
-        return value != nullptr && *value != '\0' && std::string_view(value) != "0";
+        if (value == nullptr || *value == '\0' || std::string_view(value) == "0")
+            return PoisonPattern::Off;
+        return std::string_view(value) == "finite" ? PoisonPattern::Finite : PoisonPattern::Nan;
     }();
-    return on;
+    return pattern;
+}
+
+bool poisonMode() {
+    return poisonPattern() != PoisonPattern::Off;
+}
+
+std::uint32_t poisonWord() {
+    return poisonPattern() == PoisonPattern::Finite ? POISON_FINITE_WORD : POISON_NAN_WORD;
 }
 
 }  // namespace twinrender::realtime::gl

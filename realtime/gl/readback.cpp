@@ -30,6 +30,9 @@ void TextureReadback::read(std::size_t slot, const Texture& texture, int channel
         s.floats = floats;
     }
     s.read = floats;
+    // A texture a shader wrote by image store (the gradient gather's) reaches glGetTextureImage
+    // only through this barrier; a render target's writes need none.
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, s.buffer.id());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(texture.id(), 0, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "realtime/gl/error.h"
@@ -56,13 +57,14 @@ Texture::Texture(int width, int height, Format format, Filter filter, int levels
         // Depth targets are cleared before use by every pass; colour targets may be read
         // where a pass drew nothing (poison.h).
         const bool depth = format == Format::Depth24 || format == Format::Depth32F;
-        const float nan = [] {
+        const float poison = [] {
             float f;
-            static_assert(sizeof(f) == sizeof(POISON_WORD));
-            std::memcpy(&f, &POISON_WORD, sizeof(f));
+            const std::uint32_t word = poisonWord();
+            static_assert(sizeof(f) == sizeof(word));
+            std::memcpy(&f, &word, sizeof(f));
             return f;
         }();
-        const float colour[4] = {nan, nan, nan, nan};
+        const float colour[4] = {poison, poison, poison, poison};
         for (int level = 0; level < levels; ++level)
             glClearTexImage(id, level, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT,
                             depth ? &POISON_DEPTH : colour);
