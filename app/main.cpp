@@ -162,6 +162,10 @@ int main(int argc, char** argv) {
     compareCmd->add_option("TEST", compareOpts.test, "image to measure")->required();
     compareCmd->add_option("--out", compareOpts.out, "output folder")->capture_default_str();
     compareCmd->add_option("--thresholds", compareOpts.thresholds, "thresholds file (TOML)");
+    compareCmd->add_option("--scene", compareOpts.scene,
+                           "the scene the images show: its exposure and light direction");
+    compareCmd->add_option("--set", compareOpts.sets, "KEY=VALUE overrides of that scene")
+        ->type_name("KEY=VALUE");
     addPpd(compareCmd, compareOpts.ppd);
     addFlipOver(compareCmd, compareOpts.flipOver);
 

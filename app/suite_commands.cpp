@@ -52,11 +52,15 @@ std::string statusOf(const std::vector<compare::Check>& checks, const std::strin
 }
 
 void printMetricTable(const compare::MetricValues& metrics,
-                      const std::vector<compare::Check>& checks) {
+                      const std::vector<compare::Check>& checks,
+                      const std::vector<std::string>& notProvided = {}) {
     std::printf("%-24s %14s  %-4s %s\n", "metric", "value", "unit", "check");
     for (const auto& [name, value] : metrics)
         std::printf("%-24s %14s  %-4s %s\n", name.c_str(), compare::formatValue(value).c_str(),
                     compare::metricUnit(name).c_str(), statusOf(checks, name).c_str());
+    for (const std::string& name : notProvided)
+        std::printf("%-24s %14s  %-4s %s\n", name.c_str(), "not provided",
+                    compare::metricUnit(name).c_str(), "-");
     for (const auto& c : checks)
         if (c.status != compare::Status::Pass)
             std::printf("  %s: %s\n", std::string(compare::toString(c.status)).c_str(),
@@ -124,20 +128,29 @@ void checkSceneFolders(const std::vector<LoadedScene>& scenes) {
 }  // namespace
 
 ExitCode runCompare(const CompareOptions& o) {
-    const auto [ref, test] = core::readImages(o.reference, o.test);
+    // The scene first: its exposure and light, as `run` measures its frames.
     compare::MetricSettings settings;
     settings.ppd = o.ppd;
     settings.flipOver = o.flipOver;
+    if (!o.scene.empty()) settings = metricSettings(loadScene(o.scene, o.sets), o.ppd, o.flipOver);
+    const auto [ref, test] = core::readImages(o.reference, o.test);
     const compare::MetricResult result = compare::computeMetrics(ref, test, settings);
     report::SceneReport report;
     report.name = fs::path(o.test).stem().string();
     report.metrics = result.values;
+    report.notProvided = result.notProvided;
     if (!o.thresholds.empty()) {
         compare::Bounds bounds = compare::Thresholds::parseFile(o.thresholds).forScene(report.name);
-        // Plain images have beauty metrics only: bounds on other buffers do not apply.
+        // Plain images have beauty metrics only, and an AOV image that lacks a metric's channels
+        // does not provide it: bounds on those do not apply (never a pass: listed as not
+        // provided).
         if (!compare::isAovImage(ref) || !compare::isAovImage(test))
             bounds = compare::filterBounds(
                 bounds, [](const std::string& m) { return compare::computedOnPlainImages(m); });
+        bounds = compare::filterBounds(bounds, [&](const std::string& m) {
+            return std::find(result.notProvided.begin(), result.notProvided.end(), m) ==
+                   result.notProvided.end();
+        });
         report.checks = compare::evaluate(report.metrics, bounds);
     }
     const fs::path out(o.out);
@@ -145,7 +158,10 @@ ExitCode runCompare(const CompareOptions& o) {
         report.errorMaps = compare::writeErrorMapImages(result.errorMaps, staging);
         report::writeMetricsJson(report, staging / "metrics.json");
     });
-    printMetricTable(report.metrics, report.checks);
+    printMetricTable(report.metrics, report.checks, result.notProvided);
+    if (!result.missingChannels.empty())
+        std::printf("not provided: the images lack %s\n",
+                    fmt::format("{}", fmt::join(result.missingChannels, ", ")).c_str());
     if (result.hdrExposures)
         std::printf("beauty.hdrflip over %d exposures from %.3f to %.3f stops\n",
                     result.hdrExposures->count, result.hdrExposures->start,

@@ -17,7 +17,10 @@ struct CompareOptions {
     std::string test;
     std::string out = "out/compare";
     std::string thresholds;  // empty: no bounds, the verdict is pass
-    double ppd = 67.0;       // ꟻLIP's pixels per degree
+    // --scene: the scene the images show (its exposure and light); empty: exposure 1, no light
+    std::string scene;
+    std::vector<std::string> sets;                               // --set overrides of the scene
+    double ppd = 67.0;                                           // ꟻLIP's pixels per degree
     double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
 };
 ExitCode runCompare(const CompareOptions& options);

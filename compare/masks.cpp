@@ -151,9 +151,17 @@ Masks computeMasks(const core::Image& reference, const core::Image& test,
     m.coveredInBoth = Mask(reference.width(), reference.height());
     for (std::size_t p = 0; p < m.coveredInBoth.pixelCount(); ++p)
         m.coveredInBoth.set(p, m.referenceCovered[p] && m.testCovered[p]);
-    m.sameBody = sameBodyMask(reference, test, m.coveredInBoth);
-    m.interior = interiorMask(reference, m.sameBody, settings.interiorRadius);
-    m.facingLight = facingLightMask(reference, m.coveredInBoth, settings);
+    // From what the images carry (a test image may carry only some AOV channels): without id
+    // in both, same body is covered in both; without the reference's id, the interior is not
+    // eroded; without its normals, facing the light is covered in both.
+    const bool ids = reference.hasChannel("id") && test.hasChannel("id");
+    m.sameBody = ids ? sameBodyMask(reference, test, m.coveredInBoth) : m.coveredInBoth;
+    m.interior = reference.hasChannel("id")
+                     ? interiorMask(reference, m.sameBody, settings.interiorRadius)
+                     : m.sameBody;
+    MaskSettings facing = settings;
+    facing.hasLight = settings.hasLight && reference.hasChannel("N.X");
+    m.facingLight = facingLightMask(reference, m.coveredInBoth, facing);
     return m;
 }
 

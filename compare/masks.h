@@ -98,9 +98,11 @@ Mask interiorMask(const core::Image& reference, const Mask& sameBody, int radius
 Mask facingLightMask(const core::Image& reference, const Mask& coveredInBoth,
                      const MaskSettings& settings);
 
-// All masks of a pair of AOV images. Throws core::NotComparableError when the sizes differ
-// (naming both) or a channel the masks read (A, id, N.X, N.Y, N.Z) is missing;
-// std::invalid_argument for a negative interiorRadius or a zero light direction.
+// All masks of a pair of AOV images, from the channels they carry: without id in both, same
+// body is covered in both; without the reference's id, interior is same body; without the
+// reference's normals, facing the light is covered in both. Throws core::NotComparableError when
+// the sizes differ (naming both) or either image lacks A; std::invalid_argument for a negative
+// interiorRadius or a zero light direction.
 Masks computeMasks(const core::Image& reference, const core::Image& test,
                    const MaskSettings& settings = {});
 

@@ -7,8 +7,12 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <initializer_list>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "compare/buffer_metrics.h"
 #include "compare/flip.h"
@@ -28,11 +32,12 @@ bool isDisplayChannel(std::string_view name) {
     return name == "R" || name == "G" || name == "B" || name == "A";
 }
 
-// The first AOV channel the image lacks, or "" when it has them all.
-std::string firstMissingAovChannel(const core::Image& image) {
-    for (const auto& name : core::aov::channelNames())
-        if (!image.hasChannel(name)) return name;
-    return {};
+// Whether both images carry every one of `channels`.
+bool bothHave(const core::Image& a, const core::Image& b,
+              std::initializer_list<std::string_view> channels) {
+    return std::all_of(channels.begin(), channels.end(), [&](std::string_view c) {
+        return a.hasChannel(std::string(c)) && b.hasChannel(std::string(c));
+    });
 }
 
 // core::tonemappedBeauty, rows in parallel: the same values (core::tonemap per pixel).
@@ -74,19 +79,18 @@ void validate(const MetricSettings& settings) {
 
 bool isAovImage(const core::Image& image) {
     const auto& names = image.channelNames();
-    const bool anyAov = std::any_of(names.begin(), names.end(), [](const std::string& n) {
+    return std::any_of(names.begin(), names.end(), [](const std::string& n) {
         if (isDisplayChannel(n)) return false;
         const auto& aov = core::aov::channelNames();
         return std::find(aov.begin(), aov.end(), n) != aov.end();
     });
-    if (!anyAov) return false;
-    const std::string missing = firstMissingAovChannel(image);
-    if (!missing.empty())
-        throw core::NotComparableError(fmt::format(
-            "metrics: the image has some AOV channels but no channel \"{}\"; an AOV image "
-            "carries all of {}",
-            missing, fmt::join(core::aov::channelNames(), ", ")));
-    return true;
+}
+
+std::vector<std::string> missingAovChannels(const core::Image& image) {
+    std::vector<std::string> missing;
+    for (const auto& name : core::aov::channelNames())
+        if (!image.hasChannel(name)) missing.push_back(name);
+    return missing;
 }
 
 MaskSettings maskSettings(const MetricSettings& settings) {
@@ -96,6 +100,127 @@ MaskSettings maskSettings(const MetricSettings& settings) {
     m.lightDirection = settings.lightDirection;
     return m;
 }
+
+namespace {
+
+// The per-buffer metrics of an AOV pair, each where both images carry its channels (an image
+// may carry only some: a renderer that writes beauty, depth and normals gets those metrics);
+// the others are listed in result.notProvided. The masks need A in both (computeMasks says what
+// they are without id or normals).
+void addBufferMetrics(const core::Image& reference, const core::Image& test,
+                      const MetricSettings& settings, MetricResult& result) {
+    result.missingChannels = missingAovChannels(test);
+    for (const std::string& c : missingAovChannels(reference))
+        if (std::find(result.missingChannels.begin(), result.missingChannels.end(), c) ==
+            result.missingChannels.end())
+            result.missingChannels.push_back(c);
+    auto notProvided = [&](std::initializer_list<const char*> keys) {
+        for (const char* k : keys) result.notProvided.emplace_back(k);
+    };
+    result.values["flux.ratio"] = fluxRatio(reference, test);
+    const bool covered = bothHave(reference, test, {"A"});
+    if (!covered) {
+        notProvided({"coverage.iou", "silhouette.mean_px", "depth.rel_mean", "id.mismatch",
+                     "normal.mean_deg", "normal.p95_deg", "uv.mean", "emission.rmse",
+                     "smoothness.ratio", "shadow.iou", "shadow.false_shadow",
+                     "shadow.missed_shadow", "shadow.mae", "shadow.leak"});
+    }
+    std::optional<Masks> masks;
+    if (covered) {
+        masks = computeMasks(reference, test, maskSettings(settings));
+        result.values["coverage.iou"] = coverageIou(*masks);
+        result.values["silhouette.mean_px"] = silhouetteMeanPx(*masks);
+    }
+    if (!masks) return;
+    if (bothHave(reference, test, {"Z"})) {
+        DepthResult depth = depthError(reference, test, *masks);
+        result.values["depth.rel_mean"] = depth.relMean;
+        result.errorMaps["depth"] = std::move(depth.errorMap);
+    } else {
+        notProvided({"depth.rel_mean"});
+    }
+    if (bothHave(reference, test, {"id"})) {
+        IdResult id = idMismatch(reference, test, *masks);
+        result.values["id.mismatch"] = id.mismatch;
+        result.errorMaps["id"] = std::move(id.errorMap);
+    } else {
+        notProvided({"id.mismatch"});
+    }
+    if (bothHave(reference, test, {"N.X", "N.Y", "N.Z"})) {
+        NormalResult normal = normalError(reference, test, *masks);
+        result.values["normal.mean_deg"] = normal.meanDeg;
+        result.values["normal.p95_deg"] = normal.p95Deg;
+        result.errorMaps["normal"] = std::move(normal.errorMap);
+        result.values["smoothness.ratio"] = smoothness(reference, test, *masks).ratio;
+    } else {
+        notProvided({"normal.mean_deg", "normal.p95_deg", "smoothness.ratio"});
+    }
+    if (bothHave(reference, test, {"uv.U", "uv.V"})) {
+        UvResult uv = uvError(reference, test, *masks);
+        result.values["uv.mean"] = uv.mean;
+        result.errorMaps["uv"] = std::move(uv.errorMap);
+    } else {
+        notProvided({"uv.mean"});
+    }
+    if (bothHave(reference, test, {"emission.R", "emission.G", "emission.B"})) {
+        EmissionResult emission = emissionError(reference, test, *masks);
+        result.values["emission.rmse"] = emission.rmse;
+        result.errorMaps["emission"] = std::move(emission.errorMap);
+    } else {
+        notProvided({"emission.rmse"});
+    }
+    if (bothHave(reference, test, {"shadow"})) {
+        ShadowResult shadow = shadowError(reference, test, *masks);
+        result.values["shadow.iou"] = shadow.iou;
+        result.values["shadow.false_shadow"] = shadow.falseShadow;
+        result.values["shadow.missed_shadow"] = shadow.missedShadow;
+        result.values["shadow.mae"] = shadow.mae;
+        result.values["shadow.leak"] = shadow.leak;
+        result.errorMaps["shadow"] = std::move(shadow.errorMap);
+    } else {
+        notProvided({"shadow.iou", "shadow.false_shadow", "shadow.missed_shadow", "shadow.mae",
+                     "shadow.leak"});
+    }
+    // Frames written before the ambient occlusion channel have none: no ao metrics for them;
+    // a test image without it beside a reference with it: not provided.
+    if (bothHave(reference, test, {"ao"}) && reference.hasChannel("Z") &&
+        reference.hasChannel("id")) {
+        AoResult ao = aoError(reference, test, *masks);
+        result.values["ao.mean_abs"] = ao.meanAbs;
+        result.values["ao.bias"] = ao.bias;
+        result.values["ao.halo"] = ao.halo;
+        result.values["ao.grain"] = ao.grain;
+        result.values["ao.banding"] = ao.banding;
+        result.errorMaps["ao"] = std::move(ao.errorMap);
+    } else if (reference.hasChannel("ao")) {
+        notProvided({"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"});
+    }
+    // The light of emitting surfaces, where either frame has any (light.emissive_light).
+    if (bothHave(reference, test, {"irradiance.R", "irradiance.G", "irradiance.B"})) {
+        if (hasIrradiance(reference, test)) {
+            IndirectResult indirect = indirectError(reference, test, *masks);
+            result.values["indirect.rmse"] = indirect.rmse;
+            result.values["indirect.missed"] = indirect.missed;
+            result.values["indirect.false"] = indirect.falseLight;
+            result.errorMaps["irradiance"] = std::move(indirect.errorMap);
+        }
+    } else if (reference.hasChannel("irradiance.R") && hasIrradiance(reference, reference)) {
+        notProvided({"indirect.rmse", "indirect.missed", "indirect.false"});
+    }
+    // A body's atmosphere, where either frame has in-scatter.
+    if (bothHave(reference, test, {"inscatter.R", "inscatter.G", "inscatter.B"})) {
+        if (hasInscatter(reference, test)) {
+            InscatterResult inscatter = inscatterError(reference, test);
+            result.values["inscatter.rmse"] = inscatter.rmse;
+            result.values["inscatter.rel"] = inscatter.rel;
+            result.errorMaps["inscatter"] = std::move(inscatter.errorMap);
+        }
+    } else if (reference.hasChannel("inscatter.R") && hasInscatter(reference, reference)) {
+        notProvided({"inscatter.rmse", "inscatter.rel"});
+    }
+}
+
+}  // namespace
 
 MetricResult computeMetrics(const core::Image& reference, const core::Image& test,
                             const MetricSettings& settings) {
@@ -117,10 +242,12 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
     const bool testAov = isAovImage(test);
     if (refAov != testAov)
         throw core::NotComparableError(fmt::format(
-            "metrics: the {} is an AOV image but the {} has no channel \"{}\"; compare two AOV "
-            "EXRs (all metrics) or two display images such as PNGs (beauty metrics)",
+            "metrics: the {} is an AOV image but the {} has no AOV channel (only {}); compare two "
+            "AOV EXRs (every metric their channels allow: at least R, G, B and one of {}) or two "
+            "display images such as PNGs (beauty metrics)",
             refAov ? "reference" : "test", refAov ? "test" : "reference",
-            firstMissingAovChannel(refAov ? test : reference)));
+            fmt::join((refAov ? test : reference).channelNames(), ", "),
+            fmt::join(missingAovChannels(refAov ? test : reference), ", ")));
 
     MetricResult result;
     {
@@ -169,71 +296,7 @@ MetricResult computeMetrics(const core::Image& reference, const core::Image& tes
     result.values["beauty.hdrflip"] = hdr.mean;
     result.hdrExposures = hdr.range;
     result.errorMaps["beauty.hdrflip"] = std::move(hdr.errorMap);
-
-    const Masks masks = computeMasks(reference, test, maskSettings(settings));
-
-    result.values["coverage.iou"] = coverageIou(masks);
-    result.values["silhouette.mean_px"] = silhouetteMeanPx(masks);
-
-    DepthResult depth = depthError(reference, test, masks);
-    result.values["depth.rel_mean"] = depth.relMean;
-    result.errorMaps["depth"] = std::move(depth.errorMap);
-
-    IdResult id = idMismatch(reference, test, masks);
-    result.values["id.mismatch"] = id.mismatch;
-    result.errorMaps["id"] = std::move(id.errorMap);
-
-    NormalResult normal = normalError(reference, test, masks);
-    result.values["normal.mean_deg"] = normal.meanDeg;
-    result.values["normal.p95_deg"] = normal.p95Deg;
-    result.errorMaps["normal"] = std::move(normal.errorMap);
-
-    UvResult uv = uvError(reference, test, masks);
-    result.values["uv.mean"] = uv.mean;
-    result.errorMaps["uv"] = std::move(uv.errorMap);
-
-    EmissionResult emission = emissionError(reference, test, masks);
-    result.values["emission.rmse"] = emission.rmse;
-    result.errorMaps["emission"] = std::move(emission.errorMap);
-
-    result.values["flux.ratio"] = fluxRatio(reference, test);
-    result.values["smoothness.ratio"] = smoothness(reference, test, masks).ratio;
-
-    ShadowResult shadow = shadowError(reference, test, masks);
-    result.values["shadow.iou"] = shadow.iou;
-    result.values["shadow.false_shadow"] = shadow.falseShadow;
-    result.values["shadow.missed_shadow"] = shadow.missedShadow;
-    result.values["shadow.mae"] = shadow.mae;
-    result.values["shadow.leak"] = shadow.leak;
-    result.errorMaps["shadow"] = std::move(shadow.errorMap);
-
-    // Frames written before the ambient occlusion channel have none: no ao metrics for them.
-    if (reference.hasChannel("ao") && test.hasChannel("ao")) {
-        AoResult ao = aoError(reference, test, masks);
-        result.values["ao.mean_abs"] = ao.meanAbs;
-        result.values["ao.bias"] = ao.bias;
-        result.values["ao.halo"] = ao.halo;
-        result.values["ao.grain"] = ao.grain;
-        result.values["ao.banding"] = ao.banding;
-        result.errorMaps["ao"] = std::move(ao.errorMap);
-    }
-    // The light of emitting surfaces, where either frame has any (light.emissive_light).
-    if (reference.hasChannel("irradiance.R") && test.hasChannel("irradiance.R") &&
-        hasIrradiance(reference, test)) {
-        IndirectResult indirect = indirectError(reference, test, masks);
-        result.values["indirect.rmse"] = indirect.rmse;
-        result.values["indirect.missed"] = indirect.missed;
-        result.values["indirect.false"] = indirect.falseLight;
-        result.errorMaps["irradiance"] = std::move(indirect.errorMap);
-    }
-    // A body's atmosphere, where either frame has in-scatter.
-    if (reference.hasChannel("inscatter.R") && test.hasChannel("inscatter.R") &&
-        hasInscatter(reference, test)) {
-        InscatterResult inscatter = inscatterError(reference, test);
-        result.values["inscatter.rmse"] = inscatter.rmse;
-        result.values["inscatter.rel"] = inscatter.rel;
-        result.errorMaps["inscatter"] = std::move(inscatter.errorMap);
-    }
+    addBufferMetrics(reference, test, settings, result);
     return result;
 }
 

@@ -1,16 +1,19 @@
 // Every metric of a pair of frames, by the names of docs/design.md ("Metrics"): the one call
 // `twinrender compare` and `run` make.
 //
-// Two AOV images (every channel of core::aov::channelNames()): the beauty metrics on the
-// tonemapped sRGB beauty (the image a person sees), beauty.hdrflip on the linear beauty, and
-// every per-buffer metric over its mask (masks.h, buffer_metrics.h). Two plain images (no AOV
-// channel other than R, G, B, A; e.g. PNGs): the beauty metrics only, on R, G, B as given.
+// Two AOV images (channels of core::aov::channelNames(): R, G, B and any of the others): the
+// beauty metrics on the tonemapped sRGB beauty (the image a person sees), beauty.hdrflip on the
+// linear beauty, and every per-buffer metric whose channels both images carry, over its mask
+// (masks.h, buffer_metrics.h); the others are "not provided" (MetricResult::notProvided), never
+// 0 and never a pass. Two plain images (no AOV channel other than R, G, B, A; e.g. PNGs): the
+// beauty metrics only, on R, G, B as given.
 #pragma once
 
 #include <glm/vec3.hpp>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "compare/flip_pooling.h"
 #include "compare/hdr_flip.h"
@@ -53,17 +56,22 @@ struct MetricResult {
     std::map<std::string, core::Image> errorMaps;
     // AOV images: the exposures beauty.hdrflip was taken over (hdr_flip.h), to report beside it.
     std::optional<ExposureRange> hdrExposures;
+    // AOV images: the metrics of the metric table that the images' channels cannot give (a
+    // channel missing from either), in the table's order of computation; and the AOV channels
+    // either image lacks.
+    std::vector<std::string> notProvided;
+    std::vector<std::string> missingChannels;
 };
 
-// True when the image carries every AOV channel; false when it carries none but R, G, B, A.
-// Throws core::NotComparableError naming the first missing channel for an image with some AOV
-// channels but not all.
+// True when the image carries an AOV channel other than R, G, B, A (its R, G, B then linear);
+// false for a display image.
 bool isAovImage(const core::Image& image);
+// The AOV channels (core::aov::channelNames()) the image lacks, in that order.
+std::vector<std::string> missingAovChannels(const core::Image& image);
 
 // Throws core::NotComparableError when the sizes differ (the message names both), when either
-// image lacks R, G or B, when one is an AOV image and the other is not, or when an image has
-// some AOV channels but not all (the message names the channel); std::invalid_argument for
-// settings out of range.
+// image lacks R, G or B, or when one is an AOV image and the other is not (the message names
+// the channels it has); std::invalid_argument for settings out of range.
 MetricResult computeMetrics(const core::Image& reference, const core::Image& test,
                             const MetricSettings& settings = {});
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -116,6 +117,10 @@ core::Image spheres(int w, int h, int shift = 0, float noise = 0.0f) {
             }
         }
     return img;
+}
+
+core::Image pick(const core::Image& image, const std::vector<std::string>& channels) {
+    return image.select(channels);
 }
 
 MetricSettings withLight() {
@@ -294,12 +299,9 @@ TEST(Metrics, DifferentSizesNameBoth) {
 
 TEST(Metrics, MissingChannelsAreNamed) {
     const core::Image full = spheres(32, 32);
-    std::vector<std::string> names = core::aov::channelNames();
-    std::erase(names, std::string("uv.V"));
-    expectNotComparable(full, full.select(names), {"uv.V"});
-    expectNotComparable(full.select(names), full, {"uv.V"});
-    // An AOV image against a plain one: the plain one lacks A.
-    expectNotComparable(full, core::Image(32, 32, {"R", "G", "B"}), {"\"A\"", "test"});
+    // An AOV image against a plain one: the message names what the plain one has and lacks.
+    expectNotComparable(full, core::Image(32, 32, {"R", "G", "B"}),
+                        {"test has no AOV channel", "only R, G, B", "uv.V"});
     // A plain image without G.
     expectNotComparable(core::Image(32, 32, {"R", "B"}), core::Image(32, 32, {"R", "G", "B"}),
                         {"\"G\"", "reference"});
@@ -309,8 +311,73 @@ TEST(Metrics, IsAovImage) {
     EXPECT_TRUE(isAovImage(core::aov::makeImage(4, 4)));
     EXPECT_FALSE(isAovImage(core::Image(4, 4, {"R", "G", "B"})));
     EXPECT_FALSE(isAovImage(core::Image(4, 4, {"R", "G", "B", "A"})));
-    EXPECT_THROW(isAovImage(core::Image(4, 4, {"R", "G", "B", "A", "Z"})),
-                 core::NotComparableError);
+    EXPECT_TRUE(isAovImage(core::Image(4, 4, {"R", "G", "B", "A", "Z"})));
+    EXPECT_EQ(missingAovChannels(core::aov::makeImage(4, 4)), std::vector<std::string>{});
+    std::vector<std::string> names = core::aov::channelNames();
+    std::erase(names, std::string("inscatter.G"));
+    EXPECT_EQ(missingAovChannels(core::aov::makeImage(4, 4).select(names)),
+              std::vector<std::string>{"inscatter.G"});
+}
+
+// A test image with some AOV channels (a renderer that writes beauty, coverage, depth and
+// normals): every metric their channels give, equal to the full pair's, and the rest listed as
+// not provided, never present as a value.
+TEST(Metrics, PartialAovsGiveEveryMetricTheirChannelsAllow) {
+    const core::Image ref = spheres(96, 64);
+    const core::Image full = spheres(96, 64, 2, 0.3f);
+    const core::Image partial = pick(full, {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"});
+    const MetricResult all = computeMetrics(ref, full, withLight());
+    const MetricResult some = computeMetrics(ref, partial, withLight());
+    // Same masks where the id is missing only if no pixel's bodies differ; here they do (the
+    // shift moves body 1 over body 0), so the masks are "covered in both": the coverage, depth
+    // and beauty metrics agree exactly, the normals' within what the id boundary changes.
+    for (const char* key : {"beauty.psnr", "beauty.flip", "beauty.hdrflip", "coverage.iou",
+                            "silhouette.mean_px", "flux.ratio"})
+        EXPECT_EQ(some.values.at(key), all.values.at(key)) << key;
+    for (const char* key :
+         {"depth.rel_mean", "normal.mean_deg", "normal.p95_deg", "smoothness.ratio"}) {
+        ASSERT_TRUE(some.values.count(key)) << key;
+        EXPECT_TRUE(std::isfinite(some.values.at(key))) << key;
+    }
+    const std::set<std::string> notProvided(some.notProvided.begin(), some.notProvided.end());
+    // Every AOV metric of the full pair but those of beauty, coverage, depth and normals.
+    std::set<std::string> expected;
+    for (const std::string& key : ALL_KEYS)
+        if (!BEAUTY_KEYS.count(key) && !key.starts_with("coverage.") &&
+            !key.starts_with("silhouette.") && !key.starts_with("depth.") &&
+            !key.starts_with("normal.") && key != "smoothness.ratio" && key != "flux.ratio" &&
+            key != "beauty.hdrflip")
+            expected.insert(key);
+    EXPECT_EQ(notProvided, expected);
+    for (const std::string& key : some.notProvided) EXPECT_FALSE(some.values.count(key)) << key;
+    // Every metric of the full pair is either given or listed.
+    for (const auto& [key, value] : all.values)
+        EXPECT_TRUE(some.values.count(key) || notProvided.count(key)) << key;
+    EXPECT_EQ(some.missingChannels.size(), core::aov::channelNames().size() - 8);
+    EXPECT_TRUE(all.notProvided.empty());
+}
+
+// The same images with id: the masks are the full pair's, so every metric the partial image
+// gives is the full pair's exactly.
+TEST(Metrics, PartialAovsWithIdsMeasureAsTheFullImages) {
+    const core::Image ref = spheres(96, 64);
+    const core::Image full = spheres(96, 64, 2, 0.3f);
+    const core::Image partial =
+        pick(full, {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "id", "shadow"});
+    const MetricResult all = computeMetrics(ref, full, withLight());
+    const MetricResult some = computeMetrics(ref, partial, withLight());
+    for (const auto& [key, value] : some.values) EXPECT_EQ(value, all.values.at(key)) << key;
+    EXPECT_EQ(some.values.size() + some.notProvided.size(), all.values.size());
+}
+
+// Without A nothing has a mask: only the beauty metrics and the flux.
+TEST(Metrics, WithoutCoverageOnlyTheBeautyIsMeasured) {
+    const core::Image ref = spheres(64, 48);
+    const MetricResult r = computeMetrics(ref, pick(ref, {"R", "G", "B", "Z"}), withLight());
+    EXPECT_EQ(r.values.size(), BEAUTY_KEYS.size() + 2);  // and beauty.hdrflip, flux.ratio
+    EXPECT_TRUE(r.values.count("flux.ratio"));
+    EXPECT_EQ(std::count(r.notProvided.begin(), r.notProvided.end(), "coverage.iou"), 1);
+    EXPECT_EQ(std::count(r.notProvided.begin(), r.notProvided.end(), "depth.rel_mean"), 1);
 }
 
 TEST(Metrics, SettingsOutOfRange) {

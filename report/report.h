@@ -64,6 +64,9 @@ struct SceneReport {
     MetricValues metrics;
     // Threshold and baseline checks together (evaluate() + compareToBaseline()).
     std::vector<Check> checks;
+    // The metrics the test image's channels cannot give (compare::MetricResult::notProvided):
+    // shown as "not provided", never checked.
+    std::vector<std::string> notProvided;
     // The blessed metrics of this scene, to show deltas of every metric, also the unchecked
     // ones (times); empty without a baseline.
     MetricValues baseline;

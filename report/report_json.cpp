@@ -76,6 +76,7 @@ json metricsJson(const SceneReport& scene) {
               {"checks", checksArray(scene.checks)},
               {"timings_ms", timingsObject(scene)},
               {"error_maps", errorMapsObject(scene)}};
+    if (!scene.notProvided.empty()) j["not_provided"] = scene.notProvided;
     if (!scene.error.empty()) j["error"] = scene.error;
     if (scene.sequence) j["sequence"] = sequenceJson(*scene.sequence);
     return j;
@@ -146,6 +147,7 @@ SceneReport sceneReportFromJson(const json& j, const std::string& source) {
         s.description = j.value("description", "");
         s.metrics = numbers(j.at("metrics"), "metrics");
         s.baseline = numbers(j.value("baseline", json()), "baseline");
+        s.notProvided = j.value("not_provided", std::vector<std::string>{});
         for (const json& c : j.at("checks")) {
             Check k;
             k.metric = c.at("metric").get<std::string>();
