@@ -10,6 +10,7 @@
 #include "compare/flip.h"
 #include "compare/testdata/test_pairs.h"
 #include "core/image_io.h"
+#include "tests/scratch_dir.h"
 
 namespace twinrender::compare {
 namespace {
@@ -199,16 +200,41 @@ TEST(HdrFlip, MatchesNvlabsReference) {
     }
 }
 
+// Writes the HDR pairs as EXRs into `dir` and reads them back: float32 EXRs hold every value
+// exactly.
+void writeHdrReferencePairs(const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir);
+    for (const HdrPair& p : {glowOnBlack(), noisySky()}) {
+        core::writeImage(p.reference, dir / (p.name + ".ref.exr"));
+        core::writeImage(p.test, dir / (p.name + ".test.exr"));
+        for (const char* which : {".ref.exr", ".test.exr"}) {
+            const core::Image& ours = which[1] == 'r' ? p.reference : p.test;
+            const core::Image read = core::readImage(dir / (p.name + which));
+            ASSERT_EQ(read.width(), ours.width());
+            ASSERT_EQ(read.height(), ours.height());
+            for (std::size_t i = 0; i < ours.pixelCount(); ++i)
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(read.at(i, read.requireChannel(ours.channelNames()[c])),
+                              ours.at(i, c))
+                        << p.name << which << " pixel " << i;
+        }
+    }
+}
+
+// The writer of the test below, into the build tree's scratch folder, so that its round trip
+// runs on every test run.
+TEST(HdrReferencePairs, RoundTripThroughTheirExrs) {
+    writeHdrReferencePairs(twinrender::testing::freshDir("hdr_reference_pairs"));
+}
+
 // Writes the HDR pairs as EXRs for NVlabs' flip tool when TWINRENDER_WRITE_TEST_PAIRS names a
 // folder (compare/testdata/reference_values.py --hdr), with the exposure range we compute;
 // skipped otherwise.
 TEST(HdrReferencePairs, WriteForReferenceTools) {
     const char* dir = std::getenv("TWINRENDER_WRITE_TEST_PAIRS");
     if (!dir) GTEST_SKIP() << "set TWINRENDER_WRITE_TEST_PAIRS=DIR to write the test pairs";
-    std::filesystem::create_directories(dir);
+    writeHdrReferencePairs(dir);
     for (const HdrPair& p : {glowOnBlack(), noisySky()}) {
-        core::writeImage(p.reference, std::filesystem::path(dir) / (p.name + ".ref.exr"));
-        core::writeImage(p.test, std::filesystem::path(dir) / (p.name + ".test.exr"));
         const HdrFlipResult r = hdrFlip(p.reference, p.test);
         std::printf("%s: start %.6f stop %.6f count %d mean %.6f\n", p.name.c_str(), r.range.start,
                     r.range.stop, r.range.count, r.mean);

@@ -11,6 +11,7 @@
 #include "compare/testdata/test_pairs.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "tests/scratch_dir.h"
 
 namespace twinrender::compare {
 namespace {
@@ -125,22 +126,17 @@ TEST(Psnr, MatchesScikitImage) {
     }
 }
 
-// Writes the test pairs as 8-bit PNGs for the reference tools (skimage, NVlabs' flip) when
-// TWINRENDER_WRITE_TEST_PAIRS names a folder; skipped otherwise. See
-// compare/testdata/reference_values.py.
-TEST(ReferencePairs, WriteForReferenceTools) {
-    const char* dir = std::getenv("TWINRENDER_WRITE_TEST_PAIRS");
-    if (!dir) GTEST_SKIP() << "set TWINRENDER_WRITE_TEST_PAIRS=DIR to write the test pairs";
+// Writes the test pairs as 8-bit PNGs into `dir` and reads them back: the PNGs hold the pixels
+// the tests use, 8-bit values k with k / 255 our value (the reader's conversion may differ from
+// k / 255.0f in the last bit).
+void writeReferencePairs(const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
     for (const auto& pair : testdata::referencePairs()) {
-        core::writeImage(pair.reference, std::filesystem::path(dir) / (pair.name + ".ref.png"));
-        core::writeImage(pair.test, std::filesystem::path(dir) / (pair.name + ".test.png"));
-        // The PNGs hold the pixels the tests use: 8-bit values k with k / 255 our value (the
-        // reader's conversion may differ from k / 255.0f in the last bit).
+        core::writeImage(pair.reference, dir / (pair.name + ".ref.png"));
+        core::writeImage(pair.test, dir / (pair.name + ".test.png"));
         for (const char* which : {".ref.png", ".test.png"}) {
             const core::Image& ours = which[1] == 'r' ? pair.reference : pair.test;
-            const core::Image read =
-                core::readImage(std::filesystem::path(dir) / (pair.name + which));
+            const core::Image read = core::readImage(dir / (pair.name + which));
             ASSERT_EQ(read.width(), ours.width());
             ASSERT_EQ(read.height(), ours.height());
             for (std::size_t p = 0; p < ours.pixelCount(); ++p)
@@ -150,6 +146,21 @@ TEST(ReferencePairs, WriteForReferenceTools) {
                         << pair.name << which;
         }
     }
+}
+
+// The writer of the test below, into the build tree's scratch folder, so that its round trip
+// runs on every test run.
+TEST(ReferencePairs, RoundTripThroughTheirPngs) {
+    writeReferencePairs(twinrender::testing::freshDir("reference_pairs"));
+}
+
+// Writes the test pairs as 8-bit PNGs for the reference tools (skimage, NVlabs' flip) when
+// TWINRENDER_WRITE_TEST_PAIRS names a folder; skipped otherwise. See
+// compare/testdata/reference_values.py.
+TEST(ReferencePairs, WriteForReferenceTools) {
+    const char* dir = std::getenv("TWINRENDER_WRITE_TEST_PAIRS");
+    if (!dir) GTEST_SKIP() << "set TWINRENDER_WRITE_TEST_PAIRS=DIR to write the test pairs";
+    writeReferencePairs(dir);
 }
 
 }  // namespace

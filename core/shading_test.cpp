@@ -59,6 +59,56 @@ TEST(Shading, LambertAmbientShadowAndCityLights) {
     EXPECT_NEAR(lit.z, 0.5 * 0.1 + 0.5 * 6.0 / M_PI, 1e-6);
 }
 
+// The specular term is unnormalised Blinn-Phong: specular x (n.h)^shininess x the light's
+// colour x intensity x visibility, with no n.l factor, wherever n.l > 0. Expected values written
+// by hand from that formula (shininess 16, material specular 0.5, light 2 x (1, 0.5, 0.25)).
+TEST(Shading, SpecularFollowsBlinnPhongAtTheHalfVector) {
+    const auto mats = oneMaterial(0.0, 0.5, 0.0);  // no diffuse: the specular term alone
+    const double deg = M_PI / 180.0;
+    // Light and eye in the xz plane at angles a and b from the normal (0, 0, 1), on one side:
+    // the half vector lies at (a + b) / 2 from the normal.
+    const auto at = [](double angle) {
+        return glm::vec3(float(std::sin(angle)), 0.0f, float(std::cos(angle)));
+    };
+    tc::LightSettings light;
+    light.intensity = 2.0;
+    light.color = {1.0, 0.5, 0.25};
+    light.ambient = 0.0;
+    tc::SurfacePoint p;
+    p.normal = {0.0f, 0.0f, 1.0f};
+    p.uv = {0.5f, 0.5f};
+
+    // n = h (light 20 degrees to one side, eye 20 to the other): the peak, 0.5 x 2 = 1 times the
+    // light's colour; n.l = 0.94 does not enter.
+    light.direction = -glm::dvec3(at(20.0 * deg));
+    p.toEye = at(-20.0 * deg);
+    const glm::vec3 peak = tc::shade(mats, light, p);
+    EXPECT_NEAR(peak.r, 1.0, 1e-6);
+    EXPECT_NEAR(peak.g, 0.5, 1e-6);
+    EXPECT_NEAR(peak.b, 0.25, 1e-6);
+
+    // Light at 10 degrees, eye at 50: h at 30 degrees from n, cos(30)^16 = (3/4)^8 =
+    // 6561 / 65536 = 0.100112915...
+    light.direction = -glm::dvec3(at(10.0 * deg));
+    p.toEye = at(50.0 * deg);
+    const double lobe = 6561.0 / 65536.0;
+    // Float directions and a float pow: a relative 1e-6 (16 x the cosine's rounding of 6e-8).
+    EXPECT_NEAR(tc::shade(mats, light, p).r, 1.0 * lobe, 1e-6 * lobe);
+    EXPECT_NEAR(tc::shade(mats, light, p).b, 0.25 * lobe, 1e-6 * lobe);
+    // The shadow scales it; the diffuse term adds albedo x n.l x 2.
+    p.visibility = 0.25f;
+    EXPECT_NEAR(tc::shade(mats, light, p).r, 0.25 * lobe, 1e-6 * lobe);
+    p.visibility = 1.0f;
+    const auto lit = oneMaterial(0.4, 0.5, 0.0);
+    EXPECT_NEAR(tc::shade(lit, light, p).r, 0.4 * std::cos(10.0 * deg) * 2.0 + lobe, 1e-6);
+
+    // The light just below the horizon (95 degrees, n.l < 0) gives no highlight, though with the
+    // eye at -60 degrees h lies 17.5 degrees from n, where the lobe would be 0.47.
+    light.direction = -glm::dvec3(at(95.0 * deg));
+    p.toEye = at(-60.0 * deg);
+    EXPECT_EQ(tc::shade(mats, light, p), glm::vec3(0.0f));
+}
+
 TEST(Shading, TonemapAndSrgb) {
     // sRGB transfer function: published values.
     EXPECT_NEAR(tc::linearToSrgb(0.0031308f), 0.04045f, 1e-5f);

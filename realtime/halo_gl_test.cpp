@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "realtime/testing/gl_test_scene.h"
 
@@ -22,8 +23,8 @@ const glm::vec3 RADIANCE(2.0f, 1.0f, 0.5f);
 constexpr float H = 0.1f;  // the particle's h: a sphere of radius_scale h
 
 // One glowing particle on black at `centre`, seen from (0, 0, 10) (no sun, no ambient light);
-// with `occluder`, a grey particle of h = 0.5 between it and the camera.
-TestScene glowingParticle(glm::vec3 centre, bool occluder = false) {
+// with `occluderZ`, a grey particle of h = 0.5 at that z on the line of sight.
+TestScene glowingParticle(glm::vec3 centre, std::optional<float> occluderZ = std::nullopt) {
     TestScene t;
     t.scene.light.intensity = 0.0;
     t.scene.light.ambient = 0.0;
@@ -32,7 +33,7 @@ TestScene glowingParticle(glm::vec3 centre, bool occluder = false) {
     glowing.emission = constantTexture(RADIANCE);
     t.materials.push_back(glowing);
     t.particles.particles.material[t.add(0, centre, H)] = 1;
-    if (occluder) t.add(1, glm::vec3(centre.x, centre.y, 5.0f), 0.5f);
+    if (occluderZ) t.add(1, glm::vec3(centre.x, centre.y, *occluderZ), 0.5f);
     return t;
 }
 
@@ -85,9 +86,16 @@ TEST_F(Halo, CarriesTheSpheresFluxWhereverItLies) {
 TEST_F(Halo, ANearerSurfaceHidesIt) {
     Settings halo = quiet();
     halo.particles.haloPixels = 1.0;
-    TestScene t = glowingParticle({0.0f, 0.0f, -40.0f}, true);
-    // The grey occluder reflects nothing (no light): every pixel is black.
-    EXPECT_EQ(flux(render(t, halo)), glm::dvec3(0.0));
+    // The grey occluder reflects nothing (no light): in front of the sphere every pixel is black.
+    TestScene front = glowingParticle({0.0f, 0.0f, -40.0f}, 5.0f);
+    EXPECT_EQ(flux(render(front, halo)), glm::dvec3(0.0));
+    // Behind it (eye depth 60) the occluder hides nothing: the halo carries the sphere's flux as
+    // on black (within 2e-3, as above), where the sphere drawn without one gives less than half
+    // of it (CarriesTheSpheresFluxWhereverItLies). So a halo option doing nothing fails here.
+    TestScene behind = glowingParticle({0.0f, 0.0f, -40.0f}, -50.0f);
+    const glm::dvec3 expected = sphereFlux(behind, 0.9 * H, 50.0);
+    const glm::dvec3 drawn = flux(render(behind, halo));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(drawn[c] / expected[c], 1.0, 2e-3) << "channel " << c;
 }
 
 TEST_F(Halo, ASphereAboveTheThresholdIsDrawnAsWithout) {

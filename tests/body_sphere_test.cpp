@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,14 @@ std::map<std::string, double> runWith(const fs::path& dir, const std::string& na
     return tt::runMetrics(SCENE, dir, name, sets);
 }
 
+// How many bodies the real-time frame of the run `name` drew as one sphere (its counter
+// body_spheres), -1 when its frame's JSON has none.
+double bodySpheres(const fs::path& dir, const std::string& name) {
+    const nlohmann::json frame = tt::readJson(dir / name / "body_sphere" / "realtime.json");
+    if (frame.is_discarded() || !frame["counters"].contains("body_spheres")) return -1.0;
+    return frame["counters"]["body_spheres"].get<double>();
+}
+
 }  // namespace
 
 TEST(BodySphere, TheSphereCoversTheReferencesBall) {
@@ -36,6 +45,10 @@ TEST(BodySphere, TheSphereCoversTheReferencesBall) {
     const auto sphere =
         runWith(dir, "sphere", {NEAR, "realtime.particles.body_sphere_pixels=4096"});
     ASSERT_TRUE(particles.contains("coverage.iou") && sphere.contains("coverage.iou"));
+    // The ball was drawn as the sphere, and only where asked: without this the coverage below
+    // would hold for an option that did nothing.
+    EXPECT_EQ(bodySpheres(dir, "particles"), 0.0);
+    EXPECT_EQ(bodySpheres(dir, "sphere"), 1.0);
     std::printf("30 px: coverage.iou particles %.4f, sphere %.4f\n", particles.at("coverage.iou"),
                 sphere.at("coverage.iou"));
     // The level set's outline is scalloped by the outer particles (about a tenth of the radius
@@ -49,6 +62,8 @@ TEST(BodySphere, AboveTheThresholdTheImageIsUnchanged) {
     const fs::path dir = tt::freshDir("body_sphere_unchanged");
     const auto off = runWith(dir, "off", {NEAR});
     const auto on = runWith(dir, "on", {NEAR, "realtime.particles.body_sphere_pixels=10"});
+    // The ball (30 px) is above the threshold (10 px): drawn as its particles.
+    EXPECT_EQ(bodySpheres(dir, "on"), 0.0);
     for (const char* key : {"coverage.iou", "normal.mean_deg", "beauty.psnr", "beauty.flip"}) {
         ASSERT_TRUE(off.contains(key) && on.contains(key)) << key;
         EXPECT_EQ(off.at(key), on.at(key)) << key;
