@@ -69,7 +69,6 @@ SelfCheck selfCheck(Device& device, const Settings& settings, const core::Render
     for (const PerSetDevice where : {PerSetDevice::Cpu, PerSetDevice::Gpu}) {
         Settings s = settings;
         s.perSet = where;
-        s.particles.bodySpherePixels = 0.0;  // the CPU's alone: both draw every particle
         Renderer renderer(device, s);
         frames[where == PerSetDevice::Cpu ? 0 : 1] = renderer.render(input);
     }
