@@ -59,7 +59,11 @@ gl::Texture runGradientGatherPass(ProgramCache& programs, const SceneBuffers& sc
                                   const GBuffer& gbuffer, DepthMode mode) {
     gl::Texture gradient(gbuffer.surface.width(), gbuffer.surface.height(), gl::Format::RGBA32F);
     scene.bind();  // the frame's uniforms
-    perSet.gatherGradient(programs, gbuffer.surface, gradient, camera);
+    if (scene.bodyMask)
+        perSet.gatherGradient(programs, gbuffer.surface, gradient, camera, scene.bodyMask->words,
+                              scene.bodyMask->reachesOthers);
+    else
+        perSet.gatherGradient(programs, gbuffer.surface, gradient, camera);
     return resolveGradient(programs, gradient, gbuffer, mode);
 }
 

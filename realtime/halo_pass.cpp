@@ -11,7 +11,7 @@ void runHaloPass(ProgramCache& programs, const SceneBuffers& scene, const gl::Te
     gl::Framebuffer framebuffer("halo", {{&beauty}});
     framebuffer.bind();
     gl::setPipelineState({.additiveBlend = true});
-    programs.get("halo.vert", "halo.frag", {}).use();
+    programs.get("halo.vert", "halo.frag", bodyMaskDefines(scene.bodyMask.has_value(), {})).use();
     scene.bind();
     surface.bind(2);
     scene.draw.draw();

@@ -14,17 +14,20 @@ void SceneBuffers::bind() const {
     texels.bind(7);
     materials.bindStorage(2);
     if (ellipsoids) ellipsoids->bindStorage(4);
+    if (bodyMask) bodyMask->words->bindStorage(1);
 }
 
 void SceneBuffers::drawImpostors(ProgramCache& programs, const char* fragment,
                                  const std::vector<std::string>& defines,
                                  const gl::Buffer* frame) const {
-    programs.get("impostor.vert", fragment, impostorDefines(ellipsoids != nullptr, defines)).use();
+    const std::vector<std::string> particleDefines = bodyMaskDefines(bodyMask.has_value(), defines);
+    programs.get("impostor.vert", fragment, impostorDefines(ellipsoids != nullptr, particleDefines))
+        .use();
     bind();
     if (frame) frame->bindUniform(0);
     draw.draw();
     if (droplets) {
-        programs.get("impostor.vert", fragment, impostorDefines(true, defines)).use();
+        programs.get("impostor.vert", fragment, impostorDefines(true, particleDefines)).use();
         droplets->ellipsoids->bindStorage(4);
         droplets->draw.draw();
     }
@@ -50,6 +53,11 @@ std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::strin
 
 std::vector<std::string> bodySphereDefines(std::vector<std::string> defines) {
     defines.emplace_back("BODY_SPHERE");
+    return defines;
+}
+
+std::vector<std::string> bodyMaskDefines(bool bodyMask, std::vector<std::string> defines) {
+    if (bodyMask) defines.emplace_back("BODY_MASK");
     return defines;
 }
 

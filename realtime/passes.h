@@ -69,10 +69,23 @@ struct SceneBuffers {
         DrawList draw;
     };
     std::optional<BodySpheres> bodySpheres;
+    // With realtime.per_set = "gpu", whose particles and droplets hold every body, the bodies
+    // drawn as their sphere: one word per body after four of counts (shaders/body_mask.glsl),
+    // nonzero where replaced. The programs that draw the particles then take the BODY_MASK
+    // variant (bodyMaskDefines), which drops their particles; none in a frame that replaces none.
+    struct BodyMask {
+        const gl::Buffer* words;  // shaders/body_mask.glsl, storage binding 1
+        // Whether a replaced body's kernels may reach another body's surface (its supports reach
+        // that body's, or an impostor reaches beyond its particle's support): the gradient
+        // gather then tests each kernel's body (GpuPerSet::gatherGradient).
+        bool reachesOthers = true;
+    };
+    std::optional<BodyMask> bodyMask;
 
     void bind() const;
-    // Draws the particles with impostor.vert and FRAGMENT (impostorDefines with `defines`),
-    // then the droplets' ellipsoids, then the body spheres; leaves the particles' buffers bound.
+    // Draws the particles with impostor.vert and FRAGMENT (impostorDefines with `defines`,
+    // bodyMaskDefines), then the droplets' ellipsoids, then the body spheres; leaves the
+    // particles' buffers bound.
     // `frame`: other frame uniforms than `uniforms` (another projection), left bound.
     void drawImpostors(ProgramCache& programs, const char* fragment,
                        const std::vector<std::string>& defines,
@@ -85,6 +98,11 @@ std::vector<std::string> impostorDefines(bool ellipsoids, std::vector<std::strin
 
 // `defines` with BODY_SPHERE: the whole-body sphere's variant of impostor.vert and its fragment.
 std::vector<std::string> bodySphereDefines(std::vector<std::string> defines);
+
+// `defines` with BODY_MASK where `bodyMask` (SceneBuffers::bodyMask): the variant of
+// impostor.vert and halo.vert that drops the particles of the bodies drawn as one sphere (and
+// of gradient_gather.comp that leaves out their kernels).
+std::vector<std::string> bodyMaskDefines(bool bodyMask, std::vector<std::string> defines);
 
 // The #define selecting the depth encoding in common.glsl.
 const char* depthDefine(DepthMode mode);

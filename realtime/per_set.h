@@ -34,8 +34,10 @@ struct PerSetDraws {
     DrawList draw;                                   // the particles drawn
     const gl::Buffer* ellipsoids = nullptr;          // GpuEllipsoid[] (shape = "ellipsoid")
     std::optional<SceneBuffers::Droplets> droplets;  // droplets drawn apart from spheres
-    // particles.body_sphere_pixels: the bodies drawn as one sphere each (per_set = "cpu").
+    // particles.body_sphere_pixels: the bodies drawn as one sphere each; on the GPU, whose
+    // packing keeps every particle, with the mask of those bodies (SceneBuffers::bodyMask).
     std::optional<SceneBuffers::BodySpheres> bodySpheres;
+    std::optional<SceneBuffers::BodyMask> bodyMask;
     // normal = "gradient": the kernels to splat (the CPU's), or the grid to gather the gradient
     // through (the GPU's).
     const gl::Buffer* kernels = nullptr;  // GpuKernel[]
@@ -48,9 +50,10 @@ class PerSetWork {
     virtual ~PerSetWork() = default;
     // The draws of a frame of `in` seen by `camera`, the per-set answers built anew where the
     // set or the settings they depend on changed. Times its stages (perSetStages(), "upload",
-    // "pack") and counts particles_drawn, droplets, kernels_splatted and per_set_builds into
-    // `frame`; calls `checkRecords(n)` before it makes n packed particles' records (throws
-    // where the device cannot hold them). The buffers live until the next prepare().
+    // "pack") and counts particles_drawn, droplets, body_spheres, kernels_splatted and
+    // per_set_builds into `frame`; calls `checkRecords(n)` before it makes n packed particles'
+    // records (throws where the device cannot hold them). The buffers live until the next
+    // prepare().
     virtual PerSetDraws prepare(ProgramCache& programs, const core::RenderInput& in,
                                 const core::Camera& camera, const Settings& settings,
                                 const std::function<void(std::size_t)>& checkRecords,

@@ -693,12 +693,28 @@ void GpuPerSet::pack(ProgramCache& programs, const FrameRequest& frame) {
     });
 }
 
+void GpuPerSet::countReplaced(ProgramCache& programs, const gl::Buffer& bodyMask) {
+    if (mCount == 0) return;
+    timed("pack", [&] {
+        bindStorage();
+        bodyMask.bindStorage(BODY_MASK);
+        const gl::Program& p = stageProgram(programs, "REPLACED");
+        p.set("uCount", static_cast<unsigned>(mCount));
+        p.dispatchIndirect(mHeader, WALK_DISPATCH);  // the drawn particles MARK listed
+    });
+}
+
 void GpuPerSet::gatherGradient(ProgramCache& programs, const gl::Texture& surface,
-                               gl::Texture& gradient, const glm::dvec3& camera) {
+                               gl::Texture& gradient, const glm::dvec3& camera,
+                               const gl::Buffer* bodyMask, bool testKernelBodies) {
     bindStorage();
     surface.bind(0);
     gradient.bindImageForWriting(0);
-    const gl::Program& p = programs.compute("gradient_gather.comp", {});
+    if (bodyMask) bodyMask->bindStorage(BODY_MASK);
+    std::vector<std::string> defines;
+    if (bodyMask) defines.emplace_back("BODY_MASK");
+    if (bodyMask && testKernelBodies) defines.emplace_back("KERNEL_BODIES");
+    const gl::Program& p = programs.compute("gradient_gather.comp", defines);
     p.set("uCamera", camera);
     p.dispatch(groups(gradient.width(), 8), groups(gradient.height(), 8));
     gl::computeBarrier();  // the resolve fetches the gradient

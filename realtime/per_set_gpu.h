@@ -91,12 +91,21 @@ class GpuPerSet {
     // and their indirect draw commands. Timed as "pack".
     void pack(ProgramCache& programs, const FrameRequest& frame);
 
+    // realtime.particles.body_sphere_pixels, after pack(): counts into `bodyMask`
+    // (shaders/body_mask.glsl, its counts zero, a word per body) the drawn particles of the
+    // bodies it marks replaced, and the droplets among them (REPLACED). Timed as "pack".
+    void countReplaced(ProgramCache& programs, const gl::Buffer& bodyMask);
+
     // normal = "gradient": the colour field's gradient at the surface point of each pixel of
     // `surface` (the G-buffer's eye depth, +inf where nothing is), summed over every particle
     // whose support covers it through the grid (shaders/gradient_gather.comp), written into
-    // `gradient` (RGBA32F, the surface's size). The frame's uniforms must be bound.
+    // `gradient` (RGBA32F, the surface's size). The frame's uniforms must be bound. With
+    // `bodyMask` (body_mask.glsl) the particles of the bodies it marks replaced are left out:
+    // their pixels take 0 without a walk, or, where their kernels may reach another body's
+    // surface (`testKernelBodies`), every kernel's body is tested.
     void gatherGradient(ProgramCache& programs, const gl::Texture& surface, gl::Texture& gradient,
-                        const glm::dvec3& camera);
+                        const glm::dvec3& camera, const gl::Buffer* bodyMask = nullptr,
+                        bool testKernelBodies = false);
     // Whether the last pack() kept the marks of the frame before (the drawn particles and their
     // prefix: nothing they depend on changed) and redid only the records.
     bool marksReused() const { return mMarksReused; }

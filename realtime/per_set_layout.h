@@ -59,6 +59,9 @@ inline unsigned groups(std::size_t count, std::size_t per = GROUP) {
 // Binding points of the per-set stages (shaders/per_set_stages.glsl, per_set.glsl).
 enum Binding : unsigned {
     PARTICLES = 0,
+    // The bodies drawn as one sphere this frame (shaders/body_mask.glsl: REPLACED; the
+    // impostor programs and the gradient gather read it there too).
+    BODY_MASK = 1,
     ELLIPSOIDS = 4,
     ATTRIBUTES = 5,
     HEADER = 6,

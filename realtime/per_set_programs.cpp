@@ -39,7 +39,7 @@ const char* stageFile(std::string_view stage) {
         {"per_set_models.comp", {"NORMALS", "FIELD_NORMAL", "ANISOTROPY"}},
         {"per_set_droplets.comp",
          {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"}},
-        {"per_set_pack.comp", {"NEAR_BOUND", "NEAR", "MARK", "PACK", "FINISH"}},
+        {"per_set_pack.comp", {"NEAR_BOUND", "NEAR", "MARK", "PACK", "FINISH", "REPLACED"}},
     };
     for (const Group& g : GROUPS)
         if (std::ranges::find(g.stages, stage) != g.stages.end()) return g.file;
@@ -109,6 +109,8 @@ std::vector<ProgramVariant> perSetPrograms(const PerSetRequest& request) {
     if (request.droplets)
         stages.insert(stages.end(),
                       {"DROPLET_EDGES", "DROPLET_CLUSTERS", "DROPLET_LINKS", "DROPLET_FIT"});
+    // Frames that draw a body as one sphere count its drawn particles (GpuPerSet::countReplaced).
+    if (request.particles.bodySpherePixels > 0.0) stages.push_back("REPLACED");
     const int kind = modelKind(request.particles);
     if (kind == 1) stages.push_back("FIELD_NORMAL");
     if (kind == 2) stages.push_back("ANISOTROPY");

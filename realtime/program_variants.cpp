@@ -86,19 +86,27 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     };
     // A set with droplets draws them with the ellipsoid programs, apart from the spheres.
     const bool anisotropic = settings.particles.shape == ParticleShape::Ellipsoid;
-    for (const bool ellipsoids : {false, true}) {
-        if (ellipsoids != anisotropic && !(ellipsoids && mayHaveDroplets(settings.particles)))
-            continue;
-        if (usesShadowMap(settings.shadows))
-            add("impostor.vert", "shadow.frag", impostorDefines(ellipsoids, {"SHADOW_PASS"}));
-        add("impostor.vert", "gbuffer.frag",
-            impostorDefines(ellipsoids, {depthDefine(settings.depth)}));
-        if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
-            add("impostor.vert", "gbuffer.frag",
-                impostorDefines(ellipsoids, emitterTargetDefines(settings.depth)));
+    // With per_set = "gpu", a frame that draws some body as one sphere draws the particles with
+    // the BODY_MASK variants (SceneBuffers::bodyMask), one that draws none without.
+    const bool bodySpheres = settings.particles.bodySpherePixels > 0.0;
+    const bool bodyMask = bodySpheres && settings.perSet == PerSetDevice::Gpu;
+    for (const bool masked : {false, true}) {
+        if (masked && !bodyMask) continue;
+        for (const bool ellipsoids : {false, true}) {
+            if (ellipsoids != anisotropic && !(ellipsoids && mayHaveDroplets(settings.particles)))
+                continue;
+            auto defines = [&](std::vector<std::string> d) {
+                return impostorDefines(ellipsoids, bodyMaskDefines(masked, std::move(d)));
+            };
+            if (usesShadowMap(settings.shadows))
+                add("impostor.vert", "shadow.frag", defines({"SHADOW_PASS"}));
+            add("impostor.vert", "gbuffer.frag", defines({depthDefine(settings.depth)}));
+            if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
+                add("impostor.vert", "gbuffer.frag", defines(emitterTargetDefines(settings.depth)));
+        }
     }
     // Bodies drawn as one sphere each (particles.body_sphere_pixels), after the particles.
-    if (settings.particles.bodySpherePixels > 0.0) {
+    if (bodySpheres) {
         if (usesShadowMap(settings.shadows))
             add("impostor.vert", "shadow.frag", bodySphereDefines({"SHADOW_PASS"}));
         add("impostor.vert", "gbuffer.frag", bodySphereDefines({depthDefine(settings.depth)}));
@@ -132,7 +140,10 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     if (emissiveLight)
         for (EmissiveProgram& p : emissivePrograms(settings.emissive))
             add("fullscreen.vert", p.fragment, std::move(p.defines));
-    if (usesHalo(settings, emits)) add("halo.vert", "halo.frag", {});
+    if (usesHalo(settings, emits)) {
+        add("halo.vert", "halo.frag", {});
+        if (bodyMask) add("halo.vert", "halo.frag", bodyMaskDefines(true, {}));
+    }
     add("fullscreen.vert", "shade.frag",
         shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings),
                      emissiveLight));
@@ -150,8 +161,13 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     if (settings.perSet == PerSetDevice::Gpu) {
         for (ProgramVariant& v : perSetPrograms(perSetRequest(settings)))
             out.push_back(std::move(v));
-        if (settings.particles.normal == NormalModel::Gradient)
+        if (settings.particles.normal == NormalModel::Gradient) {
             out.push_back(ProgramVariant::computeProgram("gradient_gather.comp", {}));
+            if (bodyMask)
+                for (std::vector<std::string> d :
+                     {std::vector<std::string>{"BODY_MASK"}, {"BODY_MASK", "KERNEL_BODIES"}})
+                    out.push_back(ProgramVariant::computeProgram("gradient_gather.comp", d));
+        }
     }
     return out;
 }
@@ -240,16 +256,19 @@ std::vector<ProgramVariant> allProgramVariants() {
             all.try_emplace(v.name(), std::move(v));
     }
     // The whole-body sphere's, in every depth encoding, with the shadow map and the emitter
-    // target.
-    for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
-        Settings a;
-        a.depth = depth;
-        a.perSet = PerSetDevice::Cpu;
-        a.particles.bodySpherePixels = 1.0;
-        a.emissive.method = EmissiveMethod::SsemTarget;
-        for (ProgramVariant& v : programVariants(a, true, true))
-            all.try_emplace(v.name(), std::move(v));
-    }
+    // target; on the GPU path with the masked particles' (droplets' ellipsoids among them), the
+    // masked halo's and gradient gather's, and REPLACED.
+    for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed})
+        for (PerSetDevice where : {PerSetDevice::Cpu, PerSetDevice::Gpu}) {
+            Settings a;
+            a.depth = depth;
+            a.perSet = where;
+            a.particles.bodySpherePixels = 1.0;
+            a.particles.haloPixels = 1.0;
+            a.emissive.method = EmissiveMethod::SsemTarget;
+            for (ProgramVariant& v : programVariants(a, true, true))
+                all.try_emplace(v.name(), std::move(v));
+        }
     // The error split's (error_split.h): the reference's depth, and shade with its light.
     for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed}) {
         ProgramVariant v =

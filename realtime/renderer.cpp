@@ -216,7 +216,8 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
                   .draw = {},
                   .ellipsoids = nullptr,
                   .droplets = std::nullopt,
-                  .bodySpheres = std::nullopt},
+                  .bodySpheres = std::nullopt,
+                  .bodyMask = std::nullopt},
         .draws = {}};
     const double sceneMs = msSince(start);
     out.draws = d.perSet(settings).prepare(
@@ -229,6 +230,7 @@ Uploaded upload(DeviceState& d, const core::RenderInput& in, const core::Camera&
     out.scene.ellipsoids = out.draws.ellipsoids;
     out.scene.droplets = out.draws.droplets;
     out.scene.bodySpheres = out.draws.bodySpheres;
+    out.scene.bodyMask = out.draws.bodyMask;
     frame.timingsMs["upload"] += sceneMs;  // the uniforms and materials too
     return out;
 }

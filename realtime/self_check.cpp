@@ -77,8 +77,7 @@ SelfCheck selfCheck(Device& device, const Settings& settings, const core::Render
     for (const PerSetDevice where : {PerSetDevice::Cpu, PerSetDevice::Gpu}) {
         Settings s = settings;
         s.perSet = where;
-        s.perSetFallback = false;            // each path as asked, whatever the device's verdict
-        s.particles.bodySpherePixels = 0.0;  // the CPU's alone: both draw every particle
+        s.perSetFallback = false;  // each path as asked, whatever the device's verdict
         Renderer renderer(device, s);
         frames[where == PerSetDevice::Cpu ? 0 : 1] = renderer.render(input);
     }
@@ -93,6 +92,9 @@ SelfCheck selfCheck(Device& device, const Settings& settings, const core::Render
         "within 3: radii agree within 3e-4 h");
     const double dropletsCpu = counter(cpu, "droplets"), dropletsGpu = counter(gpu, "droplets");
     add("droplets", dropletsCpu, dropletsGpu, 0.0, dropletsCpu == dropletsGpu, "equal");
+    const double spheresCpu = counter(cpu, "body_spheres"),
+                 spheresGpu = counter(gpu, "body_spheres");
+    add("body_spheres", spheresCpu, spheresGpu, 0.0, spheresCpu == spheresGpu, "equal");
     const ImageDifference d = imageDifference(cpu, gpu);
     const double bound = std::max(d.covered / 200, 1);
     add("covered_pixels", d.covered, d.covered, 1.0, d.covered > 0, "something drawn");

@@ -449,11 +449,6 @@ Settings parseSettings(const core::ParameterTable& t) {
             t.describe("particles.halo_pixels")));
     s.particles.bodySpherePixels =
         t.getDouble("particles.body_sphere_pixels", d.particles.bodySpherePixels, 0.0, 4096.0);
-    if (s.particles.bodySpherePixels > 0.0 && s.perSet == PerSetDevice::Gpu)
-        throw core::InputError(fmt::format(
-            "{}: the whole-body sphere is chosen per body on the CPU; set realtime.per_set = "
-            "\"cpu\" with it",
-            t.describe("particles.body_sphere_pixels")));
     s.particles.shape = t.getEnum("particles.shape", std::string(toString(d.particles.shape)),
                                   {"sphere", "ellipsoid"}) == "ellipsoid"
                             ? ParticleShape::Ellipsoid

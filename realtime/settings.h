@@ -172,8 +172,8 @@ struct ParticleSettings {
     // particles.body_sphere_pixels: a body whose level-set sphere (core/body_sphere.h) projects
     // to a radius below this many pixels is drawn as that one analytic sphere (its normal the
     // sphere's, uv its body-local spherical angles, glow its particles' mean) instead of its
-    // particles, 0..4096 (0: off, every particle drawn). Decided per body per frame on the CPU:
-    // per_set = "cpu" only. Study body_sphere.
+    // particles, 0..4096 (0: off, every particle drawn). Decided per body per frame on the CPU,
+    // with either per_set (on the GPU a mask of the replaced bodies). Study body_sphere.
     double bodySpherePixels = 0.0;
     // particles.shape: "sphere" | "ellipsoid".
     ParticleShape shape = ParticleShape::Sphere;

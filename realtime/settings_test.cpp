@@ -117,11 +117,17 @@ TEST(Settings, ReadsTheAtmosphereKeys) {
                  core::InputError);
 }
 
-// The spheres replace particles in the CPU's packing; the GPU's packs every particle.
-TEST(Settings, TheWholeBodySphereNeedsThePerSetWorkOnTheCpu) {
-    EXPECT_THROW(parseSettings(table({{"particles.body_sphere_pixels", 4.0}})),
+// The spheres replace particles in the CPU's packing, and through a mask of the replaced
+// bodies on the GPU path (per_set.cpp): either per_set takes the key.
+TEST(Settings, TheWholeBodySphereWorksWithEitherPerSetDevice) {
+    for (const char* where : {"gpu", "cpu"}) {
+        const Settings s = parseSettings(
+            table({{"particles.body_sphere_pixels", 4.0}, {"per_set", std::string(where)}}));
+        EXPECT_EQ(s.particles.bodySpherePixels, 4.0) << where;
+        EXPECT_EQ(toString(s.perSet), where);
+    }
+    EXPECT_THROW(parseSettings(table({{"particles.body_sphere_pixels", -1.0}})),
                  twinrender::core::InputError);
-    EXPECT_NO_THROW(parseSettings(table({{"particles.body_sphere_pixels", 0.0}})));
 }
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {

@@ -4,10 +4,14 @@
 // (the emission map at its uv plus its glow); the Gaussian has the disc's own spread,
 // sigma = rho / sqrt(2) (a disc of radius rho has that second moment, so the halo has the
 // disc's peak radiance), at least 0.7 px, where a Gaussian sampled at the pixel centres still
-// sums to 1 within 0.03 % wherever it lies. Every other particle's quad is dropped.
+// sums to 1 within 0.03 % wherever it lies. Every other particle's quad is dropped, and with
+// BODY_MASK (body_mask.glsl) those of the bodies drawn as one sphere.
 #include "common.glsl"
 #include "particles.glsl"
 #include "textures.glsl"
+#ifdef BODY_MASK
+#include "body_mask.glsl"
+#endif
 
 flat out vec3 vFlux;         // projected area (pixels^2) times emission (linear RGB)
 flat out vec2 vCentre;       // the centre in window coordinates (pixels)
@@ -30,6 +34,9 @@ void main() {
                         ? sampleTexture(materials[int(p.glowMaterial.w)].emission,
                                         vec2(p.normalU.w, p.dudxV.w)) + p.glowMaterial.rgb
                         : vec3(0.0);
+#ifdef BODY_MASK
+    if (bodyReplaced(uint(p.dvdxBody.w))) emission = vec3(0.0);
+#endif
     if (emission == vec3(0.0)) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
         vFlux = vec3(0.0);

@@ -10,12 +10,17 @@
 // large distance appears.
 // BODY_SPHERE: the records are whole bodies' spheres (packBodySpheres), drawn as spheres; only
 // the fragment shader reads them otherwise.
+// BODY_MASK (per_set = "gpu" in a frame that draws some body as its sphere, body_mask.glsl):
+// the GPU packs every particle, so a particle of a replaced body is dropped here.
 // SHADOW_PASS: orthographic from the light; the quad is perpendicular to the light, half-size r
 // (ELLIPSOID: the ellipsoid's half-extents along the light's x and y).
 #include "common.glsl"
 #include "particles.glsl"
 #ifndef SHADOW_PASS
 #include "textures.glsl"
+#endif
+#ifdef BODY_MASK
+#include "body_mask.glsl"
 #endif
 
 out vec2 vOffset;           // position in the quad plane relative to the centre, scene units
@@ -64,6 +69,12 @@ void dropQuad() {
 
 void main() {
     int particle = gl_VertexID / 6;
+#ifdef BODY_MASK
+    if (bodyReplaced(uint(particles[particle].dvdxBody.w))) {
+        dropQuad();
+        return;
+    }
+#endif
     vec2 corner = QUAD_CORNERS[gl_VertexID % 6];
     vec4 pr = particles[particle].positionRadius;
     float r = pr.w;

@@ -1,6 +1,6 @@
 // The per-frame stages of the draw lists, one per #define: NEAR_BOUND and NEAR (whether a
 // sphere reaches into the near plane's ball), MARK (the drawn particles), PACK (their records),
-// FINISH (the draw commands).
+// FINISH (the draw commands), REPLACED (the drawn particles of the bodies drawn as one sphere).
 #if defined(FINISH)
 layout(local_size_x = 32) in;
 #else
@@ -151,5 +151,23 @@ void main() {
     if (invocation() != 0u) return;
     drawParticles = uvec4(6u * drawnPrefix[uCount], 1u, 6u * firstSphere(), 0u);
     drawDroplets = uvec4(6u * dropletCount, 1u, 0u, 0u);
+}
+#endif
+
+#ifdef REPLACED
+// realtime.particles.body_sphere_pixels (per_set.cpp): of the drawn particles MARK listed, those
+// whose body is drawn as one sphere this frame (the impostor programs' BODY_MASK drops them),
+// and the droplets among them, counted for the frame's particles_drawn and droplets, which
+// leave them out as the CPU path's packing does. Only in frames that replace a body; one atomic
+// per such particle.
+#define BODY_MASK_ACCESS
+#include "body_mask.glsl"
+void main() {
+    uint t = invocation();
+    if (t >= walkDispatch.entries) return;
+    uint i = walkList[t];
+    if (!bodyReplaced(attributeBits(ATTR_BODY, i))) return;
+    atomicAdd(replacedDrawn, 1u);
+    if (dropletSlot(i) != 0u) atomicAdd(replacedDroplets, 1u);
 }
 #endif
