@@ -14,6 +14,7 @@
 
 #include "app/doctor_command.h"
 #include "app/exit_code.h"
+#include "app/export_command.h"
 #include "app/interruption.h"
 #include "app/merge_command.h"
 #include "app/output_folder.h"
@@ -261,6 +262,21 @@ int main(int argc, char** argv) {
     mergeCmd->add_option("--out", mergeOpts.out, "output folder of the joined report")->required();
     addAnnotations(mergeCmd, mergeOpts.annotations);
 
+    tr::app::ExportOptions exportOpts;
+    auto* exportCmd = app.add_subcommand(
+        "export",
+        "write what another renderer needs to draw a scene: particles as PLY, camera, "
+        "light, materials with baked textures (docs/external.md)");
+    exportCmd->add_option("SCENE", exportOpts.scene, "scene file (.toml)")->required();
+    exportCmd->add_option("--out", exportOpts.out, "output folder")->capture_default_str();
+    exportCmd->add_option("--set", exportOpts.sets, "KEY=VALUE with the scene's dotted keys")
+        ->type_name("KEY=VALUE");
+    exportCmd
+        ->add_option("--frames", exportOpts.frames,
+                     "FIRST:LAST[:STEP]: these frames of the scene's sequence, each into "
+                     "OUT/<scene>/<frame>/")
+        ->type_name("A:B");
+
     std::string blessDir, blessOut;
     auto* blessCmd = app.add_subcommand("bless", "write the baseline of a run");
     blessCmd->add_option("RUN_DIR", blessDir, "the output folder of `twinrender run`")->required();
@@ -299,6 +315,7 @@ int main(int argc, char** argv) {
             allow(studyOpts.cache);
         }
         if (*mergeCmd) allow(mergeOpts.out);
+        if (*exportCmd) allow(exportOpts.out);
         const int requested = *runCmd     ? runCommon.threads
                               : *sweepCmd ? sweepCommon.threads
                               : *studyCmd ? studyCommon.threads
@@ -312,6 +329,7 @@ int main(int argc, char** argv) {
             if (*render) rc = runRender(scenePath, rendererName, renderFrames, renderOpts);
             if (*doctorCmd) rc = tr::app::runDoctor(doctorOpts);
             if (*compareCmd) rc = tr::app::runCompare(compareOpts);
+            if (*exportCmd) rc = tr::app::runExport(exportOpts);
             if (*blessCmd) rc = tr::app::runBless(blessDir, blessOut);
             if (*runCmd) {
                 runOpts.out = runCommon.out;
