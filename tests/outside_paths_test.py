@@ -3,8 +3,9 @@
 Repository.NamesNoPathOutsideIt.
 
 Checked: every file git tracks or would add (untracked, not ignored); without git, every file
-under the source folder but build*/ and out/. Binary files (a NUL byte) are skipped, and this
-file, whose patterns and made-up lines name such paths on purpose. Found:
+under the source folder but build*/ and out/, but this file, whose patterns and made-up lines
+name such paths on purpose. In binary files (a NUL byte) only their runs of printable text are
+read, for absolute paths (an image's metadata may hold the command line that made it). Found:
 - a path that climbs with `..` out of the folder of the file naming it (scene files and
   Markdown links are read from their own folder);
 - a path that climbs with `..` into a folder the repository has nowhere (code, scripts and
@@ -107,7 +108,23 @@ def self_check() -> list:
     folders = {"data", "lammps_splash", "core", "scenes", "scripts", "docs", "ci"}
     failures = [f"not found in {n}: {t}" for n, t in bad.items() if not problems_in(n, t, folders)]
     failures += [f"found in {n}: {t}" for n, t in good.items() if problems_in(n, t, folders)]
+    # An EXR's Software attribute as oiiotool writes it, between binary bytes.
+    blob = b"\0\x01Software\0string\0oiiotool -o " + b"/" + b"work/x/one.exr\0\x7f"
+    if not binary_problems(blob):
+        failures.append("not found in a binary file's text")
+    if binary_problems(b"\0\x01Software\0string\0oiiotool -o ./one.exr\0"):
+        failures.append("found in a binary file's relative path")
     return failures
+
+
+def binary_problems(data: bytes) -> list:
+    """The absolute paths on one machine in the printable runs of a binary file's bytes."""
+    found = []
+    for run in re.findall(rb"[\x20-\x7e]{4,}", data):
+        text = run.decode("ascii")
+        found += [(0, m.group(0), "an absolute path on one machine, in binary data")
+                  for m in MACHINE.finditer(text)]
+    return found
 
 
 def repository_files(root: Path) -> list:
@@ -144,6 +161,7 @@ def main() -> int:
     for name in files:
         data = (root / name).read_bytes()
         if b"\0" in data:
+            found += [f"{name}: {what} ({why})" for _, what, why in binary_problems(data)]
             continue
         text = data.decode("utf-8", errors="replace")
         found += [f"{name}:{n}: {what} ({why})" for n, what, why in problems_in(name, text, folders)]
