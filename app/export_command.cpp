@@ -167,6 +167,49 @@ json bodiesJson(const LoadedScene& s) {
 
 }  // namespace
 
+json sceneExportJson(const LoadedScene& s, const fs::path& staging) {
+    return {{"format", "twinrender-export"},
+            {"version", EXPORT_FORMAT_VERSION},
+            {"scene", s.scene.name},
+            {"conventions",
+             {{"handedness", "right-handed world; the camera looks down -z in eye space"},
+              {"units", "scene units for positions, h, depth and distances"},
+              {"pixels",
+               "row 0 at the top, pixel (x, y) covers [x, x+1) x [y, y+1), its "
+               "centre at (x + 0.5, y + 0.5)"},
+              {"depth", "Z: eye depth along the view axis, +inf where nothing is hit"},
+              {"normals", "N: world space, unit, outward"},
+              {"matrices",
+               "row-major rows; OpenGL clip space (z in [-w, w]); "
+               "docs/external.md gives Direct3D's, Unity's and Unreal's"},
+              {"colour", "linear RGB radiance; the PNG is tonemapped with camera.exposure"}}},
+            {"surface",
+             {{"level", s.raymarch.surfaceLevel},
+              {"kernel",
+               "M4 cubic spline: W(r, h) = w(r/h) / (pi h^3), w(q) = 1 - 1.5 q^2 + "
+               "0.75 q^3 below 1, 0.25 (2 - q)^3 below 2, 0 beyond"},
+              {"field", "phi(x) = sum of volume_j W(|x - x_j|, h_j); the surface is phi = level"}}},
+            {"light", lightJson(s.scene.light)},
+            {"materials", materialsJson(s.materials, staging)},
+            {"bodies", bodiesJson(s)}};
+}
+
+json exportFrame(const LoadedScene& scene, std::int64_t frame, const fs::path& staging) {
+    LoadedScene s = scene;
+    if (frame != scene.scene.frame) setFrame(s, frame);
+    if (!s.particles.hasNormals) {
+        core::deriveNormals(s.particles.particles, s.particles.bodies);
+        s.particles.hasNormals = true;
+    }
+    const std::string folder = frameFolder(frame);
+    fs::create_directories(staging / folder);
+    writePly(s.particles, s.materials, staging / folder / "particles.ply");
+    return {{"frame", frame},
+            {"particles", folder + "/particles.ply"},
+            {"particle_count", s.particles.particles.size()},
+            {"camera", cameraJson(s.scene.camera)}};
+}
+
 ExitCode runExport(const ExportOptions& o) {
     std::vector<std::string> sets = o.sets;
     const LoadedScene first = loadScene(o.scene, sets);
@@ -182,41 +225,11 @@ ExitCode runExport(const ExportOptions& o) {
     }
     const fs::path dir = fs::path(o.out) / first.scene.name;
     prepareOutputFolder(dir);
-    json frameList = json::array();
     writeTogether(dir, [&](const fs::path& staging) {
-        json j = {{"format", "twinrender-export"},
-                  {"version", EXPORT_FORMAT_VERSION},
-                  {"scene", first.scene.name},
-                  {"conventions",
-                   {{"handedness", "right-handed world; the camera looks down -z in eye space"},
-                    {"units", "scene units for positions, h, depth and distances"},
-                    {"pixels",
-                     "row 0 at the top, pixel (x, y) covers [x, x+1) x [y, y+1), its "
-                     "centre at (x + 0.5, y + 0.5)"},
-                    {"depth", "Z: eye depth along the view axis, +inf where nothing is hit"},
-                    {"normals", "N: world space, unit, outward"},
-                    {"matrices",
-                     "row-major rows; OpenGL clip space (z in [-w, w]); "
-                     "docs/external.md gives Direct3D's, Unity's and Unreal's"},
-                    {"colour", "linear RGB radiance; the PNG is tonemapped with camera.exposure"}}},
-                  {"light", lightJson(first.scene.light)},
-                  {"materials", materialsJson(first.materials, staging)},
-                  {"bodies", bodiesJson(first)}};
-        for (const std::int64_t frame : frames) {
-            LoadedScene s = first;
-            if (frame != first.scene.frame) setFrame(s, frame);
-            if (!s.particles.hasNormals) {
-                core::deriveNormals(s.particles.particles, s.particles.bodies);
-                s.particles.hasNormals = true;
-            }
-            const std::string folder = frameFolder(frame);
-            fs::create_directories(staging / folder);
-            writePly(s.particles, s.materials, staging / folder / "particles.ply");
-            frameList.push_back({{"frame", frame},
-                                 {"particles", folder + "/particles.ply"},
-                                 {"particle_count", s.particles.particles.size()},
-                                 {"camera", cameraJson(s.scene.camera)}});
-        }
+        json j = sceneExportJson(first, staging);
+        json frameList = json::array();
+        for (const std::int64_t frame : frames)
+            frameList.push_back(exportFrame(first, frame, staging));
         j["frames"] = frameList;
         j["camera"] = frameList.front()["camera"];
         core::writeTextFile(staging / "scene.json", j.dump(2) + "\n");

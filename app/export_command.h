@@ -5,10 +5,14 @@
 // versioned JSON file. Everything is written into a staging folder and renamed into place.
 #pragma once
 
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "app/exit_code.h"
+#include "app/render_job.h"
 
 namespace twinrender::app {
 
@@ -25,5 +29,12 @@ ExitCode runExport(const ExportOptions& options);
 
 // The version of scene.json's format (its "version"), raised when a field changes meaning.
 inline constexpr int EXPORT_FORMAT_VERSION = 1;
+
+// scene.json's fields but "frames" and "camera", its textures baked under `dir`/textures/.
+nlohmann::json sceneExportJson(const LoadedScene& scene, const std::filesystem::path& dir);
+// One frame of the scene into `dir`/<frame>/particles.ply; its entry of "frames" (number,
+// particle file relative to `dir`, count, camera).
+nlohmann::json exportFrame(const LoadedScene& scene, std::int64_t frame,
+                           const std::filesystem::path& dir);
 
 }  // namespace twinrender::app

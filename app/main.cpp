@@ -99,7 +99,8 @@ void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
 }
 
 ExitCode runRender(const std::string& scenePath, const std::string& renderer,
-                   const std::string& frames, const CommonOptions& o) {
+                   const std::string& frames, const CommonOptions& o,
+                   tr::app::ExternalSettings external) {
     std::vector<std::string> sets = o.sets;
     if (!frames.empty()) {
         const auto range = tr::app::framesOverrides(frames);
@@ -112,6 +113,10 @@ ExitCode runRender(const std::string& scenePath, const std::string& renderer,
     // Every renderer first: without a GL context there is nothing to render in real time, and
     // the error should come before minutes of raymarching.
     tr::app::Devices devices(o.requireGpu, {.force = o.selfCheck});
+    if (renderer == "external") {
+        external.root = dir / "external";
+        devices.setExternal(std::move(external));
+    }
     if (!frames.empty()) {
         if (std::find(names.begin(), names.end(), "realtime") != names.end())
             devices.realtimeFor(loaded);
@@ -146,8 +151,18 @@ int main(int argc, char** argv) {
     std::string scenePath, rendererName = "both", renderFrames;
     auto* render = app.add_subcommand("render", "render one scene");
     render->add_option("SCENE", scenePath, "scene file (.toml)")->required();
-    render->add_option("--renderer", rendererName, "realtime | raymarch | both")
-        ->check(CLI::IsMember({"realtime", "raymarch", "both"}))
+    render
+        ->add_option("--renderer", rendererName,
+                     "realtime | raymarch | both | external (--external-command)")
+        ->check(CLI::IsMember({"realtime", "raymarch", "both", "external"}))
+        ->capture_default_str();
+    tr::app::ExternalSettings renderExternal;
+    render->add_option("--external-command", renderExternal.command,
+                       "--renderer external: the command run once per frame with the request's "
+                       "path (docs/external.md)");
+    render
+        ->add_option("--external-timeout", renderExternal.timeoutSeconds,
+                     "--renderer external: seconds a frame may take")
         ->capture_default_str();
     render
         ->add_option("--frames", renderFrames,
@@ -326,7 +341,8 @@ int main(int argc, char** argv) {
         tbb::task_arena arena(threads);
         ExitCode rc = ExitCode::Pass;
         arena.execute([&] {
-            if (*render) rc = runRender(scenePath, rendererName, renderFrames, renderOpts);
+            if (*render)
+                rc = runRender(scenePath, rendererName, renderFrames, renderOpts, renderExternal);
             if (*doctorCmd) rc = tr::app::runDoctor(doctorOpts);
             if (*compareCmd) rc = tr::app::runCompare(compareOpts);
             if (*exportCmd) rc = tr::app::runExport(exportOpts);

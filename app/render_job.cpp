@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/external_renderer.h"
 #include "app/interruption.h"
 #include "app/per_set_check.h"
 #include "app/progress.h"
@@ -105,6 +106,7 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
         return std::make_unique<raymarch::Renderer>(devices.embree(), s.raymarch);
     if (name == "realtime")
         return std::make_unique<realtime::Renderer>(devices.realtimeFor(s), s.realtime);
+    if (name == "external") return std::make_unique<ExternalRenderer>(devices.external(), s);
     throw core::InputError(fmt::format("no renderer named '{}'; the renderers are {}", name,
                                        fmt::join(rendererNames(), ", ")));
 }

@@ -45,6 +45,17 @@ struct LoadedScene {
 // reading every frame's files once).
 LoadedScene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
+// The external renderer (app/external_renderer.h): a command of the user's own run once per
+// frame.
+struct ExternalSettings {
+    // Run by /bin/sh -c in the frame's folder, with the request's path appended as its last
+    // argument.
+    std::string command;
+    double timeoutSeconds = 600.0;  // per frame, > 0
+    // Each frame's working folder is ROOT/<frame> (four digits), made anew.
+    std::filesystem::path root;
+};
+
 // When the per-set self-check runs before a command's first real-time frame
 // (app/per_set_check.h).
 struct SelfCheckPolicy {
@@ -73,11 +84,15 @@ class Devices {
     realtime::Device& realtimeFor(const LoadedScene& scene);
     // The GL context realtime() made (made by it when there is none yet).
     const realtime::gl::Context& glContext();
+    // The external renderer's command (makeRenderer's "external"); set by the command line.
+    void setExternal(ExternalSettings settings) { mExternal = std::move(settings); }
+    const ExternalSettings& external() const { return mExternal; }
 
   private:
     bool mRequireGpu;
     SelfCheckPolicy mSelfCheck;
     bool mPerSetChecked = false;
+    ExternalSettings mExternal;
     std::unique_ptr<raymarch::EmbreeDevice> mEmbree;
     std::unique_ptr<realtime::gl::Context> mContext;
     std::unique_ptr<realtime::Device> mRealtime;
@@ -86,7 +101,8 @@ class Devices {
 // The renderers by name, in the order `render --renderer both` runs them.
 const std::vector<std::string>& rendererNames();
 
-// The renderer `name` ("raymarch" or "realtime") with the scene's settings for it.
+// The renderer `name` ("raymarch", "realtime", or "external": devices.external()'s command)
+// with the scene's settings for it.
 std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& devices,
                                              const LoadedScene& scene);
 

@@ -103,6 +103,29 @@ MaskSettings maskSettings(const MetricSettings& settings) {
 
 namespace {
 
+// A test image whose Z is not eye depth (a depth buffer's value in [0, 1], NDC, 1/z) measures
+// nothing but the convention: where both images are covered, the median of test Z over
+// reference Z lies within [0.5, 2] for any renderer that writes eye depth at all (a distance
+// along the ray instead is at most 1/cos(half the field of view) longer).
+void checkDepthConvention(const core::Image& reference, const core::Image& test,
+                          const Mask& coveredInBoth) {
+    const int rz = reference.requireChannel("Z"), tz = test.requireChannel("Z");
+    std::vector<double> ratios;
+    for (std::size_t p = 0; p < coveredInBoth.pixelCount(); ++p)
+        if (coveredInBoth[p] && reference.at(p, rz) > 0.0f)
+            ratios.push_back(double(test.at(p, tz)) / reference.at(p, rz));
+    if (ratios.empty()) return;
+    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+    const double median = ratios[ratios.size() / 2];
+    if (!(median >= 0.5 && median <= 2.0))
+        throw core::NotComparableError(fmt::format(
+            "metrics: the test image's Z is {:.3g} times the reference's eye depth (the median "
+            "over the {} pixels covered in both): Z must be the eye depth along the view axis in "
+            "scene units, +inf where nothing is hit, not a depth buffer's value or NDC "
+            "(docs/external.md)",
+            median, ratios.size()));
+}
+
 // The per-buffer metrics of an AOV pair, each where both images carry its channels (an image
 // may carry only some: a renderer that writes beauty, depth and normals gets those metrics);
 // the others are listed in result.notProvided. The masks need A in both (computeMasks says what
@@ -133,6 +156,7 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
     }
     if (!masks) return;
     if (bothHave(reference, test, {"Z"})) {
+        checkDepthConvention(reference, test, masks->coveredInBoth);
         DepthResult depth = depthError(reference, test, *masks);
         result.values["depth.rel_mean"] = depth.relMean;
         result.errorMaps["depth"] = std::move(depth.errorMap);

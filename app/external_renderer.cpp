@@ -1,0 +1,203 @@
+#include "app/external_renderer.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/export_command.h"
+#include "app/sequence_run.h"
+#include "core/cancellation.h"
+#include "core/error.h"
+#include "core/frame.h"
+#include "core/image_io.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The last `lines` lines of a text file.
+std::string lastLines(const fs::path& file, int lines) {
+    std::ifstream in(file);
+    std::vector<std::string> all;
+    for (std::string line; std::getline(in, line);) all.push_back(line);
+    std::string out;
+    for (std::size_t i = all.size() > std::size_t(lines) ? all.size() - lines : 0; i < all.size();
+         ++i)
+        out += "\n    " + all[i];
+    return out.empty() ? " (nothing on standard error)" : out;
+}
+
+struct CommandRun {
+    int exitCode = 0;
+    bool timedOut = false;
+    double seconds = 0.0;
+};
+
+// Runs `command` "$request" through /bin/sh in `folder`, its own process group, standard output
+// and error into folder/stdout.log and stderr.log; ends the group at the time limit or when
+// `cancel` is set.
+CommandRun runCommand(const std::string& command, const fs::path& request, const fs::path& folder,
+                      double timeoutSeconds, const std::atomic<bool>* cancel) {
+    const std::string script = command + " \"$1\"";
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t pid = fork();
+    if (pid < 0)
+        throw core::InputError(fmt::format("external renderer: cannot start '{}'", command));
+    if (pid == 0) {
+        setpgid(0, 0);
+        if (chdir(folder.c_str()) != 0) _exit(126);
+        const int out = open("stdout.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int err = open("stderr.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out >= 0) dup2(out, STDOUT_FILENO);
+        if (err >= 0) dup2(err, STDERR_FILENO);
+        signal(SIGINT, SIG_DFL);
+        signal(SIGTERM, SIG_DFL);
+        execl("/bin/sh", "sh", "-c", script.c_str(), "sh", request.c_str(), nullptr);
+        _exit(127);
+    }
+    setpgid(pid, pid);
+    CommandRun run;
+    int status = 0;
+    for (;;) {
+        const pid_t done = waitpid(pid, &status, WNOHANG);
+        if (done == pid) break;
+        run.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const bool cancelled = cancel && cancel->load();
+        if (run.seconds > timeoutSeconds || cancelled) {
+            kill(-pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            run.timedOut = !cancelled;
+            core::throwIfCancelled(cancel);
+            return run;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    kill(-pid, SIGKILL);  // whatever it left running in its group
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return run;
+}
+
+// NaN or an infinity in a channel (+inf in Z is the background's depth): the first such pixel.
+std::string firstNonFinite(const core::Image& image) {
+    for (int c = 0; c < image.channelCount(); ++c) {
+        const bool depth = image.channelNames()[c] == "Z";
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                const float v = image.at(x, y, c);
+                if (std::isnan(v) || (std::isinf(v) && !(depth && v > 0)))
+                    return fmt::format("{} at pixel ({}, {}) of channel {}", v, x, y,
+                                       image.channelNames()[c]);
+            }
+    }
+    return {};
+}
+
+}  // namespace
+
+ExternalRenderer::ExternalRenderer(ExternalSettings settings, const LoadedScene& scene)
+    : mSettings(std::move(settings)), mScene(scene) {
+    if (mSettings.command.empty())
+        throw core::InputError("external renderer: no command (--external-command CMD)");
+    if (!(mSettings.timeoutSeconds > 0.0))
+        throw core::InputError(fmt::format(
+            "external renderer: the time limit must be > 0 s, got {}", mSettings.timeoutSeconds));
+}
+
+core::Frame ExternalRenderer::render(const core::RenderInput& in) {
+    core::throwIfCancelled(in.cancel);
+    const std::int64_t frameNumber = in.scene.frame;
+    const fs::path folder = mSettings.root / frameFolder(frameNumber);
+    auto fail = [&](const std::string& what) {
+        return core::InputError(fmt::format("external renderer '{}', frame {} of {}: {}",
+                                            mSettings.command, frameNumber, in.scene.name, what));
+    };
+    fs::remove_all(folder);
+    fs::create_directories(folder / "out");
+    // The frame exported as `export` writes it (its textures, its particles, its camera).
+    LoadedScene s{in.scene, mScene.raymarch, mScene.realtime, in.materials, in.particles};
+    json scene = sceneExportJson(s, folder);
+    const json entry = exportFrame(s, frameNumber, folder);
+    scene["frames"] = json::array({entry});
+    scene["camera"] = entry["camera"];
+    core::writeTextFile(folder / "scene.json", scene.dump(2) + "\n");
+    const json request = {
+        {"format", REQUEST_FORMAT},
+        {"version", REQUEST_VERSION},
+        {"scene", "scene.json"},
+        {"frame", frameNumber},
+        {"particles", entry["particles"]},
+        {"camera", entry["camera"]},
+        {"width", in.scene.camera.width},
+        {"height", in.scene.camera.height},
+        {"time_limit_s", mSettings.timeoutSeconds},
+        {"output", {{"image", "out/image.exr"}, {"timings", "out/timings.json"}}}};
+    core::writeTextFile(folder / "request.json", request.dump(2) + "\n");
+
+    const CommandRun run = runCommand(mSettings.command, folder / "request.json", folder,
+                                      mSettings.timeoutSeconds, in.cancel);
+    if (run.timedOut)
+        throw fail(fmt::format("passed its time limit of {} s; its process group was ended",
+                               mSettings.timeoutSeconds));
+    if (run.exitCode == 127 || run.exitCode == 126)
+        throw fail(fmt::format("the command was not found or is not executable (exit {}):{}",
+                               run.exitCode, lastLines(folder / "stderr.log", 5)));
+    if (run.exitCode != 0)
+        throw fail(fmt::format("exited with {}; the last lines of its standard error:{}",
+                               run.exitCode, lastLines(folder / "stderr.log", 10)));
+    const fs::path imageFile = folder / "out" / "image.exr";
+    if (!fs::exists(imageFile))
+        throw fail(
+            fmt::format("wrote no image at {} (the request's output.image)", imageFile.string()));
+    core::Frame frame;
+    try {
+        frame.image = core::readImage(imageFile);
+    } catch (const core::InputError& e) {
+        throw fail(e.what());
+    }
+    const core::Image& image = frame.image;
+    if (image.width() != in.scene.camera.width || image.height() != in.scene.camera.height)
+        throw fail(fmt::format("its image is {}x{} pixels; the camera's is {}x{}", image.width(),
+                               image.height(), in.scene.camera.width, in.scene.camera.height));
+    for (const char* c : {"R", "G", "B"})
+        if (!image.hasChannel(c))
+            throw fail(
+                fmt::format("its image has no channel \"{}\" (the linear beauty is R, G, B)", c));
+    if (const std::string bad = firstNonFinite(image); !bad.empty())
+        throw fail("its image holds " + bad +
+                   "; every channel must be finite (Z may be +inf "
+                   "where nothing is hit)");
+    frame.display = core::tonemappedBeauty(image, static_cast<float>(in.scene.camera.exposure));
+    frame.renderer = "external";
+    frame.device = "external: " + mSettings.command;
+    frame.particleCount = in.particles.particles.size();
+    frame.timingsMs["command"] = run.seconds * 1e3;
+    frame.timingsMs["total"] = run.seconds * 1e3;
+    std::ifstream timings(folder / "out" / "timings.json");
+    if (timings) {
+        const json t = json::parse(timings, nullptr, /*allow_exceptions=*/false);
+        if (!t.is_object()) throw fail("its out/timings.json is not a JSON object");
+        for (const auto& [stage, ms] : t.items())
+            if (ms.is_number()) frame.timingsMs[stage] = ms.get<double>();
+    }
+    frame.settings = {{"external.command", mSettings.command},
+                      {"external.time_limit_s", mSettings.timeoutSeconds}};
+    return frame;
+}
+
+}  // namespace twinrender::app

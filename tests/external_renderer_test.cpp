@@ -1,0 +1,106 @@
+// The external renderer protocol (app/external_renderer.h, docs/external.md) end to end: an
+// analytic renderer of one particle's sphere (tests/adapters/analytic_sphere.py, numpy) run
+// through it measures as the reference to float precision, so the export and the conventions
+// (matrices, pixel centres, eye depth, coverage, normals) are exact; and each way a renderer
+// can misbehave is a clear error naming the renderer and the frame, exit 4, nothing written.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/cli_harness.h"
+
+namespace tt = twinrender::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string SPHERE = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/one_sphere.toml";
+const std::string ADAPTER =
+    "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) + "/tests/adapters/analytic_sphere.py";
+
+tt::CommandResult external(const fs::path& out, const std::string& command,
+                           const std::string& environment = "", const std::string& more = "") {
+    return tt::runTwinrender("render " + SPHERE + " --renderer external --external-command '" +
+                                 command + "' --out " + out.string() + more,
+                             environment);
+}
+
+}  // namespace
+
+TEST(ExternalRenderer, AnAnalyticSphereMeasuresAsTheReferenceToFloatPrecision) {
+    const fs::path dir = tt::freshDir("external_sphere");
+    ASSERT_EQ(tt::runTwinrender("render " + SPHERE + " --renderer raymarch --out " + dir.string())
+                  .exitCode,
+              0);
+    const auto r = external(dir, ADAPTER);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    // The request and the frame's own folder, as docs/external.md describes them.
+    const nlohmann::json request =
+        tt::readJson(dir / "one_sphere" / "external" / "0000" / "request.json");
+    EXPECT_EQ(request["format"], "twinrender-request");
+    EXPECT_EQ(request["version"], 1);
+    EXPECT_EQ(request["output"]["image"], "out/image.exr");
+    const nlohmann::json frame = tt::readJson(dir / "one_sphere" / "external.json");
+    EXPECT_EQ(frame["timings_ms"]["total"], 0.5);  // from the renderer's out/timings.json
+
+    const auto c = tt::runTwinrender("compare " + (dir / "one_sphere" / "raymarch.exr").string() +
+                                     " " + (dir / "one_sphere" / "external.exr").string() +
+                                     " --scene " + SPHERE + " --out " + (dir / "c").string());
+    ASSERT_EQ(c.exitCode, 0) << c.output;
+    const nlohmann::json m = tt::readJson(dir / "c" / "metrics.json")["metrics"];
+    // Every pixel centre on the same side of the silhouette: the reference samples the pixel
+    // centres (spp 1) as the adapter's rays do.
+    EXPECT_EQ(m["coverage.iou"], 1.0);
+    EXPECT_EQ(m["silhouette.mean_px"], 0.0);
+    // The reference refines its root to 1e-4 h: at an eye depth of about 4 h, 2.5e-5 of it.
+    EXPECT_LT(m["depth.rel_mean"].get<double>(), 2.5e-5);
+    // Normals of the same sphere at points 1e-4 h apart: far under a thousandth of a degree.
+    EXPECT_LT(m["normal.mean_deg"].get<double>(), 1e-3);
+}
+
+TEST(ExternalRenderer, EachMisbehaviourIsAClearErrorNamingTheRendererAndFrame) {
+    const fs::path dir = tt::freshDir("external_bad");
+    struct Case {
+        const char* name;
+        std::string command, environment, more, says;
+    };
+    const Case cases[] = {
+        {"missing", "/no/such/renderer", "", "", "not found or is not executable"},
+        {"exit", "echo the GPU caught fire >&2; exit 3", "", "",
+         "exited with 3; the last lines of its standard error:\n    the GPU caught fire"},
+        {"timeout", "sleep 30; true", "", " --external-timeout 0.5",
+         "passed its time limit of 0.5 s; its process group was ended"},
+        {"no_image", "true", "", "", "wrote no image"},
+        {"nan", ADAPTER, "ANALYTIC_SPHERE_FAULT=nan", "", "nan at pixel (0, 0) of channel R"},
+        {"size", ADAPTER, "ANALYTIC_SPHERE_FAULT=size", "", "its image is 65x48 pixels"},
+    };
+    for (const Case& k : cases) {
+        const fs::path out = dir / k.name;
+        const auto start = std::chrono::steady_clock::now();
+        const auto r = external(out, k.command, k.environment, k.more);
+        EXPECT_EQ(r.exitCode, 4) << k.name << "\n" << r.output;
+        EXPECT_NE(r.output.find("external renderer '"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("frame 0 of one_sphere"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(k.says), std::string::npos) << k.name << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out / "one_sphere" / "external.exr")) << k.name;
+        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                  20.0)
+            << k.name;
+    }
+}
+
+TEST(ExternalRenderer, ADepthInAnotherConventionIsNotComparable) {
+    const fs::path dir = tt::freshDir("external_depth");
+    ASSERT_EQ(tt::runTwinrender("render " + SPHERE + " --renderer raymarch --out " + dir.string())
+                  .exitCode,
+              0);
+    ASSERT_EQ(external(dir, ADAPTER, "ANALYTIC_SPHERE_FAULT=depth").exitCode, 0);
+    const auto c = tt::runTwinrender("compare " + (dir / "one_sphere" / "raymarch.exr").string() +
+                                     " " + (dir / "one_sphere" / "external.exr").string() +
+                                     " --out " + (dir / "c").string());
+    EXPECT_EQ(c.exitCode, 3) << c.output;
+    EXPECT_NE(c.output.find("must be the eye depth along the view axis"), std::string::npos)
+        << c.output;
+}
