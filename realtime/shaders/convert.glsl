@@ -11,7 +11,9 @@
 // Exempt, left as int(), ivec2(): gl_FragCoord.xy, gl_GlobalInvocationID and integer expressions
 // (whole and in range), and uniforms C++ sets to whole numbers (an image's size, a direction).
 // GLSL leaves min, max and clamp undefined for a NaN too: the helpers test NaN (by its bits, which
-// no compiler folds away) before clamping.
+// no compiler folds away) before clamping; elsewhere a NaN that can matter is tested first:
+// per_set.glsl's levelOf (a NaN ratio is level 0), per_set_grid.comp's LAYOUT (a box no cell
+// size fits is one cell).
 //
 // Test modes (realtime/gl/conversions.h, TWINRENDER_GL_CONVERSIONS): CONVERSIONS_SATURATE makes
 // toInt and toUint answer as NVIDIA, CONVERSIONS_WRAP as llvmpipe; clampToInt and saturateToInt
