@@ -13,7 +13,7 @@
 // GLSL leaves min, max and clamp undefined for a NaN too: the helpers test NaN (by its bits, which
 // no compiler folds away) before clamping; elsewhere a NaN that can matter is tested first:
 // per_set.glsl's levelOf (a NaN ratio is level 0), per_set_grid.comp's LAYOUT (a box no cell
-// size fits is one cell).
+// size fits is one cell), shade.frag's shadow-map bounds (a NaN point is lit).
 //
 // Test modes (realtime/gl/conversions.h, TWINRENDER_GL_CONVERSIONS): CONVERSIONS_SATURATE makes
 // toInt and toUint answer as NVIDIA, CONVERSIONS_WRAP as llvmpipe; clampToInt and saturateToInt

@@ -31,7 +31,7 @@ void main() {
     float d = length(c);
     float rho = c.z < 0.0 ? r * pixelsPerUnitAt(-c.z) : subpixel.x;
     vec3 emission = c.z < 0.0 && rho < subpixel.x && d > r
-                        ? sampleTexture(materials[int(p.glowMaterial.w)].emission,
+                        ? sampleTexture(materials[materialIndex(p.glowMaterial.w)].emission,
                                         vec2(p.normalU.w, p.dudxV.w)) + p.glowMaterial.rgb
                         : vec3(0.0);
 #ifdef BODY_MASK

@@ -142,7 +142,7 @@ void main() {
     vDvdx = p.dvdxBody.xyz;
     vGlowMaterial = p.glowMaterial;
     vBody = p.dvdxBody.w;
-    vEmissionTexture = materials[int(p.glowMaterial.w)].emission;
+    vEmissionTexture = materials[materialIndex(p.glowMaterial.w)].emission;
     vec3 helper = abs(axis.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
     vec3 across = normalize(cross(helper, axis));
     vec3 up = cross(axis, across);
