@@ -6,7 +6,9 @@
 //  clampToInt(x, lo, hi)  trunc(x) within [lo, hi] (lo <= hi); NaN gives lo. Indices (a cell,
 //                         a texel, a material), loop counts (to a stated maximum), sizes.
 //  saturateToInt(x)       trunc(x) within +-2^30, beyond every image and grid with room to add a
-//                         block's size; NaN gives -2^30: off the image, an empty walk.
+//                         block's size; NaN gives -2^30: off the image, an empty walk. A finite
+//                         x beyond int is expected (a walk's bound in a level far away:
+//                         telescope.toml's planet lies 1e12 cells of the rock's level away).
 //  toInt(x), toUint(x)    int(x), uint(x): a bad input gives the driver's answer (or the mode's).
 // Exempt, left as int(), ivec2(): gl_FragCoord.xy, gl_GlobalInvocationID and integer expressions
 // (whole and in range), and uniforms C++ sets to whole numbers (an image's size, a direction).
@@ -18,9 +20,11 @@
 // Test modes (realtime/gl/conversions.h, TWINRENDER_GL_CONVERSIONS): CONVERSIONS_SATURATE makes
 // toInt and toUint answer as NVIDIA, CONVERSIONS_WRAP as llvmpipe; clampToInt and saturateToInt
 // answer alike in every mode. CONVERSIONS_COUNT: every call with a non-finite or out-of-range
-// value adds 1 to the atomic counter at binding 0, which C++ checks after each pass and stage.
+// value (saturateToInt: a non-finite one) adds 1 to the atomic counter at binding 0, which C++
+// checks after each pass and stage.
 
 bool isNanBits(float x) { return (floatBitsToUint(x) & 0x7FFFFFFFu) > 0x7F800000u; }
+bool isFiniteBits(float x) { return (floatBitsToUint(x) & 0x7F800000u) != 0x7F800000u; }
 // Whether trunc(x) is an int / a uint (false for NaN and infinities).
 bool inIntRange(float x) { return !isNanBits(x) && x >= -2147483648.0 && x < 2147483648.0; }
 bool inUintRange(float x) { return !isNanBits(x) && x > -1.0 && x < 4294967296.0; }
@@ -67,7 +71,7 @@ int clampToInt(float x, int lo, int hi) {
 
 const float SATURATED_INT = 1073741824.0;  // 2^30
 int saturateToInt(float x) {
-    COUNT_UNLESS(inIntRange(x));
+    COUNT_UNLESS(isFiniteBits(x));
     return int(isNanBits(x) ? -SATURATED_INT : clamp(x, -SATURATED_INT, SATURATED_INT));
 }
 ivec2 saturateToInt(vec2 x) { return ivec2(saturateToInt(x.x), saturateToInt(x.y)); }
