@@ -35,33 +35,40 @@ constexpr std::uint32_t BAD_FOR_INT = 6;   // NaN, +-inf, +-1e20, 3e9 (> INT_MAX
 constexpr std::uint32_t BAD_FOR_UINT = 6;  // NaN, +-inf, +-1e20, -1.5
 constexpr std::uint32_t NOT_FINITE = 3;    // NaN, +-inf: saturateToInt counts only those
 
-// Per input: toInt, toUint, clampToInt(x, -5, 5), saturateToInt (convert_check.comp).
+// Per input: toInt, toUint, clampToInt(x, -5, 5), saturateToInt, toIndex (convert_check.comp).
 struct Answer {
     std::int32_t toInt;
     std::uint32_t toUint;
     std::int32_t clamped, saturated;
+    std::uint32_t index;
 };
 
 std::vector<Answer> convert(const std::vector<std::string>& defines) {
     const gl::Program program("convert_check.comp", composeShader("convert_check.comp", defines));
     const gl::Buffer inputs = gl::Buffer::of(std::span<const float>(INPUTS));
-    const gl::Buffer outputs = gl::Buffer::zeros(INPUTS.size() * sizeof(glm::ivec4));
+    const gl::Buffer outputs = gl::Buffer::zeros(2 * INPUTS.size() * sizeof(glm::ivec4));
     inputs.bindStorage(0);
     outputs.bindStorage(1);
     program.dispatch(static_cast<unsigned>(INPUTS.size()));
     gl::computeBarrier();
+    const std::vector<glm::ivec4> words = outputs.read<glm::ivec4>(0, 2 * INPUTS.size());
     std::vector<Answer> answers;
-    for (const glm::ivec4& a : outputs.read<glm::ivec4>(0, INPUTS.size()))
-        answers.push_back({a.x, static_cast<std::uint32_t>(a.y), a.z, a.w});
+    for (std::size_t i = 0; i < INPUTS.size(); ++i) {
+        const glm::ivec4 a = words[2 * i];
+        answers.push_back({a.x, static_cast<std::uint32_t>(a.y), a.z, a.w,
+                           static_cast<std::uint32_t>(words[2 * i + 1].x)});
+    }
     return answers;
 }
 
-// clampToInt and saturateToInt answer alike in every mode.
+// clampToInt, saturateToInt and toIndex answer alike in every mode.
 void expectDefinedHelpers(const std::vector<Answer>& a, const char* mode) {
     const std::int32_t clamped[] = {-5, 5, -5, 5, -5, -1, 2, 0, 5};
     const std::int32_t saturated[] = {-SATURATED, SATURATED, -SATURATED, SATURATED, -SATURATED,
                                       -1,         2,         0,          SATURATED};
+    const std::uint32_t indices[] = {0, SATURATED, 0, SATURATED, 0, 0, 2, 0, SATURATED};
     for (std::size_t i = 0; i < INPUTS.size(); ++i) {
+        EXPECT_EQ(a[i].index, indices[i]) << mode << ": toIndex(" << INPUTS[i] << ")";
         EXPECT_EQ(a[i].clamped, clamped[i]) << mode << ": clampToInt(" << INPUTS[i] << ", -5, 5)";
         EXPECT_EQ(a[i].saturated, saturated[i]) << mode << ": saturateToInt(" << INPUTS[i] << ")";
     }
@@ -117,7 +124,7 @@ TEST(Conversions, NativeDefinesTheRest) {
     expectDefinedHelpers(a, "native");
 }
 
-// Each of the four helpers counts its bad inputs (saturateToInt its non-finite ones), in either
+// Each of the five helpers counts its bad inputs (saturateToInt its non-finite ones), in either
 // mode; the check throws naming the stage and the count, and the count starts again from 0.
 TEST(Conversions, CountingCountsEachBadInputAndTheCheckNamesTheStage) {
     gl::Context context;
@@ -125,14 +132,14 @@ TEST(Conversions, CountingCountsEachBadInputAndTheCheckNamesTheStage) {
         gl::ConversionCounter counter;
         counter.bind();
         convert({mode, "CONVERSIONS_COUNT"});
-        EXPECT_EQ(counter.take(), 2 * BAD_FOR_INT + BAD_FOR_UINT + NOT_FINITE) << mode;
+        EXPECT_EQ(counter.take(), 3 * BAD_FOR_INT + BAD_FOR_UINT + NOT_FINITE) << mode;
         EXPECT_EQ(counter.take(), 0u);
         convert({mode, "CONVERSIONS_COUNT"});
         try {
             counter.check("pass 'test'");
             ADD_FAILURE() << "no throw";
         } catch (const gl::Error& e) {
-            EXPECT_NE(std::string(e.what()).find("pass 'test' converted 21 non-finite"),
+            EXPECT_NE(std::string(e.what()).find("pass 'test' converted 27 non-finite"),
                       std::string::npos)
                 << e.what();
         }

@@ -4,11 +4,14 @@
 // and 0xFFFFFFFF to uint (x <= -1 too) for all of them. A float a shader computed is converted
 // here:
 //  clampToInt(x, lo, hi)  trunc(x) within [lo, hi] (lo <= hi); NaN gives lo. Indices (a cell,
-//                         a texel, a material), loop counts (to a stated maximum), sizes.
+//                         a texel), loop counts (to a stated maximum), sizes.
 //  saturateToInt(x)       trunc(x) within +-2^30, beyond every image and grid with room to add a
 //                         block's size; NaN gives -2^30: off the image, an empty walk. A finite
 //                         x beyond int is expected (a walk's bound in a level far away:
 //                         telescope.toml's planet lies 1e12 cells of the rock's level away).
+//  toIndex(x)             an index carried as a float (a material, a body): clampToInt(x, 0,
+//                         2^30) as a uint, NaN 0. No bound from the array: a buffer's length()
+//                         counts poison mode's tail (gl/buffer.cpp); C++ refuses an index past it.
 //  toInt(x), toUint(x)    int(x), uint(x): a bad input gives the driver's answer (or the mode's).
 // Exempt, left as int(), ivec2(): gl_FragCoord.xy, gl_GlobalInvocationID and integer expressions
 // (whole and in range), and uniforms C++ sets to whole numbers (an image's size, a direction).
@@ -74,6 +77,8 @@ int saturateToInt(float x) {
     COUNT_UNLESS(isFiniteBits(x));
     return int(isNanBits(x) ? -SATURATED_INT : clamp(x, -SATURATED_INT, SATURATED_INT));
 }
+uint toIndex(float x) { return uint(clampToInt(x, 0, 1 << 30)); }
+
 ivec2 saturateToInt(vec2 x) { return ivec2(saturateToInt(x.x), saturateToInt(x.y)); }
 ivec3 saturateToInt(vec3 x) {
     return ivec3(saturateToInt(x.x), saturateToInt(x.y), saturateToInt(x.z));

@@ -163,7 +163,7 @@ void main() {
 #else
     const vec3 irradiance = vec3(0.0);  // no light from emitting surfaces
 #endif
-    vec3 color = shadeSurface(materialIndex(s.w), normal, -normalize(position), a.zw, emission,
+    vec3 color = shadeSurface(int(toIndex(s.w)), normal, -normalize(position), a.zw, emission,
                               vis, open, irradiance);
     outBeautyShadow = vec4(color, vis);
 }

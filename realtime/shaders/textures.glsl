@@ -20,10 +20,6 @@ layout(std430, binding = 2) readonly buffer Materials {
     MaterialRecord materials[];
 };
 
-// A material index carried as a float (a particle's, a G-buffer pixel's): a bad one reads
-// material 0, not past the array.
-int materialIndex(float m) { return clampToInt(m, 0, max(materials.length() - 1, 0)); }
-
 vec3 texel(ivec4 t, int x, int y) {
     return texelFetch(uTexels, t.x + y * t.y + x).rgb;
 }
