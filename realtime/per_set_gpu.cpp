@@ -25,6 +25,7 @@
 #include "core/derived_attributes.h"
 #include "realtime/field_normal.h"
 #include "realtime/gl/context.h"
+#include "realtime/gl/conversions.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gl/poison.h"
@@ -174,6 +175,7 @@ bool per_set_layout::timerQueriesSeeCompute(ProgramCache& programs) {
 }
 
 void GpuPerSet::checkOverruns(const char* stage) const {
+    gl::checkConversions("per-set stage", stage);
     if (!gl::poisonMode()) return;
     const std::pair<const char*, const gl::Buffer*> buffers[] = {
         {"attributes", &mAttributes},

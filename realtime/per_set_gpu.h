@@ -220,7 +220,7 @@ class GpuPerSet {
     // NEAR, MARK, KERNELS and the scans of the draw lists.
     void mark(ProgramCache& programs, const FrameRequest& frame, const Marks& marks);
     // Poison mode: throws gl::Error naming the stage and the buffer where a stage wrote past a
-    // buffer's end (gl::Buffer::overrun); nothing outside it.
+    // buffer's end (gl::Buffer::overrun); nothing outside it. First, gl::checkConversions.
     void checkOverruns(const char* stage) const;
 
     std::size_t mCount = 0, mMaxCells = 0;

@@ -265,7 +265,7 @@ TEST_F(PerSetGpu, EllipsoidsMatchTheCpu) {
 // particle with a surface is drawn. A camera far from the particles' box skips the test
 // (NEAR); one outside the box but within a sphere's reach of it, or inside, takes it.
 TEST_F(PerSetGpu, CullingIsOffForFramesWhoseNearPlaneCutsASphere) {
-    const core::ParticleSet& ps = contact().particles.particles;
+    const core::ParticleSet& ps = contact().withNormals.particles;
     PerSetRequest request;
     request.cull = true;
     GpuPerSet g = built(ps, request);
@@ -298,7 +298,7 @@ TEST_F(PerSetGpu, CullingIsOffForFramesWhoseNearPlaneCutsASphere) {
 // plane's ball may reach a sphere makes them anew, and so does every frame until the levels'
 // boxes are known (afterFrame) and after a new set.
 TEST_F(PerSetGpu, SteadyFramesKeepTheMarksAndDrawTheSame) {
-    const core::ParticleSet& ps = contact().particles.particles;
+    const core::ParticleSet& ps = contact().withNormals.particles;
     PerSetRequest request;
     request.cull = true;
     const FrameRequest far{glm::dvec3(0.0, -50.0, 0.0), 1e-3};

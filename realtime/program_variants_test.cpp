@@ -35,15 +35,23 @@ TEST(ProgramVariants, EveryVariantPassesGlslang) {
         std::ofstream(path) << text;
         files += " " + path.string();
     };
-    for (const ProgramVariant& v : allProgramVariants()) {
-        if (!v.compute.empty()) {
-            write(v.compute, v.defines, nullptr);
-            continue;
+    // Each also with the defines of the conversion test modes (gl/conversions.h), as the shader
+    // library prepends them: the counter and both modes in every stage.
+    const std::vector<std::string> modes[] = {{},
+                                              {"CONVERSIONS_SATURATE", "CONVERSIONS_COUNT"},
+                                              {"CONVERSIONS_WRAP", "CONVERSIONS_COUNT"}};
+    for (const std::vector<std::string>& mode : modes)
+        for (const ProgramVariant& v : allProgramVariants()) {
+            std::vector<std::string> defines = mode;
+            defines.insert(defines.end(), v.defines.begin(), v.defines.end());
+            if (!v.compute.empty()) {
+                write(v.compute, defines, nullptr);
+                continue;
+            }
+            write(v.vertex, defines, nullptr);
+            write(v.fragment, defines, v.userShader ? &user : nullptr);
         }
-        write(v.vertex, v.defines, nullptr);
-        write(v.fragment, v.defines, v.userShader ? &user : nullptr);
-    }
-    EXPECT_GT(n, 80);
+    EXPECT_GT(n, 3 * 80);
     const std::string cmd = "glslangValidator" + files + " 2>&1";
     FILE* pipe = popen(cmd.c_str(), "r");
     ASSERT_NE(pipe, nullptr);

@@ -23,6 +23,7 @@
 #include "realtime/frame_assembly.h"
 #include "realtime/frame_graph.h"
 #include "realtime/gl/context.h"
+#include "realtime/gl/conversions.h"
 #include "realtime/gl/error.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/gl/readback.h"
@@ -446,6 +447,7 @@ PassTargets runPasses(const PassInputs& in) {
         pass.run(in, resources);
         t.timers.back().second.end();
         gl::checkErrors(pass.name);
+        gl::checkConversions("pass", pass.name);
     }
     return t;
 }
@@ -568,6 +570,7 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     std::vector<gl::Texture> beauty;
     for (const auto& [name, inputs] : parts) beauty.push_back(runShadePass(d.programs, *inputs));
     gl::checkErrors("error split");
+    gl::checkConversions("pass", "error split");
     gl::TextureReadback& r = d.readback;
     constexpr std::size_t FIRST_SLOT = 8;  // after readBack's
     for (std::size_t i = 0; i < beauty.size(); ++i) r.read(FIRST_SLOT + i, beauty[i]);

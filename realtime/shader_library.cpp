@@ -6,6 +6,7 @@
 #include <functional>
 #include <sstream>
 
+#include "realtime/gl/conversions.h"
 #include "realtime/gl/error.h"
 
 namespace twinrender::realtime {
@@ -59,6 +60,14 @@ struct Composer {
     }
 };
 
+// `defines` after the conversion test mode's (gl/conversions.h), which every program of the
+// process is compiled with and no program's name shows.
+std::vector<std::string> withConversionDefines(const std::vector<std::string>& defines) {
+    std::vector<std::string> all = gl::conversionDefines();
+    all.insert(all.end(), defines.begin(), defines.end());
+    return all;
+}
+
 }  // namespace
 
 std::string_view shaderFile(std::string_view name) {
@@ -86,8 +95,9 @@ const gl::Program& ProgramCache::get(std::string_view vertexFile, std::string_vi
                            std::hash<std::string>{}(user->text));
     auto it = mPrograms.find(key);
     if (it == mPrograms.end()) {
-        gl::Program program(key, composeShader(vertexFile, defines),
-                            composeShader(fragmentFile, defines, user));
+        const std::vector<std::string> all = withConversionDefines(defines);
+        gl::Program program(key, composeShader(vertexFile, all),
+                            composeShader(fragmentFile, all, user));
         it = mPrograms.emplace(key, std::move(program)).first;
     }
     return it->second;
@@ -98,7 +108,10 @@ const gl::Program& ProgramCache::compute(std::string_view file,
     const std::string key = computeName(file, defines);
     auto it = mPrograms.find(key);
     if (it == mPrograms.end())
-        it = mPrograms.emplace(key, gl::Program(key, composeShader(file, defines))).first;
+        it =
+            mPrograms
+                .emplace(key, gl::Program(key, composeShader(file, withConversionDefines(defines))))
+                .first;
     return it->second;
 }
 

@@ -35,7 +35,8 @@ struct IncludedFile {
 gl::ShaderSource composeShader(std::string_view file, std::span<const std::string> defines,
                                const IncludedFile* user = nullptr);
 
-// Programs by (vertex file, fragment file, defines), compiled on first use.
+// Programs by (vertex file, fragment file, defines), compiled on first use, each with the
+// conversion test mode's defines first (gl/conversions.h; not part of its name).
 class ProgramCache {
   public:
     // `user`: a file the fragment shader includes; programs are kept per its name and text.

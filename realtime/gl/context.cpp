@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "realtime/gl/conversions.h"
 
 namespace twinrender::realtime::gl {
 
@@ -110,9 +111,12 @@ struct Context::Impl {
     bool software = false;
     bool debug = false;
     std::vector<std::string> skipped;
+    // TWINRENDER_GL_CONVERSIONS=count: the shaders' conversion counter (gl/conversions.h).
+    std::optional<ConversionCounter> conversions;
 };
 
 Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()) {
+    const bool countConversions = conversionsMode().count;  // a bad value: before any EGL work
     // libepoxy aborts the process when it cannot load libEGL: find it first so that a
     // machine without EGL gets a message instead.
     if (void* lib = dlopen("libEGL.so.1", RTLD_LAZY | RTLD_LOCAL)) {
@@ -261,6 +265,8 @@ Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()
         // data from buffers, so one empty array serves all.
         glCreateVertexArrays(1, &mImpl->vertexArray);
         glBindVertexArray(mImpl->vertexArray);
+        // Counting conversions: one counter bound for every program the context runs.
+        if (countConversions) mImpl->conversions.emplace().bind();
         return;
     }
 
@@ -284,6 +290,7 @@ Context::~Context() {
     if (mImpl->context != EGL_NO_CONTEXT) {
         makeCurrent();
         glDeleteVertexArrays(1, &mImpl->vertexArray);
+        mImpl->conversions.reset();
         eglMakeCurrent(mImpl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(mImpl->display, mImpl->context);
     }

@@ -16,6 +16,7 @@
 // (interleaved gradient noise, Jimenez 2014), NOISE_BLUE (a void-and-cluster texture,
 // realtime/blue_noise.h).
 #include "common.glsl"
+#include "convert.glsl"
 
 layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
 layout(binding = 2) uniform sampler2D uSurface;   // eye depth, body, radius px, material
@@ -109,7 +110,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         vec3 q = position + dir * reach;
         vec3 screen = project(q);
         float zSeen;
-        if (!depthAt(ivec2(floor(screen.xy)), zSeen)) continue;
+        if (!depthAt(saturateToInt(floor(screen.xy)), zSeen)) continue;
         // The depth buffer in front of the point, by less than the radius (the range check).
         float bias = 0.02 * uRadius;
         if (zSeen < screen.z - bias && screen.z - zSeen < uRadius) closed += 1.0;
@@ -134,7 +135,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         for (int j = 0; j < uSteps; ++j) {
             float along = (float(j) + xi.y) / float(uSteps) * pixels + 1.0;
             vec3 q;
-            if (!surfaceAt(ivec2(floor(vec2(p) + 0.5 + screen * along)), q)) continue;
+            if (!surfaceAt(saturateToInt(floor(vec2(p) + 0.5 + screen * along)), q)) continue;
             vec3 v = q - position;
             float r2 = dot(v, v);
             if (r2 > uRadius * uRadius || r2 <= 0.0) continue;
@@ -177,7 +178,8 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
             for (int j = 0; j < uSteps; ++j) {
                 float along = (float(j) + xi.y) / float(uSteps) * pixels + 1.0;
                 vec3 q;
-                if (!surfaceAt(ivec2(floor(vec2(p) + 0.5 + way * screen * along)), q)) continue;
+                ivec2 at = saturateToInt(floor(vec2(p) + 0.5 + way * screen * along));
+                if (!surfaceAt(at, q)) continue;
                 vec3 v = q - position;
                 float r2 = dot(v, v);
                 if (r2 > uRadius * uRadius || r2 <= 0.0) continue;

@@ -5,10 +5,12 @@
 // Only pixels of the centre's body count.
 #include "common.glsl"
 #include "surface_common.glsl"
+#include "convert.glsl"
 
 uniform float uRadius;       // kernel radius / projected particle radius
 uniform float uDepthSigma;   // range sigma / particle radius
 uniform float uMaxRadiusPx;  // cap on the kernel radius, pixels
+const int MAX_TAPS = 64;     // surface.bilateral.max_radius_px's largest
 uniform vec2 uDirection;     // SEPARABLE: (1, 0) or (0, 1)
 
 layout(location = 0) out vec4 outSurface;
@@ -30,7 +32,7 @@ void main() {
     outSurface = s;
     if (s.y < 0.0) return;
     float radiusPx = min(uMaxRadiusPx, uRadius * s.z);
-    int taps = int(ceil(radiusPx));
+    int taps = clampToInt(ceil(radiusPx), 0, MAX_TAPS);  // NaN: 0
     if (taps < 1) return;
     float sigma = uDepthSigma * s.z / pixelsPerUnitAt(s.x);
     gDepth = s.x;

@@ -26,7 +26,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #define WALKED(body) true
 #elif defined(BODY_MASK)
 #define SUMMED(k) true
-#define WALKED(body) !bodyReplaced(uint(body))
+#define WALKED(body) !bodyReplaced(toIndex(body))
 #else
 #define SUMMED(k) true
 #define WALKED(body) true

@@ -7,6 +7,7 @@
 // sums to 1 within 0.03 % wherever it lies. Every other particle's quad is dropped, and with
 // BODY_MASK (body_mask.glsl) those of the bodies drawn as one sphere.
 #include "common.glsl"
+#include "convert.glsl"
 #include "particles.glsl"
 #include "textures.glsl"
 #ifdef BODY_MASK
@@ -31,11 +32,11 @@ void main() {
     float d = length(c);
     float rho = c.z < 0.0 ? r * pixelsPerUnitAt(-c.z) : subpixel.x;
     vec3 emission = c.z < 0.0 && rho < subpixel.x && d > r
-                        ? sampleTexture(materials[int(p.glowMaterial.w)].emission,
+                        ? sampleTexture(materials[toIndex(p.glowMaterial.w)].emission,
                                         vec2(p.normalU.w, p.dudxV.w)) + p.glowMaterial.rgb
                         : vec3(0.0);
 #ifdef BODY_MASK
-    if (bodyReplaced(uint(p.dvdxBody.w))) emission = vec3(0.0);
+    if (bodyReplaced(toIndex(p.dvdxBody.w))) emission = vec3(0.0);
 #endif
     if (emission == vec3(0.0)) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn

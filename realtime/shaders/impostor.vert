@@ -15,6 +15,7 @@
 // SHADOW_PASS: orthographic from the light; the quad is perpendicular to the light, half-size r
 // (ELLIPSOID: the ellipsoid's half-extents along the light's x and y).
 #include "common.glsl"
+#include "convert.glsl"
 #include "particles.glsl"
 #ifndef SHADOW_PASS
 #include "textures.glsl"
@@ -70,7 +71,7 @@ void dropQuad() {
 void main() {
     int particle = gl_VertexID / 6;
 #ifdef BODY_MASK
-    if (bodyReplaced(uint(particles[particle].dvdxBody.w))) {
+    if (bodyReplaced(toIndex(particles[particle].dvdxBody.w))) {
         dropQuad();
         return;
     }
@@ -142,7 +143,7 @@ void main() {
     vDvdx = p.dvdxBody.xyz;
     vGlowMaterial = p.glowMaterial;
     vBody = p.dvdxBody.w;
-    vEmissionTexture = materials[int(p.glowMaterial.w)].emission;
+    vEmissionTexture = materials[toIndex(p.glowMaterial.w)].emission;
     vec3 helper = abs(axis.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
     vec3 across = normalize(cross(helper, axis));
     vec3 up = cross(axis, across);

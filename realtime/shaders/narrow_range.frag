@@ -12,12 +12,14 @@
 // radius, one shared range.
 #include "common.glsl"
 #include "surface_common.glsl"
+#include "convert.glsl"
 
 uniform float uRadius;         // filter size / projected particle radius
 uniform float uThreshold;      // delta / particle radius
 uniform float uClamp;          // mu / particle radius
 uniform float uMaxRadiusPx;    // cap on the filter size, pixels
 uniform float uFixedRadiusPx;  // > 0: this filter size instead
+const int MAX_TAPS = 256;      // surface.narrow_range.max_radius_px's largest
 uniform vec2 uDirection;       // SEPARABLE: (1, 0) or (0, 1)
 
 layout(location = 0) out vec4 outSurface;
@@ -46,7 +48,7 @@ void main() {
     outSurface = s;
     if (s.y < 0.0) return;
     float radiusPx = uFixedRadiusPx > 0.0 ? uFixedRadiusPx : min(uMaxRadiusPx, uRadius * s.z);
-    int taps = int(ceil(radiusPx));
+    int taps = clampToInt(ceil(radiusPx), 0, MAX_TAPS);  // NaN: 0
     if (taps < 1) return;
     float sigma = float(taps) / 3.0;
     float inv2Sigma2 = 1.0 / (2.0 * sigma * sigma);

@@ -9,6 +9,8 @@
 // Distances are taken between float positions of nearby particles (exact differences), and a
 // query point is an offset from its particle, so scenes far from the origin keep precision.
 
+#include "convert.glsl"
+
 const int MAX_LEVELS = 32;
 
 // Offsets, in floats, of the attributes in the Attributes buffer (n = uCount particles).
@@ -133,15 +135,16 @@ float fromOrderedKey(uint k) {
     return uintBitsToFloat((k & 0x80000000u) != 0u ? k & 0x7FFFFFFFu : ~k);
 }
 
-// floor(log2(h / h_min)), 0..MAX_LEVELS - 1: the exponent of the ratio's float.
+// floor(log2(h / h_min)), 0..MAX_LEVELS - 1: the exponent of the ratio's float (a NaN ratio,
+// which max leaves undefined: level 0).
 int levelOf(float h) {
     float ratio = h / uintBitsToFloat(hMinBits);
-    int e = int(floatBitsToUint(max(ratio, 1.0)) >> 23) - 127;
+    int e = int(floatBitsToUint(isNanBits(ratio) ? 1.0 : max(ratio, 1.0)) >> 23) - 127;
     return clamp(e, 0, MAX_LEVELS - 1);
 }
 
 int gridCoord(float p, float origin, float invCell, int n) {
-    return clamp(int(floor((p - origin) * invCell)), 0, n - 1);
+    return clampToInt(floor((p - origin) * invCell), 0, n - 1);
 }
 
 float levelInvCell(Level g) { return 1.0 / g.originCell.w; }
@@ -209,10 +212,10 @@ uvec2 blockRow(Level g, ivec3 base, int size, int r) {
         float reach_ = REACH(uintBitsToFloat(g_.hMaxBits));                                   \
         float inv_ = levelInvCell(g_);                                                       \
         float cell_ = g_.originCell.w;                                                       \
-        int z0_ = int(floor((POINT.z - reach_ - g_.originCell.z) * inv_));                   \
-        int z1_ = int(floor((POINT.z + reach_ - g_.originCell.z) * inv_));                   \
-        int y0_ = int(floor((POINT.y - reach_ - g_.originCell.y) * inv_));                   \
-        int y1_ = int(floor((POINT.y + reach_ - g_.originCell.y) * inv_));                   \
+        int z0_ = saturateToInt(floor((POINT.z - reach_ - g_.originCell.z) * inv_));         \
+        int z1_ = saturateToInt(floor((POINT.z + reach_ - g_.originCell.z) * inv_));         \
+        int y0_ = saturateToInt(floor((POINT.y - reach_ - g_.originCell.y) * inv_));         \
+        int y1_ = saturateToInt(floor((POINT.y + reach_ - g_.originCell.y) * inv_));         \
         if (z1_ < 0 || z0_ >= g_.dims.z || y1_ < 0 || y0_ >= g_.dims.y) continue;            \
         z0_ = max(z0_, 0); z1_ = min(z1_, g_.dims.z - 1);                                    \
         y0_ = max(y0_, 0); y1_ = min(y1_, g_.dims.y - 1);                                    \
@@ -225,8 +228,8 @@ uvec2 blockRow(Level g, ivec3 base, int size, int r) {
                 float rest_ = reach_ * reach_ - dy_ * dy_ - dz_ * dz_;                       \
                 if (rest_ < 0.0) continue;                                                   \
                 float half_ = sqrt(rest_);                                                   \
-                int x0_ = int(floor((POINT.x - half_ - g_.originCell.x) * inv_));            \
-                int x1_ = int(floor((POINT.x + half_ - g_.originCell.x) * inv_));            \
+                int x0_ = saturateToInt(floor((POINT.x - half_ - g_.originCell.x) * inv_));  \
+                int x1_ = saturateToInt(floor((POINT.x + half_ - g_.originCell.x) * inv_));  \
                 if (x1_ < 0 || x0_ >= g_.dims.x) continue;                                   \
                 x0_ = max(x0_, 0); x1_ = min(x1_, g_.dims.x - 1);                            \
                 int row_ = g_.dims.w + (iz_ * g_.dims.y + iy_) * g_.dims.x;                  \

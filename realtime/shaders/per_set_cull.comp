@@ -128,7 +128,7 @@ void main() {
         END_OVERLAP                                                             \
     }
     Level g = levels[levelOf(particleH(i))];
-    ivec3 base = ivec3(floor((xi - g.originCell.xyz) * levelInvCell(g))) - ivec3(1);
+    ivec3 base = saturateToInt(floor((xi - g.originCell.xyz) * levelInvCell(g))) - ivec3(1);
 #ifdef NEAR_MASKS
     {
         // INTERIOR's bits: the t-th entry visited lies in the last row (blockRow's, as

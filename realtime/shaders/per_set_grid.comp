@@ -119,15 +119,21 @@ void main() {
         float maxCells = max(4.0 * float(g.count), 4096.0);
         float cell = uintBitsToFloat(g.hMaxBits);
         vec3 n;
+        float total;
         for (int k = 0; k < 200; ++k) {
             n = floor(extent / cell) + 1.0;
-            float total = n.x * n.y * n.z;
+            total = n.x * n.y * n.z;
             if (total <= maxCells) break;
             cell *= max(1.01, pow(total / maxCells, 1.0 / 3.0));
         }
+        // A box that no cell size fitted (a NaN or infinite extent: no finite set has one) is
+        // one cell, rather than dims no int holds.
+        if (isNanBits(total) || total > maxCells) n = vec3(1.0);
         levels[L].originCell = vec4(lo, cell);
-        levels[L].dims = ivec4(ivec3(n), first);
-        first += int(n.x * n.y * n.z);
+        ivec3 dims = ivec3(clampToInt(n.x, 1, 1 << 30), clampToInt(n.y, 1, 1 << 30),
+                           clampToInt(n.z, 1, 1 << 30));
+        levels[L].dims = ivec4(dims, first);
+        first += dims.x * dims.y * dims.z;
     }
     totalCells = uint(first);
     usedLevels = used;

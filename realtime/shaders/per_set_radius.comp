@@ -109,7 +109,8 @@ void main() {
     {
         Level g = levels[levelOf(h)];
         float inv = levelInvCell(g);
-        ivec3 base = ivec3(floor((centre + 0.5 * cap - g.originCell.xyz) * inv)) - ivec3(1);
+        vec3 capCell = floor((centre + 0.5 * cap - g.originCell.xyz) * inv);
+        ivec3 base = saturateToInt(capCell) - ivec3(1);
         FOR_EACH_IN_BLOCK(g, base, 3, ADD_SAMPLES)
     }
     if (uDropletAtoms > 0) --neighbours;  // itself
@@ -231,7 +232,7 @@ void main() {
     int neighbours = uDropletAtoms > 0 ? -1 : 0;  // itself
     int level = levelOf(h);
     Level g = levels[level];
-    ivec3 home = ivec3(floor((x - g.originCell.xyz) * levelInvCell(g)));
+    ivec3 home = saturateToInt(floor((x - g.originCell.xyz) * levelInvCell(g)));
     // Every kernel of the level taken at the level's least W(0): no read of each kernel's own,
     // and still a lower bound (INTERIOR at 1M particles about -13 ms). Where the volumes of a
     // level vary, it settles fewer particles and leaves more to the exact path; in every

@@ -8,6 +8,7 @@
 #include "common.glsl"
 #include "textures.glsl"
 #include "shading.glsl"
+#include "convert.glsl"
 #if defined(SHADOWS_ESM) || defined(SHADOWS_VSM) || defined(SHADOWS_EVSM)
 #define SHADOWS_FILTERED
 #include "shadow_filters.glsl"
@@ -40,11 +41,12 @@ const float MAX_SLOPE = 10.0;
 // PCF with a sun of some angular radius: the blocker search and the filter reach at most this
 // many texels (a 33 x 33 grid).
 const float MAX_PCF_RADIUS = 16.0;
+const int MAX_PCF_TAPS = 16;  // ceil(MAX_PCF_RADIUS)
 
 #if defined(SHADOWS_PCF)
 // Percentage-closer filtering over a disc of `radius` texels: taps on a grid of one texel.
 float pcf(ivec2 centre, ivec2 size, float radius, float depth) {
-    int n = int(ceil(radius));
+    int n = clampToInt(ceil(radius), 0, MAX_PCF_TAPS);  // a NaN radius: the centre's texel
     float lit = 0.0, count = 0.0;
     for (int j = -n; j <= n; ++j) {
         for (int i = -n; i <= n; ++i) {
@@ -65,7 +67,7 @@ float pcfRadius(ivec2 centre, ivec2 size, float depth) {
     if (tanSun <= 0.0) return shadowBias.z;
     float range = shadowRange.y - shadowRange.x;  // scene units per unit of map depth
     float search = min(depth * range * tanSun / shadowRange.z, MAX_PCF_RADIUS);
-    int n = int(ceil(search));
+    int n = clampToInt(ceil(search), 0, MAX_PCF_TAPS);
     float sum = 0.0, count = 0.0;
     for (int j = -n; j <= n; ++j) {
         for (int i = -n; i <= n; ++i) {
@@ -89,7 +91,8 @@ float visibility(vec3 position, vec3 normal, float body, float worldRadius) {
 #elif defined(SHADOWS_MAP) || defined(SHADOWS_PCF) || defined(SHADOWS_FILTERED)
     vec3 l = (lightView * vec4(position, 1.0)).xyz;
     vec2 tc = (lightClip * vec4(l, 1.0)).xy * 0.5 + 0.5;
-    if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) return 1.0;
+    // Outside the map, or NaN (which fails every comparison), is lit.
+    if (!(all(greaterThanEqual(tc, vec2(0.0))) && all(lessThanEqual(tc, vec2(1.0))))) return 1.0;
     // Slope-scaled bias in units of the larger of the particle radius and the shadow texel:
     // the impostor surface is bumpy on the scale of a particle, the map on that of a texel.
     float cosine = clamp(dot(normal, -light.xyz), 1e-3, 1.0);
@@ -103,10 +106,10 @@ float visibility(vec3 position, vec3 normal, float body, float worldRadius) {
     ivec2 size = textureSize(uShadowMap, 0);
     vec2 texelPos = tc * vec2(size);
 #if defined(SHADOWS_PCF)
-    ivec2 centre = ivec2(floor(texelPos));
+    ivec2 centre = saturateToInt(floor(texelPos));
     return pcf(centre, size, pcfRadius(centre, size, depth), depth);
 #else
-    ivec2 q = clamp(ivec2(floor(texelPos)), ivec2(0), size - 1);
+    ivec2 q = clamp(saturateToInt(floor(texelPos)), ivec2(0), size - 1);
     return texelFetch(uShadowMap, q, 0).r >= depth ? 1.0 : 0.0;
 #endif
 #endif
@@ -160,7 +163,7 @@ void main() {
 #else
     const vec3 irradiance = vec3(0.0);  // no light from emitting surfaces
 #endif
-    vec3 color = shadeSurface(int(s.w), normal, -normalize(position), a.zw, emission, vis, open,
-                              irradiance);
+    vec3 color = shadeSurface(int(toIndex(s.w)), normal, -normalize(position), a.zw, emission,
+                              vis, open, irradiance);
     outBeautyShadow = vec4(color, vis);
 }

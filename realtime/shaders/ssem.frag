@@ -12,6 +12,7 @@
 // then passes through every surface that does not emit (no shadowing).
 // Output: E (rgb, linear).
 #include "common.glsl"
+#include "convert.glsl"
 
 layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
 layout(binding = 1) uniform sampler2D uEmission;  // emitted radiance (rgb)
@@ -76,7 +77,7 @@ vec3 march(vec3 position, vec3 dir, float body, float reach, float jitter) {
         // From a pixel off the receiver to the ray's reach on screen; the eye depth of the ray
         // there by perspective-correct interpolation of 1 / z.
         float f = (1.0 + (float(j) + jitter) / float(uSteps) * (span - 1.0)) / pixels;
-        ivec2 q = ivec2(floor(mix(start.xy, end.xy, f)));
+        ivec2 q = saturateToInt(floor(mix(start.xy, end.xy, f)));
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return vec3(0.0);
         float z = 1.0 / mix(1.0 / start.z, 1.0 / end.z, f);
 #if defined(EMITTER_TARGET)

@@ -4,6 +4,7 @@
 // The kernel is in ssss_common.glsl.
 #include "common.glsl"
 #include "ssss_common.glsl"
+#include "convert.glsl"
 
 uniform vec2 uDirection;  // SEPARABLE: (1, 0) or (0, 1)
 
@@ -19,18 +20,18 @@ void main() {
     // Pixels along the direction per pixel of surface distance.
     float along = dot(uDirection, gTilt);
     float radius = gRadiusPx / sqrt(1.0 + along * along);
-    int taps = min(int(radius), uMaxTaps);
+    int taps = clampToInt(radius, 0, uMaxTaps);
     float stepPx = taps > 0 ? radius / float(taps) : 0.0;
-    for (int k = 1; k <= taps; ++k) pair(p, ivec2(round(uDirection * (float(k) * stepPx))));
+    for (int k = 1; k <= taps; ++k) pair(p, saturateToInt(round(uDirection * (float(k) * stepPx))));
 #else
-    int taps = min(int(gRadiusPx), uMaxTaps);
+    int taps = clampToInt(gRadiusPx, 0, uMaxTaps);
     float stepPx = gRadiusPx / float(taps);
     float limit2 = gRadiusPx * gRadiusPx;
     // Half of the grid (j > 0, or j == 0 and i > 0): each offset stands for its pair.
     for (int j = 0; j <= taps; ++j) {
         for (int i = -taps; i <= taps; ++i) {
             if (j == 0 && i <= 0) continue;
-            ivec2 o = ivec2(round(vec2(i, j) * stepPx));
+            ivec2 o = saturateToInt(round(vec2(i, j) * stepPx));
             if (squaredSurfaceDistance(vec2(o)) <= limit2) pair(p, o);
         }
     }

@@ -2,6 +2,7 @@
 // centres at (i + 0.5) / size, bilinear, u repeats, v clamps to the edge, image row 0 = v = 1.
 // Textures of any size live in one buffer of RGB texels, so a per-pixel material
 // index can pick any of them (sampler arrays would need a uniform index).
+#include "convert.glsl"
 
 // RGB texels of every texture, row-major, row 0 first (a buffer texture: on llvmpipe a
 // texelFetch gathers several times faster than a storage-buffer load).
@@ -30,10 +31,10 @@ vec3 sampleTexture(ivec4 t, vec2 uv) {
     float y = (1.0 - uv.y) * float(h) - 0.5;
     float fx0 = floor(x), fy0 = floor(y);
     float tx = x - fx0, ty = y - fy0;
-    int x0 = int(mod(fx0, float(w)));
+    int x0 = clampToInt(mod(fx0, float(w)), 0, w - 1);
     int x1 = x0 + 1 == w ? 0 : x0 + 1;
-    int y0 = clamp(int(fy0), 0, h - 1);
-    int y1 = clamp(int(fy0) + 1, 0, h - 1);
+    int y0 = clampToInt(fy0, 0, h - 1);
+    int y1 = clampToInt(fy0 + 1.0, 0, h - 1);
     vec3 t00 = texel(t, x0, y0), t10 = texel(t, x1, y0);
     vec3 t01 = texel(t, x0, y1), t11 = texel(t, x1, y1);
     vec3 a = t00 + (t10 - t00) * tx;
