@@ -30,27 +30,13 @@ import sys
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "external"))
+from twinrender_external import read_ply, read_request, write_exr  # noqa: E402
+
 import numpy as np
-import OpenImageIO as oiio
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper as FluidMapper
-
-
-def read_ply(path: Path) -> dict:
-    """The vertex properties of twinrender's binary little-endian PLY as arrays by name."""
-    data = path.read_bytes()
-    end = data.index(b"end_header\n") + len(b"end_header\n")
-    names, types, count = [], [], 0
-    for line in data[:end].decode().splitlines():
-        words = line.split()
-        if words[:2] == ["element", "vertex"]:
-            count = int(words[2])
-        elif words[:1] == ["property"]:
-            types.append({"float": "<f4", "uint": "<u4"}[words[1]])
-            names.append(words[2])
-    records = np.frombuffer(data, dtype=list(zip(names, types)), count=count, offset=end)
-    return {name: records[name] for name in names}
 
 
 def draw(particles: dict, camera: dict, light: dict, mode, radius: float, method,
@@ -112,11 +98,7 @@ def main() -> int:
     parser.add_argument("request", type=Path)
     args = parser.parse_args()
     folder = args.request.parent
-    request = json.loads(args.request.read_text())
-    if request.get("format") != "twinrender-request" or request.get("version") != 1:
-        print(f"{args.request}: not a twinrender request of version 1", file=sys.stderr)
-        return 2
-    scene = json.loads((folder / request["scene"]).read_text())
+    request, scene = read_request(args.request)
     particles = read_ply(folder / request["particles"])
     camera = dict(request["camera"])
     radius = args.radius_scale * float(np.mean(particles["h"]))
@@ -145,17 +127,7 @@ def main() -> int:
                 "N.X": world[..., 0], "N.Y": world[..., 1], "N.Z": world[..., 2]}
     for name in ("R", "G", "B", "N.X", "N.Y", "N.Z"):
         channels[name] = np.where(covered, channels[name], 0.0)
-    names = list(channels)
-    pixels = np.stack([channels[n] for n in names], axis=-1).astype(np.float32)
-    out_path = str(folder / request["output"]["image"])
-    spec = oiio.ImageSpec(camera["width"], camera["height"], len(names), oiio.FLOAT)
-    spec.channelnames = tuple(names)
-    out = oiio.ImageOutput.create(out_path)
-    if not out or not out.open(out_path, spec):
-        print(f"cannot write {out_path}: {oiio.geterror()}", file=sys.stderr)
-        return 1
-    out.write_image(pixels)
-    out.close()
+    write_exr(folder / request["output"]["image"], channels)
     # The frame's time: the beauty's draw (one display mode, as an application draws it).
     (folder / request["output"]["timings"]).write_text(json.dumps({"total": beauty_ms}))
     return 0

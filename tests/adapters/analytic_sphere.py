@@ -13,24 +13,10 @@ import os
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent.parent / "examples" / "external"))
+from twinrender_external import read_ply, read_request, write_exr  # noqa: E402
+
 import numpy as np
-import OpenImageIO as oiio
-
-
-def read_ply(path: Path) -> dict:
-    """The vertex properties of a binary little-endian PLY as arrays by name."""
-    data = path.read_bytes()
-    end = data.index(b"end_header\n") + len(b"end_header\n")
-    names, types, count = [], [], 0
-    for line in data[:end].decode().splitlines():
-        words = line.split()
-        if words[:2] == ["element", "vertex"]:
-            count = int(words[2])
-        elif words[:1] == ["property"]:
-            types.append({"float": "<f4", "uint": "<u4"}[words[1]])
-            names.append(words[2])
-    records = np.frombuffer(data, dtype=list(zip(names, types)), count=count, offset=end)
-    return {name: records[name] for name in names}
 
 
 def m4(q):
@@ -54,9 +40,7 @@ def level_set_radius(volume: float, h: float, level: float) -> float:
 def main() -> int:
     request_path = Path(sys.argv[1])
     folder = request_path.parent
-    request = json.loads(request_path.read_text())
-    assert request["format"] == "twinrender-request" and request["version"] == 1
-    scene = json.loads((folder / request["scene"]).read_text())
+    request, scene = read_request(request_path)
     p = read_ply(folder / request["particles"])
     if len(p["x"]) != 1:
         print(f"this renderer draws one particle; the scene has {len(p['x'])}", file=sys.stderr)
@@ -104,16 +88,7 @@ def main() -> int:
     if fault == "size":
         width += 1
         channels = {k: np.concatenate([v, v[:, :1]], axis=1) for k, v in channels.items()}
-    names = list(channels)
-    pixels = np.stack([channels[n] for n in names], axis=-1).astype(np.float32)
-    spec = oiio.ImageSpec(width, height, len(names), oiio.FLOAT)
-    spec.channelnames = tuple(names)
-    out = oiio.ImageOutput.create(str(folder / request["output"]["image"]))
-    if not out or not out.open(str(folder / request["output"]["image"]), spec):
-        print(f"cannot write {request['output']['image']}: {oiio.geterror()}", file=sys.stderr)
-        return 1
-    out.write_image(pixels)
-    out.close()
+    write_exr(folder / request["output"]["image"], channels)
     (folder / request["output"]["timings"]).write_text(json.dumps({"total": 0.5}))
     return 0
 
