@@ -70,38 +70,29 @@ TEST(PerSetFallback, TheSettingKeepsTheGpuPathAndSaysSo) {
     EXPECT_LT(frame["counters"]["particles_drawn"].get<double>(), 10.0);
 }
 
-TEST(PerSetFallback, TheReportsDevicesTableSaysSo) {
+// The report's Devices table says so; the verdict is remembered in --cache per device, driver and
+// build: the first run checks and writes it, the second reads it.
+TEST(PerSetFallback, TheReportSaysSoAndTheCacheRemembersTheVerdict) {
     const fs::path dir = tt::freshDir("per_set_fallback_run");
     tt::writeFile(dir / "thresholds.toml", "# no bounds: this test reads the report's devices\n");
-    const auto r = tt::runTwinrender("run " + PLANET + " --self-check --thresholds " +
-                                         (dir / "thresholds.toml").string() + SMALL + " --out " +
-                                         (dir / "out").string(),
-                                     FAULT);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string page = tt::readText(dir / "out" / "planet" / "index.html");
-    EXPECT_NE(page.find("per-set work on the CPU: the GPU per-set path failed the self-check"),
-              std::string::npos);
-}
-
-TEST(PerSetFallback, TheVerdictIsRememberedInTheCachePerDeviceDriverAndBuild) {
-    const fs::path dir = tt::freshDir("per_set_fallback_cache");
     const std::string env = FAULT + " TWINRENDER_SELF_CHECK_SOFTWARE=1";
-    const std::string args = "render " + PLANET + " --renderer realtime" + SMALL;
-    // `render` has no --cache: once per process.
-    auto r = tt::runTwinrender(args + " --out " + (dir / "a").string(), env);
+    const std::string run = "run " + PLANET + " --cache " + (dir / "cache").string() +
+                            " --thresholds " + (dir / "thresholds.toml").string() + SMALL;
+    auto r = tt::runTwinrender(run + " --out " + (dir / "first").string(), env);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("FAIL"), std::string::npos) << r.output;
-    // `study` takes --cache: the first run checks and writes the verdict, the second reads it.
-    const std::string study = "study depth_range --quick --cache " + (dir / "cache").string();
-    r = tt::runTwinrender(study + " --out " + (dir / "s1").string(), env);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("remembered in"), std::string::npos) << r.output;
     EXPECT_EQ(tt::countFiles(dir / "cache" / "self_check"), 1u);
-    r = tt::runTwinrender(study + " --out " + (dir / "s2").string(), env);
+    const std::string page = tt::readText(dir / "first" / "planet" / "index.html");
+    EXPECT_NE(page.find("per-set work on the CPU: the GPU per-set path failed the self-check"),
+              std::string::npos);
+    r = tt::runTwinrender(run + " --out " + (dir / "second").string(), env);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("FAIL (remembered in"), std::string::npos) << r.output;
     // Without the hook the software rasteriser is not checked at all.
-    r = tt::runTwinrender(args + " --out " + (dir / "b").string(), FAULT);
+    r = tt::runTwinrender(
+        "render " + PLANET + " --renderer realtime" + SMALL + " --out " + (dir / "render").string(),
+        FAULT);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("per-set self-check"), std::string::npos) << r.output;
 }
