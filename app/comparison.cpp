@@ -1,5 +1,6 @@
 #include "app/comparison.h"
 
+#include <algorithm>
 #include <ctime>
 
 #include "compare/error_maps.h"
@@ -53,6 +54,7 @@ report::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
     report.name = s.scene.name;
     report.description = s.scene.description;
     report.metrics = result.values;
+    report.notProvided = result.notProvided;
     addTimeMetrics(ref, test, report.metrics);
 
     report.settings = {{"scene_file", s.scene.file.string()},
@@ -78,7 +80,12 @@ report::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
 
 void checkReport(report::SceneReport& report, const compare::Bounds& bounds,
                  const compare::Baseline* baseline) {
-    report.checks = compare::evaluate(report.metrics, bounds);
+    // A metric the test image does not provide is never checked (never a pass, never a fail).
+    const compare::Bounds provided = compare::filterBounds(bounds, [&](const std::string& m) {
+        return std::find(report.notProvided.begin(), report.notProvided.end(), m) ==
+               report.notProvided.end();
+    });
+    report.checks = compare::evaluate(report.metrics, provided);
     if (baseline) {
         if (const auto* blessed = baseline->metrics(report.name)) report.baseline = *blessed;
         auto more =

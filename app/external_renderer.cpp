@@ -122,7 +122,7 @@ ExternalRenderer::ExternalRenderer(ExternalSettings settings, const LoadedScene&
 core::Frame ExternalRenderer::render(const core::RenderInput& in) {
     core::throwIfCancelled(in.cancel);
     const std::int64_t frameNumber = in.scene.frame;
-    const fs::path folder = mSettings.root / frameFolder(frameNumber);
+    const fs::path folder = mSettings.root / in.scene.name / "external" / frameFolder(frameNumber);
     auto fail = [&](const std::string& what) {
         return core::InputError(fmt::format("external renderer '{}', frame {} of {}: {}",
                                             mSettings.command, frameNumber, in.scene.name, what));

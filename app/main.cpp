@@ -114,7 +114,7 @@ ExitCode runRender(const std::string& scenePath, const std::string& renderer,
     // the error should come before minutes of raymarching.
     tr::app::Devices devices(o.requireGpu, {.force = o.selfCheck});
     if (renderer == "external") {
-        external.root = dir / "external";
+        external.root = o.out;
         devices.setExternal(std::move(external));
     }
     if (!frames.empty()) {
@@ -210,6 +210,18 @@ int main(int argc, char** argv) {
                        "sequences only, in OUT/reference_cache)");
     addPpd(runCmd, runOpts.ppd);
     addFlipOver(runCmd, runOpts.flipOver);
+    runCmd
+        ->add_option("--test", runOpts.test,
+                     "the renderer measured: realtime (built in) or external (--external-command)")
+        ->check(CLI::IsMember({"realtime", "external"}))
+        ->capture_default_str();
+    runCmd->add_option("--external-command", runOpts.external.command,
+                       "--test external: the command run once per frame with the request's path "
+                       "(docs/external.md)");
+    runCmd
+        ->add_option("--external-timeout", runOpts.external.timeoutSeconds,
+                     "--test external: seconds a frame may take")
+        ->capture_default_str();
     runCmd
         ->add_option(
             "--shard", runOpts.shard,

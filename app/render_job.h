@@ -52,7 +52,8 @@ struct ExternalSettings {
     // argument.
     std::string command;
     double timeoutSeconds = 600.0;  // per frame, > 0
-    // Each frame's working folder is ROOT/<frame> (four digits), made anew.
+    // Each frame's working folder is ROOT/<scene>/external/<frame> (four digits), made anew: ROOT
+    // the command's output folder.
     std::filesystem::path root;
 };
 

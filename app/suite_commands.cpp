@@ -219,7 +219,20 @@ ExitCode runSuite(const RunOptions& o) {
         }
     // The GL context before the first render: without one, nothing can be compared.
     Devices devices(o.requireGpu, {.force = o.selfCheck, .cache = o.cache});
-    devices.realtime();
+    if (o.test == "external") {
+        for (std::size_t i = 0; i < scenes.size(); ++i)
+            if (selected[i] && scenes[i].scene.sequence)
+                throw core::InputError(fmt::format(
+                    "{}: run --test external measures still scenes; the scene is a sequence "
+                    "(render its frames with `render --renderer external --frames A:B` and "
+                    "compare them)",
+                    scenes[i].scene.file.string()));
+        ExternalSettings external = o.external;
+        external.root = o.out;
+        devices.setExternal(std::move(external));
+    } else {
+        devices.realtime();
+    }
     // Sequences take their references from the cache, frame by frame; with --cache, every
     // scene does.
     const fs::path cacheDir =
@@ -229,7 +242,7 @@ ExitCode runSuite(const RunOptions& o) {
     // Making a real-time renderer compiles a user's surface shader: one that does not compile
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
-        if (selected[i]) makeRenderer("realtime", devices, scenes[i]);
+        if (selected[i]) makeRenderer(o.test, devices, scenes[i]);
     const fs::path out(o.out);
     prepareOutputFolder(out);
 
@@ -272,7 +285,7 @@ ExitCode runSuite(const RunOptions& o) {
                 return cached;
             }();
             writeRender(s, ref, dir);
-            const core::Frame test = render("realtime", devices, s, &ref.image);
+            const core::Frame test = render(o.test, devices, s, &ref.image);
             writeRender(s, test, dir);
             report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd,
                                   o.flipOver, dir);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/exit_code.h"
+#include "app/render_job.h"
 #include "compare/flip_pooling.h"
 #include "report/report.h"
 
@@ -48,6 +49,10 @@ struct RunOptions {
     // --self-check: the per-set self-check on any device, not taken from the cache
     // (app/per_set_check.h).
     bool selfCheck = false;
+    // --test: the renderer measured against the reference, "realtime" (the built-in one) or
+    // "external" (`external`'s command, app/external_renderer.h; still scenes only).
+    std::string test = "realtime";
+    ExternalSettings external;
 };
 ExitCode runSuite(const RunOptions& options);
 

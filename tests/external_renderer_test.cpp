@@ -5,6 +5,7 @@
 // can misbehave is a clear error naming the renderer and the frame, exit 4, nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -103,4 +104,36 @@ TEST(ExternalRenderer, ADepthInAnotherConventionIsNotComparable) {
     EXPECT_EQ(c.exitCode, 3) << c.output;
     EXPECT_NE(c.output.find("must be the eye depth along the view axis"), std::string::npos)
         << c.output;
+}
+
+// `run --test external`: the renderer of one's own beside the reference in the report, its
+// metrics held to the thresholds it provides, the others not checked.
+TEST(ExternalRenderer, RunPutsItBesideTheReferenceWithTheMetricsItProvides) {
+    const fs::path dir = tt::freshDir("external_run");
+    tt::writeFile(dir / "bounds.toml",
+                  "\"coverage.iou\" = { min = 0.999 }\n\"shadow.iou\" = { min = 0.99 }\n");
+    const auto r = tt::runTwinrender("run " + SPHERE + " --test external --external-command '" +
+                                     ADAPTER + "' --thresholds " + (dir / "bounds.toml").string() +
+                                     " --out " + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json m = tt::readJson(dir / "out" / "one_sphere" / "metrics.json");
+    EXPECT_EQ(m["metrics"]["coverage.iou"], 1.0);
+    EXPECT_FALSE(m["metrics"].contains("shadow.iou"));
+    const auto& notProvided = m["not_provided"];
+    EXPECT_NE(std::find(notProvided.begin(), notProvided.end(), "shadow.iou"), notProvided.end());
+    ASSERT_EQ(m["checks"].size(), 1u) << m["checks"];
+    EXPECT_EQ(m["checks"][0]["metric"], "coverage.iou");
+    EXPECT_TRUE(fs::exists(dir / "out" / "one_sphere" / "external.exr"));
+    const std::string page = tt::readText(dir / "out" / "one_sphere" / "index.html");
+    EXPECT_NE(page.find("external: /usr/bin/python3"), std::string::npos);
+}
+
+TEST(ExternalRenderer, RunMeasuresStillScenesAndSaysSoOfASequence) {
+    const fs::path dir = tt::freshDir("external_sequence");
+    const auto r = tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
+                                     "/scenes/collision_sequence.toml --test external "
+                                     "--external-command true --out " +
+                                     dir.string());
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_NE(r.output.find("measures still scenes"), std::string::npos) << r.output;
 }
