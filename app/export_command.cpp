@@ -171,6 +171,7 @@ json sceneExportJson(const LoadedScene& s, const fs::path& staging) {
     return {{"format", "twinrender-export"},
             {"version", EXPORT_FORMAT_VERSION},
             {"scene", s.scene.name},
+            {"source", s.scene.file.string()},
             {"conventions",
              {{"handedness", "right-handed world; the camera looks down -z in eye space"},
               {"units", "scene units for positions, h, depth and distances"},

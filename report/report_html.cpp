@@ -298,6 +298,14 @@ std::string metricTable(const SceneReport& s) {
              (st ? badge(*st) : std::string("<span class=\"muted small\">not checked</span>")) +
              "</td></tr>\n";
     }
+    // The metrics the test image's channels cannot give: listed, never a value, never checked.
+    for (const std::string& m : s.notProvided)
+        h += fmt::format(
+            "<tr id=\"metric-{0}\"><td class=\"mono\"{1}>{0}</td><td class=\"num muted\">not "
+            "provided</td><td class=\"unit\">{2}</td><td class=\"num\">—</td><td "
+            "class=\"num\">—</td>{3}<td><span class=\"muted small\">not checked</span></td></tr>\n",
+            htmlEscape(m), metricTitle(m), htmlEscape(metricUnit(m)),
+            hasBaseline ? "<td class=\"num\">—</td><td class=\"num\">—</td>" : "");
     h += "</tbody></table></div>\n";
     std::vector<const Check*> notable;
     for (Status want : {Status::Fail, Status::Warn})
