@@ -42,12 +42,24 @@ using nlohmann::json;
 
 namespace {
 
+// The renderer measured against the reference: the built-in real-time one, or the one `run
+// --test` named (an external renderer).
+std::string testRenderer(const SceneReport& s) {
+    if (s.renderers.count("realtime")) return "realtime";
+    for (const auto& [name, r] : s.renderers)
+        if (name != "raymarch") return name;
+    return "realtime";
+}
+
 // The two renderers in the order the pages show them.
-constexpr const char* RENDERERS[] = {"realtime", "raymarch"};
+std::vector<std::string> renderersOf(const SceneReport& s) {
+    return {testRenderer(s), "raymarch"};
+}
 
 std::string rendererLabel(const std::string& renderer) {
     if (renderer == "realtime") return "Real-time";
     if (renderer == "raymarch") return "Reference";
+    if (renderer == "external") return "External renderer";
     return renderer;
 }
 
@@ -69,7 +81,7 @@ std::optional<double> totalMs(const SceneReport& s, const std::string& renderer)
 }
 
 std::string speedRatio(const SceneReport& s) {
-    auto rt = totalMs(s, "realtime"), ref = totalMs(s, "raymarch");
+    auto rt = totalMs(s, testRenderer(s)), ref = totalMs(s, "raymarch");
     if (!rt || !ref || !(*rt > 0.0) || !std::isfinite(*ref)) return "";
     const double r = *ref / *rt;
     return r >= 100  ? fmt::format("{:.0f}×", r)
@@ -164,7 +176,7 @@ std::string indexHeader(const RunReport& run) {
 
 // The first beauty render of the scene, linked to its page; empty when it has none.
 std::string thumbnail(const SceneReport& s, const std::string& page) {
-    for (const char* r : RENDERERS) {
+    for (const std::string& r : renderersOf(s)) {
         auto it = s.renderers.find(r);
         if (it == s.renderers.end()) continue;
         auto img = it->second.images.find("beauty");
@@ -187,7 +199,7 @@ std::string sceneRow(const SceneReport& s, const std::vector<std::string>& colum
         s.description.empty() ? "" : "<div class=\"desc\">" + htmlEscape(s.description) + "</div>");
     h += "<td>" + badge(s.status()) + "</td>";
     for (const auto& m : columns) h += valueCell(s, m);
-    auto rt = totalMs(s, "realtime"), ref = totalMs(s, "raymarch");
+    auto rt = totalMs(s, testRenderer(s)), ref = totalMs(s, "raymarch");
     h += fmt::format(
         "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>\n",
         rt ? fmt::format("{:.1f}", *rt) : "—", ref ? fmt::format("{:.1f}", *ref) : "—",
@@ -339,10 +351,11 @@ std::string stageCell(const std::map<std::string, double>& t, const std::string&
 
 std::string timingTable(const SceneReport& s) {
     std::vector<std::string> renderers;
-    for (const char* r : RENDERERS)
+    for (const std::string& r : renderersOf(s))
         if (s.renderers.count(r)) renderers.push_back(r);
     for (const auto& [r, rr] : s.renderers)
-        if (r != "realtime" && r != "raymarch") renderers.push_back(r);
+        if (std::find(renderers.begin(), renderers.end(), r) == renderers.end())
+            renderers.push_back(r);
     if (renderers.empty()) return "<p class=\"muted\">No timings.</p>\n";
     std::vector<std::string> stages;
     for (const auto& r : renderers)
@@ -432,7 +445,7 @@ std::vector<std::string> sceneBuffers(const SceneReport& s) {
 
 std::string sceneHeader(const SceneReport& s) {
     std::vector<std::string> facts;
-    for (const char* r : RENDERERS)
+    for (const std::string& r : renderersOf(s))
         if (auto t = totalMs(s, r))
             facts.push_back(htmlEscape(rendererLabel(r)) + " " + htmlEscape(formatMs(*t)));
     if (const std::string ratio = speedRatio(s); !ratio.empty())
@@ -545,7 +558,8 @@ std::string errorPanel(const SceneReport& s, const std::string& initial, json& d
 // every buffer's pair of images into the page's data.
 std::string swapView(const SceneReport& s, const std::vector<std::string>& buffers,
                      const std::string& initial, json& data) {
-    auto rt = s.renderers.find("realtime");
+    // The page's script names the measured renderer's slot "realtime", whichever it is.
+    auto rt = s.renderers.find(testRenderer(s));
     auto ref = s.renderers.find("raymarch");
     for (const auto& b : buffers) {
         json pair = json::object();
@@ -580,7 +594,7 @@ std::string imagesSection(const SceneReport& s, const std::vector<std::string>& 
     const std::string& initial = buffers.front();
     std::string h = "<section>\n<h2>Images</h2>\n" + bufferSwitch(buffers);
     h += "<div class=\"panels\">\n";
-    for (const char* r : RENDERERS) h += rendererPanel(s, r, buffers, initial);
+    for (const std::string& r : renderersOf(s)) h += rendererPanel(s, r, buffers, initial);
     h += errorPanel(s, initial, data) + "</div>\n";
     h += swapView(s, buffers, initial, data);
     h += "<p class=\"note\">Buffers: beauty tonemapped as displayed; normal as 0.5 + 0.5 n; "

@@ -126,6 +126,9 @@ TEST(ExternalRenderer, RunPutsItBesideTheReferenceWithTheMetricsItProvides) {
     EXPECT_TRUE(fs::exists(dir / "out" / "one_sphere" / "external.exr"));
     const std::string page = tt::readText(dir / "out" / "one_sphere" / "index.html");
     EXPECT_NE(page.find("external: /usr/bin/python3"), std::string::npos);
+    // Its images in the panel and the swap view where the built-in renderer's would be.
+    EXPECT_NE(page.find("src=\"external.beauty.png\""), std::string::npos);
+    EXPECT_EQ(page.find("wrote no beauty buffer"), std::string::npos);
     EXPECT_NE(page.find("shadow.iou</td><td class=\"num muted\">not provided</td>"),
               std::string::npos);
 }
