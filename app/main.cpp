@@ -210,11 +210,20 @@ int main(int argc, char** argv) {
                        "sequences only, in OUT/reference_cache)");
     addPpd(runCmd, runOpts.ppd);
     addFlipOver(runCmd, runOpts.flipOver);
+    auto* runTest =
+        runCmd
+            ->add_option(
+                "--test", runOpts.test,
+                "the renderer measured: realtime (built in) or external (--external-command)")
+            ->check(CLI::IsMember({"realtime", "external"}))
+            ->capture_default_str();
+    std::string runTestImages;
     runCmd
-        ->add_option("--test", runOpts.test,
-                     "the renderer measured: realtime (built in) or external (--external-command)")
-        ->check(CLI::IsMember({"realtime", "external"}))
-        ->capture_default_str();
+        ->add_option("--test-images", runTestImages,
+                     "measure images rendered earlier, DIR/<scene>/<frame>.exr, as an external "
+                     "renderer's (docs/external.md)")
+        ->type_name("DIR")
+        ->excludes(runTest);
     runCmd->add_option("--external-command", runOpts.external.command,
                        "--test external: the command run once per frame with the request's path "
                        "(docs/external.md)");
@@ -366,6 +375,10 @@ int main(int argc, char** argv) {
                 runOpts.selfCheck = runCommon.selfCheck;
                 runOpts.commandLine = commandLine;
                 runOpts.linkStudies = !runStudies.empty();
+                if (!runTestImages.empty()) {
+                    runOpts.test = "images";
+                    runOpts.external.images = runTestImages;
+                }
                 if (runOpts.linkStudies && !runOpts.shard.empty())
                     throw tr::core::InputError(
                         "run --studies with --shard: the studies are not sharded; run them once "

@@ -22,6 +22,7 @@
 #include "app/reference_cache.h"
 #include "app/sequence_run.h"
 #include "app/shard.h"
+#include "app/test_images.h"
 #include "app/video_encoder.h"
 #include "compare/error_maps.h"
 #include "compare/metric_table.h"
@@ -219,17 +220,14 @@ ExitCode runSuite(const RunOptions& o) {
         }
     // The GL context before the first render: without one, nothing can be compared.
     Devices devices(o.requireGpu, {.force = o.selfCheck, .cache = o.cache});
-    if (o.test == "external") {
-        for (std::size_t i = 0; i < scenes.size(); ++i)
-            if (selected[i] && scenes[i].scene.sequence)
-                throw core::InputError(fmt::format(
-                    "{}: run --test external measures still scenes; the scene is a sequence "
-                    "(render its frames with `render --renderer external --frames A:B` and "
-                    "compare them)",
-                    scenes[i].scene.file.string()));
+    if (o.test == "external" || o.test == "images") {
         ExternalSettings external = o.external;
         external.root = o.out;
         devices.setExternal(std::move(external));
+        // Every image a user rendered earlier is there and sound before the first render.
+        if (o.test == "images")
+            for (std::size_t i = 0; i < scenes.size(); ++i)
+                if (selected[i]) checkTestImages(o.external.images, scenes[i]);
     } else {
         devices.realtime();
     }
@@ -273,8 +271,8 @@ ExitCode runSuite(const RunOptions& o) {
         report::SceneReport report;
         try {
             if (s.scene.sequence) {
-                const SequenceRun sequence{o.sets, bounds[i], baseline ? &*baseline : nullptr,
-                                           o.ppd, o.flipOver};
+                const SequenceRun sequence{o.sets, bounds[i],  baseline ? &*baseline : nullptr,
+                                           o.ppd,  o.flipOver, o.test};
                 run.scenes.push_back(runSequence(s, devices, cache, sequence, dir));
                 continue;
             }
@@ -335,23 +333,29 @@ ExitCode runSuite(const RunOptions& o) {
 
     // One screen: a row per scene. printf pads bytes, not columns: the widths of the two
     // headers with multi-byte characters are widened by their extra bytes (ꟻ 3, ° 2).
+    // The measured renderer's frames are "realtime" or, from a command or images, "external".
+    const std::string tested = o.test == "realtime" ? "realtime" : "external";
+    const std::string testedTime = "time." + tested + "_ms";
     std::printf("%-14s %-5s %10s %8s %9s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM",
-                "normal°", "cov. IoU", "realtime", "reference", "speed");
+                "normal°", "cov. IoU", tested.c_str(), "reference", "speed");
     for (const auto& r : run.scenes) {
         auto m = [&](const char* k) {
             const auto it = r.metrics.find(k);
             return it == r.metrics.end() ? std::string("-") : compare::formatValue(it->second);
         };
-        const auto rt = r.metrics.find("time.realtime_ms"),
-                   ref = r.metrics.find("time.raymarch_ms");
+        auto ms = [&](const char* k) {  // "-" for a time not measured (images without one)
+            const std::string v = m(k);
+            return v == "-" ? v : v + " ms";
+        };
+        const auto rt = r.metrics.find(testedTime), ref = r.metrics.find("time.raymarch_ms");
         const std::string speed = rt != r.metrics.end() && ref != r.metrics.end() && rt->second > 0
                                       ? fmt::format("{:.1f}x", ref->second / rt->second)
                                       : "-";
-        std::printf("%-14s %-5s %8s %8s %8s %9s %8s ms %8s ms %7s\n", r.name.c_str(),
+        std::printf("%-14s %-5s %8s %8s %8s %9s %11s %11s %7s\n", r.name.c_str(),
                     std::string(compare::toString(r.status())).c_str(), m("beauty.flip").c_str(),
                     m("beauty.ssim").c_str(), m("normal.mean_deg").c_str(),
-                    m("coverage.iou").c_str(), m("time.realtime_ms").c_str(),
-                    m("time.raymarch_ms").c_str(), speed.c_str());
+                    m("coverage.iou").c_str(), ms(testedTime.c_str()).c_str(),
+                    ms("time.raymarch_ms").c_str(), speed.c_str());
         if (!r.error.empty()) std::printf("  error: %s\n", r.error.c_str());
         for (const auto& c : r.checks)
             if (c.status != compare::Status::Pass)

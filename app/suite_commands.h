@@ -49,8 +49,9 @@ struct RunOptions {
     // --self-check: the per-set self-check on any device, not taken from the cache
     // (app/per_set_check.h).
     bool selfCheck = false;
-    // --test: the renderer measured against the reference, "realtime" (the built-in one) or
-    // "external" (`external`'s command, app/external_renderer.h; still scenes only).
+    // --test: the renderer measured against the reference, "realtime" (the built-in one),
+    // "external" (`external`'s command, app/external_renderer.h) or "images" (--test-images:
+    // the images in `external.images`, app/test_images.h).
     std::string test = "realtime";
     ExternalSettings external;
 };

@@ -7,19 +7,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/analytic_sphere.h"
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
+using tt::ADAPTER;
+using tt::SPHERE;
+using tt::SPHERE_ORBIT;
 
 namespace {
-
-const std::string SPHERE = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/one_sphere.toml";
-const std::string ADAPTER =
-    "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) + "/tests/adapters/analytic_sphere.py";
 
 tt::CommandResult external(const fs::path& out, const std::string& command,
                            const std::string& environment = "", const std::string& more = "") {
@@ -133,14 +134,60 @@ TEST(ExternalRenderer, RunPutsItBesideTheReferenceWithTheMetricsItProvides) {
               std::string::npos);
 }
 
-TEST(ExternalRenderer, RunMeasuresStillScenesAndSaysSoOfASequence) {
+// A sequence through the protocol: a request and an image per frame, each frame measured, and
+// the flicker of each consecutive pair against the truth's, as for the built-in renderer. The
+// same frames given later as images (`run --test-images`) measure alike.
+TEST(ExternalRenderer, RunMeasuresASequenceFrameByFrameWithItsFlicker) {
     const fs::path dir = tt::freshDir("external_sequence");
-    const auto r = tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
-                                     "/scenes/collision_sequence.toml --test external "
-                                     "--external-command true --out " +
-                                     dir.string());
-    EXPECT_EQ(r.exitCode, 4) << r.output;
-    EXPECT_NE(r.output.find("measures still scenes"), std::string::npos) << r.output;
+    const std::string orbit = SPHERE_ORBIT;
+    const std::string cache = " --cache " + (dir / "cache").string();
+    const auto r =
+        tt::runTwinrender("run " + orbit + cache + " --test external --external-command '" +
+                          ADAPTER + "' --out " + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const fs::path scene = dir / "out" / "one_sphere_orbit";
+    for (int frame = 0; frame < 3; ++frame) {
+        const std::string folder = "000" + std::to_string(frame);
+        EXPECT_EQ(tt::readJson(scene / "external" / folder / "request.json")["frame"], frame);
+        EXPECT_TRUE(fs::exists(scene / "frames" / folder / "external.exr")) << folder;
+    }
+    EXPECT_TRUE(fs::exists(scene / "sequence.webm"));
+    const nlohmann::json report = tt::readJson(scene / "metrics.json");
+    const auto& frames = report["sequence"]["frames"];
+    ASSERT_EQ(frames.size(), 3u) << report;
+    EXPECT_FALSE(frames[0]["metrics"].contains("temporal.flicker"));
+    for (int k = 0; k < 3; ++k) {
+        const auto& m = frames[k]["metrics"];
+        EXPECT_EQ(m["coverage.iou"], 1.0) << k;
+        EXPECT_EQ(m["time.external_ms"], 0.5) << k;  // from the renderer's out/timings.json
+        if (k == 0) continue;
+        EXPECT_NEAR(m["temporal.flicker"].get<double>(),
+                    m["temporal.frame_flip"].get<double>() -
+                        m["temporal.reference_frame_flip"].get<double>(),
+                    1e-12);
+        // The exact sphere's normals turn with the camera as the truth's do.
+        EXPECT_LT(std::abs(m["temporal.normal_flicker_deg"].get<double>()), 1e-3) << k;
+    }
+    EXPECT_TRUE(report["metrics"]["temporal.flicker_mean"].is_number());
+
+    // The frames as images rendered earlier, DIR/<scene>/<frame>.exr, without their times.
+    const fs::path images = dir / "images" / "one_sphere_orbit";
+    fs::create_directories(images);
+    for (const char* f : {"0000", "0001", "0002"})
+        fs::copy_file(scene / "frames" / f / "external.exr", images / (std::string(f) + ".exr"));
+    const auto later =
+        tt::runTwinrender("run " + orbit + cache + " --test-images " + (dir / "images").string() +
+                          " --out " + (dir / "later").string());
+    ASSERT_EQ(later.exitCode, 0) << later.output;
+    const nlohmann::json again = tt::readJson(dir / "later" / "one_sphere_orbit" / "metrics.json");
+    for (int k = 0; k < 3; ++k) {
+        for (const auto& [key, value] : frames[k]["metrics"].items()) {
+            if (key != "time.external_ms" && key != "time.raymarch_ms") {
+                EXPECT_EQ(again["sequence"]["frames"][k]["metrics"][key], value) << k << " " << key;
+            }
+        }
+    }
+    EXPECT_FALSE(again["metrics"].contains("time.external_ms"));
 }
 
 // The protocol's own end to end: twinrender's real-time renderer run through it by a small
