@@ -190,35 +190,66 @@ TEST(ExternalRenderer, RunMeasuresASequenceFrameByFrameWithItsFlicker) {
     EXPECT_FALSE(again["metrics"].contains("time.external_ms"));
 }
 
+// Every metric of `a` that both paths make (not the times, nor the error split the built-in path
+// alone makes) is in `b` with the same value; the temporal ones, which measure the frames'
+// display images (the built-in renderer's tonemapped on the GPU, an external frame's on the CPU),
+// within float rounding. Returns how many were compared.
+int expectSameMetrics(const nlohmann::json& a, const nlohmann::json& b, const std::string& where) {
+    int compared = 0;
+    for (const auto& [key, value] : a.items()) {
+        if (key.rfind("time.", 0) == 0 || key.find("surface.") == 0 || key.find("lighting.") == 0 ||
+            key.find("shading.") == 0)
+            continue;
+        EXPECT_TRUE(b.contains(key)) << where << " " << key;
+        if (key.rfind("temporal.", 0) == 0) {
+            EXPECT_NEAR(value.get<double>(), b[key].get<double>(), 1e-6) << where << " " << key;
+        } else {
+            EXPECT_EQ(value, b[key]) << where << " " << key;
+        }
+        ++compared;
+    }
+    return compared;
+}
+
 // The protocol's own end to end: twinrender's real-time renderer run through it by a small
-// adapter (tests/adapters/builtin_realtime.py) measures as the built-in path on the same scene.
-// The renderer is deterministic, so every image metric is the same number.
+// adapter (tests/adapters/builtin_realtime.py) measures as the built-in path on the same scenes,
+// a still one and a sequence (a churning ball, three frames: a request each, and the flicker).
+// The renderer is deterministic, so every image metric is the same number. Bloom is off in the
+// sequence: it is in the built-in renderer's display image only, which the flicker measures.
 TEST(ExternalRenderer, TheBuiltInRendererThroughTheProtocolMeasuresAsTheBuiltInPath) {
     const fs::path dir = tt::freshDir("external_builtin");
     const std::string planet = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/planet.toml";
+    tt::writeFile(dir / "churn.toml",
+                  "name = \"churn\"\n[camera]\nposition = [0.0, -4.0, 1.0]\n"
+                  "[light]\ndirection = [-1.0, 0.6, -0.4]\n[realtime]\nbloom.enabled = false\n"
+                  "[[bodies]]\nname = \"ball\"\nshape = \"ball\"\nradius = 1.0\n"
+                  "particles = 1500\nchurn = 0.3\n[sequence]\nfirst = 0\nlast = 2\nfps = 4.0\n");
+    const std::string scenes = planet + " " + (dir / "churn.toml").string();
     const std::string common = " --set camera.width=96 --set camera.height=72 --cache " +
                                (dir / "cache").string() + " --thresholds " +
                                (dir / "none.toml").string();
     tt::writeFile(dir / "none.toml", "# no bounds\n");
     const auto builtIn =
-        tt::runTwinrender("run " + planet + common + " --out " + (dir / "builtin").string());
+        tt::runTwinrender("run " + scenes + common + " --out " + (dir / "builtin").string());
     ASSERT_EQ(builtIn.exitCode, 0) << builtIn.output;
     const std::string adapter = "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) +
                                 "/tests/adapters/builtin_realtime.py " + TWINRENDER_BIN;
     const auto external =
-        tt::runTwinrender("run " + planet + common + " --test external --external-command '" +
+        tt::runTwinrender("run " + scenes + common + " --test external --external-command '" +
                           adapter + "' --out " + (dir / "external").string());
     ASSERT_EQ(external.exitCode, 0) << external.output;
     const nlohmann::json a = tt::readJson(dir / "builtin" / "planet" / "metrics.json")["metrics"];
     const nlohmann::json b = tt::readJson(dir / "external" / "planet" / "metrics.json")["metrics"];
-    int compared = 0;
-    for (const auto& [key, value] : a.items()) {
-        if (key.rfind("time.", 0) == 0 || key.find("surface.") == 0 || key.find("lighting.") == 0 ||
-            key.find("shading.") == 0)
-            continue;  // times, and the error split the built-in path alone makes
-        ASSERT_TRUE(b.contains(key)) << key;
-        EXPECT_EQ(value, b[key]) << key;
-        ++compared;
-    }
-    EXPECT_GT(compared, 20);
+    EXPECT_GT(expectSameMetrics(a, b, "planet"), 20);
+    const nlohmann::json c = tt::readJson(dir / "builtin" / "churn" / "metrics.json");
+    const nlohmann::json d = tt::readJson(dir / "external" / "churn" / "metrics.json");
+    expectSameMetrics(c["metrics"], d["metrics"], "churn");
+    ASSERT_EQ(c["sequence"]["frames"].size(), 3u);
+    ASSERT_EQ(d["sequence"]["frames"].size(), 3u);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_GT(expectSameMetrics(c["sequence"]["frames"][k]["metrics"],
+                                    d["sequence"]["frames"][k]["metrics"],
+                                    "churn frame " + std::to_string(k)),
+                  20);
+    EXPECT_GT(d["metrics"]["temporal.flicker_mean"].get<double>(), 0.001);  // churn flickers
 }
