@@ -374,10 +374,15 @@ ExitCode runSuite(const RunOptions& o) {
             files.push_back(fs::absolute(s.scene.file).lexically_normal().string());
         }
         for (const auto& r : run.scenes) reports.push_back(report::sceneReportJson(r));
-        const nlohmann::json settings = {
+        nlohmann::json settings = {
             {"scenes", files},          {"sets", o.sets}, {"thresholds", thresholdsFile},
             {"baseline", o.baseline},   {"ppd", o.ppd},   {"flip_over", o.flipOver},
             {"junit", !o.junit.empty()}};
+        // The renderers measured: shards of one run measure the same ones.
+        settings["tests"] = o.tests;
+        if (o.tests != std::vector<std::string>{"realtime"})
+            settings["external"] = {{"command", o.external.command},
+                                    {"images", o.external.images.string()}};
         manifest = {{"command", "run"},
                     {"settings", settings},
                     {"scenes", names},
