@@ -213,10 +213,17 @@ int main(int argc, char** argv) {
     std::vector<std::string> runTests;
     runCmd
         ->add_option("--test", runTests,
-                     "the renderer measured: realtime (built in, the default) or external "
+                     "the renderer measured: realtime (built in, the default), "
+                     "realtime:KEY=VALUE,... (with settings of its own) or external "
                      "(--external-command); repeatable, side by side")
-        ->check(CLI::IsMember({"realtime", "external"}))
-        ->type_name("realtime|external");
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                return text == "realtime" || text == "external" || text.rfind("realtime:", 0) == 0
+                           ? std::string()
+                           : "must be realtime, realtime:KEY=VALUE,... or external";
+            },
+            "TEST"))
+        ->type_name("realtime|realtime:KEY=VALUE,...|external");
     std::string runTestImages;
     runCmd
         ->add_option("--test-images", runTestImages,

@@ -276,13 +276,27 @@ ExitCode runSuite(const RunOptions& o) {
         }
     // The GL context before the first render: without one, nothing can be compared.
     Devices devices(o.requireGpu, {.force = o.selfCheck, .cache = o.cache});
-    const auto tests = [&](const char* name) {
-        return std::find(o.tests.begin(), o.tests.end(), name) != o.tests.end();
-    };
-    for (std::size_t k = 0; k < o.tests.size(); ++k)
+    // The test renderers, and the scenes of those with settings of their own.
+    std::vector<TestRendererSpec> specs;
+    std::vector<std::vector<LoadedScene>> variants(o.tests.size());
+    for (std::size_t k = 0; k < o.tests.size(); ++k) {
         if (std::find(o.tests.begin(), o.tests.begin() + k, o.tests[k]) != o.tests.begin() + k)
             throw core::InputError(fmt::format(
                 "--test {} is given twice; each renderer is measured once", o.tests[k]));
+        specs.push_back(parseTestRenderer(o.tests[k]));
+        std::vector<std::string> sets = o.sets;
+        sets.insert(sets.end(), specs[k].overrides.begin(), specs[k].overrides.end());
+        if (!specs[k].overrides.empty())
+            for (const auto& f : files) variants[k].push_back(loadScene(f, sets));
+    }
+    // The scene the k-th test renderer renders: the run's, or its own settings'.
+    const auto sceneFor = [&](std::size_t k, std::size_t i) -> LoadedScene& {
+        return variants[k].empty() ? scenes[i] : variants[k][i];
+    };
+    const auto tests = [&](const char* name) {
+        return std::any_of(specs.begin(), specs.end(),
+                           [&](const TestRendererSpec& t) { return t.renderer == name; });
+    };
     if (tests("external") || tests("images")) {
         ExternalSettings external = o.external;
         external.root = o.out;
@@ -302,8 +316,8 @@ ExitCode runSuite(const RunOptions& o) {
     // Making a real-time renderer compiles a user's surface shader: one that does not compile
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
-        for (const std::string& test : o.tests)
-            if (selected[i]) makeRenderer(test, devices, scenes[i]);
+        for (std::size_t k = 0; k < specs.size(); ++k)
+            if (selected[i]) makeRenderer(specs[k].renderer, devices, sceneFor(k, i));
     const fs::path out(o.out);
     prepareOutputFolder(out);
 
@@ -347,9 +361,9 @@ ExitCode runSuite(const RunOptions& o) {
             std::vector<report::SceneReport> reports;
             for (std::size_t k = 0; k < o.tests.size(); ++k) {
                 const SequenceRun how{o.sets, bounds[i],  k == 0 && baseline ? &*baseline : nullptr,
-                                      o.ppd,  o.flipOver, o.tests[k]};
-                reports.push_back(measureScene(s, ref ? &*ref : nullptr, how, devices, cache,
-                                               dir / testRendererFolder(o.tests, k)));
+                                      o.ppd,  o.flipOver, specs[k].renderer};
+                reports.push_back(measureScene(sceneFor(k, i), ref ? &*ref : nullptr, how, devices,
+                                               cache, dir / testRendererFolder(o.tests, k)));
             }
             report = joinTestRenderers(std::move(reports), o.tests);
         } catch (const core::OutputError&) {
@@ -401,15 +415,15 @@ ExitCode runSuite(const RunOptions& o) {
     // not columns: the widths of the two headers with multi-byte characters are widened by
     // their extra bytes (ꟻ 3, ° 2).
     std::printf("%-14s %-5s %10s %8s %9s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM",
-                "normal°", "cov. IoU", timedRenderer(o.tests.front()).c_str(), "reference",
+                "normal°", "cov. IoU", timedRenderer(specs.front().renderer).c_str(), "reference",
                 "speed");
     for (const auto& r : run.scenes) {
-        printSceneRow(r.name, r.status(), r.metrics, o.tests.front());
+        printSceneRow(r.name, r.status(), r.metrics, specs.front().renderer);
         for (std::size_t k = 1; k < r.tests.size(); ++k) {
             const report::TestRendererReport& t = r.tests[k];
             const compare::Status st =
                 t.error.empty() ? compare::overallStatus(t.checks) : compare::Status::Fail;
-            printSceneRow("  + " + t.name, st, t.metrics, t.name);
+            printSceneRow("  + " + t.name, st, t.metrics, t.name.substr(0, t.name.find(':')));
         }
         if (!r.error.empty()) std::printf("  error: %s\n", r.error.c_str());
         for (const auto& c : r.checks)

@@ -1,7 +1,12 @@
 #include "app/test_renderers.h"
 
+#include <fmt/format.h>
+
+#include <cctype>
 #include <cmath>
 #include <utility>
+
+#include "core/error.h"
 
 namespace twinrender::app {
 
@@ -25,8 +30,41 @@ report::TestRendererReport resultsOf(report::SceneReport& r, const std::string& 
 
 }  // namespace
 
+TestRendererSpec parseTestRenderer(const std::string& spec) {
+    const auto colon = spec.find(':');
+    TestRendererSpec t{.name = spec, .renderer = spec.substr(0, colon), .overrides = {}};
+    if (t.renderer != "realtime" && t.renderer != "external" && t.renderer != "images")
+        throw core::InputError(
+            fmt::format("--test {}: no such test renderer; the test renderers are realtime, "
+                        "realtime:KEY=VALUE[,KEY=VALUE...] and external",
+                        spec));
+    if (colon == std::string::npos) return t;
+    if (t.renderer != "realtime")
+        throw core::InputError(fmt::format(
+            "--test {}: only the built-in renderer takes settings (realtime:KEY=VALUE,...)", spec));
+    for (std::size_t start = colon + 1;;) {
+        const auto comma = spec.find(',', start);
+        const std::string set = spec.substr(start, comma - start);
+        if (set.rfind("realtime.", 0) != 0 || set.find('=') == std::string::npos)
+            throw core::InputError(fmt::format(
+                "--test {}: '{}' is not a realtime.KEY=VALUE setting (every test renderer is "
+                "measured against the same reference, so only the real-time renderer's keys "
+                "may differ)",
+                spec, set));
+        t.overrides.push_back(set);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return t;
+}
+
 std::string testRendererFolder(const std::vector<std::string>& names, std::size_t k) {
-    return k == 0 ? "" : "tests/" + names.at(k) + "/";
+    if (k == 0) return "";
+    std::string folder = names.at(k);
+    for (char& c : folder)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_')
+            c = '_';
+    return "tests/" + folder + "/";
 }
 
 report::SceneReport joinTestRenderers(std::vector<report::SceneReport> reports,
