@@ -58,6 +58,18 @@ struct SequenceReport {
     std::map<std::string, std::string> charts;  // metric -> SVG over the frames
 };
 
+// One of several renderers a run measures against the same reference (`run --test A --test B`):
+// its results beside the others'.
+struct TestRendererReport {
+    std::string name;  // as --test names it: "realtime", "external", "images"
+    MetricValues metrics{};
+    std::vector<std::string> notProvided{};  // as SceneReport::notProvided
+    std::vector<Check> checks{};             // its own checks, by the metrics' own keys
+    std::string error{};                     // set when it could not render or be compared
+    // Its times, device and images (paths relative to the scene folder).
+    RendererReport render{};
+};
+
 struct SceneReport {
     std::string name;         // scene name: the folder name DIR/<name>/
     std::string description;  // one line from the scene file; may be empty
@@ -79,6 +91,11 @@ struct SceneReport {
     // Set for a sequence scene: its metrics above then summarise the frames
     // (report/sequence_summary.h).
     std::optional<SequenceReport> sequence;
+    // With several test renderers, each one's results in --test order, the first the scene's
+    // own (the metrics, renderers and images above); empty with one. The checks of the others
+    // that did not pass, and their errors, are in `checks` too, as "<name>:<metric>" (and
+    // "<name>:render"), so the verdict, JUnit and summary.md count them.
+    std::vector<TestRendererReport> tests;
 
     // Fail when error is set, else the worst check.
     Status status() const;

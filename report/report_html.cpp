@@ -17,6 +17,7 @@
 #include "report/html_page.h"
 #include "report/markup.h"
 #include "report/sequence_report.h"
+#include "report/test_renderers_section.h"
 
 namespace twinrender::report {
 
@@ -618,6 +619,7 @@ std::string scenePage(const RunReport& run, const SceneReport& s) {
                  {"errorFallback", ""},
                  {"errorLabel", ""}};
     h += sequenceSection(s);
+    h += testRenderersSection(s);
     if (!buffers.empty()) h += imagesSection(s, buffers, data);
     h += "<section>\n<h2>Metrics</h2>\n" + metricTable(s) + "</section>\n";
     h += "<section class=\"grid2\">\n<div>\n<h2>Timings</h2>\n" + timingTable(s) + "</div>\n";
