@@ -7,6 +7,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 #include <optional>
 #include <stdexcept>
@@ -38,6 +39,19 @@ bool bothHave(const core::Image& a, const core::Image& b,
     return std::all_of(channels.begin(), channels.end(), [&](std::string_view c) {
         return a.hasChannel(std::string(c)) && b.hasChannel(std::string(c));
     });
+}
+
+// Whether every pixel of both images has `value` in each of `channels` (to 1e-6): a buffer
+// neither render wrote anything into.
+bool bothUniform(const core::Image& a, const core::Image& b,
+                 std::initializer_list<std::string_view> channels, float value) {
+    for (const core::Image* image : {&a, &b})
+        for (std::string_view name : channels) {
+            const int c = image->requireChannel(std::string(name));
+            for (std::size_t p = 0; p < image->pixelCount(); ++p)
+                if (!(std::abs(image->at(p, c) - value) <= 1e-6f)) return false;
+        }
+    return true;
 }
 
 // core::tonemappedBeauty, rows in parallel: the same values (core::tonemap per pixel).
@@ -190,6 +204,8 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
         EmissionResult emission = emissionError(reference, test, *masks);
         result.values["emission.rmse"] = emission.rmse;
         result.errorMaps["emission"] = std::move(emission.errorMap);
+        if (bothUniform(reference, test, {"emission.R", "emission.G", "emission.B"}, 0.0f))
+            result.notApplicable["emission.rmse"] = "neither render has any emission";
     } else {
         notProvided({"emission.rmse"});
     }
@@ -216,6 +232,9 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
         result.values["ao.grain"] = ao.grain;
         result.values["ao.banding"] = ao.banding;
         result.errorMaps["ao"] = std::move(ao.errorMap);
+        if (bothUniform(reference, test, {"ao"}, 1.0f))
+            for (const char* k : {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"})
+                result.notApplicable[k] = "neither render has any occlusion (light.ao_radius 0)";
     } else if (reference.hasChannel("ao")) {
         notProvided({"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"});
     }
