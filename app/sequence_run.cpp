@@ -181,7 +181,7 @@ report::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache
         });
     video.finish();
     sequence.videos = {{"video/webm", "sequence.webm"}, {"video/mp4", "sequence.mp4"}};
-    sequence.charts = report::writeSequenceCharts(sequence, dir);
+    sequence.charts = report::writeSequenceCharts(sequence, dir, run.bounds);
     sequence.shownFrame = report::worstFrame(sequence.frames);
     std::size_t shown = 0;
     while (sequence.frames.at(shown).frame != sequence.shownFrame) ++shown;
