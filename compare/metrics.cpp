@@ -41,16 +41,27 @@ bool bothHave(const core::Image& a, const core::Image& b,
     });
 }
 
-// Whether every pixel of both images has `value` in each of `channels` (to 1e-6): a buffer
-// neither render wrote anything into.
-bool bothUniform(const core::Image& a, const core::Image& b,
-                 std::initializer_list<std::string_view> channels, float value) {
+// Whether every pixel of both images has no emission: a buffer neither render wrote into.
+bool neitherEmits(const core::Image& a, const core::Image& b) {
     for (const core::Image* image : {&a, &b})
-        for (std::string_view name : channels) {
-            const int c = image->requireChannel(std::string(name));
+        for (const char* name : {"emission.R", "emission.G", "emission.B"}) {
+            const int c = image->requireChannel(name);
             for (std::size_t p = 0; p < image->pixelCount(); ++p)
-                if (!(std::abs(image->at(p, c) - value) <= 1e-6f)) return false;
+                if (image->at(p, c) != 0.0f) return false;
         }
+    return true;
+}
+
+// Whether no covered pixel of either image is occluded: ao is at least the coverage A there
+// (1 on the surface, 0 where nothing is hit, edge pixels in between; to 1e-6).
+bool neitherOccludes(const core::Image& a, const core::Image& b) {
+    for (const core::Image* image : {&a, &b}) {
+        const int ao = image->requireChannel("ao"), alpha = image->channelIndex("A");
+        for (std::size_t p = 0; p < image->pixelCount(); ++p) {
+            const float covered = alpha < 0 ? 1.0f : image->at(p, alpha);
+            if (!(image->at(p, ao) >= covered - 1e-6f)) return false;
+        }
+    }
     return true;
 }
 
@@ -204,7 +215,7 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
         EmissionResult emission = emissionError(reference, test, *masks);
         result.values["emission.rmse"] = emission.rmse;
         result.errorMaps["emission"] = std::move(emission.errorMap);
-        if (bothUniform(reference, test, {"emission.R", "emission.G", "emission.B"}, 0.0f))
+        if (neitherEmits(reference, test))
             result.notApplicable["emission.rmse"] = "neither render has any emission";
     } else {
         notProvided({"emission.rmse"});
@@ -232,9 +243,10 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
         result.values["ao.grain"] = ao.grain;
         result.values["ao.banding"] = ao.banding;
         result.errorMaps["ao"] = std::move(ao.errorMap);
-        if (bothUniform(reference, test, {"ao"}, 1.0f))
+        if (neitherOccludes(reference, test))
             for (const char* k : {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"})
-                result.notApplicable[k] = "neither render has any occlusion (light.ao_radius 0)";
+                result.notApplicable[k] =
+                    "neither render has any occlusion (light.ao_radius 0, or nothing occludes)";
     } else if (reference.hasChannel("ao")) {
         notProvided({"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"});
     }

@@ -176,14 +176,18 @@ TEST(Metrics, TheMetricsOfABufferNeitherImageFillsDoNotApply) {
     }
     MetricResult r = computeMetrics(img, img, withLight());
     for (const char* m : {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"}) {
-        EXPECT_EQ(r.notApplicable.at(m), "neither render has any occlusion (light.ao_radius 0)");
+        EXPECT_EQ(r.notApplicable.at(m),
+                  "neither render has any occlusion (light.ao_radius 0, or nothing occludes)");
         EXPECT_EQ(r.values.at(m), 0.0) << m;  // the value stays
     }
     EXPECT_EQ(r.notApplicable.at("emission.rmse"), "neither render has any emission");
     EXPECT_EQ(r.notApplicable.size(), 6u);
-    // Occlusion in one pixel of one image: its metrics apply.
+    // Occlusion in one covered pixel of one image: its metrics apply.
     core::Image occluded = img;
-    occluded.at(img.pixelCount() / 2, ao) = 0.5f;
+    const int alpha = img.requireChannel("A");
+    std::size_t covered = 0;
+    while (img.at(covered, alpha) < 1.0f) ++covered;
+    occluded.at(covered, ao) = 0.5f;
     r = computeMetrics(img, occluded, withLight());
     EXPECT_EQ(r.notApplicable.count("ao.mean_abs"), 0u);
     EXPECT_EQ(r.notApplicable.count("emission.rmse"), 1u);
