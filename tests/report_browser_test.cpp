@@ -142,6 +142,8 @@ class ReportInBrowser : public ::testing::Test {
     tc::RunReport run;
 };
 
+// In a 1280 px window: the self-test also fails a page wider than its window and an index
+// table wider than its page.
 TEST_F(ReportInBrowser, EveryPageLoadsWithoutErrorsAndEveryLinkResolves) {
     std::string scene;  // the sphere's page as Chromium left it
     for (const std::string page :
@@ -208,12 +210,12 @@ TEST_F(ReportInBrowser, AScriptErrorAConsoleErrorAndANetworkReferenceFail) {
     }
 }
 
-TEST_F(ReportInBrowser, TheIndexFitsItsPageAt1280And1920Px) {
-    for (int width : {1280, 1920}) {
-        const PageResult r = openPage(chromium, report / "index.html", work, width);
-        ASSERT_FALSE(r.dom.empty()) << stderrTail(work);
-        EXPECT_EQ(r.selftest.rfind("selftest: ok (", 0), 0u) << width << " px: " << r.selftest;
-    }
+// At 1280 px EveryPageLoadsWithoutErrorsAndEveryLinkResolves holds the index to its width (the
+// self-test fails a table marked data-fit wider than its box); here the wide window.
+TEST_F(ReportInBrowser, TheIndexFitsItsPageAt1920PxToo) {
+    const PageResult r = openPage(chromium, report / "index.html", work, 1920);
+    ASSERT_FALSE(r.dom.empty()) << stderrTail(work);
+    EXPECT_EQ(r.selftest.rfind("selftest: ok (", 0), 0u) << r.selftest;
 }
 
 TEST_F(ReportInBrowser, AnOverflowingTableAndABrokenLinkFail) {
