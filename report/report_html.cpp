@@ -222,8 +222,8 @@ std::string timingTable(const SceneReport& s) {
         notes += "Not run for this scene, so left out: " + htmlEscape(names) + ". ";
     }
     if (const std::string ratio = speedRatio(s); !ratio.empty())
-        notes += "The reference takes " + htmlEscape(ratio) + " the " +
-                 htmlEscape(rendererLabel(s, testRenderer(s))) + " renderer's time. ";
+        notes += "Speed-up, the reference's time over " +
+                 htmlEscape(rendererLabel(s, testRenderer(s))) + "'s: " + htmlEscape(ratio) + ". ";
     h += "<p class=\"small muted\">" + notes +
          "Stage times: GL timer queries (real-time), wall clock (reference).</p>\n";
     return h;
