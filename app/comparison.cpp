@@ -57,6 +57,7 @@ report::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
     report.description = s.scene.description;
     report.metrics = result.values;
     report.notProvided = result.notProvided;
+    report.notApplicable = result.notApplicable;
     addTimeMetrics(ref, test, report.metrics);
 
     report.settings = {{"scene_file", s.scene.file.string()},
@@ -82,10 +83,12 @@ report::SceneReport sceneReport(const LoadedScene& s, const core::Frame& ref,
 
 void checkReport(report::SceneReport& report, const compare::Bounds& bounds,
                  const compare::Baseline* baseline) {
-    // A metric the test image does not provide is never checked (never a pass, never a fail).
+    // A metric the test image does not provide, or that does not apply to the scene, is never
+    // checked (never a pass, never a fail).
     const compare::Bounds provided = compare::filterBounds(bounds, [&](const std::string& m) {
         return std::find(report.notProvided.begin(), report.notProvided.end(), m) ==
-               report.notProvided.end();
+                   report.notProvided.end() &&
+               !report.notApplicable.count(m);
     });
     report.checks = compare::evaluate(report.metrics, provided);
     if (baseline) {

@@ -406,6 +406,7 @@ int main(int argc, char** argv) {
                     // across runs).
                     so.cache = runOpts.cache;
                     so.commandLine = commandLine;
+                    so.back = "../index.html";
                     rc = std::max(rc, tr::app::runStudies(so));
                 }
             }

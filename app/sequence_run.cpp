@@ -138,7 +138,9 @@ std::vector<report::SequenceFrame> compareSequenceFrames(
             compare::addFrameChangeMetrics(*step.change, step.metrics);
         }
         visit(step);
-        out.push_back({step.frame, step.metrics});
+        out.push_back({.frame = step.frame,
+                       .metrics = step.metrics,
+                       .notApplicable = step.result.notApplicable});
         previous.emplace(std::move(step.reference), std::move(step.test));
     }
     return out;
@@ -183,12 +185,13 @@ report::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache
         });
     video.finish();
     sequence.videos = {{"video/webm", "sequence.webm"}, {"video/mp4", "sequence.mp4"}};
-    sequence.charts = report::writeSequenceCharts(sequence, dir);
+    sequence.charts = report::writeSequenceCharts(sequence, dir, run.bounds);
     sequence.shownFrame = report::worstFrame(sequence.frames);
     std::size_t shown = 0;
     while (sequence.frames.at(shown).frame != sequence.shownFrame) ++shown;
     report::SceneReport report = std::move(frameReports.at(shown));
     report.metrics = report::summariseSequence(sequence.frames);
+    report.notApplicable = report::notApplicableInEvery(sequence.frames);
     report.settings["sequence"] = sequenceSettings(*s.scene.sequence, sequence.frames.size());
     checkReport(report, run.bounds, run.baseline);
     report.sequence = std::move(sequence);

@@ -324,7 +324,7 @@ ExitCode runStudies(const StudyOptions& o) {
         results.push_back(std::move(s));
     }
     writeTogether(out, [&](const fs::path& staging) {
-        report::writeStudiesIndex(results, staging, nowUtc(), o.commandLine);
+        report::writeStudiesIndex(results, staging, nowUtc(), o.commandLine, o.quick, o.back);
     });
     std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies",
                 (out / "index.html").c_str());

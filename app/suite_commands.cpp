@@ -196,6 +196,7 @@ ExitCode runCompare(const CompareOptions& o) {
     report.name = fs::path(o.test).stem().string();
     report.metrics = result.values;
     report.notProvided = result.notProvided;
+    report.notApplicable = result.notApplicable;
     if (!o.thresholds.empty()) {
         compare::Bounds bounds = compare::Thresholds::parseFile(o.thresholds).forScene(report.name);
         // Plain images have beauty metrics only, and an AOV image that lacks a metric's channels
@@ -206,7 +207,8 @@ ExitCode runCompare(const CompareOptions& o) {
                 bounds, [](const std::string& m) { return compare::computedOnPlainImages(m); });
         bounds = compare::filterBounds(bounds, [&](const std::string& m) {
             return std::find(result.notProvided.begin(), result.notProvided.end(), m) ==
-                   result.notProvided.end();
+                       result.notProvided.end() &&
+                   !result.notApplicable.count(m);
         });
         report.checks = compare::evaluate(report.metrics, bounds);
     }

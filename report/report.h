@@ -45,6 +45,8 @@ struct RendererReport {
 struct SequenceFrame {
     std::int64_t frame = 0;  // the frame number
     MetricValues metrics;
+    // The metrics that do not apply to this frame's pair, with why (SceneReport::notApplicable).
+    std::map<std::string, std::string> notApplicable;
 };
 
 // What a sequence scene adds to its report: the frames, the charts of every metric over them
@@ -79,6 +81,9 @@ struct SceneReport {
     // The metrics the test image's channels cannot give (compare::MetricResult::notProvided):
     // shown as "not provided", never checked.
     std::vector<std::string> notProvided;
+    // The metrics that do not apply to the scene, with why (compare::MetricResult::
+    // notApplicable: no occlusion, no emission in either render): shown as "n/a", never checked.
+    std::map<std::string, std::string> notApplicable;
     // The blessed metrics of this scene, to show deltas of every metric, also the unchecked
     // ones (times); empty without a baseline.
     MetricValues baseline;

@@ -38,8 +38,11 @@ json checksArray(const std::vector<Check>& checks) {
 
 json sequenceJson(const SequenceReport& q) {
     json frames = json::array();
-    for (const SequenceFrame& f : q.frames)
-        frames.push_back({{"frame", f.frame}, {"metrics", numbersJson(f.metrics)}});
+    for (const SequenceFrame& f : q.frames) {
+        json frame = {{"frame", f.frame}, {"metrics", numbersJson(f.metrics)}};
+        if (!f.notApplicable.empty()) frame["not_applicable"] = f.notApplicable;
+        frames.push_back(std::move(frame));
+    }
     return {{"fps", q.fps},
             {"frames", frames},
             {"shown_frame", q.shownFrame},
@@ -94,6 +97,7 @@ json metricsJson(const SceneReport& scene) {
               {"timings_ms", timingsObject(scene)},
               {"error_maps", errorMapsObject(scene)}};
     if (!scene.notProvided.empty()) j["not_provided"] = scene.notProvided;
+    if (!scene.notApplicable.empty()) j["not_applicable"] = scene.notApplicable;
     if (!scene.error.empty()) j["error"] = scene.error;
     if (scene.sequence) j["sequence"] = sequenceJson(*scene.sequence);
     if (!scene.tests.empty()) j["tests"] = testsJson(scene.tests);
@@ -166,6 +170,7 @@ SceneReport sceneReportFromJson(const json& j, const std::string& source) {
         s.metrics = numbers(j.at("metrics"), "metrics");
         s.baseline = numbers(j.value("baseline", json()), "baseline");
         s.notProvided = j.value("not_provided", std::vector<std::string>{});
+        s.notApplicable = j.value("not_applicable", std::map<std::string, std::string>{});
         auto checks = [&](const json& a) {
             std::vector<Check> out;
             for (const json& c : a) {
@@ -220,8 +225,11 @@ SceneReport sceneReportFromJson(const json& j, const std::string& source) {
             SequenceReport r;
             r.fps = number(q.at("fps"), "sequence.fps");
             for (const json& f : q.at("frames"))
-                r.frames.push_back({f.at("frame").get<std::int64_t>(),
-                                    numbers(f.at("metrics"), "sequence.frames[].metrics")});
+                r.frames.push_back(
+                    {.frame = f.at("frame").get<std::int64_t>(),
+                     .metrics = numbers(f.at("metrics"), "sequence.frames[].metrics"),
+                     .notApplicable =
+                         f.value("not_applicable", std::map<std::string, std::string>{})});
             r.shownFrame = q.value("shown_frame", std::int64_t{0});
             r.videos = q.value("videos", std::map<std::string, std::string>{});
             r.charts = q.value("charts", std::map<std::string, std::string>{});

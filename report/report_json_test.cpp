@@ -103,7 +103,8 @@ TEST(SceneReportJson, RoundTripsEveryField) {
     // A sequence scene's frames, video and charts too.
     SequenceReport q;
     q.fps = 5.0;
-    q.frames = {{16, {{"beauty.flip", 0.05}}}, {17, {{"temporal.flicker", -0.01}}}};
+    q.frames = {{16, {{"beauty.flip", 0.05}}, {{"ao.mean_abs", "no occlusion"}}},
+                {17, {{"temporal.flicker", -0.01}}, {}}};
     q.shownFrame = 16;
     q.videos = {{"video/webm", "sequence.webm"}};
     q.charts = {{"beauty.flip", "charts/beauty.flip.svg"}};
@@ -113,6 +114,7 @@ TEST(SceneReportJson, RoundTripsEveryField) {
     EXPECT_EQ(sceneReportJson(seq), js);
     ASSERT_TRUE(seq.sequence);
     EXPECT_EQ(seq.sequence->frames.at(1).frame, 17);
+    EXPECT_EQ(seq.sequence->frames.at(0).notApplicable.at("ao.mean_abs"), "no occlusion");
     EXPECT_EQ(metricsJson(s)["sequence"]["frames"].size(), 2u);
 
     // Several test renderers side by side: each one's results, for `merge` to show them again.
