@@ -229,9 +229,16 @@ TEST(Study, AmbientOcclusionMethodsAgainstTheTracedTruth) {
             ASSERT_EQ(rows.size(), 1u) << method << " on " << surface;
             EXPECT_DOUBLE_EQ(cross[surface].get<double>(), metric(rows[0], "ao.mean_abs"));
         }
-        const std::string bestSurface = cross["best"];
-        EXPECT_LE(cross[bestSurface].get<double>(), cross["none"].get<double>()) << method;
-        EXPECT_LE(cross[bestSurface].get<double>(), cross["ssss"].get<double>()) << method;
+        // The best: the surface methods within the reference's stated standard error of the
+        // lowest (all rows share one reference).
+        const json rows = series(s, method + " on none");
+        const double se = metric(rows[0], "reference.ao_standard_error");
+        EXPECT_GT(se, 0.0);
+        const double lowest = std::min(cross["none"].get<double>(), cross["ssss"].get<double>());
+        json bestSurfaces = json::array();
+        for (const std::string surface : {"ssss", "none"})
+            if (cross[surface].get<double>() - lowest <= se) bestSurfaces.push_back(surface);
+        EXPECT_EQ(cross["best"], bestSurfaces) << method;
     }
     // The Pareto front: no point of it is beaten in both time and error by a row.
     ASSERT_FALSE(f["pareto_front"].empty());
