@@ -95,15 +95,6 @@ double spreadAt(const StudyResult& s, const StudyRow& r, const std::string& metr
     return std::isfinite(d) ? d : NAN;
 }
 
-double spreadOf(const StudyResult& s, const std::string& metric) {
-    double spread = NAN;
-    for (const StudyRow& r : s.rows) {
-        const double d = isRepeat(r) ? NAN : spreadAt(s, r, metric);
-        if (std::isfinite(d) && !(d <= spread)) spread = d;
-    }
-    return spread;
-}
-
 Order order(double a, double b, double noise) {
     if (!std::isfinite(a) || !std::isfinite(b) || !(std::abs(a - b) > (noise >= 0.0 ? noise : 0.0)))
         return Order::Tie;

@@ -53,8 +53,6 @@ double meanOf(const std::vector<const StudyRow*>& rows, const std::string& metri
 // The measured noise of a row's metric: the absolute difference from its repeat's (the row of
 // series + REPEAT at the nearest x); NaN when it has no repeat or either value is not finite.
 double spreadAt(const StudyResult& s, const StudyRow& r, const std::string& metric);
-// The largest spreadAt over the study's repeated rows; NaN when none is measured.
-double spreadOf(const StudyResult& s, const std::string& metric);
 
 // How `a` stands to `b` when each may move by its noise: Lower or Higher only when the two are
 // further apart than `noise` (the sum of their spreads; NaN, not measured, counts as 0), else
