@@ -508,11 +508,13 @@ AoResult aoError(const core::Image& reference, const core::Image& test, const Ma
         squaredDistanceTransform(depthEdgeMask(reference, masks.referenceCovered));
     AoResult result;
     result.errorMap = core::Image(w, reference.height(), {"abs_error"});
-    // Pixels, |error| sum, error sum; halo pixels, their |error| sum.
-    const auto sums = sumRows<5>(reference.height(), [&](int y, std::array<double, 5>& s) {
+    // Pixels, |error| sum, error sum; halo pixels, their |error| sum; open pixels, the
+    // occlusion added there; the occluded pixels' occlusion, the part of it missed.
+    const auto sums = sumRows<9>(reference.height(), [&](int y, std::array<double, 9>& s) {
         for (int x = 0; x < w; ++x) {
             if (!masks.coveredInBoth(x, y)) continue;
-            const double error = double(test.at(x, y, c.test[0])) - reference.at(x, y, c.ref[0]);
+            const double ref = reference.at(x, y, c.ref[0]);
+            const double error = double(test.at(x, y, c.test[0])) - ref;
             result.errorMap.at(x, y, 0) = static_cast<float>(std::abs(error));
             s[0] += 1.0;
             s[1] += std::abs(error);
@@ -521,11 +523,20 @@ AoResult aoError(const core::Image& reference, const core::Image& test, const Ma
                 s[3] += 1.0;
                 s[4] += std::abs(error);
             }
+            if (ref >= AO_OPEN) {
+                s[5] += 1.0;
+                s[6] += std::max(-error, 0.0);
+            } else if (ref < AO_OCCLUDED) {
+                s[7] += 1.0 - ref;
+                s[8] += std::clamp(error, 0.0, 1.0 - ref);
+            }
         }
     });
     result.meanAbs = ratioOrNaN(sums[1], sums[0]);
     result.bias = ratioOrNaN(sums[2], sums[0]);
     result.halo = ratioOrNaN(sums[4], sums[3]);
+    result.falseOcclusion = ratioOrNaN(sums[6], sums[5]);
+    result.missed = ratioOrNaN(sums[8], sums[7]);
     aoNoise(reference, test, masks, c.ref[0], c.test[0], result);
     return result;
 }

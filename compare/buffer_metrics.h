@@ -150,13 +150,18 @@ constexpr float SHADOW_FALSE = 1.0f;
 constexpr float SHADOW_MISSED = 2.0f;
 ShadowResult shadowError(const core::Image& reference, const core::Image& test, const Masks& masks);
 
-// ---- ao.mean_abs, ao.bias, ao.halo ---------------------------------------------------------
+// ---- ao.mean_abs, ao.bias, ao.halo, ao.false, ao.missed -------------------------------------
 // A reference pixel is on a depth edge when it is covered and a 4-neighbour in the image is
 // not, shows another body, or lies deeper or shallower by more than this fraction of its depth:
 // where a screen-space occlusion pass meets a depth discontinuity it cannot see behind.
 constexpr double AO_DEPTH_EDGE = 0.05;
 // The halo band: pixels within this many pixels (Euclidean) of a reference depth edge.
 constexpr int AO_HALO_PX = 4;
+// ao.false reads the pixels where the reference is open (at least this open fraction: within
+// the traced truth's noise of 1 at 64 directions), ao.missed those where it is occluded (below
+// this one).
+constexpr double AO_OPEN = 0.99;
+constexpr double AO_OCCLUDED = 0.9;
 
 struct AoResult {
     // Over the pixels covered in both, of the ambient occlusion channel "ao" (the open fraction
@@ -176,6 +181,16 @@ struct AoResult {
     // than the window (and any error that varies over the image). NaN without interior pixels.
     double grain = 0.0;
     double banding = 0.0;
+    // Over the pixels covered in both where the reference is open (>= AO_OPEN): the mean of
+    // max(reference - test, 0), the occlusion the test adds where there is none. NaN without
+    // such pixels.
+    double falseOcclusion = 0.0;
+    // Over those where the reference is occluded (< AO_OCCLUDED): the share of its occlusion
+    // (1 - reference) that the test leaves out, sum of clamp(test - reference, 0, 1 -
+    // reference) over sum of (1 - reference); 0 all of it found (or more), 1 none (as no
+    // occlusion). A method that trades false occlusion for missed shows in the pair. NaN
+    // without such pixels.
+    double missed = 0.0;
     core::Image errorMap;  // one channel "abs_error": |test - reference|, covered in both
 };
 // The window of ao.grain and ao.banding, pixels a side.

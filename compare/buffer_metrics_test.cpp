@@ -648,16 +648,48 @@ TEST(AmbientOcclusion, GrainIsFineNoiseAndBandingIsCoarse) {
     EXPECT_LT(bands.grain, 0.05);
 }
 
+TEST(AmbientOcclusion, FalseOcclusionWhereOpenAndMissedShareWhereOccluded) {
+    // 10 x 10 pixels, all covered, by column. The reference is open (1) on columns 0..3,
+    // 0.95 on 4..5 (neither open nor occluded: in no sum) and 0.5 on 6..9. The test adds 0.1,
+    // 0.1, 0 and 0.2 of occlusion on the open columns: ao.false = 0.4 / 4 = 0.1. On the
+    // occluded ones (occlusion 0.5 each, 2 a row) it finds all (0.5), half (0.75), none (1)
+    // and more than all (0.3, which misses nothing): ao.missed = (0 + 0.25 + 0.5 + 0) / 2.
+    const float reference[10] = {1, 1, 1, 1, 0.95f, 0.95f, 0.5f, 0.5f, 0.5f, 0.5f};
+    const float test[10] = {0.9f, 0.9f, 1, 0.8f, 0.5f, 0.5f, 0.5f, 0.75f, 1, 0.3f};
+    auto img = [](const float* ao) {
+        return scene(
+            10, 10, [](int, int) { return true; },
+            [ao](int x, int) {
+                Surface s;
+                s.ao = ao[x];
+                return s;
+            });
+    };
+    const core::Image ref = img(reference), tst = img(test);
+    const AoResult r = aoError(ref, tst, computeMasks(ref, tst));
+    EXPECT_NEAR(r.falseOcclusion, 0.1, 1e-6);
+    EXPECT_NEAR(r.missed, 0.375, 1e-6);
+    // No occlusion at all misses every bit of it and adds none.
+    const float open[10] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+    const core::Image none = img(open);
+    const AoResult n = aoError(ref, none, computeMasks(ref, none));
+    EXPECT_EQ(n.falseOcclusion, 0.0);
+    EXPECT_NEAR(n.missed, 1.0, 1e-6);
+}
+
 TEST(AmbientOcclusion, NoEdgeNoHaloAndAnEmptyMaskIsNaN) {
     const core::Image flat = full(12, 8);
     const AoResult same = aoError(flat, flat, computeMasks(flat, flat));
     EXPECT_EQ(same.meanAbs, 0.0);
     EXPECT_EQ(same.bias, 0.0);
     EXPECT_TRUE(isNaN(same.halo));  // no depth edge: no band
+    EXPECT_EQ(same.falseOcclusion, 0.0);
+    EXPECT_TRUE(isNaN(same.missed));  // open everywhere: no occlusion to miss
     const core::Image empty = core::aov::makeImage(12, 8);
     const AoResult none = aoError(empty, empty, computeMasks(empty, empty));
     EXPECT_TRUE(isNaN(none.meanAbs) && isNaN(none.bias) && isNaN(none.halo));
     EXPECT_TRUE(isNaN(none.grain) && isNaN(none.banding));
+    EXPECT_TRUE(isNaN(none.falseOcclusion) && isNaN(none.missed));
 }
 
 TEST(BufferMetrics, EmptyMasksGiveNaN) {

@@ -134,6 +134,14 @@ const std::vector<MetricInfo>& metricTable() {
          .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
          .meaning = "RMS of the occlusion error's 9 px local mean about its mean: blotches and "
                     "bands coarser than the blur"},
+        {.key = "ao.false", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "mean occlusion the test adds where the reference is open (open fraction at "
+                    "least 0.99): occlusion invented across a gap or by the impostors' bumps"},
+        {.key = "ao.missed", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
+         .buffer = "ao", .source = S::AovPair, .overview = false, .machineDependent = false,
+         .meaning = "share of the reference's occlusion the test leaves out where the reference "
+                    "is occluded (open fraction below 0.9): 0 all found, 1 none"},
         {.key = "indirect.rmse", .unit = "", .better = B::Lower, .origin = 0.0, .noise = 1e-3,
          .buffer = "irradiance", .source = S::AovPair, .overview = false,
          .machineDependent = false,

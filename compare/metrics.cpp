@@ -242,13 +242,16 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
         result.values["ao.halo"] = ao.halo;
         result.values["ao.grain"] = ao.grain;
         result.values["ao.banding"] = ao.banding;
+        result.values["ao.false"] = ao.falseOcclusion;
+        result.values["ao.missed"] = ao.missed;
         result.errorMaps["ao"] = std::move(ao.errorMap);
         if (neitherOccludes(reference, test))
             for (const char* k : {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"})
                 result.notApplicable[k] =
                     "neither render has any occlusion (light.ao_radius 0, or nothing occludes)";
     } else if (reference.hasChannel("ao")) {
-        notProvided({"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"});
+        notProvided({"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding", "ao.false",
+                     "ao.missed"});
     }
     // The light of emitting surfaces, where either frame has any (light.emissive_light).
     if (bothHave(reference, test, {"irradiance.R", "irradiance.G", "irradiance.B"})) {

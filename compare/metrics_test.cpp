@@ -52,6 +52,8 @@ const std::set<std::string> ALL_KEYS = {"beauty.psnr",
                                         "ao.halo",
                                         "ao.grain",
                                         "ao.banding",
+                                        "ao.false",
+                                        "ao.missed",
                                         "indirect.rmse",
                                         "indirect.missed",
                                         "indirect.false"};
@@ -68,8 +70,9 @@ std::set<std::string> keys(const Map& m) {
 
 // Two overlapping spheres seen from +z (body 0 on the left, body 1 in front on the right), lit
 // from the upper left, shadowed where body 1 hides body 0 from the light, body 1 glowing and
-// casting its light (irradiance 0.5 max(n.x, 0)) on body 0. The
-// test may shift everything right by `shift` pixels and perturb the normals by `noise`.
+// casting its light (irradiance 0.5 max(n.x, 0)) on body 0, the ambient half occluded in the
+// shadow. The test may shift everything right by `shift` pixels and perturb the normals by
+// `noise`.
 core::Image spheres(int w, int h, int shift = 0, float noise = 0.0f) {
     core::Image img = core::aov::makeImage(w, h);
     auto set = [&](int x, int y, const char* c, float v) { img.at(x, y, img.channelIndex(c)) = v; };
@@ -113,6 +116,8 @@ core::Image spheres(int w, int h, int shift = 0, float noise = 0.0f) {
                 set(x, y, "emission.R", glow);
                 set(x, y, "irradiance.R", b == 0 ? 0.5f * std::max(n.x, 0.0f) : 0.0f);
                 set(x, y, "shadow", lit);
+                // Open where lit, half occluded in the shadow: every ao metric has pixels.
+                set(x, y, "ao", lit > 0.5f ? 1.0f : 0.5f);
                 break;
             }
         }

@@ -130,6 +130,12 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
             shadowMomentsDefines(settings.shadows, settings.shadowMap));
         if (settings.shadowMap.blurRadius > 0.0) add("fullscreen.vert", "shadow_blur.frag", {});
     }
+    if (filtersOcclusionDepth(settings)) {
+        add("fullscreen.vert", "narrow_range.frag", {});
+        if (settings.surface.narrowRange.separable)
+            add("fullscreen.vert", "narrow_range.frag", {"SEPARABLE"});
+        add("fullscreen.vert", "depth_normals.frag", {});
+    }
     if (usesAmbientOcclusion(settings)) {
         add("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings.ao));
         if (settings.ao.blur != AoBlur::None)

@@ -309,7 +309,7 @@ constexpr std::array SURFACE_READS{R::GBuffer, R::NormalUv};
 constexpr std::array NORMALS_WRITES{R::NormalUv};
 constexpr std::array SSSS_WRITES{R::NormalUv, R::Emission};
 constexpr std::array FILTER_WRITES{R::NormalUv, R::Emission, R::Surface};
-constexpr std::array AO_READS{R::Surface, R::NormalUv};
+constexpr std::array AO_READS{R::GBuffer, R::Surface, R::NormalUv};
 constexpr std::array AO_WRITES{R::Occlusion};
 constexpr std::array EMISSIVE_READS{R::Surface, R::NormalUv, R::Emission};
 constexpr std::array EMISSIVE_WRITES{R::Irradiance};
@@ -379,6 +379,17 @@ const Pass PASSES[] = {
     {"ao", AO_READS, AO_WRITES,
      [](const PassInputs& in) { return usesAmbientOcclusion(in.settings); },
      [](const PassInputs& in, PassResources& r) {
+         // ao.depth = "filtered" without a depth filter: the narrow-range filter and its
+         // normals for this pass alone (the shade pass keeps its surface).
+         if (filtersOcclusionDepth(in.settings)) {
+             SurfaceSettings narrowRange = in.settings.surface;
+             narrowRange.method = SurfaceMethod::NarrowRange;
+             const FilteredSurface f =
+                 runSurfacePass(in.programs, r.gbuffer(), r.read(R::NormalUv), narrowRange);
+             r.write(R::Occlusion, runAmbientOcclusionPass(in.programs, *f.surface, f.normalUv,
+                                                           in.settings.ao, in.aoRadius));
+             return;
+         }
          r.write(R::Occlusion,
                  runAmbientOcclusionPass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
                                          in.settings.ao, in.aoRadius));

@@ -56,6 +56,9 @@ AoSettings parseAo(const core::ParameterTable& t) {
                      std::array{AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue});
     a.maxPixels = t.getDouble("ao.max_pixels", d.maxPixels, 4.0, 4096.0);
     a.angleBiasDeg = t.getDouble("ao.angle_bias", d.angleBiasDeg, 0.0, 60.0);
+    a.thickness = t.getDouble("ao.thickness", d.thickness, 0.0, 1000.0);
+    a.depth = byName(t.getEnum("ao.depth", std::string(toString(d.depth)), {"shaded", "filtered"}),
+                     std::array{AoDepth::Shaded, AoDepth::Filtered});
     return a;
 }
 
@@ -123,6 +126,10 @@ std::string_view toString(AoBlur blur) {
     return "depth_aware";
 }
 
+std::string_view toString(AoDepth depth) {
+    return depth == AoDepth::Filtered ? "filtered" : "shaded";
+}
+
 std::string_view toString(AoNoise noise) {
     switch (noise) {
         case AoNoise::White:
@@ -137,6 +144,12 @@ std::string_view toString(AoNoise noise) {
 
 bool usesAmbientOcclusion(const Settings& settings) {
     return settings.ao.method != AoMethod::None;
+}
+
+bool filtersOcclusionDepth(const Settings& settings) {
+    return usesAmbientOcclusion(settings) && settings.ao.depth == AoDepth::Filtered &&
+           (settings.surface.method == SurfaceMethod::Ssss ||
+            settings.surface.method == SurfaceMethod::None);
 }
 
 std::string_view toString(EmissiveMethod method) {
@@ -546,6 +559,8 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.ao.noise", toString(s.ao.noise)},
         {"realtime.ao.max_pixels", s.ao.maxPixels},
         {"realtime.ao.angle_bias", s.ao.angleBiasDeg},
+        {"realtime.ao.thickness", s.ao.thickness},
+        {"realtime.ao.depth", toString(s.ao.depth)},
         {"realtime.emissive.method", toString(s.emissive.method)},
         {"realtime.emissive.directions", s.emissive.directions},
         {"realtime.emissive.steps", s.emissive.steps},

@@ -334,6 +334,13 @@ enum class AoNoise {
     InterleavedGradient,  // "interleaved_gradient": Jimenez 2014's low-discrepancy pattern
     Blue,                 // "blue": a tiled void-and-cluster texture (realtime/blue_noise.h)
 };
+// The depth the occlusion pass reads.
+enum class AoDepth {
+    Shaded,    // "shaded": the depth the shade pass reads (a depth filter's, else the impostors')
+    Filtered,  // "filtered": a depth filter's; where the surface method filters no depth (ssss,
+               // none), the narrow-range filter (surface.narrow_range.*) and the normals rebuilt
+               // from it, run for the occlusion pass alone
+};
 struct AoSettings {
     AoMethod method = AoMethod::None;  // ao.method: "none" | "ssao" | "hbao" | "gtao"
     // ao.slices: screen directions per pixel (hbao: over a full turn; gtao: slices over half a
@@ -351,6 +358,14 @@ struct AoSettings {
     // ao.angle_bias: hbao's tangent angle bias, degrees, 0..60 (Bavoil & Sainz: samples within
     // it above the tangent plane count nothing, against a coarse surface's false occlusion).
     double angleBiasDeg = 20.0;
+    // ao.thickness: the depth of each occluder behind the front the depth buffer holds, in
+    // particle radii (the impostor's radius where it is seen), 0..1000; 0: without end, every
+    // occluder a wall reaching back from its front (the methods as published). Against false
+    // occlusion across a gap: the front of a body hanging over another.
+    double thickness = 0.0;
+    // ao.depth: "shaded" | "filtered". The impostors' bumps in the depth count as occluders
+    // (docs/lighting.md); a filtered depth has none.
+    AoDepth depth = AoDepth::Shaded;
     bool operator==(const AoSettings&) const = default;
 };
 
@@ -442,6 +457,9 @@ struct Settings {
 
 // Whether the ambient occlusion pass runs (ao.method is not "none").
 bool usesAmbientOcclusion(const Settings& settings);
+// Whether it filters a depth of its own: ao.depth is "filtered" and the surface method filters
+// none (ssss, none).
+bool filtersOcclusionDepth(const Settings& settings);
 // Whether the emissive pass runs: the scene asks for the light of emitting surfaces
 // (light.emissive_light), something emits, and emissive.method is not "none".
 bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits);
@@ -502,6 +520,7 @@ std::string_view toString(PerSetDevice device);
 std::string_view toString(AoMethod method);
 std::string_view toString(AoBlur blur);
 std::string_view toString(AoNoise noise);
+std::string_view toString(AoDepth depth);
 std::string_view toString(EmissiveMethod method);
 std::string_view toString(EmissiveBlur blur);
 std::string_view toString(AtmosphereEndPoint endPoint);

@@ -12,6 +12,14 @@
 //  - AO_GTAO: ground-truth AO (Jimenez et al. 2016): per slice about the view vector, two
 //    horizons clamped to the normal's hemisphere and the cosine-weighted visibility between
 //    them in closed form, weighted by the projected normal's length.
+// Thickness (uThickness > 0): the depth buffer holds only the front of each occluder, and the
+// horizons above take all that lies behind it for solid: the front of a ball hanging over a
+// slab stands for a wall reaching back to the slab. With a thickness, each sample's occluder
+// is a segment of uThickness particle radii along its view ray, behind what is seen (the
+// thickness heuristic of XeGTAO, Intel 2021, made explicit): ssao's points behind it are open,
+// hbao counts the directions between its back and its front only, and gtao marks the sectors
+// between them in a bit mask per slice and integrates the cosine-weighted visibility over the
+// unmarked ones (the visibility bitmask of Therrien, Levesque and Gilet 2023).
 // Noise (per pixel: slice rotation and step jitter): NOISE_WHITE (a hash), NOISE_IGN
 // (interleaved gradient noise, Jimenez 2014), NOISE_BLUE (a void-and-cluster texture,
 // realtime/blue_noise.h).
@@ -28,6 +36,7 @@ uniform int uSlices;      // screen directions (hbao, gtao), or sample rings (ss
 uniform int uSteps;       // samples along each
 uniform float uMaxPixels;  // the screen radius's cap, pixels
 uniform float uAngleBias;  // hbao: radians added to the tangent's elevation
+uniform float uThickness;  // each occluder's depth, particle radii; 0: without end
 
 layout(location = 0) out vec4 outOpen;
 
@@ -73,6 +82,31 @@ bool surfaceAt(ivec2 q, out vec3 position) {
     return true;
 }
 
+// As surfaceAt, and the back of the occluder seen there: uThickness particle radii (the
+// impostor's radius at q) further along its view ray. Without a thickness, infinitely far.
+bool occluderAt(ivec2 q, out vec3 front, out vec3 back) {
+    ivec2 size = ivec2(viewport.xy);
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return false;
+    vec4 s = texelFetch(uSurface, q, 0);
+    if (s.y < 0.0) return false;
+    front = surfacePosition(vec2(q) + 0.5, s.x);
+    float depth = uThickness * s.z / pixelsPerUnitAt(s.x);
+    back = front * (1.0 + depth / max(length(front), 1e-20));
+    return true;
+}
+
+// The part [t0, t1] (t1 < t0: none) of the segment a + t (b - a), t in [0, 1], within the
+// radius of `centre`.
+vec2 withinRadius(vec3 a, vec3 b, vec3 centre) {
+    vec3 d = b - a, f = a - centre;
+    float dd = dot(d, d), fd = dot(f, d), c = dot(f, f) - uRadius * uRadius;
+    if (dd <= 0.0) return c <= 0.0 ? vec2(0.0, 1.0) : vec2(1.0, 0.0);
+    float disc = fd * fd - dd * c;
+    if (disc < 0.0) return vec2(1.0, 0.0);
+    float root = sqrt(disc);
+    return vec2(max((-fd - root) / dd, 0.0), min((-fd + root) / dd, 1.0));
+}
+
 // Eye depth and pixel (window coordinates) of a camera-relative point.
 vec3 project(vec3 position) {
     vec3 eye = mat3(viewFromWorld) * position;
@@ -90,6 +124,13 @@ void sliceDirection(float angle, vec3 toEye, out vec2 screen, out vec3 world) {
 }
 
 #if defined(AO_SSAO)
+// The eye depth of the back of the occluder seen at pixel q at eye depth z (occluderAt).
+float behind(ivec2 q, float z) {
+    vec3 front, back;
+    if (!occluderAt(q, front, back)) return z;
+    return z * length(back) / max(length(front), 1e-20);
+}
+
 float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels, vec2 xi) {
     // A frame about the normal.
     vec3 t = normalize(abs(normal.z) < 0.9 ? cross(normal, vec3(0.0, 0.0, 1.0))
@@ -111,9 +152,12 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         vec3 screen = project(q);
         float zSeen;
         if (!depthAt(saturateToInt(floor(screen.xy)), zSeen)) continue;
-        // The depth buffer in front of the point, by less than the radius (the range check).
+        // The depth buffer in front of the point, by less than the radius (the range check),
+        // and with a thickness, the point not behind the occluder's back.
         float bias = 0.02 * uRadius;
-        if (zSeen < screen.z - bias && screen.z - zSeen < uRadius) closed += 1.0;
+        if (zSeen < screen.z - bias && screen.z - zSeen < uRadius &&
+            (uThickness <= 0.0 || screen.z < behind(saturateToInt(floor(screen.xy)), zSeen)))
+            closed += 1.0;
     }
     return 1.0 - closed / float(samples);
 }
@@ -134,14 +178,18 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         float sinH = sinT, occlusion = 0.0;
         for (int j = 0; j < uSteps; ++j) {
             float along = (float(j) + xi.y) / float(uSteps) * pixels + 1.0;
-            vec3 q;
-            if (!surfaceAt(saturateToInt(floor(vec2(p) + 0.5 + screen * along)), q)) continue;
+            vec3 q, back;
+            if (!occluderAt(saturateToInt(floor(vec2(p) + 0.5 + screen * along)), q, back))
+                continue;
             vec3 v = q - position;
             float r2 = dot(v, v);
             if (r2 > uRadius * uRadius || r2 <= 0.0) continue;
             float s = dot(v, toEye) * inversesqrt(r2);
             if (s > sinH) {
-                occlusion += (1.0 - r2 / (uRadius * uRadius)) * (s - sinH);
+                // With a thickness, the directions below the occluder's back are not its.
+                vec3 b = back - position;
+                float from = uThickness > 0.0 ? max(dot(b, toEye) / length(b), sinH) : sinH;
+                occlusion += (1.0 - r2 / (uRadius * uRadius)) * max(s - from, 0.0);
                 sinH = s;
             }
         }
@@ -158,6 +206,61 @@ float sliceVisibility(float h1, float h2, float n) {
            0.25 * (-cos(2.0 * h2 - n) + cn + 2.0 * h2 * sn);
 }
 
+// The cosine-weighted visibility of the slice between the view vector and the angle h, signed
+// (negative for h < 0): sliceVisibility(h1, h2, n) = visibleUpTo(h2, n) - visibleUpTo(h1, n).
+float visibleUpTo(float h, float n) {
+    return sign(h) * 0.25 * (-cos(2.0 * h - n) + cos(n) + 2.0 * h * sin(n));
+}
+
+// The sectors of a slice's bit mask: SECTORS equal angles over the normal's half-circle.
+const int SECTORS = 32;
+
+// The signed angle from the view vector of the point x seen from `position`, on the side
+// `way` (1: along the slice direction, -1: against it).
+float angleTo(vec3 x, vec3 position, vec3 toEye, float way) {
+    vec3 v = x - position;
+    return way * acos(clamp(dot(v, toEye) / max(length(v), 1e-20), -1.0, 1.0));
+}
+
+// The bits of the sectors whose centres lie in [a, b] (angles, lo the first sector's start).
+uint sectorBits(float a, float b, float lo) {
+    const float width = PI / float(SECTORS);
+    int first = max(int(ceil((a - lo) / width - 0.5)), 0);
+    int last = min(int(floor((b - lo) / width - 0.5)), SECTORS - 1);
+    if (last < first) return 0u;
+    int count = last - first + 1;
+    return (count >= 32 ? 0xffffffffu : (1u << uint(count)) - 1u) << uint(first);
+}
+
+// One slice's visibility with finite occluders: the sectors each sample's occluder spans from
+// its front to its back (clipped to the radius) marked, the open ones integrated.
+float sliceVisibilityWithThickness(ivec2 p, vec3 position, vec3 toEye, vec2 screen, float n,
+                                   float pixels, float jitter) {
+    float lo = n - 0.5 * PI;
+    uint occluded = 0u;
+    for (int side = 0; side < 2; ++side) {
+        float way = side == 0 ? 1.0 : -1.0;
+        for (int j = 0; j < uSteps; ++j) {
+            float along = (float(j) + jitter) / float(uSteps) * pixels + 1.0;
+            vec3 front, back;
+            ivec2 at = saturateToInt(floor(vec2(p) + 0.5 + way * screen * along));
+            if (!occluderAt(at, front, back)) continue;
+            vec2 t = withinRadius(front, back, position);
+            if (t.y < t.x) continue;
+            float a = angleTo(mix(front, back, t.x), position, toEye, way);
+            float b = angleTo(mix(front, back, t.y), position, toEye, way);
+            occluded |= sectorBits(min(a, b), max(a, b), lo);
+        }
+    }
+    float open = 0.0, below = visibleUpTo(lo, n);
+    for (int k = 0; k < SECTORS; ++k) {
+        float above = visibleUpTo(lo + float(k + 1) * (PI / float(SECTORS)), n);
+        if ((occluded & (1u << uint(k))) == 0u) open += above - below;
+        below = above;
+    }
+    return open;
+}
+
 float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels, vec2 xi) {
     float open = 0.0;
     for (int i = 0; i < uSlices; ++i) {
@@ -171,6 +274,11 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         float weight = sqrt(dot(projected, projected));
         if (weight < 1e-6) continue;
         float n = atan(dot(projected, world), dot(projected, toEye));
+        if (uThickness > 0.0) {
+            open += weight * sliceVisibilityWithThickness(p, position, toEye, screen, n, pixels,
+                                                          xi.y);
+            continue;
+        }
         // The horizons: the largest cosine to the view vector on each side, within the radius.
         float best[2] = float[2](-1.0, -1.0);
         for (int side = 0; side < 2; ++side) {
