@@ -54,7 +54,7 @@ inline constexpr const char* SPLIT_METRICS[] = {"beauty.flip", "beauty.psnr", "b
 void addSplitMetrics(const core::Frame& ref, const core::Frame& test,
                      const compare::MetricSettings& settings, compare::MetricValues& metrics);
 
-// The time metrics of a pair of renders: time.realtime_ms and time.raymarch_ms (total).
+// The time metrics of a pair of renders: time.<renderer>_ms (total) of each that has one.
 void addTimeMetrics(const core::Frame& ref, const core::Frame& test,
                     compare::MetricValues& metrics);
 

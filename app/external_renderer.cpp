@@ -17,6 +17,7 @@
 
 #include "app/export_command.h"
 #include "app/sequence_run.h"
+#include "app/test_images.h"
 #include "core/cancellation.h"
 #include "core/error.h"
 #include "core/frame.h"
@@ -47,9 +48,9 @@ struct CommandRun {
     double seconds = 0.0;
 };
 
-// Runs `command` "$request" through /bin/sh in `folder`, its own process group, standard output
-// and error into folder/stdout.log and stderr.log; ends the group at the time limit or when
-// `cancel` is set.
+// Runs `command` "$request" through /bin/sh in `folder` (`request` relative to it), its own process
+// group, standard output and error into folder/stdout.log and stderr.log; ends the group at the
+// time limit or when `cancel` is set.
 CommandRun runCommand(const std::string& command, const fs::path& request, const fs::path& folder,
                       double timeoutSeconds, const std::atomic<bool>* cancel) {
     const std::string script = command + " \"$1\"";
@@ -93,21 +94,6 @@ CommandRun runCommand(const std::string& command, const fs::path& request, const
     return run;
 }
 
-// NaN or an infinity in a channel (+inf in Z is the background's depth): the first such pixel.
-std::string firstNonFinite(const core::Image& image) {
-    for (int c = 0; c < image.channelCount(); ++c) {
-        const bool depth = image.channelNames()[c] == "Z";
-        for (int y = 0; y < image.height(); ++y)
-            for (int x = 0; x < image.width(); ++x) {
-                const float v = image.at(x, y, c);
-                if (std::isnan(v) || (std::isinf(v) && !(depth && v > 0)))
-                    return fmt::format("{} at pixel ({}, {}) of channel {}", v, x, y,
-                                       image.channelNames()[c]);
-            }
-    }
-    return {};
-}
-
 }  // namespace
 
 ExternalRenderer::ExternalRenderer(ExternalSettings settings, const LoadedScene& scene)
@@ -149,8 +135,9 @@ core::Frame ExternalRenderer::render(const core::RenderInput& in) {
         {"output", {{"image", "out/image.exr"}, {"timings", "out/timings.json"}}}};
     core::writeTextFile(folder / "request.json", request.dump(2) + "\n");
 
-    const CommandRun run = runCommand(mSettings.command, folder / "request.json", folder,
-                                      mSettings.timeoutSeconds, in.cancel);
+    // The request's path as the command sees it, from its working folder (whatever --out was).
+    const CommandRun run =
+        runCommand(mSettings.command, "request.json", folder, mSettings.timeoutSeconds, in.cancel);
     if (run.timedOut)
         throw fail(fmt::format("passed its time limit of {} s; its process group was ended",
                                mSettings.timeoutSeconds));
@@ -165,36 +152,20 @@ core::Frame ExternalRenderer::render(const core::RenderInput& in) {
         throw fail(
             fmt::format("wrote no image at {} (the request's output.image)", imageFile.string()));
     core::Frame frame;
+    frame.timingsMs["command"] = run.seconds * 1e3;
+    frame.timingsMs["total"] = run.seconds * 1e3;
     try {
-        frame.image = core::readImage(imageFile);
+        frame.image = readTestImage(imageFile, in.scene.camera.width, in.scene.camera.height);
+        for (const auto& [stage, ms] : readTestTimings(folder / "out" / "timings.json"))
+            frame.timingsMs[stage] = ms;
     } catch (const core::InputError& e) {
         throw fail(e.what());
     }
-    const core::Image& image = frame.image;
-    if (image.width() != in.scene.camera.width || image.height() != in.scene.camera.height)
-        throw fail(fmt::format("its image is {}x{} pixels; the camera's is {}x{}", image.width(),
-                               image.height(), in.scene.camera.width, in.scene.camera.height));
-    for (const char* c : {"R", "G", "B"})
-        if (!image.hasChannel(c))
-            throw fail(
-                fmt::format("its image has no channel \"{}\" (the linear beauty is R, G, B)", c));
-    if (const std::string bad = firstNonFinite(image); !bad.empty())
-        throw fail("its image holds " + bad +
-                   "; every channel must be finite (Z may be +inf "
-                   "where nothing is hit)");
-    frame.display = core::tonemappedBeauty(image, static_cast<float>(in.scene.camera.exposure));
+    frame.display =
+        core::tonemappedBeauty(frame.image, static_cast<float>(in.scene.camera.exposure));
     frame.renderer = "external";
     frame.device = "external: " + mSettings.command;
     frame.particleCount = in.particles.particles.size();
-    frame.timingsMs["command"] = run.seconds * 1e3;
-    frame.timingsMs["total"] = run.seconds * 1e3;
-    std::ifstream timings(folder / "out" / "timings.json");
-    if (timings) {
-        const json t = json::parse(timings, nullptr, /*allow_exceptions=*/false);
-        if (!t.is_object()) throw fail("its out/timings.json is not a JSON object");
-        for (const auto& [stage, ms] : t.items())
-            if (ms.is_number()) frame.timingsMs[stage] = ms.get<double>();
-    }
     frame.settings = {{"external.command", mSettings.command},
                       {"external.time_limit_s", mSettings.timeoutSeconds}};
     return frame;

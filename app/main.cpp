@@ -211,11 +211,26 @@ int main(int argc, char** argv) {
                        "sequences only, in OUT/reference_cache)");
     addPpd(runCmd, runOpts.ppd);
     addFlipOver(runCmd, runOpts.flipOver);
+    std::vector<std::string> runTests;
     runCmd
-        ->add_option("--test", runOpts.test,
-                     "the renderer measured: realtime (built in) or external (--external-command)")
-        ->check(CLI::IsMember({"realtime", "external"}))
-        ->capture_default_str();
+        ->add_option("--test", runTests,
+                     "the renderer measured: realtime (built in, the default), "
+                     "realtime:KEY=VALUE,... (with settings of its own) or external "
+                     "(--external-command); repeatable, side by side")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                return text == "realtime" || text == "external" || text.rfind("realtime:", 0) == 0
+                           ? std::string()
+                           : "must be realtime, realtime:KEY=VALUE,... or external";
+            },
+            "TEST"))
+        ->type_name("realtime|realtime:KEY=VALUE,...|external");
+    std::string runTestImages;
+    runCmd
+        ->add_option("--test-images", runTestImages,
+                     "measure images rendered earlier, DIR/<scene>/<frame>.exr, as an external "
+                     "renderer's (docs/external.md); after any --test")
+        ->type_name("DIR");
     runCmd->add_option("--external-command", runOpts.external.command,
                        "--test external: the command run once per frame with the request's path "
                        "(docs/external.md)");
@@ -373,6 +388,13 @@ int main(int argc, char** argv) {
                 runOpts.selfCheck = runCommon.selfCheck;
                 runOpts.commandLine = commandLine;
                 runOpts.linkStudies = !runStudies.empty();
+                // --test realtime alone by default; --test-images after any --test.
+                runOpts.tests = runTests;
+                if (!runTestImages.empty()) {
+                    runOpts.tests.push_back("images");
+                    runOpts.external.images = runTestImages;
+                }
+                if (runOpts.tests.empty()) runOpts.tests = {"realtime"};
                 if (runOpts.linkStudies && !runOpts.shard.empty())
                     throw tr::core::InputError(
                         "run --studies with --shard: the studies are not sharded; run them once "
@@ -404,6 +426,7 @@ int main(int argc, char** argv) {
                     // across runs).
                     so.cache = runOpts.cache;
                     so.commandLine = commandLine;
+                    so.back = "../index.html";
                     rc = std::max(rc, tr::app::runStudies(so));
                 }
             }

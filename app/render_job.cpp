@@ -12,6 +12,7 @@
 #include "app/interruption.h"
 #include "app/per_set_check.h"
 #include "app/progress.h"
+#include "app/test_images.h"
 #include "core/error.h"
 #include "core/particle_file.h"
 #include "raymarch/embree_device.h"
@@ -107,6 +108,7 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
     if (name == "realtime")
         return std::make_unique<realtime::Renderer>(devices.realtimeFor(s), s.realtime);
     if (name == "external") return std::make_unique<ExternalRenderer>(devices.external(), s);
+    if (name == "images") return std::make_unique<TestImages>(devices.external().images);
     throw core::InputError(fmt::format("no renderer named '{}'; the renderers are {}", name,
                                        fmt::join(rendererNames(), ", ")));
 }

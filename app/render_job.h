@@ -55,6 +55,9 @@ struct ExternalSettings {
     // Each frame's working folder is ROOT/<scene>/external/<frame> (four digits), made anew: ROOT
     // the command's output folder.
     std::filesystem::path root;
+    // `run --test-images DIR`: the folder of images rendered earlier, one per scene and frame,
+    // that makeRenderer's "images" reads in the command's place (app/test_images.h).
+    std::filesystem::path images;
 };
 
 // When the per-set self-check runs before a command's first real-time frame
@@ -102,8 +105,8 @@ class Devices {
 // The renderers by name, in the order `render --renderer both` runs them.
 const std::vector<std::string>& rendererNames();
 
-// The renderer `name` ("raymarch", "realtime", or "external": devices.external()'s command)
-// with the scene's settings for it.
+// The renderer `name` ("raymarch", "realtime", "external": devices.external()'s command, or
+// "images": the images of devices.external().images) with the scene's settings for it.
 std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& devices,
                                              const LoadedScene& scene);
 

@@ -138,7 +138,9 @@ std::vector<report::SequenceFrame> compareSequenceFrames(
             compare::addFrameChangeMetrics(*step.change, step.metrics);
         }
         visit(step);
-        out.push_back({step.frame, step.metrics});
+        out.push_back({.frame = step.frame,
+                       .metrics = step.metrics,
+                       .notApplicable = step.result.notApplicable});
         previous.emplace(std::move(step.reference), std::move(step.test));
     }
     return out;
@@ -147,13 +149,13 @@ std::vector<report::SequenceFrame> compareSequenceFrames(
 report::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache& cache,
                                 const SequenceRun& run, const fs::path& dir) {
     const double fps = s.scene.sequence->fps;
-    auto realtime = makeRenderer("realtime", devices, s);
+    auto tested = makeRenderer(run.test, devices, s);
     VideoEncoder video(dir / "sequence.mp4", dir / "sequence.webm", fps);
     report::SequenceReport sequence;
     sequence.fps = fps;
     std::vector<report::SceneReport> frameReports;
     sequence.frames = compareSequenceFrames(
-        s, s, run.overrides, *realtime, "realtime", cache, run.ppd, run.flipOver,
+        s, s, run.overrides, *tested, run.test, cache, run.ppd, run.flipOver,
         [&](const SequenceStep& step) {
             const std::string folder = "frames/" + frameFolder(step.frame) + "/";
             writeRender(s, step.reference, dir / folder);
@@ -167,24 +169,29 @@ report::SceneReport runSequence(LoadedScene& s, Devices& devices, ReferenceCache
             video.add(report::sideBySideFrame(
                 step.test.display, step.reference.display, step.result.errorMaps.at("beauty.flip"),
                 fmt::format("FRAME {}  FLIP {:.4f}  FLICKER {}", step.frame, flipMean, flicker)));
+            const auto testTotal = step.test.timingsMs.find("total");
+            const std::string testTime = testTotal == step.test.timingsMs.end()
+                                             ? "no time"
+                                             : fmt::format("{:.1f} ms", testTotal->second);
             std::printf(
-                "%s: frame %lld (%zu/%zu): real-time %.1f ms, reference %.1f ms, ꟻLIP %.4f, "
+                "%s: frame %lld (%zu/%zu): %s %s, reference %.1f ms, ꟻLIP %.4f, "
                 "flicker %s\n",
                 s.scene.name.c_str(), static_cast<long long>(step.frame), step.index + 1,
-                step.count, step.test.timingsMs.at("total"), step.reference.timingsMs.at("total"),
-                flipMean, flicker.c_str());
+                step.count, run.test == "realtime" ? "real-time" : run.test.c_str(),
+                testTime.c_str(), step.reference.timingsMs.at("total"), flipMean, flicker.c_str());
             std::fflush(stdout);
             prefixImages(report, folder);
             frameReports.push_back(std::move(report));
         });
     video.finish();
     sequence.videos = {{"video/webm", "sequence.webm"}, {"video/mp4", "sequence.mp4"}};
-    sequence.charts = report::writeSequenceCharts(sequence, dir);
+    sequence.charts = report::writeSequenceCharts(sequence, dir, run.bounds);
     sequence.shownFrame = report::worstFrame(sequence.frames);
     std::size_t shown = 0;
     while (sequence.frames.at(shown).frame != sequence.shownFrame) ++shown;
     report::SceneReport report = std::move(frameReports.at(shown));
     report.metrics = report::summariseSequence(sequence.frames);
+    report.notApplicable = report::notApplicableInEvery(sequence.frames);
     report.settings["sequence"] = sequenceSettings(*s.scene.sequence, sequence.frames.size());
     checkReport(report, run.bounds, run.baseline);
     report.sequence = std::move(sequence);

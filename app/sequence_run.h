@@ -80,11 +80,15 @@ struct SequenceRun {
     const compare::Baseline* baseline = nullptr;
     double ppd = 67.0;
     double flipOver = 0.5;
+    // The renderer measured, as makeRenderer names it: "realtime", "external" (a command of
+    // one's own, a request per frame) or "images" (images rendered earlier, one per frame).
+    std::string test = "realtime";
 };
 
-// `run` on a sequence scene: see above. Writes DIR/frames/<frameFolder>/ (both renders, their
-// buffers and error maps), DIR/charts/, DIR/sequence.mp4 and DIR/sequence.webm. The report's
-// images are those of the frame with the largest beauty.flip.
+// `run` on a sequence scene: see above, with `run.test` as the test renderer. Writes
+// DIR/frames/<frameFolder>/ (both renders, their buffers and error maps), DIR/charts/,
+// DIR/sequence.mp4 and DIR/sequence.webm. The report's images are those of the frame with the
+// largest beauty.flip.
 report::SceneReport runSequence(LoadedScene& scene, Devices& devices, ReferenceCache& cache,
                                 const SequenceRun& run, const std::filesystem::path& dir);
 

@@ -237,6 +237,11 @@ ExitCode runStudies(const StudyOptions& o) {
                 const auto u = ref.counters.find("unbracketed_rays");
                 row.metrics["count.unbracketed_rays"] = u == ref.counters.end() ? 0.0 : u->second;
                 unbracketed[key] = row.metrics["count.unbracketed_rays"];
+                // The reference's stated noise where it samples occlusion or emitted light: what
+                // a study's ties on those metrics rest on.
+                for (const char* counter : {"ao_standard_error", "irradiance_standard_error"})
+                    if (const auto c = ref.counters.find(counter); c != ref.counters.end())
+                        row.metrics[std::string("reference.") + counter] = c->second;
                 if (!timed[i])
                     renderPoints(plan, i, timedTogetherEnd(plan, i), o.quick, devices, cache,
                                  timed);
@@ -324,7 +329,7 @@ ExitCode runStudies(const StudyOptions& o) {
         results.push_back(std::move(s));
     }
     writeTogether(out, [&](const fs::path& staging) {
-        report::writeStudiesIndex(results, staging, nowUtc(), o.commandLine);
+        report::writeStudiesIndex(results, staging, nowUtc(), o.commandLine, o.quick, o.back);
     });
     std::printf("%zu stud%s -> %s\n", results.size(), results.size() == 1 ? "y" : "ies",
                 (out / "index.html").c_str());

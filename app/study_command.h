@@ -21,6 +21,9 @@ struct StudyOptions {
     double ppd = 67.0;
     std::string scenesDir;  // empty: scenes/studies of the working folder or the source tree
     std::string commandLine;
+    // The report the studies belong to, relative to their page ("../index.html" under `run
+    // --studies`), linked from it; "" for none.
+    std::string back;
 };
 ExitCode runStudies(const StudyOptions& options);
 

@@ -22,6 +22,8 @@
 #include "app/reference_cache.h"
 #include "app/sequence_run.h"
 #include "app/shard.h"
+#include "app/test_images.h"
+#include "app/test_renderers.h"
 #include "app/video_encoder.h"
 #include "compare/error_maps.h"
 #include "compare/metric_table.h"
@@ -125,6 +127,61 @@ void checkSceneFolders(const std::vector<LoadedScene>& scenes) {
     }
 }
 
+// The name a test renderer's frames and times carry: "realtime", or "external" for a command or
+// images of one's own.
+std::string timedRenderer(const std::string& test) {
+    return test == "realtime" ? "realtime" : "external";
+}
+
+// A row of the run's table on the terminal: a scene's (or a test renderer's) main metrics.
+void printSceneRow(const std::string& name, compare::Status status,
+                   const compare::MetricValues& metrics, const std::string& test) {
+    auto m = [&](const std::string& k) {
+        const auto it = metrics.find(k);
+        return it == metrics.end() ? std::string("-") : compare::formatValue(it->second);
+    };
+    auto ms = [&](const std::string& k) {  // "-" for a time not measured (images without one)
+        const std::string v = m(k);
+        return v == "-" ? v : v + " ms";
+    };
+    const std::string testTime = "time." + timedRenderer(test) + "_ms";
+    const auto rt = metrics.find(testTime), ref = metrics.find("time.raymarch_ms");
+    const std::string speed = rt != metrics.end() && ref != metrics.end() && rt->second > 0
+                                  ? fmt::format("{:.1f}x", ref->second / rt->second)
+                                  : "-";
+    std::printf("%-14s %-5s %8s %8s %8s %9s %11s %11s %7s\n", name.c_str(),
+                std::string(compare::toString(status)).c_str(), m("beauty.flip").c_str(),
+                m("beauty.ssim").c_str(), m("normal.mean_deg").c_str(), m("coverage.iou").c_str(),
+                ms(testTime).c_str(), ms("time.raymarch_ms").c_str(), speed.c_str());
+}
+
+// The report of a scene that could not be rendered or compared: it fails, saying why.
+report::SceneReport errorReport(const LoadedScene& s, const std::string& error) {
+    report::SceneReport report;
+    report.name = s.scene.name;
+    report.description = s.scene.description;
+    report.settings = {{"scene_file", s.scene.file.string()}};
+    report.error = error;
+    return report;
+}
+
+// The scene measured by one test renderer (`how.test`), its files in `dir`: a still scene
+// against `ref`, a sequence frame by frame with its references from the cache. A renderer that
+// cannot render or be compared fails the scene with its error; the other renderers still run.
+report::SceneReport measureScene(LoadedScene& s, const core::Frame* ref, const SequenceRun& how,
+                                 Devices& devices, ReferenceCache& cache, const fs::path& dir) {
+    try {
+        if (s.scene.sequence) return runSequence(s, devices, cache, how, dir);
+        const core::Frame test = render(how.test, devices, s, &ref->image);
+        writeRender(s, test, dir);
+        return compareScene(s, *ref, test, how.bounds, how.baseline, how.ppd, how.flipOver, dir);
+    } catch (const core::OutputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        return errorReport(s, e.what());
+    }
+}
+
 }  // namespace
 
 ExitCode runCompare(const CompareOptions& o) {
@@ -139,6 +196,7 @@ ExitCode runCompare(const CompareOptions& o) {
     report.name = fs::path(o.test).stem().string();
     report.metrics = result.values;
     report.notProvided = result.notProvided;
+    report.notApplicable = result.notApplicable;
     if (!o.thresholds.empty()) {
         compare::Bounds bounds = compare::Thresholds::parseFile(o.thresholds).forScene(report.name);
         // Plain images have beauty metrics only, and an AOV image that lacks a metric's channels
@@ -149,7 +207,8 @@ ExitCode runCompare(const CompareOptions& o) {
                 bounds, [](const std::string& m) { return compare::computedOnPlainImages(m); });
         bounds = compare::filterBounds(bounds, [&](const std::string& m) {
             return std::find(result.notProvided.begin(), result.notProvided.end(), m) ==
-                   result.notProvided.end();
+                       result.notProvided.end() &&
+                   !result.notApplicable.count(m);
         });
         report.checks = compare::evaluate(report.metrics, bounds);
     }
@@ -219,20 +278,37 @@ ExitCode runSuite(const RunOptions& o) {
         }
     // The GL context before the first render: without one, nothing can be compared.
     Devices devices(o.requireGpu, {.force = o.selfCheck, .cache = o.cache});
-    if (o.test == "external") {
-        for (std::size_t i = 0; i < scenes.size(); ++i)
-            if (selected[i] && scenes[i].scene.sequence)
-                throw core::InputError(fmt::format(
-                    "{}: run --test external measures still scenes; the scene is a sequence "
-                    "(render its frames with `render --renderer external --frames A:B` and "
-                    "compare them)",
-                    scenes[i].scene.file.string()));
+    // The test renderers, and the scenes of those with settings of their own.
+    std::vector<TestRendererSpec> specs;
+    std::vector<std::vector<LoadedScene>> variants(o.tests.size());
+    for (std::size_t k = 0; k < o.tests.size(); ++k) {
+        if (std::find(o.tests.begin(), o.tests.begin() + k, o.tests[k]) != o.tests.begin() + k)
+            throw core::InputError(fmt::format(
+                "--test {} is given twice; each renderer is measured once", o.tests[k]));
+        specs.push_back(parseTestRenderer(o.tests[k]));
+        std::vector<std::string> sets = o.sets;
+        sets.insert(sets.end(), specs[k].overrides.begin(), specs[k].overrides.end());
+        if (!specs[k].overrides.empty())
+            for (const auto& f : files) variants[k].push_back(loadScene(f, sets));
+    }
+    // The scene the k-th test renderer renders: the run's, or its own settings'.
+    const auto sceneFor = [&](std::size_t k, std::size_t i) -> LoadedScene& {
+        return variants[k].empty() ? scenes[i] : variants[k][i];
+    };
+    const auto tests = [&](const char* name) {
+        return std::any_of(specs.begin(), specs.end(),
+                           [&](const TestRendererSpec& t) { return t.renderer == name; });
+    };
+    if (tests("external") || tests("images")) {
         ExternalSettings external = o.external;
         external.root = o.out;
         devices.setExternal(std::move(external));
-    } else {
-        devices.realtime();
+        // Every image a user rendered earlier is there and sound before the first render.
+        if (tests("images"))
+            for (std::size_t i = 0; i < scenes.size(); ++i)
+                if (selected[i]) checkTestImages(o.external.images, scenes[i]);
     }
+    if (tests("realtime")) devices.realtime();
     // Sequences take their references from the cache, frame by frame; with --cache, every
     // scene does.
     const fs::path cacheDir =
@@ -242,7 +318,8 @@ ExitCode runSuite(const RunOptions& o) {
     // Making a real-time renderer compiles a user's surface shader: one that does not compile
     // is bad input, said before the first render.
     for (std::size_t i = 0; i < scenes.size(); ++i)
-        if (selected[i]) makeRenderer(o.test, devices, scenes[i]);
+        for (std::size_t k = 0; k < specs.size(); ++k)
+            if (selected[i]) makeRenderer(specs[k].renderer, devices, sceneFor(k, i));
     const fs::path out(o.out);
     prepareOutputFolder(out);
 
@@ -272,32 +349,30 @@ ExitCode runSuite(const RunOptions& o) {
         ++done;
         report::SceneReport report;
         try {
-            if (s.scene.sequence) {
-                const SequenceRun sequence{o.sets, bounds[i], baseline ? &*baseline : nullptr,
-                                           o.ppd, o.flipOver};
-                run.scenes.push_back(runSequence(s, devices, cache, sequence, dir));
-                continue;
+            // A still scene's reference once, for every test renderer.
+            std::optional<core::Frame> ref;
+            if (!s.scene.sequence) {
+                ref = o.cache.empty() ? render("raymarch", devices, s) : [&] {
+                    const auto [key, what] = referenceKey(s, o.sets);
+                    core::Frame cached = cache.get(s, key, what);
+                    cache.forget(key);
+                    return cached;
+                }();
+                writeRender(s, *ref, dir);
             }
-            const core::Frame ref = o.cache.empty() ? render("raymarch", devices, s) : [&] {
-                const auto [key, what] = referenceKey(s, o.sets);
-                core::Frame cached = cache.get(s, key, what);
-                cache.forget(key);
-                return cached;
-            }();
-            writeRender(s, ref, dir);
-            const core::Frame test = render(o.test, devices, s, &ref.image);
-            writeRender(s, test, dir);
-            report = compareScene(s, ref, test, bounds[i], baseline ? &*baseline : nullptr, o.ppd,
-                                  o.flipOver, dir);
+            std::vector<report::SceneReport> reports;
+            for (std::size_t k = 0; k < o.tests.size(); ++k) {
+                const SequenceRun how{o.sets, bounds[i],  k == 0 && baseline ? &*baseline : nullptr,
+                                      o.ppd,  o.flipOver, specs[k].renderer};
+                reports.push_back(measureScene(sceneFor(k, i), ref ? &*ref : nullptr, how, devices,
+                                               cache, dir / testRendererFolder(o.tests, k)));
+            }
+            report = joinTestRenderers(std::move(reports), o.tests);
         } catch (const core::OutputError&) {
             throw;  // every later write would fail alike
         } catch (const std::exception& e) {
-            // One scene that cannot be rendered or compared fails; the others still run.
-            report = report::SceneReport{};
-            report.name = s.scene.name;
-            report.description = s.scene.description;
-            report.settings = {{"scene_file", s.scene.file.string()}};
-            report.error = e.what();
+            // One scene whose reference cannot be rendered fails; the others still run.
+            report = errorReport(s, e.what());
         }
         run.scenes.push_back(std::move(report));
     }
@@ -315,10 +390,15 @@ ExitCode runSuite(const RunOptions& o) {
             files.push_back(fs::absolute(s.scene.file).lexically_normal().string());
         }
         for (const auto& r : run.scenes) reports.push_back(report::sceneReportJson(r));
-        const nlohmann::json settings = {
+        nlohmann::json settings = {
             {"scenes", files},          {"sets", o.sets}, {"thresholds", thresholdsFile},
             {"baseline", o.baseline},   {"ppd", o.ppd},   {"flip_over", o.flipOver},
             {"junit", !o.junit.empty()}};
+        // The renderers measured: shards of one run measure the same ones.
+        settings["tests"] = o.tests;
+        if (o.tests != std::vector<std::string>{"realtime"})
+            settings["external"] = {{"command", o.external.command},
+                                    {"images", o.external.images.string()}};
         manifest = {{"command", "run"},
                     {"settings", settings},
                     {"scenes", names},
@@ -333,25 +413,20 @@ ExitCode runSuite(const RunOptions& o) {
     });
     if (!o.junit.empty()) report::writeJunit(run, o.junit);
 
-    // One screen: a row per scene. printf pads bytes, not columns: the widths of the two
-    // headers with multi-byte characters are widened by their extra bytes (ꟻ 3, ° 2).
+    // One screen: a row per scene (and per test renderer beside the first). printf pads bytes,
+    // not columns: the widths of the two headers with multi-byte characters are widened by
+    // their extra bytes (ꟻ 3, ° 2).
     std::printf("%-14s %-5s %10s %8s %9s %9s %10s %10s %7s\n", "scene", "", "ꟻLIP", "SSIM",
-                "normal°", "cov. IoU", "realtime", "reference", "speed");
+                "normal°", "cov. IoU", timedRenderer(specs.front().renderer).c_str(), "reference",
+                "speed");
     for (const auto& r : run.scenes) {
-        auto m = [&](const char* k) {
-            const auto it = r.metrics.find(k);
-            return it == r.metrics.end() ? std::string("-") : compare::formatValue(it->second);
-        };
-        const auto rt = r.metrics.find("time.realtime_ms"),
-                   ref = r.metrics.find("time.raymarch_ms");
-        const std::string speed = rt != r.metrics.end() && ref != r.metrics.end() && rt->second > 0
-                                      ? fmt::format("{:.1f}x", ref->second / rt->second)
-                                      : "-";
-        std::printf("%-14s %-5s %8s %8s %8s %9s %8s ms %8s ms %7s\n", r.name.c_str(),
-                    std::string(compare::toString(r.status())).c_str(), m("beauty.flip").c_str(),
-                    m("beauty.ssim").c_str(), m("normal.mean_deg").c_str(),
-                    m("coverage.iou").c_str(), m("time.realtime_ms").c_str(),
-                    m("time.raymarch_ms").c_str(), speed.c_str());
+        printSceneRow(r.name, r.status(), r.metrics, specs.front().renderer);
+        for (std::size_t k = 1; k < r.tests.size(); ++k) {
+            const report::TestRendererReport& t = r.tests[k];
+            const compare::Status st =
+                t.error.empty() ? compare::overallStatus(t.checks) : compare::Status::Fail;
+            printSceneRow("  + " + t.name, st, t.metrics, t.name.substr(0, t.name.find(':')));
+        }
         if (!r.error.empty()) std::printf("  error: %s\n", r.error.c_str());
         for (const auto& c : r.checks)
             if (c.status != compare::Status::Pass)

@@ -49,9 +49,12 @@ struct RunOptions {
     // --self-check: the per-set self-check on any device, not taken from the cache
     // (app/per_set_check.h).
     bool selfCheck = false;
-    // --test: the renderer measured against the reference, "realtime" (the built-in one) or
-    // "external" (`external`'s command, app/external_renderer.h; still scenes only).
-    std::string test = "realtime";
+    // --test: the renderers measured against the reference, each once: "realtime" (the
+    // built-in one), "external" (`external`'s command, app/external_renderer.h) or "images"
+    // (--test-images: the images in `external.images`, app/test_images.h). With several, the
+    // first is the scene's own in the report and the others stand beside it
+    // (app/test_renderers.h).
+    std::vector<std::string> tests = {"realtime"};
     ExternalSettings external;
 };
 ExitCode runSuite(const RunOptions& options);

@@ -1,5 +1,5 @@
 // Cost of the beauty metrics (compare/psnr, ssim, flip) on a 1920x1080 pair. The aim is
-// the three together under 1 s on the 2-core build machine. Run:
+// the three together under 1 s on a 2-core machine. Run:
 //   build/bench/metrics_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // and read the medians. Wall time (UseRealTime): the metrics run on all cores through oneTBB.
 #include <benchmark/benchmark.h>
@@ -111,7 +111,7 @@ struct AovPair {
 
 // What `twinrender compare` pays for two AOV EXRs: every metric (the three beauty metrics on
 // the tonemapped beauty, the masks, every per-buffer metric and all error maps). The aim:
-// under 1 s on the 2-core build machine.
+// under 1 s on a 2-core machine.
 void BM_AllMetrics1080p(benchmark::State& state) {
     static const AovPair p;
     MetricSettings settings;

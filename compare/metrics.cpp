@@ -7,6 +7,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 #include <optional>
 #include <stdexcept>
@@ -38,6 +39,30 @@ bool bothHave(const core::Image& a, const core::Image& b,
     return std::all_of(channels.begin(), channels.end(), [&](std::string_view c) {
         return a.hasChannel(std::string(c)) && b.hasChannel(std::string(c));
     });
+}
+
+// Whether every pixel of both images has no emission: a buffer neither render wrote into.
+bool neitherEmits(const core::Image& a, const core::Image& b) {
+    for (const core::Image* image : {&a, &b})
+        for (const char* name : {"emission.R", "emission.G", "emission.B"}) {
+            const int c = image->requireChannel(name);
+            for (std::size_t p = 0; p < image->pixelCount(); ++p)
+                if (image->at(p, c) != 0.0f) return false;
+        }
+    return true;
+}
+
+// Whether no covered pixel of either image is occluded: ao is at least the coverage A there
+// (1 on the surface, 0 where nothing is hit, edge pixels in between; to 1e-6).
+bool neitherOccludes(const core::Image& a, const core::Image& b) {
+    for (const core::Image* image : {&a, &b}) {
+        const int ao = image->requireChannel("ao"), alpha = image->channelIndex("A");
+        for (std::size_t p = 0; p < image->pixelCount(); ++p) {
+            const float covered = alpha < 0 ? 1.0f : image->at(p, alpha);
+            if (!(image->at(p, ao) >= covered - 1e-6f)) return false;
+        }
+    }
+    return true;
 }
 
 // core::tonemappedBeauty, rows in parallel: the same values (core::tonemap per pixel).
@@ -190,6 +215,8 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
         EmissionResult emission = emissionError(reference, test, *masks);
         result.values["emission.rmse"] = emission.rmse;
         result.errorMaps["emission"] = std::move(emission.errorMap);
+        if (neitherEmits(reference, test))
+            result.notApplicable["emission.rmse"] = "neither render has any emission";
     } else {
         notProvided({"emission.rmse"});
     }
@@ -216,6 +243,10 @@ void addBufferMetrics(const core::Image& reference, const core::Image& test,
         result.values["ao.grain"] = ao.grain;
         result.values["ao.banding"] = ao.banding;
         result.errorMaps["ao"] = std::move(ao.errorMap);
+        if (neitherOccludes(reference, test))
+            for (const char* k : {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"})
+                result.notApplicable[k] =
+                    "neither render has any occlusion (light.ao_radius 0, or nothing occludes)";
     } else if (reference.hasChannel("ao")) {
         notProvided({"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"});
     }

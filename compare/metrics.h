@@ -61,6 +61,11 @@ struct MetricResult {
     // either image lacks.
     std::vector<std::string> notProvided;
     std::vector<std::string> missingChannels;
+    // Metrics computed but meaningless for this pair, with why: their buffer holds nothing in
+    // either image (the ao.* metrics where neither render has any occlusion, emission.rmse
+    // where neither has any emission). Their values stay (0); the reports show "n/a" and the
+    // thresholds leave them unchecked.
+    std::map<std::string, std::string> notApplicable;
 };
 
 // True when the image carries an AOV channel other than R, G, B, A (its R, G, B then linear);

@@ -166,6 +166,33 @@ TEST(Metrics, IdenticalAovImagesArePerfect) {
     }
 }
 
+TEST(Metrics, TheMetricsOfABufferNeitherImageFillsDoNotApply) {
+    core::Image img = spheres(48, 32);
+    const int ao = img.requireChannel("ao");
+    for (std::size_t p = 0; p < img.pixelCount(); ++p) {
+        img.at(p, ao) = 1.0f;  // no occlusion anywhere
+        for (const char* c : {"emission.R", "emission.G", "emission.B"})
+            img.at(p, img.requireChannel(c)) = 0.0f;  // and no emission
+    }
+    MetricResult r = computeMetrics(img, img, withLight());
+    for (const char* m : {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding"}) {
+        EXPECT_EQ(r.notApplicable.at(m),
+                  "neither render has any occlusion (light.ao_radius 0, or nothing occludes)");
+        EXPECT_EQ(r.values.at(m), 0.0) << m;  // the value stays
+    }
+    EXPECT_EQ(r.notApplicable.at("emission.rmse"), "neither render has any emission");
+    EXPECT_EQ(r.notApplicable.size(), 6u);
+    // Occlusion in one covered pixel of one image: its metrics apply.
+    core::Image occluded = img;
+    const int alpha = img.requireChannel("A");
+    std::size_t covered = 0;
+    while (img.at(covered, alpha) < 1.0f) ++covered;
+    occluded.at(covered, ao) = 0.5f;
+    r = computeMetrics(img, occluded, withLight());
+    EXPECT_EQ(r.notApplicable.count("ao.mean_abs"), 0u);
+    EXPECT_EQ(r.notApplicable.count("emission.rmse"), 1u);
+}
+
 TEST(Metrics, TheSceneHasShadowsAndBothBodies) {
     // The fixture must exercise what the perfect case claims: shadowed pixels facing the light,
     // two bodies, emission.

@@ -24,4 +24,7 @@ std::string markdownEscape(std::string_view text);
 // A relative path as a URL: every byte outside the unreserved set and '/' percent-encoded.
 std::string urlPath(std::string_view path);
 
+// The path a relative URL names: urlPath's inverse (every %XX decoded), for checking links.
+std::string pathOfUrl(std::string_view url);
+
 }  // namespace twinrender::report

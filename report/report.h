@@ -45,6 +45,8 @@ struct RendererReport {
 struct SequenceFrame {
     std::int64_t frame = 0;  // the frame number
     MetricValues metrics;
+    // The metrics that do not apply to this frame's pair, with why (SceneReport::notApplicable).
+    std::map<std::string, std::string> notApplicable;
 };
 
 // What a sequence scene adds to its report: the frames, the charts of every metric over them
@@ -58,6 +60,18 @@ struct SequenceReport {
     std::map<std::string, std::string> charts;  // metric -> SVG over the frames
 };
 
+// One of several renderers a run measures against the same reference (`run --test A --test B`):
+// its results beside the others'.
+struct TestRendererReport {
+    std::string name;  // as --test names it: "realtime", "external", "images"
+    MetricValues metrics{};
+    std::vector<std::string> notProvided{};  // as SceneReport::notProvided
+    std::vector<Check> checks{};             // its own checks, by the metrics' own keys
+    std::string error{};                     // set when it could not render or be compared
+    // Its times, device and images (paths relative to the scene folder).
+    RendererReport render{};
+};
+
 struct SceneReport {
     std::string name;         // scene name: the folder name DIR/<name>/
     std::string description;  // one line from the scene file; may be empty
@@ -67,6 +81,9 @@ struct SceneReport {
     // The metrics the test image's channels cannot give (compare::MetricResult::notProvided):
     // shown as "not provided", never checked.
     std::vector<std::string> notProvided;
+    // The metrics that do not apply to the scene, with why (compare::MetricResult::
+    // notApplicable: no occlusion, no emission in either render): shown as "n/a", never checked.
+    std::map<std::string, std::string> notApplicable;
     // The blessed metrics of this scene, to show deltas of every metric, also the unchecked
     // ones (times); empty without a baseline.
     MetricValues baseline;
@@ -79,6 +96,11 @@ struct SceneReport {
     // Set for a sequence scene: its metrics above then summarise the frames
     // (report/sequence_summary.h).
     std::optional<SequenceReport> sequence;
+    // With several test renderers, each one's results in --test order, the first the scene's
+    // own (the metrics, renderers and images above); empty with one. The checks of the others
+    // that did not pass, and their errors, are in `checks` too, as "<name>:<metric>" (and
+    // "<name>:render"), so the verdict, JUnit and summary.md count them.
+    std::vector<TestRendererReport> tests;
 
     // Fail when error is set, else the worst check.
     Status status() const;

@@ -14,9 +14,13 @@
 #include "core/stage_table.h"
 #include "core/write_roots.h"
 #include "report/buffer_display.h"
+#include "report/error_split_view.h"
 #include "report/html_page.h"
+#include "report/index_page.h"
 #include "report/markup.h"
+#include "report/scene_facts.h"
 #include "report/sequence_report.h"
+#include "report/test_renderers_section.h"
 
 namespace twinrender::report {
 
@@ -30,64 +34,15 @@ using compare::flattenSettings;
 using compare::formatValue;
 using compare::inMetricOrder;
 using compare::magmaCssGradient;
-using compare::MetricInfo;
 using compare::metricTable;
 using compare::metricUnit;
 using compare::Status;
 using compare::toString;
-using compare::worst;
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// The renderer measured against the reference: the built-in real-time one, or the one `run
-// --test` named (an external renderer).
-std::string testRenderer(const SceneReport& s) {
-    if (s.renderers.count("realtime")) return "realtime";
-    for (const auto& [name, r] : s.renderers)
-        if (name != "raymarch") return name;
-    return "realtime";
-}
-
-// The two renderers in the order the pages show them.
-std::vector<std::string> renderersOf(const SceneReport& s) {
-    return {testRenderer(s), "raymarch"};
-}
-
-std::string rendererLabel(const std::string& renderer) {
-    if (renderer == "realtime") return "Real-time";
-    if (renderer == "raymarch") return "Reference";
-    if (renderer == "external") return "External renderer";
-    return renderer;
-}
-
-std::string formatMs(double ms) {
-    if (!std::isfinite(ms)) return formatValue(ms);
-    if (ms < 1.0) return fmt::format("{:.2f} ms", ms);
-    if (ms < 1000.0) return fmt::format("{:.1f} ms", ms);
-    if (ms < 60000.0) return fmt::format("{:.2f} s", ms / 1000.0);
-    return fmt::format("{:.0f} min {:.0f} s", std::floor(ms / 60000.0),
-                       std::fmod(ms, 60000.0) / 1000.0);
-}
-
-std::optional<double> totalMs(const SceneReport& s, const std::string& renderer) {
-    auto r = s.renderers.find(renderer);
-    if (r == s.renderers.end()) return std::nullopt;
-    auto t = r->second.timingsMs.find("total");
-    if (t == r->second.timingsMs.end()) return std::nullopt;
-    return t->second;
-}
-
-std::string speedRatio(const SceneReport& s) {
-    auto rt = totalMs(s, testRenderer(s)), ref = totalMs(s, "raymarch");
-    if (!rt || !ref || !(*rt > 0.0) || !std::isfinite(*ref)) return "";
-    const double r = *ref / *rt;
-    return r >= 100  ? fmt::format("{:.0f}×", r)
-           : r >= 10 ? fmt::format("{:.1f}×", r)
-                     : fmt::format("{:.2f}×", r);
-}
 
 // Metrics of a scene with their values, and the checked ones that are missing, in order.
 std::vector<std::string> sceneMetricNames(const SceneReport& s) {
@@ -98,150 +53,6 @@ std::vector<std::string> sceneMetricNames(const SceneReport& s) {
             std::find(names.begin(), names.end(), c.metric) == names.end())
             names.push_back(c.metric);
     return inMetricOrder(std::move(names));
-}
-
-std::optional<Status> metricStatus(const SceneReport& s, const std::string& metric) {
-    std::optional<Status> st;
-    for (const Check& c : s.checks)
-        if (c.metric == metric) st = st ? worst(*st, c.status) : c.status;
-    return st;
-}
-
-// A metric's value coloured by its checks, their messages as the tooltip.
-std::string valueCell(const SceneReport& s, const std::string& metric) {
-    auto st = metricStatus(s, metric);
-    auto it = s.metrics.find(metric);
-    const std::string text = it == s.metrics.end() ? "—" : formatValue(it->second);
-    std::string title;
-    for (const Check& c : s.checks)
-        if (c.metric == metric) title += (title.empty() ? "" : "\n") + c.message;
-    return fmt::format("<td class=\"num{}\"{}>{}</td>", st ? " " + std::string(toString(*st)) : "",
-                       title.empty() ? "" : " title=\"" + htmlEscape(title) + "\"",
-                       htmlEscape(text));
-}
-
-std::string countsText(const std::vector<Status>& statuses, std::string_view noun) {
-    int n[3] = {0, 0, 0};
-    for (Status s : statuses) ++n[static_cast<int>(s)];
-    std::string t = fmt::format("{} {}{}", statuses.size(), noun, statuses.size() == 1 ? "" : "s");
-    t += fmt::format(": {} pass", n[0]);
-    if (n[1]) t += fmt::format(", {} warn", n[1]);
-    if (n[2]) t += fmt::format(", {} fail", n[2]);
-    return t;
-}
-
-// The failed and warned checks' messages, failures first; an error that stopped the scene
-// before them.
-std::vector<std::pair<Status, std::string>> problemsOf(const SceneReport& s) {
-    std::vector<std::pair<Status, std::string>> problems;
-    if (!s.error.empty()) problems.emplace_back(Status::Fail, s.error);
-    for (Status want : {Status::Fail, Status::Warn})
-        for (const Check& c : s.checks)
-            if (c.status == want) problems.emplace_back(want, c.message);
-    return problems;
-}
-
-// ---- index.html --------------------------------------------------------------------------
-
-// Key metrics: the overview metrics of the table that any scene has, in its order.
-std::vector<std::string> indexColumns(const RunReport& run) {
-    std::vector<std::string> columns;
-    for (const MetricInfo& info : metricTable()) {
-        if (!info.overview) continue;
-        const std::string m(info.key);
-        bool any = false;
-        for (const auto& s : run.scenes) {
-            any = any || s.metrics.count(m);
-            for (const Check& c : s.checks) any = any || c.metric == m;
-        }
-        if (any) columns.push_back(m);
-    }
-    return columns;
-}
-
-std::string indexHeader(const RunReport& run) {
-    std::vector<Status> sceneStatuses;
-    for (const auto& s : run.scenes) sceneStatuses.push_back(s.status());
-    std::vector<std::string> facts = {htmlEscape(countsText(sceneStatuses, "scene"))};
-    if (!run.createdAt.empty()) facts.push_back(htmlEscape(run.createdAt));
-    if (!run.thresholdsFile.empty())
-        facts.push_back("thresholds <code>" + htmlEscape(run.thresholdsFile) + "</code>");
-    facts.push_back(run.baselineFile.empty()
-                        ? std::string("no baseline")
-                        : "baseline <code>" + htmlEscape(run.baselineFile) + "</code>");
-    for (const auto& [text, href] : run.links)
-        facts.push_back("<a href=\"" + urlPath(href) + "\">" + htmlEscape(text) + "</a>");
-    return pageHeader(run.title, run.status(), facts);
-}
-
-// The first beauty render of the scene, linked to its page; empty when it has none.
-std::string thumbnail(const SceneReport& s, const std::string& page) {
-    for (const std::string& r : renderersOf(s)) {
-        auto it = s.renderers.find(r);
-        if (it == s.renderers.end()) continue;
-        auto img = it->second.images.find("beauty");
-        if (img == it->second.images.end()) continue;
-        return fmt::format("<a href=\"{}\"><img class=\"thumb\" src=\"{}\" alt=\"{} {}\"></a>",
-                           page, urlPath(s.name + "/" + img->second), htmlEscape(s.name),
-                           htmlEscape(rendererLabel(r)));
-    }
-    return "";
-}
-
-// A scene's row, and the row of its problems under it (across the metric columns) if any.
-std::string sceneRow(const SceneReport& s, const std::vector<std::string>& columns) {
-    const std::string page = urlPath(s.name) + "/index.html";
-    const auto problems = problemsOf(s);
-    std::string h = fmt::format(
-        "<tr{}><td>{}</td>", problems.empty() ? "" : " class=\"has-problems\"", thumbnail(s, page));
-    h += fmt::format(
-        "<td class=\"scene\"><a href=\"{}\">{}</a>{}</td>", page, htmlEscape(s.name),
-        s.description.empty() ? "" : "<div class=\"desc\">" + htmlEscape(s.description) + "</div>");
-    h += "<td>" + badge(s.status()) + "</td>";
-    for (const auto& m : columns) h += valueCell(s, m);
-    auto rt = totalMs(s, testRenderer(s)), ref = totalMs(s, "raymarch");
-    h += fmt::format(
-        "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>\n",
-        rt ? fmt::format("{:.1f}", *rt) : "—", ref ? fmt::format("{:.1f}", *ref) : "—",
-        htmlEscape(speedRatio(s)));
-    if (problems.empty()) return h;
-    h += fmt::format("<tr class=\"problems\"><td colspan=\"2\"></td><td colspan=\"{}\"><ul>",
-                     columns.size() + 4);
-    const std::size_t shown = problems.size() > 4 ? 3 : problems.size();
-    for (std::size_t i = 0; i < shown; ++i)
-        h += fmt::format("<li class=\"{}\">{}</li>", toString(problems[i].first),
-                         htmlEscape(problems[i].second));
-    if (problems.size() > shown)
-        h += fmt::format("<li><a href=\"{}\">{} more on the scene page</a></li>", page,
-                         problems.size() - shown);
-    return h + "</ul></td></tr>\n";
-}
-
-std::string scenesTable(const RunReport& run) {
-    const std::vector<std::string> columns = indexColumns(run);
-    std::string h =
-        "<div class=\"scroll\"><table class=\"scenes\">\n<thead><tr><th></th><th>Scene</th>"
-        "<th>Verdict</th>";
-    for (const auto& m : columns) h += metricHeaderCell(m);
-    h += "<th class=\"num\">Real-time <span class=\"unit\">ms</span></th>"
-         "<th class=\"num\">Reference <span class=\"unit\">ms</span></th>"
-         "<th class=\"num\" title=\"reference time over real-time time\">Speed-up</th>"
-         "</tr></thead>\n<tbody>\n";
-    for (const SceneReport& s : run.scenes) h += sceneRow(s, columns);
-    h += "</tbody></table></div>\n";
-    h += "<div class=\"legend-row\"><span><span class=\"swatch pass\"></span>within its "
-         "bounds</span><span><span class=\"swatch warn\"></span>beyond a warn bound</span>"
-         "<span><span class=\"swatch fail\"></span>beyond a fail bound or the baseline</span>"
-         "<span>uncoloured: no bound set. Times: total render, without start-up and file "
-         "I/O.</span></div>\n";
-    return h;
-}
-
-std::string indexPage(const RunReport& run) {
-    std::string h = pageHead(run.title) + indexHeader(run) + "<section>\n";
-    h += run.scenes.empty() ? "<p class=\"muted\">No scenes were run.</p>\n" : scenesTable(run);
-    h += "</section>\n</main>\n";
-    return h + pageFooter(run.createdAt, run.commandLine);
 }
 
 // ---- scene page: metrics, timings, devices, settings ---------------------------------------
@@ -283,7 +94,7 @@ std::string baselineCells(const SceneReport& s, const std::string& m,
            "</td><td class=\"num\">" + (delta.empty() ? std::string("—") : delta) + "</td>";
 }
 
-std::string metricTable(const SceneReport& s) {
+std::string metricTable(const SceneReport& s, const std::string& thresholdsFile) {
     const bool hasBaseline =
         !s.baseline.empty() || std::any_of(s.checks.begin(), s.checks.end(),
                                            [](const Check& c) { return c.baseline.has_value(); });
@@ -298,16 +109,21 @@ std::string metricTable(const SceneReport& s) {
         for (const Check& c : s.checks)
             if (c.metric == m) checks.push_back(&c);
         auto st = metricStatus(s, m);
+        const bool na = isNotApplicable(s, m);
         // The row's id is what summary.md links to (report_markdown.h).
         h += fmt::format("<tr id=\"metric-{}\"><td class=\"mono\"{}>{}</td>", htmlEscape(m),
                          metricTitle(m), htmlEscape(m));
-        h += valueCell(s, m);
+        h += valueCell(s, m, thresholdsFile);
         h += "<td class=\"unit\">" + htmlEscape(metricUnit(m)) + "</td>";
         h += "<td class=\"num\">" + htmlEscape(boundsText(checks, false)) + "</td>";
         h += "<td class=\"num\">" + htmlEscape(boundsText(checks, true)) + "</td>";
-        if (hasBaseline) h += baselineCells(s, m, checks);
+        if (hasBaseline)
+            h += na ? "<td class=\"num\">—</td><td class=\"num\">—</td>"
+                    : baselineCells(s, m, checks);
         h += "<td>" +
-             (st ? badge(*st) : std::string("<span class=\"muted small\">not checked</span>")) +
+             (st ? badge(*st)
+                 : fmt::format("<span class=\"muted small\">{}</span>",
+                               na ? "not applicable" : "not checked")) +
              "</td></tr>\n";
     }
     // The metrics the test image's channels cannot give: listed, never a value, never checked.
@@ -349,6 +165,16 @@ std::string stageCell(const std::map<std::string, double>& t, const std::string&
     return fmt::format("<td class=\"num\">{:.2f}{}</td>", it->second, bar);
 }
 
+// A stage that did not run: 0 ms, or absent, in every renderer.
+bool stageRan(const SceneReport& s, const std::vector<std::string>& renderers,
+              const std::string& stage) {
+    for (const auto& r : renderers) {
+        const auto& t = s.renderers.at(r).timingsMs;
+        if (auto it = t.find(stage); it != t.end() && it->second != 0.0) return true;
+    }
+    return false;
+}
+
 std::string timingTable(const SceneReport& s) {
     std::vector<std::string> renderers;
     for (const std::string& r : renderersOf(s))
@@ -357,7 +183,7 @@ std::string timingTable(const SceneReport& s) {
         if (std::find(renderers.begin(), renderers.end(), r) == renderers.end())
             renderers.push_back(r);
     if (renderers.empty()) return "<p class=\"muted\">No timings.</p>\n";
-    std::vector<std::string> stages;
+    std::vector<std::string> stages, idle;
     for (const auto& r : renderers)
         for (const auto& [stage, ms] : s.renderers.at(r).timingsMs)
             if (stage != "total" && std::find(stages.begin(), stages.end(), stage) == stages.end())
@@ -365,22 +191,42 @@ std::string timingTable(const SceneReport& s) {
     stages = core::inStageOrder(std::move(stages));  // the order a frame runs them
     std::string h = "<table class=\"timings\">\n<thead><tr><th>Stage</th>";
     for (const auto& r : renderers)
-        h += "<th class=\"num\">" + htmlEscape(rendererLabel(r)) +
+        h += "<th class=\"num\">" + htmlEscape(rendererLabel(s, r)) +
              " <span class=\"unit\">ms</span></th>";
     h += "</tr></thead>\n<tbody>\n";
     for (const auto& stage : stages) {
+        if (!stageRan(s, renderers, stage)) {
+            idle.push_back(stage);
+            continue;
+        }
         h += "<tr><td>" + htmlEscape(stage) + "</td>";
         for (const auto& r : renderers) h += stageCell(s.renderers.at(r).timingsMs, stage);
         h += "</tr>\n";
     }
-    h += "<tr class=\"total\"><td>total</td>";
-    for (const auto& r : renderers) h += stageCell(s.renderers.at(r).timingsMs, "total");
+    // The scene's time, the one every page shows (a sequence's median).
+    const std::string basis = timeBasis(s);
+    h +=
+        "<tr class=\"total\"><td>total" + (basis.empty() ? "" : ", " + htmlEscape(basis)) + "</td>";
+    for (const auto& r : renderers) {
+        const auto t = sceneTimeMs(s, r);
+        h += t ? fmt::format("<td class=\"num\">{:.2f}</td>", *t)
+               : std::string("<td class=\"num muted\">—</td>");
+    }
     h += "</tr>\n</tbody></table>\n";
-    const std::string ratio = speedRatio(s);
-    if (!ratio.empty())
-        h += "<p class=\"small muted\">The reference takes " + htmlEscape(ratio) +
-             " the real-time renderer's time. Stage times: GL timer queries (real-time), wall "
-             "clock (reference).</p>\n";
+    std::string notes;
+    if (s.sequence && !basis.empty())
+        notes +=
+            fmt::format("The stages are frame {}'s (the frame shown). ", s.sequence->shownFrame);
+    if (!idle.empty()) {
+        std::string names;
+        for (const auto& st : idle) names += (names.empty() ? "" : ", ") + st;
+        notes += "Not run for this scene, so left out: " + htmlEscape(names) + ". ";
+    }
+    if (const std::string ratio = speedRatio(s); !ratio.empty())
+        notes += "Speed-up, the reference's time over " +
+                 htmlEscape(rendererLabel(s, testRenderer(s))) + "'s: " + htmlEscape(ratio) + ". ";
+    h += "<p class=\"small muted\">" + notes +
+         "Stage times: GL timer queries (real-time), wall clock (reference).</p>\n";
     return h;
 }
 
@@ -410,7 +256,7 @@ std::string devicesTable(const SceneReport& s) {
         std::string counters;
         for (const auto& [k, v] : rr.counters)
             counters += (counters.empty() ? "" : ", ") + k + " = " + formatValue(v);
-        h += "<tr><td>" + htmlEscape(rendererLabel(r)) + "</td><td>" +
+        h += "<tr><td>" + htmlEscape(rendererLabel(s, r)) + "</td><td>" +
              htmlEscape(rr.device.empty() ? "—" : rr.device) + "</td><td class=\"small\">" +
              htmlEscape(counters.empty() ? "—" : counters) + "</td></tr>\n";
     }
@@ -443,20 +289,45 @@ std::vector<std::string> sceneBuffers(const SceneReport& s) {
     return buffers;
 }
 
-std::string sceneHeader(const SceneReport& s) {
+// The scene's neighbours in the run, for the links beside "All scenes".
+struct Neighbours {
+    const SceneReport* previous = nullptr;
+    const SceneReport* next = nullptr;
+};
+
+std::string sceneNav(const Neighbours& n) {
+    std::string h =
+        "<nav class=\"scene-nav\"><a class=\"back\" href=\"../index.html\">← All "
+        "scenes</a>";
+    if (n.previous)
+        h += fmt::format("<a rel=\"prev\" href=\"../{}/index.html\">‹ {}</a>",
+                         urlPath(n.previous->name), htmlEscape(n.previous->name));
+    if (n.next)
+        h += fmt::format("<a rel=\"next\" href=\"../{}/index.html\">{} ›</a>",
+                         urlPath(n.next->name), htmlEscape(n.next->name));
+    return h + "</nav>";
+}
+
+std::string sceneHeader(const SceneReport& s, const Neighbours& n) {
     std::vector<std::string> facts;
-    for (const std::string& r : renderersOf(s))
-        if (auto t = totalMs(s, r))
-            facts.push_back(htmlEscape(rendererLabel(r)) + " " + htmlEscape(formatMs(*t)));
+    const std::string basis = timeBasis(s);
+    for (const std::string& r : renderersOf(s)) {
+        const auto t = sceneTimeMs(s, r);
+        if (!t) continue;
+        std::string fact = htmlEscape(rendererLabel(s, r)) + " " + htmlEscape(formatMs(*t));
+        if (!basis.empty()) fact += " (" + htmlEscape(basis) + ")";
+        if (const std::string d = deviceOf(s, r); !d.empty())
+            fact += " on <b class=\"device\">" + htmlEscape(d) + "</b>";
+        facts.push_back(fact);
+    }
     if (const std::string ratio = speedRatio(s); !ratio.empty())
-        facts.push_back("reference/real-time " + htmlEscape(ratio));
+        facts.push_back("speed-up " + htmlEscape(ratio));
     if (!s.checks.empty()) {
         std::vector<Status> st;
         for (const Check& c : s.checks) st.push_back(c.status);
         facts.push_back(htmlEscape(countsText(st, "check")));
     }
-    return pageHeader(s.name, s.status(), facts,
-                      "<a class=\"back\" href=\"../index.html\">← All scenes</a>");
+    return pageHeader(s.name, s.status(), facts, sceneNav(n));
 }
 
 // The buttons that switch the shown buffer (keys 1, 2, ...).
@@ -480,20 +351,31 @@ std::string rendererPanel(const SceneReport& s, const std::string& r,
         const std::string hidden = b == initial ? "" : " hidden";
         if (it != s.renderers.end() && it->second.images.count(b))
             h += fmt::format("<img data-buffer=\"{}\" src=\"{}\" alt=\"{} {}\"{}>", htmlEscape(b),
-                             urlPath(it->second.images.at(b)), htmlEscape(rendererLabel(r)),
+                             urlPath(it->second.images.at(b)), htmlEscape(rendererLabel(s, r)),
                              htmlEscape(b), hidden);
         else
-            h += panelNote(b, hidden,
-                           htmlEscape(rendererLabel(r)) + " wrote no " + htmlEscape(b) + " buffer");
+            h += panelNote(
+                b, hidden,
+                htmlEscape(rendererLabel(s, r)) + " wrote no " + htmlEscape(b) + " buffer");
     }
-    auto t = totalMs(s, r);
+    auto t = sceneTimeMs(s, r);
     return h + fmt::format("</div><figcaption><b>{}</b><span>{}</span></figcaption></figure>\n",
-                           htmlEscape(rendererLabel(r)), t ? htmlEscape(formatMs(*t)) : "");
+                           htmlEscape(rendererLabel(s, r)), t ? htmlEscape(formatMs(*t)) : "");
 }
 
 // A map keyed BUFFER.NAME is a second map of BUFFER (error_maps.h), shown beside its first.
 bool isSecondMap(const std::string& key) {
     return key.find('.') != std::string::npos;
+}
+
+// The maps whose values are codes, not amounts: {value, meaning} per code, drawn as swatches of
+// the colour the map gives the value (compare/shadow_error.h's codes: 1 false, 2 missed).
+const std::vector<std::pair<double, std::string>>* mapCategories(const std::string& key) {
+    static const std::map<std::string, std::vector<std::pair<double, std::string>>> categories = {
+        {"shadow", {{0.0, "agree (or no surface)"}, {1.0, "false shadow"}, {2.0, "missed shadow"}}},
+    };
+    const auto it = categories.find(key);
+    return it == categories.end() ? nullptr : &it->second;
 }
 
 // What a map's caption says beside its label: the exposures of HDR-ꟻLIP (the scene's
@@ -508,20 +390,40 @@ std::string mapNote(const SceneReport& s, const std::string& key) {
                                formatValue(e.value("stop_exposure", 0.0)));
         }
     }
-    return "magma colour map";
+    return mapCategories(key) ? "one colour per case" : "magma colour map";
 }
 
-// One error map with its caption and colour bar.
-std::string errorMapFigure(const ErrorMapImage& m, const std::string& note) {
+// The legend under a map: a colour bar over its range, or a swatch per code.
+std::string mapLegend(const ErrorMapImage& m, const std::string& key) {
+    if (const auto* codes = mapCategories(key)) {
+        std::string h = "<div class=\"categories\">";
+        for (const auto& [value, meaning] : *codes) {
+            float rgb[3];
+            compare::magma(m.hi > m.lo ? (value - m.lo) / (m.hi - m.lo) : 0.0, rgb);
+            h += fmt::format(
+                "<span><span class=\"swatch\" style=\"background:rgb({},{},{})\"></span>{}"
+                "</span>",
+                std::lround(255.0f * rgb[0]), std::lround(255.0f * rgb[1]),
+                std::lround(255.0f * rgb[2]), htmlEscape(meaning));
+        }
+        return h + "</div>";
+    }
     const std::string unit = m.unit.empty() ? "" : " " + m.unit;
     return fmt::format(
-        "<div class=\"frame\"><img src=\"{}\" alt=\"{}\"></div>"
-        "<figcaption><b>{}</b><span>{}</span></figcaption>"
         "<div class=\"colourbar\" style=\"background:{}\"></div>"
         "<div class=\"colourbar-labels\"><span>{}{}</span><span>{}{}</span></div>",
-        urlPath(m.path), htmlEscape(m.label), htmlEscape(m.label), htmlEscape(note),
         magmaCssGradient(), htmlEscape(formatValue(m.lo)), htmlEscape(unit),
         htmlEscape(formatValue(m.hi)), htmlEscape(unit));
+}
+
+// One error map with its caption and legend.
+std::string errorMapFigure(const ErrorMapImage& m, const std::string& key,
+                           const std::string& note) {
+    return fmt::format(
+        "<div class=\"frame\"><img src=\"{}\" alt=\"{}\"></div>"
+        "<figcaption><b>{}</b><span>{}</span></figcaption>{}",
+        urlPath(m.path), htmlEscape(m.label), htmlEscape(m.label), htmlEscape(note),
+        mapLegend(m, key));
 }
 
 // The error panel: the map of the current buffer (and its second maps, as HDR-ꟻLIP's beside
@@ -544,11 +446,11 @@ std::string errorPanel(const SceneReport& s, const std::string& initial, json& d
         if (isSecondMap(b)) continue;
         h += fmt::format("<div data-buffer=\"{}\"{}>", htmlEscape(b),
                          b == shownMap ? "" : " hidden");
-        h += errorMapFigure(m, mapNote(s, b));
+        h += errorMapFigure(m, b, mapNote(s, b));
         for (const auto& [k, second] : s.errorMaps)
             if (k.starts_with(b + "."))
-                h +=
-                    "<div class=\"second-map\">" + errorMapFigure(second, mapNote(s, k)) + "</div>";
+                h += "<div class=\"second-map\">" + errorMapFigure(second, k, mapNote(s, k)) +
+                     "</div>";
         h += "</div>";
     }
     return h + "</figure>\n";
@@ -572,20 +474,23 @@ std::string swapView(const SceneReport& s, const std::vector<std::string>& buffe
     if (rt == s.renderers.end() || ref == s.renderers.end()) return "";
     const json& first = data["buffers"][initial];
     const bool both = first.contains("realtime") && first.contains("raymarch");
+    const std::string label = htmlEscape(rendererLabel(s, testRenderer(s)));
     std::string h = "<h2 style=\"margin-top:1.4rem\">Swap</h2>\n";
     h += fmt::format(
-        "<div class=\"swap\" id=\"swap\"{}><img id=\"swap-under\" src=\"{}\" "
+        "<div class=\"swap\" id=\"swap\"{0}><img id=\"swap-under\" src=\"{1}\" "
         "alt=\"Reference\">"
-        "<div class=\"over\"><img id=\"swap-over\" src=\"{}\" alt=\"Real-time\"></div>"
-        "<div class=\"split\"></div><span class=\"tag left\">Real-time</span>"
+        "<div class=\"over\"><img id=\"swap-over\" src=\"{2}\" alt=\"{3}\"></div>"
+        "<div class=\"split\"></div><span class=\"tag left\">{3}</span>"
         "<span class=\"tag right\">Reference</span></div>\n",
         both ? "" : " hidden", both ? first["raymarch"].get<std::string>() : "",
-        both ? first["realtime"].get<std::string>() : "");
-    h += "<div class=\"swap-controls\"><span>Real-time</span><input type=\"range\" "
-         "id=\"swap-range\" min=\"0\" max=\"100\" value=\"50\" aria-label=\"Split between "
-         "the real-time and the reference render\"><span>Reference</span>"
-         "<label><input type=\"checkbox\" id=\"swap-follow\" checked> follow the "
-         "mouse</label><span id=\"swap-note\"></span></div>\n";
+        both ? first["realtime"].get<std::string>() : "", label);
+    h += fmt::format(
+        "<div class=\"swap-controls\"><span>{0}</span><input type=\"range\" "
+        "id=\"swap-range\" min=\"0\" max=\"100\" value=\"50\" aria-label=\"Split between "
+        "the {0} and the reference render\"><span>Reference</span>"
+        "<label><input type=\"checkbox\" id=\"swap-follow\" checked> follow the "
+        "mouse</label><span id=\"swap-note\"></span></div>\n",
+        label);
     return h;
 }
 
@@ -606,10 +511,22 @@ std::string imagesSection(const SceneReport& s, const std::vector<std::string>& 
     return h;
 }
 
-std::string scenePage(const RunReport& run, const SceneReport& s) {
+// Links to the files the page is made from: the renders' AOV images and JSON, metrics.json.
+std::string filesLine(const std::vector<std::pair<std::string, std::string>>& files) {
+    if (files.empty()) return "";
+    std::string h = "<p class=\"files small\">Files: ";
+    for (std::size_t i = 0; i < files.size(); ++i)
+        h += fmt::format("{}<a href=\"{}\">{}</a>", i ? ", " : "", urlPath(files[i].second),
+                         htmlEscape(files[i].first));
+    return h + ".</p>\n";
+}
+
+std::string scenePage(const RunReport& run, const SceneReport& s, const Neighbours& n) {
     const std::vector<std::string> buffers = sceneBuffers(s);
-    std::string h = pageHead(s.name + " — " + run.title) + sceneHeader(s);
+    std::string h = pageHead(s.name + " — " + run.title) + sceneHeader(s, n);
     if (!s.description.empty()) h += "<p class=\"lead\">" + htmlEscape(s.description) + "</p>\n";
+    if (ranOnSoftwareRasteriser(s)) h += softwareRasteriserNote(deviceOf(s, "realtime"));
+    h += filesLine(rawFiles(s));
     if (!s.error.empty())
         h += "<section><div class=\"error-box\">" + htmlEscape(s.error) + "</div></section>\n";
     // What scene.js needs: every buffer's pair of images and the error map to fall back to.
@@ -618,8 +535,12 @@ std::string scenePage(const RunReport& run, const SceneReport& s) {
                  {"errorFallback", ""},
                  {"errorLabel", ""}};
     h += sequenceSection(s);
+    h += testRenderersSection(s);
     if (!buffers.empty()) h += imagesSection(s, buffers, data);
-    h += "<section>\n<h2>Metrics</h2>\n" + metricTable(s) + "</section>\n";
+    if (hasErrorSplit(s.metrics))
+        h += "<section id=\"error-split\">\n<h2>Where the error comes from</h2>\n" +
+             errorSplitBars(s.metrics, false) + "</section>\n";
+    h += "<section>\n<h2>Metrics</h2>\n" + metricTable(s, run.thresholdsFile) + "</section>\n";
     h += "<section class=\"grid2\">\n<div>\n<h2>Timings</h2>\n" + timingTable(s) + "</div>\n";
     h += "<div>\n<h2>Devices</h2>\n" + devicesTable(s) + "</div>\n</section>\n";
     h += "<section>\n<h2>Settings</h2>\n" + settingsTable(s) + "</section>\n</main>\n";
@@ -630,9 +551,12 @@ std::string scenePage(const RunReport& run, const SceneReport& s) {
 
 void writeHtmlReport(const RunReport& run, const fs::path& dir) {
     core::makeFolders(dir);
-    for (const SceneReport& s : run.scenes) {
+    for (std::size_t i = 0; i < run.scenes.size(); ++i) {
+        const SceneReport& s = run.scenes[i];
+        const Neighbours n{.previous = i > 0 ? &run.scenes[i - 1] : nullptr,
+                           .next = i + 1 < run.scenes.size() ? &run.scenes[i + 1] : nullptr};
         core::makeFolders(dir / s.name);
-        core::writeTextFile(dir / s.name / "index.html", scenePage(run, s));
+        core::writeTextFile(dir / s.name / "index.html", scenePage(run, s, n));
     }
     core::writeTextFile(dir / "index.html", indexPage(run));
 }

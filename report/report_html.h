@@ -1,7 +1,8 @@
-// The run's HTML report: DIR/index.html, one row per scene with its verdict, key metrics and
-// times, and DIR/<scene>/index.html, the scene page: the buffers of both renders side by side
-// and as a swipe view, the error maps, every metric with its bounds and baseline, timings,
-// devices and settings. Pages are html_page.h's, with its self-test.
+// The run's HTML report: DIR/index.html (index_page.h), and DIR/<scene>/index.html, the scene
+// page: its devices, links to its neighbours and raw files, the buffers of both renders side
+// by side and as a swipe view, the error maps, the error split, every metric with its bounds
+// and baseline ("n/a" where it does not apply), the stages that ran, devices and settings.
+// Pages are html_page.h's, with its self-test.
 #pragma once
 
 #include <filesystem>

@@ -10,6 +10,7 @@
 #include "core/image_io.h"
 #include "report/buffer_display.h"
 #include "report/junit.h"
+#include "report/markup.h"
 #include "report/testdata/synthetic_report.h"
 #include "tests/scratch_dir.h"
 
@@ -30,19 +31,6 @@ std::string readText(const fs::path& path) {
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-std::string percentDecode(const std::string& s) {
-    std::string out;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-        if (s[i] == '%' && i + 2 < s.size()) {
-            out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += s[i];
-        }
-    }
-    return out;
 }
 
 TEST(ReportHtml, EveryImageExistsAndNothingComesFromTheNetwork) {
@@ -71,7 +59,7 @@ TEST(ReportHtml, EveryImageExistsAndNothingComesFromTheNetwork) {
             const std::string src = (*it)[1];
             ++images;
             EXPECT_FALSE(src.empty()) << e.path();
-            EXPECT_TRUE(fs::is_regular_file(e.path().parent_path() / percentDecode(src)))
+            EXPECT_TRUE(fs::is_regular_file(e.path().parent_path() / pathOfUrl(src)))
                 << src << " in " << e.path();
         }
         EXPECT_GT(images, 0u) << e.path();

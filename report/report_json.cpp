@@ -38,8 +38,11 @@ json checksArray(const std::vector<Check>& checks) {
 
 json sequenceJson(const SequenceReport& q) {
     json frames = json::array();
-    for (const SequenceFrame& f : q.frames)
-        frames.push_back({{"frame", f.frame}, {"metrics", numbersJson(f.metrics)}});
+    for (const SequenceFrame& f : q.frames) {
+        json frame = {{"frame", f.frame}, {"metrics", numbersJson(f.metrics)}};
+        if (!f.notApplicable.empty()) frame["not_applicable"] = f.notApplicable;
+        frames.push_back(std::move(frame));
+    }
     return {{"fps", q.fps},
             {"frames", frames},
             {"shown_frame", q.shownFrame},
@@ -68,6 +71,23 @@ json errorMapsObject(const SceneReport& scene) {
 
 }  // namespace
 
+// The test renderers of a run that measures several: each one's results.
+json testsJson(const std::vector<TestRendererReport>& tests) {
+    json a = json::array();
+    for (const TestRendererReport& t : tests) {
+        json j = {{"name", t.name},
+                  {"metrics", numbersJson(t.metrics)},
+                  {"checks", checksArray(t.checks)},
+                  {"device", t.render.device},
+                  {"timings_ms", numbersJson(t.render.timingsMs)},
+                  {"images", t.render.images}};
+        if (!t.notProvided.empty()) j["not_provided"] = t.notProvided;
+        if (!t.error.empty()) j["error"] = t.error;
+        a.push_back(std::move(j));
+    }
+    return a;
+}
+
 json metricsJson(const SceneReport& scene) {
     json j = {{"scene", scene.name},
               {"description", scene.description},
@@ -77,8 +97,10 @@ json metricsJson(const SceneReport& scene) {
               {"timings_ms", timingsObject(scene)},
               {"error_maps", errorMapsObject(scene)}};
     if (!scene.notProvided.empty()) j["not_provided"] = scene.notProvided;
+    if (!scene.notApplicable.empty()) j["not_applicable"] = scene.notApplicable;
     if (!scene.error.empty()) j["error"] = scene.error;
     if (scene.sequence) j["sequence"] = sequenceJson(*scene.sequence);
+    if (!scene.tests.empty()) j["tests"] = testsJson(scene.tests);
     return j;
 }
 
@@ -148,19 +170,38 @@ SceneReport sceneReportFromJson(const json& j, const std::string& source) {
         s.metrics = numbers(j.at("metrics"), "metrics");
         s.baseline = numbers(j.value("baseline", json()), "baseline");
         s.notProvided = j.value("not_provided", std::vector<std::string>{});
-        for (const json& c : j.at("checks")) {
-            Check k;
-            k.metric = c.at("metric").get<std::string>();
-            k.value = number(c.at("value"), "checks[].value");
-            k.bound = c.at("bound").get<std::string>();
-            k.limit = number(c.at("limit"), "checks[].limit");
-            const auto st = statusFromString(c.at("status").get<std::string>());
-            if (!st) throw bad("checks[].status is not pass, warn or fail");
-            k.status = *st;
-            k.message = c.value("message", "");
-            k.where = c.value("where", "");
-            if (c.contains("baseline")) k.baseline = number(c.at("baseline"), "checks[].baseline");
-            s.checks.push_back(std::move(k));
+        s.notApplicable = j.value("not_applicable", std::map<std::string, std::string>{});
+        auto checks = [&](const json& a) {
+            std::vector<Check> out;
+            for (const json& c : a) {
+                Check k;
+                k.metric = c.at("metric").get<std::string>();
+                k.value = number(c.at("value"), "checks[].value");
+                k.bound = c.at("bound").get<std::string>();
+                k.limit = number(c.at("limit"), "checks[].limit");
+                const auto st = statusFromString(c.at("status").get<std::string>());
+                if (!st) throw bad("checks[].status is not pass, warn or fail");
+                k.status = *st;
+                k.message = c.value("message", "");
+                k.where = c.value("where", "");
+                if (c.contains("baseline"))
+                    k.baseline = number(c.at("baseline"), "checks[].baseline");
+                out.push_back(std::move(k));
+            }
+            return out;
+        };
+        s.checks = checks(j.at("checks"));
+        for (const json& t : j.value("tests", json::array())) {
+            TestRendererReport r;
+            r.name = t.at("name").get<std::string>();
+            r.metrics = numbers(t.at("metrics"), "tests[].metrics");
+            r.notProvided = t.value("not_provided", std::vector<std::string>{});
+            r.checks = checks(t.at("checks"));
+            r.error = t.value("error", "");
+            r.render.device = t.value("device", "");
+            r.render.timingsMs = numbers(t.value("timings_ms", json()), "tests[].timings_ms");
+            r.render.images = t.value("images", std::map<std::string, std::string>{});
+            s.tests.push_back(std::move(r));
         }
         const json renderers = j.value("renderers", json::object());
         for (const auto& [name, r] : renderers.items()) {
@@ -184,8 +225,11 @@ SceneReport sceneReportFromJson(const json& j, const std::string& source) {
             SequenceReport r;
             r.fps = number(q.at("fps"), "sequence.fps");
             for (const json& f : q.at("frames"))
-                r.frames.push_back({f.at("frame").get<std::int64_t>(),
-                                    numbers(f.at("metrics"), "sequence.frames[].metrics")});
+                r.frames.push_back(
+                    {.frame = f.at("frame").get<std::int64_t>(),
+                     .metrics = numbers(f.at("metrics"), "sequence.frames[].metrics"),
+                     .notApplicable =
+                         f.value("not_applicable", std::map<std::string, std::string>{})});
             r.shownFrame = q.value("shown_frame", std::int64_t{0});
             r.videos = q.value("videos", std::map<std::string, std::string>{});
             r.charts = q.value("charts", std::map<std::string, std::string>{});

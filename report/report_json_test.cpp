@@ -103,7 +103,8 @@ TEST(SceneReportJson, RoundTripsEveryField) {
     // A sequence scene's frames, video and charts too.
     SequenceReport q;
     q.fps = 5.0;
-    q.frames = {{16, {{"beauty.flip", 0.05}}}, {17, {{"temporal.flicker", -0.01}}}};
+    q.frames = {{16, {{"beauty.flip", 0.05}}, {{"ao.mean_abs", "no occlusion"}}},
+                {17, {{"temporal.flicker", -0.01}}, {}}};
     q.shownFrame = 16;
     q.videos = {{"video/webm", "sequence.webm"}};
     q.charts = {{"beauty.flip", "charts/beauty.flip.svg"}};
@@ -113,7 +114,28 @@ TEST(SceneReportJson, RoundTripsEveryField) {
     EXPECT_EQ(sceneReportJson(seq), js);
     ASSERT_TRUE(seq.sequence);
     EXPECT_EQ(seq.sequence->frames.at(1).frame, 17);
+    EXPECT_EQ(seq.sequence->frames.at(0).notApplicable.at("ao.mean_abs"), "no occlusion");
     EXPECT_EQ(metricsJson(s)["sequence"]["frames"].size(), 2u);
+
+    // Several test renderers side by side: each one's results, for `merge` to show them again.
+    TestRendererReport external;
+    external.name = "external";
+    external.metrics = {{"beauty.flip", 0.2}};
+    external.notProvided = {"shadow.iou"};
+    external.render.timingsMs = {{"total", 9.0}};
+    external.render.device = "external: mine";
+    external.render.images = {{"beauty", "tests/external/external.beauty.png"}};
+    TestRendererReport own;
+    own.name = "realtime";
+    own.metrics = s.metrics;
+    own.checks = {c};
+    s.tests = {own, external};
+    const auto jt = sceneReportJson(s);
+    const SceneReport tests = sceneReportFromJson(nlohmann::json::parse(jt.dump()), "x");
+    EXPECT_EQ(sceneReportJson(tests), jt);
+    ASSERT_EQ(tests.tests.size(), 2u);
+    EXPECT_EQ(tests.tests[1].notProvided, std::vector<std::string>{"shadow.iou"});
+    EXPECT_EQ(tests.tests[1].render.images.at("beauty"), "tests/external/external.beauty.png");
 }
 
 }  // namespace

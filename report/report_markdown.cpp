@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <vector>
@@ -71,10 +72,14 @@ std::string boundText(const Check& c) {
 }
 
 std::string valueText(const SceneReport& scene, const Flagged& f) {
+    // Another test renderer's metric ("external:beauty.flip", report.h's SceneReport::tests) is
+    // not among the scene's own: its check holds its value.
     const auto it = scene.metrics.find(f.metric);
-    if (it == scene.metrics.end()) return "not computed";
-    const std::string unit = metricUnit(f.metric);
-    return formatValue(it->second) + (unit.empty() ? "" : " " + unit);
+    const bool checked = !f.checks.empty() && !std::isnan(f.checks.front()->value);
+    if (it == scene.metrics.end() && !checked) return "not computed";
+    const std::string unit = metricUnit(f.metric.substr(f.metric.find(':') + 1));
+    return formatValue(it == scene.metrics.end() ? f.checks.front()->value : it->second) +
+           (unit.empty() ? "" : " " + unit);
 }
 
 // The change from the blessed value; "—" when the scene's baseline does not have the metric.

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -10,6 +12,7 @@
 #include "core/write_roots.h"
 #include "report/html_page.h"
 #include "report/markup.h"
+#include "report/sequence_summary.h"
 #include "report/svg_chart.h"
 
 namespace twinrender::report {
@@ -52,16 +55,47 @@ std::string chartFile(const std::string& metric) {
     return "charts/" + metric + ".svg";
 }
 
+// A chart with nothing to show: the metric does not apply to any frame, or no frame's finite
+// value differs from another's.
+bool flatOrNotApplicable(const SequenceReport& q, const std::string& metric) {
+    const auto na = notApplicableInEvery(q.frames);
+    if (na.count(metric)) return true;
+    std::optional<double> first;
+    for (const SequenceFrame& f : q.frames) {
+        const auto it = f.metrics.find(metric);
+        if (it == f.metrics.end() || !std::isfinite(it->second)) continue;
+        if (first && *first != it->second) return false;
+        first = it->second;
+    }
+    return true;
+}
+
+// The metric's bounds as the chart's horizontal marks: "max 0.05", "warn_max 0.03".
+std::vector<std::pair<double, std::string>> boundMarks(const compare::Bounds& bounds,
+                                                       const std::string& metric) {
+    std::vector<std::pair<double, std::string>> marks;
+    const auto it = bounds.find(metric);
+    if (it == bounds.end()) return marks;
+    const compare::MetricBounds& b = it->second;
+    for (const auto& [limit, name] :
+         {std::pair{&b.max, "max"}, std::pair{&b.min, "min"}, std::pair{&b.warnMax, "warn_max"},
+          std::pair{&b.warnMin, "warn_min"}})
+        if (*limit)
+            marks.emplace_back((*limit)->value,
+                               fmt::format("{} {}", name, formatValue((*limit)->value)));
+    return marks;
+}
+
 }  // namespace
 
-std::map<std::string, std::string> writeSequenceCharts(const SequenceReport& q,
-                                                       const fs::path& dir) {
+std::map<std::string, std::string> writeSequenceCharts(const SequenceReport& q, const fs::path& dir,
+                                                       const compare::Bounds& bounds) {
     std::map<std::string, std::string> charts;
     std::set<std::string> companions;
     for (const auto& [m, ref] : referenceCompanions()) companions.insert(ref);
     core::makeFolders(dir / "charts");
     for (const std::string& m : frameMetrics(q)) {
-        if (companions.count(m)) continue;
+        if (companions.count(m) || flatOrNotApplicable(q, m)) continue;
         LineChart c;
         c.title = m + " over the frames";
         c.xLabel = "frame";
@@ -69,6 +103,7 @@ std::map<std::string, std::string> writeSequenceCharts(const SequenceReport& q,
         c.yLabel = unit.empty() ? m : fmt::format("{} ({})", m, unit);
         c.width = 520;
         c.height = 320;
+        c.yMarks = boundMarks(bounds, m);
         const auto companion = referenceCompanions().find(m);
         c.series.push_back(
             seriesOf(q, m, companion == referenceCompanions().end() ? m : "real-time", false));
@@ -117,7 +152,11 @@ std::string sequenceSection(const SceneReport& s) {
                              urlPath(q.charts.at(m)), htmlEscape(m));
         h += "</div>\n";
     }
-    const std::vector<std::string> metrics = frameMetrics(q);
+    // The metrics that do not apply to any frame are left out (the metrics table says n/a).
+    std::vector<std::string> metrics = frameMetrics(q);
+    std::erase_if(metrics, [na = notApplicableInEvery(q.frames)](const std::string& m) {
+        return na.count(m) > 0;
+    });
     h += "<div style=\"overflow-x:auto\"><table class=\"frames\">\n<thead><tr><th>frame</th>";
     for (const std::string& m : metrics) h += metricHeaderCell(m);
     h += "</tr></thead>\n<tbody>\n";

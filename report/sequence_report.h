@@ -12,11 +12,14 @@
 namespace twinrender::report {
 
 // Writes DIR/charts/<metric>.svg for every metric the frames have (lineSvg: the metric against
-// the frame number; temporal.frame_flip and temporal.normal_change_deg with the reference's
-// change beside them, dashed, and no charts of their own for those) and returns metric ->
-// path relative to DIR, for SequenceReport::charts.
+// the frame number, with its `bounds` drawn; temporal.frame_flip and temporal.normal_change_deg
+// with the reference's change beside them, dashed, and no charts of their own for those) and
+// returns metric -> path relative to DIR, for SequenceReport::charts. A metric that does not
+// apply to any frame, or has one value in every frame, gets no chart (the frames' table has
+// it).
 std::map<std::string, std::string> writeSequenceCharts(const SequenceReport& sequence,
-                                                       const std::filesystem::path& dir);
+                                                       const std::filesystem::path& dir,
+                                                       const compare::Bounds& bounds = {});
 
 // The scene page's <section> of a sequence: its facts, the video (WebM first, then MP4), the
 // charts and the frames' table; "" for a scene that is not a sequence.

@@ -103,4 +103,12 @@ std::int64_t worstFrame(const std::vector<SequenceFrame>& frames) {
     return worst;
 }
 
+std::map<std::string, std::string> notApplicableInEvery(const std::vector<SequenceFrame>& frames) {
+    if (frames.empty()) return {};
+    std::map<std::string, std::string> out = frames.front().notApplicable;
+    for (const SequenceFrame& f : frames)
+        std::erase_if(out, [&](const auto& entry) { return !f.notApplicable.count(entry.first); });
+    return out;
+}
+
 }  // namespace twinrender::report

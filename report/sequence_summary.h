@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ MetricValues summariseSequence(const std::vector<SequenceFrame>& frames);
 // still scene lacks: temporal.flicker_mean, temporal.flicker_max,
 // temporal.normal_flicker_mean_deg, temporal.normal_flicker_max_deg.
 std::vector<std::string> pooledTemporalMetrics();
+
+// The metrics that do not apply to any frame (SequenceFrame::notApplicable), with the first
+// frame's reason; none for no frames.
+std::map<std::string, std::string> notApplicableInEvery(const std::vector<SequenceFrame>& frames);
 
 // The frame with the largest beauty.flip (the first frame when none has one); 0 for none.
 std::int64_t worstFrame(const std::vector<SequenceFrame>& frames);

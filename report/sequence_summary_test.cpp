@@ -19,7 +19,8 @@ TEST(SequenceSummary, EachMetricAtItsWorstFrameTimesAtTheMedianFlickerPooled) {
           {"beauty.ssim", 0.95},
           {"smoothness.ratio", 0.9},
           {"time.realtime_ms", 100.0},
-          {"uv.mean", NAN}}},
+          {"uv.mean", NAN}},
+         {}},
         {4,
          {{"beauty.flip", 0.05},
           {"beauty.ssim", 0.90},
@@ -27,7 +28,8 @@ TEST(SequenceSummary, EachMetricAtItsWorstFrameTimesAtTheMedianFlickerPooled) {
           {"time.realtime_ms", 300.0},
           {"temporal.flicker", 0.01},
           {"temporal.frame_flip", 0.2},
-          {"temporal.normal_flicker_deg", -1.0}}},
+          {"temporal.normal_flicker_deg", -1.0}},
+         {}},
         {5,
          {{"beauty.flip", 0.03},
           {"beauty.ssim", 0.97},
@@ -35,7 +37,8 @@ TEST(SequenceSummary, EachMetricAtItsWorstFrameTimesAtTheMedianFlickerPooled) {
           {"time.realtime_ms", 200.0},
           {"temporal.flicker", 0.03},
           {"temporal.frame_flip", 0.1},
-          {"temporal.normal_flicker_deg", 2.0}}},
+          {"temporal.normal_flicker_deg", 2.0}},
+         {}},
     };
     const MetricValues m = summariseSequence(frames);
     EXPECT_DOUBLE_EQ(m.at("beauty.flip"), 0.05);        // lower is better: the largest

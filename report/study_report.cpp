@@ -231,15 +231,32 @@ void writeStudy(const StudyResult& s, const fs::path& dir) {
 
 namespace {
 
-std::string findingsSection(const std::vector<StudyResult>& studies) {
-    std::string h =
-        "<section>\n<h2>Findings</h2>\n<table class=\"scenes\">\n<thead><tr><th>Study</th>"
-        "<th>Finding</th><th class=\"num\">Unbracketed rays</th></tr></thead>\n<tbody>\n";
+// What a quick run's finding is, beside it: not the published figure.
+const char* QUICK_NOTE =
+    "quick run: fewer points and particles than the published study (docs/studies.md), so its "
+    "figures can differ from the published ones";
+
+std::string quickLabel(bool quick) {
+    return quick ? fmt::format("<span class=\"badge warn\" title=\"{}\">quick run</span> ",
+                               htmlEscape(QUICK_NOTE))
+                 : "";
+}
+
+std::string findingsSection(const std::vector<StudyResult>& studies, bool quick) {
+    std::string h = "<section>\n<h2>Findings</h2>\n";
+    if (quick)
+        h += "<p class=\"device-note\">These are <b>quick runs</b>: each study renders fewer "
+             "points and particles than its published form, so a figure here can differ from "
+             "the published one in <code>docs/studies.md</code>, which <code>twinrender "
+             "study</code> without <code>--quick</code> (or <code>scripts/run --studies "
+             "full</code>) reproduces.</p>\n";
+    h += "<table class=\"scenes\">\n<thead><tr><th>Study</th><th>Finding</th><th "
+         "class=\"num\">Unbracketed rays</th></tr></thead>\n<tbody>\n";
     for (const auto& s : studies)
         h += fmt::format(
-            "<tr><td><a href=\"#{0}\">{1}</a></td><td>{2}</td><td class=\"num\">{3}</td></tr>\n",
+            "<tr><td><a href=\"#{0}\">{1}</a></td><td>{4}{2}</td><td class=\"num\">{3}</td></tr>\n",
             htmlEscape(s.name), htmlEscape(s.title), htmlEscape(s.finding),
-            htmlEscape(formatValue(s.unbracketedRays)));
+            htmlEscape(formatValue(s.unbracketedRays)), quickLabel(quick));
     return h + "</tbody></table>\n</section>\n";
 }
 
@@ -290,12 +307,12 @@ std::string tableSection(const StudyTable& t, const std::string& base) {
     return h + "</tbody></table></div>\n";
 }
 
-std::string studySection(const StudyResult& s) {
+std::string studySection(const StudyResult& s, bool quick) {
     const std::string base = urlPath(s.name) + "/";
     std::string h =
         fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", htmlEscape(s.name), htmlEscape(s.title));
     h += "<p class=\"lead\">" + htmlEscape(s.question) + "</p>\n";
-    h += "<p><strong>Finding:</strong> " + htmlEscape(s.finding) + "</p>\n";
+    h += "<p><strong>Finding:</strong> " + quickLabel(quick) + htmlEscape(s.finding) + "</p>\n";
     h += fmt::format(
         "<p class=\"muted\">Scene <code>{}</code>; {} point{}, {} reference render{} with {} "
         "unbracketed ray{}; {:.1f} s. Data: <a href=\"{}study.csv\">study.csv</a>, <a "
@@ -328,7 +345,8 @@ std::string studySection(const StudyResult& s) {
 }  // namespace
 
 void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& dir,
-                       const std::string& createdAt, const std::string& commandLine) {
+                       const std::string& createdAt, const std::string& commandLine, bool quick,
+                       const std::string& back) {
     const std::string title = "twinrender stability studies";
     double unbracketed = 0.0;
     for (const auto& s : studies) unbracketed += s.unbracketedRays;
@@ -339,8 +357,13 @@ void writeStudiesIndex(const std::vector<StudyResult>& studies, const fs::path& 
     if (!createdAt.empty()) facts.push_back(htmlEscape(createdAt));
     facts.push_back("<a href=\"studies.json\">studies.json</a>");
     // The findings first: the page's summary, each linked to its study.
-    std::string h = pageHeader(title, std::nullopt, facts) + findingsSection(studies);
-    for (const auto& s : studies) h += studySection(s);
+    if (quick) facts.push_back("quick run");
+    std::string h = pageHeader(title, std::nullopt, facts,
+                               back.empty() ? ""
+                                            : "<nav class=\"scene-nav\"><a class=\"back\" href=\"" +
+                                                  urlPath(back) + "\">← Report</a></nav>") +
+                    findingsSection(studies, quick);
+    for (const auto& s : studies) h += studySection(s, quick);
     h += "</main>\n";
     core::makeFolders(dir);
     json all = json::array();

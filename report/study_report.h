@@ -105,7 +105,12 @@ std::string studyMarkdown(const StudyResult& study, int level);
 void writeStudy(const StudyResult& study, const std::filesystem::path& dir);
 
 // DIR/index.html (every study: finding, chart, table, thumbnails) and DIR/studies.json.
+// `quick`: the studies ran in their quick form (fewer points and particles), which the page
+// says beside each finding, pointing at the published ones (docs/studies.md). `back`: the
+// relative URL of the report the studies belong to ("../index.html"), linked from the header;
+// "" for none.
 void writeStudiesIndex(const std::vector<StudyResult>& studies, const std::filesystem::path& dir,
-                       const std::string& createdAt, const std::string& commandLine);
+                       const std::string& createdAt, const std::string& commandLine,
+                       bool quick = false, const std::string& back = "");
 
 }  // namespace twinrender::report

@@ -101,6 +101,27 @@ TEST(StudyReport, FilesAndThePageOfAllStudies) {
     EXPECT_NE(html.find("<img src=\"depth_range/study.svg\""), std::string::npos);
     EXPECT_NE(html.find("depth_range/points/000.realtime.png"), std::string::npos);
     EXPECT_NE(html.find("id=\"selftest\""), std::string::npos);
+    // A full run under no report: no quick label, no way back.
+    EXPECT_EQ(html.find("quick run"), std::string::npos);
+    EXPECT_EQ(html.find("← Report"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(StudyReport, AQuickRunSaysSoBesideEachFindingAndLinksBackToItsReport) {
+    const fs::path dir = twinrender::testing::freshDir("study_report_quick");
+    const tc::StudyResult s = twoRows();
+    tc::writeStudy(s, dir);
+    tc::writeStudiesIndex({s}, dir, "", "twinrender run --studies quick", true, "../index.html");
+    const std::string html = readText(dir / "index.html");
+    EXPECT_NE(html.find("<a class=\"back\" href=\"../index.html\">← Report</a>"),
+              std::string::npos);
+    EXPECT_NE(html.find("published one in <code>docs/studies.md</code>"), std::string::npos);
+    // In the findings' table and under the study's heading.
+    std::size_t labels = 0;
+    for (auto at = html.find(">quick run</span> standard depth breaks"); at != std::string::npos;
+         at = html.find(">quick run</span> standard depth breaks", at + 1))
+        ++labels;
+    EXPECT_EQ(labels, 2u);
     fs::remove_all(dir);
 }
 

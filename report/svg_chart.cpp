@@ -12,9 +12,49 @@ namespace twinrender::report {
 
 namespace {
 
-// Colour-blind-safe (Okabe and Ito, 2008), in a fixed order so that series keep their colour.
-constexpr const char* PALETTE[8] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
-                                    "#e69f00", "#56b4e9", "#000000", "#f0e442"};
+// Okabe and Ito's colour-blind-safe eight (2008), then four darker or lighter kin of them
+// told apart by their markers, in a fixed order so that series keep their colour.
+constexpr const char* PALETTE[12] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                     "#e69f00", "#56b4e9", "#000000", "#f0e442",
+                                     "#7a3e00", "#00468b", "#8f8f8f", "#7b1f5e"};
+constexpr std::size_t PALETTE_SIZE = sizeof(PALETTE) / sizeof(PALETTE[0]);
+
+// The colour of series or group k: the palette's, then hues a golden angle apart, so no two
+// of any chart's series share one.
+std::string seriesColour(std::size_t k) {
+    if (k < PALETTE_SIZE) return PALETTE[k];
+    const double hue = std::fmod(37.0 + 137.508 * static_cast<double>(k), 360.0);
+    return fmt::format("hsl({:.0f},70%,{}%)", hue, k % 2 ? 35 : 50);
+}
+
+// The marker of series or group k, a second cue beside the colour: circle, square, triangle,
+// diamond in turn. `cls` carries "point" and the series' class.
+std::string marker(std::size_t k, const std::string& cls, double x, double y, double r,
+                   const std::string& inner = "") {
+    const std::string end = inner.empty() ? "/>" : ">" + inner;
+    switch (k % 4) {
+        case 1:
+            return fmt::format(
+                "<rect class=\"{}\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" "
+                "height=\"{:.1f}\"{}{}",
+                cls, x - 0.85 * r, y - 0.85 * r, 1.7 * r, 1.7 * r, end,
+                inner.empty() ? "" : "</rect>");
+        case 2:
+            return fmt::format(
+                "<path class=\"{}\" d=\"M{:.1f},{:.1f}L{:.1f},{:.1f}L{:.1f},{:.1f}Z\"{}{}", cls, x,
+                y - 1.15 * r, x + r, y + 0.75 * r, x - r, y + 0.75 * r, end,
+                inner.empty() ? "" : "</path>");
+        case 3:
+            return fmt::format(
+                "<path class=\"{}\" "
+                "d=\"M{:.1f},{:.1f}L{:.1f},{:.1f}L{:.1f},{:.1f}L{:.1f},{:.1f}Z\"{}{}",
+                cls, x, y - 1.2 * r, x + 1.2 * r, y, x, y + 1.2 * r, x - 1.2 * r, y, end,
+                inner.empty() ? "" : "</path>");
+        default:
+            return fmt::format("<circle class=\"{}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\"{}{}", cls,
+                               x, y, r, end, inner.empty() ? "" : "</circle>");
+    }
+}
 
 bool drawable(const ChartPoint& p, bool logX) {
     return std::isfinite(p.x) && std::isfinite(p.y) && (!logX || p.x > 0.0);
@@ -25,12 +65,31 @@ std::string xmlText(std::string_view s) {
     return xmlEscape(s, true);
 }
 
-// A tick value as people write it: 0.05, 2, 1e+06.
-std::string tickText(double v) {
-    if (v == 0.0) return "0";
+// Whether a value is written with an exponent: beyond 1e5 or under 1e-3.
+bool needsExponent(double v) {
     const double a = std::abs(v);
-    if (a >= 1e5 || a < 1e-3) return fmt::format("{:.0e}", v);
-    return fmt::format("{:.6g}", v);
+    return v != 0.0 && (a >= 1e5 || a < 1e-3);
+}
+
+// A tick value as people write it: 0.05, 2, 1e+06; with an exponent when `exponent`.
+std::string tickText(double v, bool exponent) {
+    if (v == 0.0) return "0";
+    if (!exponent) return fmt::format("{:.6g}", v);
+    const int e = static_cast<int>(std::floor(std::log10(std::abs(v)) + 1e-9));
+    return fmt::format("{:.3g}e{}{:02d}", v / std::pow(10.0, e), e < 0 ? '-' : '+', std::abs(e));
+}
+
+std::string tickText(double v) {
+    return tickText(v, needsExponent(v));
+}
+
+// One axis's tick texts in one notation: every one with an exponent when any needs one, so an
+// axis never mixes 10000 and 1e+05.
+std::vector<std::string> tickTexts(const std::vector<double>& ticks) {
+    const bool exponent = std::any_of(ticks.begin(), ticks.end(), needsExponent);
+    std::vector<std::string> out;
+    for (double t : ticks) out.push_back(tickText(t, exponent));
+    return out;
 }
 
 // Linear ticks at 1, 2 or 5 times a power of ten, about `target` of them over [lo, hi].
@@ -80,19 +139,30 @@ std::string gridAndFrame(const Axis& ax, const Axis& ay, const std::vector<doubl
                          const std::vector<double>& yt) {
     const double left = ax.pixLo, right = ax.pixHi, bottom = ay.pixLo, top = ay.pixHi;
     std::string s = "<g class=\"ticks\">\n";
-    for (double t : xt) {
-        const double px = ax.map(t);
+    const std::vector<std::string> xTexts = tickTexts(xt), yTexts = tickTexts(yt);
+    // A label that would touch the last one drawn keeps its grid line only (6.5 px a character
+    // at 11 px).
+    double lastEnd = -INFINITY;
+    for (std::size_t i = 0; i < xt.size(); ++i) {
+        const double px = ax.map(xt[i]);
+        const double half = 3.25 * static_cast<double>(xTexts[i].size());
+        const bool label = px - half > lastEnd + 4.0;
+        if (label) lastEnd = px + half;
         s += fmt::format(
-            "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>"
-            "<text class=\"tick\" x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\">{4}</text>\n",
-            px, top, bottom, bottom + 16, xmlText(tickText(t)));
+            "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\"/>",
+            px, top, bottom);
+        if (label)
+            s += fmt::format(
+                "<text class=\"tick\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>",
+                px, bottom + 16, xmlText(xTexts[i]));
+        s += "\n";
     }
-    for (double t : yt) {
-        const double py = ay.map(t);
+    for (std::size_t i = 0; i < yt.size(); ++i) {
+        const double py = ay.map(yt[i]);
         s += fmt::format(
             "<line class=\"grid\" x1=\"{1:.1f}\" y1=\"{0:.1f}\" x2=\"{2:.1f}\" y2=\"{0:.1f}\"/>"
             "<text class=\"tick\" x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
-            py, left, right, left - 6, py + 4, xmlText(tickText(t)));
+            py, left, right, left - 6, py + 4, xmlText(yTexts[i]));
     }
     s += "</g>\n";
     s += fmt::format("<rect class=\"axis\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n", left,
@@ -137,6 +207,33 @@ std::string chartOpening(int width, int height, const std::string& title, double
     return s;
 }
 
+// Where each legend entry goes, under the plot from `top`: left to right, a new row where the
+// next would pass `right` (an entry is its 30 px sample and its text at 6.5 px a character).
+struct LegendLayout {
+    std::vector<std::pair<double, double>> at;  // each entry's sample's left end and middle
+    int rows = 0;
+};
+LegendLayout legendLayout(const std::vector<std::string>& names, double left, double right,
+                          double top) {
+    LegendLayout l;
+    double x = left;
+    for (const std::string& n : names) {
+        const double w = 30.0 + 6.5 * static_cast<double>(n.size()) + 18.0;
+        if (l.rows == 0 || (x + w > right && x > left)) {
+            x = left;
+            ++l.rows;
+        }
+        l.at.emplace_back(x, top + 18.0 * (l.rows - 1));
+        x += w;
+    }
+    return l;
+}
+
+std::string frontName(bool lowerYIsBetter) {
+    return fmt::format("Pareto front (nothing is both faster and {})",
+                       lowerYIsBetter ? "lower" : "higher");
+}
+
 // The legend of an ungrouped scatter, between the title and the plot: a setting, the front.
 std::string frontLegend(bool lowerYIsBetter, double lx, double ly) {
     std::string s = "<g class=\"legend\">\n";
@@ -155,26 +252,26 @@ std::string frontLegend(bool lowerYIsBetter, double lx, double ly) {
 }
 
 // The legend of a grouped scatter, under the plot from `top`: one <g class="legend-entry"> per
-// group in its colour, 4 a row, then the front.
+// group in its colour and marker, then the front.
 std::string groupLegend(const std::vector<std::string>& groups, bool lowerYIsBetter, double left,
                         double right, double top) {
+    std::vector<std::string> names = groups;
+    names.push_back(frontName(lowerYIsBetter));
+    const LegendLayout l = legendLayout(names, left, right, top);
     std::string s = "<g class=\"legend\">\n";
-    const double column = (right - left) / 4.0;
-    for (std::size_t k = 0; k <= groups.size(); ++k) {
-        const double lx = left + static_cast<double>(k % 4) * column;
-        const double ly = top + 18.0 * static_cast<double>(k / 4);
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        const auto [lx, ly] = l.at[k];
         if (k < groups.size())
-            s += fmt::format(
-                "<g class=\"legend-entry\"><circle class=\"point group-{}\" cx=\"{:.1f}\" "
-                "cy=\"{:.1f}\" r=\"5\"/><text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">{}</text>"
-                "</g>\n",
-                k % 8, lx + 6, ly, lx + 16, ly + 4, xmlText(groups[k]));
+            s += "<g class=\"legend-entry\">" +
+                 marker(k, fmt::format("point group-{}", k), lx + 6, ly, 5) +
+                 fmt::format("<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">{}</text></g>\n",
+                             lx + 16, ly + 4, xmlText(names[k]));
         else
             s += fmt::format(
                 "<g class=\"legend-entry\"><line class=\"pareto\" x1=\"{:.1f}\" y1=\"{:.1f}\" "
                 "x2=\"{:.1f}\" y2=\"{:.1f}\"/><text class=\"label\" x=\"{:.1f}\" "
-                "y=\"{:.1f}\">Pareto front (nothing is both faster and {})</text></g>\n",
-                lx, ly, lx + 24, ly, lx + 30, ly + 4, lowerYIsBetter ? "lower" : "higher");
+                "y=\"{:.1f}\">{}</text></g>\n",
+                lx, ly, lx + 24, ly, lx + 30, ly + 4, xmlText(names[k]));
     }
     return s + "</g>\n";
 }
@@ -224,7 +321,9 @@ std::string scatterSvg(const ScatterChart& chart) {
                                         groups.begin());
     };
     // Groups: a legend under the plot, 4 entries a row, the front's entry last.
-    const int legendRows = groups.empty() ? 0 : static_cast<int>((groups.size() + 1 + 3) / 4);
+    std::vector<std::string> legendNames = groups;
+    legendNames.push_back(frontName(chart.lowerYIsBetter));
+    const int legendRows = groups.empty() ? 0 : legendLayout(legendNames, 78, W - 24, 0).rows;
     // Plot area: room on the left for y tick values, below for x ticks and the axis label,
     // above for the title, on the right for the legend and point labels.
     const double left = 78, right = W - 24, top = groups.empty() ? 64 : 44,
@@ -260,7 +359,7 @@ std::string scatterSvg(const ScatterChart& chart) {
                          // A group's colour; its points on the front get a red ring.
                          std::string g;
                          for (std::size_t k = 0; k < groups.size(); ++k)
-                             g += fmt::format(".point.group-{}{{fill:{}}}", k % 8, PALETTE[k % 8]);
+                             g += fmt::format(".point.group-{}{{fill:{}}}", k, seriesColour(k));
                          if (!groups.empty())
                              g += ".point.pareto-point{fill-opacity:1;stroke:#cf222e;stroke-width:"
                                   "2.5}";
@@ -312,13 +411,14 @@ std::string scatterSvg(const ScatterChart& chart) {
         const ChartPoint& p = chart.points[i];
         const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
         const double px = ax.map(p.x), py = ay.map(p.y);
-        s += fmt::format(
-            "<circle class=\"point{}{}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\"><title>{}{} — x {}, "
-            "y {}</title></circle>",
-            onFront ? " pareto-point" : "",
-            groups.empty() ? "" : fmt::format(" group-{}", groupIndex(i) % 8), px, py,
-            groupOf(i).empty() ? "" : xmlText(groupOf(i)) + " ", xmlText(p.label),
-            xmlText(tickText(p.x)), xmlText(tickText(p.y)));
+        const std::size_t g = groups.empty() ? 0 : groupIndex(i);
+        s += marker(g,
+                    fmt::format("point{}{}", onFront ? " pareto-point" : "",
+                                groups.empty() ? "" : fmt::format(" group-{}", g)),
+                    px, py, 5,
+                    fmt::format("<title>{}{} — x {}, y {}</title>",
+                                groupOf(i).empty() ? "" : xmlText(groupOf(i)) + " ",
+                                xmlText(p.label), xmlText(tickText(p.x)), xmlText(tickText(p.y))));
         if (!p.label.empty()) {
             const double w = 6.0 * static_cast<double>(p.label.size());
             const bool rightFits = px + 8 + w <= W - 4, leftFits = px - 8 - w >= 4;
@@ -395,12 +495,14 @@ std::string lineSvg(const LineChart& chart) {
                (!logY || p.y > 0.0);
     };
     const double W = chart.width, H = chart.height;
-    // Legend rows under the plot: up to 4 entries a row.
-    const int legendRows = static_cast<int>((chart.series.size() + 3) / 4);
+    std::vector<std::string> names;
+    for (const LineSeries& ls : chart.series) names.push_back(ls.name);
+    const int legendRows = legendLayout(names, 78, W - 24, 0).rows;
     const double left = 78, right = W - 24, top = 44, bottom = H - 62 - 18.0 * legendRows;
 
     double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
     std::size_t total = 0, shown = 0;
+    std::vector<double> dataX;  // the distinct drawn x values
     for (const LineSeries& ls : chart.series)
         for (const ChartPoint& p : ls.points) {
             ++total;
@@ -410,12 +512,27 @@ std::string lineSvg(const LineChart& chart) {
             x1 = std::max(x1, p.x);
             y0 = std::min(y0, p.y);
             y1 = std::max(y1, p.y);
+            if (std::find(dataX.begin(), dataX.end(), p.x) == dataX.end()) dataX.push_back(p.x);
         }
     for (const auto& [x, text] : chart.xMarks)
         if (std::isfinite(x) && (!logX || x > 0.0) && shown) {
             x0 = std::min(x0, x);
             x1 = std::max(x1, x);
         }
+    // A bound is drawn where it is near the data (within the data's span again), so that a
+    // far one does not flatten the lines; those beyond are named above the plot.
+    std::vector<std::pair<double, std::string>> bounds, farBounds;
+    for (const auto& [y, text] : chart.yMarks) {
+        if (!std::isfinite(y) || (logY && y <= 0.0) || !shown) continue;
+        const double span = std::max(y1 - y0, std::abs(y1) * 0.5);
+        const bool near =
+            logY ? (y >= y0 / 10.0 && y <= y1 * 10.0) : (y >= y0 - span && y <= y1 + span);
+        (near ? bounds : farBounds).emplace_back(y, text);
+    }
+    for (const auto& [y, text] : bounds) {
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+    }
     if (!shown) {
         x0 = logX ? 1.0 : 0.0;
         x1 = logX ? 10.0 : 1.0;
@@ -431,17 +548,23 @@ std::string lineSvg(const LineChart& chart) {
     const Axis ay{yl, yh, logY, bottom, top};
 
     std::string series;
-    for (int k = 0; k < 8; ++k)
+    for (std::size_t k = 0; k < chart.series.size(); ++k)
         series += fmt::format(".series-{0}.line{{stroke:{1}}}.series-{0}.point{{fill:{1}}}", k,
-                              PALETTE[k]);
+                              seriesColour(k));
     std::string s = chartOpening(chart.width, chart.height, chart.title, left,
                                  ".line{fill:none;stroke-width:2}.dashed{stroke-dasharray:6 4}"
                                  ".point{stroke:#ffffff;stroke-width:1}.mark{stroke:#8c959f;"
                                  "stroke-width:1;stroke-dasharray:3 3}.mark-label{fill:#57606a;"
-                                 "font-size:10px}",
+                                 "font-size:10px}.bound{stroke:#cf222e;stroke-width:1.5;"
+                                 "stroke-dasharray:8 3}.bound-label{fill:#cf222e;font-size:10px}",
                                  series);
 
-    const std::vector<double> xt = logX ? logTicks(xl, xh) : linearTicks(xl, xh, 6);
+    // Few x values: a tick at each (a study's 64, 256, 1024), else round ones.
+    std::sort(dataX.begin(), dataX.end());
+    const bool atData = !dataX.empty() && dataX.size() <= 8;
+    const std::vector<double> xt = atData ? dataX
+                                   : logX ? logTicks(xl, xh)
+                                          : linearTicks(xl, xh, 6);
     std::vector<double> yt = logY ? logTicks(yl, yh) : linearTicks(yl, yh, 6);
     // Many decades: every other one keeps the labels apart.
     auto thin = [](std::vector<double> t, std::size_t most) {
@@ -474,11 +597,29 @@ std::string lineSvg(const LineChart& chart) {
             px, top, bottom, flip ? px - 3 : px + 3, top + 11, flip ? " text-anchor=\"end\"" : "",
             xmlText(text));
     }
+    for (const auto& [y, text] : bounds) {
+        const double py = ay.map(y);
+        s += fmt::format(
+            "<line class=\"bound\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\"/>"
+            "<text class=\"bound-label\" x=\"{3:.1f}\" y=\"{4:.1f}\" "
+            "text-anchor=\"end\">{5}</text>\n",
+            left, py, right, right - 4, py - 4, xmlText(text));
+    }
+    // The bounds far from the data, in one line above the plot's right corner.
+    if (!farBounds.empty()) {
+        std::string names;
+        for (const auto& [y, text] : farBounds) names += (names.empty() ? "" : ", ") + text;
+        s += fmt::format(
+            "<text class=\"bound-label\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\">{}: off "
+            "the chart</text>\n",
+            right, top - 6, xmlText(names));
+    }
 
     for (std::size_t k = 0; k < chart.series.size(); ++k) {
         const LineSeries& ls = chart.series[k];
-        const std::string cls = fmt::format("series-{}", k % 8);
-        s += fmt::format("<g class=\"series\" data-series=\"{}\">\n", xmlText(ls.name));
+        const std::string cls = fmt::format("series-{}", k);
+        s += fmt::format("<g class=\"series\" data-series=\"{}\" data-colour=\"{}\">\n",
+                         xmlText(ls.name), seriesColour(k));
         // A line through consecutive drawable points; an undrawable point breaks it.
         std::vector<std::string> runs(1);
         for (const ChartPoint& p : ls.points) {
@@ -495,28 +636,27 @@ std::string lineSvg(const LineChart& chart) {
                                  ls.dashed ? " dashed" : "", r);
         for (const ChartPoint& p : ls.points) {
             if (!drawn(p)) continue;
-            s += fmt::format(
-                "<circle class=\"point {}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\"><title>{}{}x {}, "
-                "y {}</title></circle>\n",
-                cls, ax.map(p.x), ay.map(p.y), xmlText(ls.name),
-                p.label.empty() ? " — " : " — " + xmlText(p.label) + ": ", xmlText(tickText(p.x)),
-                xmlText(fmt::format("{:.4g}", p.y)));
+            s += marker(k, "point " + cls, ax.map(p.x), ay.map(p.y), 4,
+                        fmt::format("<title>{}{}x {}, y {}</title>", xmlText(ls.name),
+                                    p.label.empty() ? " — " : " — " + xmlText(p.label) + ": ",
+                                    xmlText(tickText(p.x)), xmlText(fmt::format("{:.4g}", p.y)))) +
+                 "\n";
         }
         s += "</g>\n";
     }
 
     s += "<g class=\"legend\">\n";
+    const LegendLayout legend = legendLayout(names, left, right, bottom + 56);
     for (std::size_t k = 0; k < chart.series.size(); ++k) {
-        const double lx = left + static_cast<double>(k % 4) * ((right - left) / 4.0);
-        const double ly = bottom + 56 + 18.0 * static_cast<double>(k / 4);
-        const std::string cls = fmt::format("series-{}", k % 8);
+        const auto [lx, ly] = legend.at[k];
+        const std::string cls = fmt::format("series-{}", k);
         s += fmt::format(
-            "<g class=\"legend-entry\"><line class=\"line {0}{1}\" x1=\"{2:.1f}\" y1=\"{3:.1f}\" "
-            "x2=\"{4:.1f}\" y2=\"{3:.1f}\"/><circle class=\"point {0}\" cx=\"{5:.1f}\" "
-            "cy=\"{3:.1f}\" r=\"4\"/><text class=\"label\" x=\"{6:.1f}\" y=\"{7:.1f}\">{8}</text>"
-            "</g>\n",
-            cls, chart.series[k].dashed ? " dashed" : "", lx, ly, lx + 24, lx + 12, lx + 30, ly + 4,
-            xmlText(chart.series[k].name));
+                 "<g class=\"legend-entry\"><line class=\"line {0}{1}\" x1=\"{2:.1f}\" "
+                 "y1=\"{3:.1f}\" x2=\"{4:.1f}\" y2=\"{3:.1f}\"/>",
+                 cls, chart.series[k].dashed ? " dashed" : "", lx, ly, lx + 24) +
+             marker(k, "point " + cls, lx + 12, ly, 4) +
+             fmt::format("<text class=\"label\" x=\"{:.1f}\" y=\"{:.1f}\">{}</text></g>\n", lx + 30,
+                         ly + 4, xmlText(chart.series[k].name));
     }
     s += "</g>\n";
     if (shown < total)

@@ -46,9 +46,9 @@ bool usesLogX(const ScatterChart& chart);
 // ticks with values, axis labels, a title, one <circle class="point"> per drawn point with a
 // <title> and a <text class="point-label">, the Pareto front as <polyline class="pareto">
 // (marked points get class="point pareto-point"), and a legend. With groups, each marker also
-// has class="group-K" (K = the group's index in order of first appearance, mod 8; the palette
-// of lineSvg's series), a front marker a red ring instead of a red fill, and the legend under
-// the plot has one <g class="legend-entry"> per group and one for the front.
+// has class="group-K" (K = the group's index in order of first appearance; lineSvg's colours
+// and markers of series K), a front marker a red ring instead of a red fill, and the legend
+// under the plot has one <g class="legend-entry"> per group and one for the front.
 std::string scatterSvg(const ScatterChart& chart);
 
 // ---- Line charts: a metric against a setting, one line per series ------------------------
@@ -68,16 +68,22 @@ struct LineChart {
     AxisScale yScale = AxisScale::Linear;  // Log: only positive y values are drawn
     // Vertical marks at an x (e.g. where a series breaks): {x, text}.
     std::vector<std::pair<double, std::string>> xMarks;
+    // Horizontal bounds at a y (a threshold of the charted metric): {y, text}, drawn as a red
+    // dashed line where near the data, else named above the plot as off the chart.
+    std::vector<std::pair<double, std::string>> yMarks;
     int width = 760;   // px
     int height = 440;  // px
 };
 
-// A complete SVG document like scatterSvg's: frame, ticks with values (log axes by decades),
-// axis labels, the title, per series a <polyline class="line series-K"> through its drawable
-// points (a break at an undrawable one) and one <circle class="point series-K"> per drawable
-// point with a <title>; a legend with one <g class="legend-entry"> per series, below the
-// plot; the x marks as <line class="mark">. Series colours come from a fixed palette of 8
-// (K = index mod 8), so equal series orders give equal colours across charts.
+// A complete SVG document like scatterSvg's: frame, ticks with values (at each x value where
+// there are at most 8, else round ones; log axes by decades; one notation per axis), axis
+// labels, the title, per series a <g class="series" data-colour="..."> with a <polyline
+// class="line series-K"> through its drawable points (a break at an undrawable one) and one
+// marker (class "point series-K") per drawable point with a <title>; a legend with one <g
+// class="legend-entry"> per series, below the plot, wrapped so no entry overlaps another; the
+// x marks as <line class="mark">, the bounds as <line class="bound">. Series K has the K-th
+// colour of a fixed order in which no two are alike (so equal series orders give equal colours
+// across charts), and the (K mod 4)-th marker: circle, square, triangle, diamond.
 std::string lineSvg(const LineChart& chart);
 
 }  // namespace twinrender::report

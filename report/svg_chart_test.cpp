@@ -143,3 +143,87 @@ TEST(LineSvg, LinearAxesStartErrorsAtZeroAndLogYDropsNonPositive) {
     EXPECT_EQ(xml.classCounts.at("point"), 2 + 1);
     EXPECT_NE(svg.find("finite positive"), std::string::npos);
 }
+
+// The colours of a chart's series, from their <g data-colour="...">.
+std::vector<std::string> seriesColours(const std::string& svg) {
+    std::vector<std::string> out;
+    for (std::size_t at = svg.find("data-colour=\""); at != std::string::npos;
+         at = svg.find("data-colour=\"", at + 1)) {
+        const std::size_t start = at + 13;
+        out.push_back(svg.substr(start, svg.find('"', start) - start));
+    }
+    return out;
+}
+
+TEST(LineSvg, NoTwoSeriesShareAColourAndMarkersTakeTurns) {
+    tc::LineChart chart;
+    for (int k = 0; k < 20; ++k)
+        chart.series.push_back({"method " + std::to_string(k), {{1.0, 0.1 * k, ""}}, false});
+    const std::string svg = tc::lineSvg(chart);
+    ASSERT_EQ(twinrender::test::checkXml(svg).error, "") << svg;
+    const auto colours = seriesColours(svg);
+    ASSERT_EQ(colours.size(), 20u);
+    for (std::size_t a = 0; a < colours.size(); ++a)
+        for (std::size_t b = a + 1; b < colours.size(); ++b)
+            EXPECT_NE(colours[a], colours[b]) << a << " and " << b;
+    // Circle, square, triangle, diamond in turn: a second cue beside the colour.
+    const auto xml = twinrender::test::checkXml(svg);
+    EXPECT_EQ(xml.elementCounts.at("rect") - 2, 5 * 2);  // background, frame; markers, legend
+    EXPECT_EQ(xml.elementCounts.at("path"), 10 * 2);
+}
+
+TEST(LineSvg, TicksAtFewDataValuesOneNotationAndTheBoundDrawn) {
+    tc::LineChart chart;
+    chart.xScale = tc::AxisScale::Log;
+    chart.series = {{"pcf", {{64, 0.5, ""}, {256, 0.3, ""}, {1024, 0.1, ""}}, false}};
+    chart.yMarks = {{0.2, "max 0.2"}, {50.0, "max 50"}};
+    std::string svg = tc::lineSvg(chart);
+    ASSERT_EQ(twinrender::test::checkXml(svg).error, "") << svg;
+    for (const char* t : {">64</text>", ">256</text>", ">1024</text>"})
+        EXPECT_NE(svg.find(t), std::string::npos) << t << svg;
+    EXPECT_EQ(svg.find(">100</text>"), std::string::npos);
+    EXPECT_EQ(twinrender::test::checkXml(svg).classCounts.at("bound"), 1);
+    EXPECT_NE(svg.find(">max 0.2</text>"), std::string::npos);
+    EXPECT_NE(svg.find(">max 50: off the chart</text>"), std::string::npos);
+    // Round ticks spanning 1e4 to 1e5 are all written with an exponent, or none is.
+    chart = {};
+    chart.series = {{"a",
+                     {{0, 0, ""},
+                      {1, 0, ""},
+                      {2, 0, ""},
+                      {3, 0, ""},
+                      {4, 0, ""},
+                      {5, 0, ""},
+                      {6, 0, ""},
+                      {7, 0, ""},
+                      {8, 0, ""},
+                      {120000, 0, ""}},
+                     false}};
+    svg = tc::lineSvg(chart);
+    EXPECT_NE(svg.find(">1e+05</text>"), std::string::npos) << svg;
+    EXPECT_EQ(svg.find(">50000</text>"), std::string::npos) << svg;
+    EXPECT_NE(svg.find(">5e+04</text>"), std::string::npos) << svg;
+}
+
+TEST(LineSvg, LegendEntriesDoNotOverlap) {
+    tc::LineChart chart;
+    for (const char* n : {"narrow_range, ellipsoid, iterations 3", "ssss, sphere", "none",
+                          "curvature_flow, ellipsoid, 40 steps", "bilateral", "x"})
+        chart.series.push_back({n, {{1.0, 1.0, ""}}, false});
+    const std::string svg = tc::lineSvg(chart);
+    // Each legend text starts after the previous one on its row ends (6.5 px a character).
+    double lastEnd = 0, lastY = -1;
+    for (std::size_t at = svg.find("<g class=\"legend-entry\">"); at != std::string::npos;
+         at = svg.find("<g class=\"legend-entry\">", at + 1)) {
+        const std::size_t text = svg.find("<text class=\"label\" x=\"", at) + 23;
+        const double x = std::stod(svg.substr(text));
+        const double y = std::stod(svg.substr(svg.find("y=\"", text) + 3));
+        const std::size_t open = svg.find('>', text) + 1;
+        const std::size_t chars = svg.find("</text>", open) - open;
+        if (y == lastY) {
+            EXPECT_GE(x - 30, lastEnd) << svg;
+        }
+        lastEnd = x + 6.5 * static_cast<double>(chars);
+        lastY = y;
+    }
+}

@@ -99,8 +99,8 @@ inline std::map<std::string, double> runMetrics(const std::filesystem::path& sce
     return metrics;
 }
 
-// The page's self-test verdict in headless Chromium (as tests/report_browser_test.cpp opens
-// pages); empty when Chromium is not installed.
+// The page's self-test verdict in headless Chromium in a window 1280 px wide (as
+// tests/report_browser_test.cpp opens pages); empty when Chromium is not installed.
 inline std::string selftestInBrowser(const std::filesystem::path& page,
                                      const std::filesystem::path& work) {
     const char* chromium = "/usr/bin/chromium";
@@ -109,7 +109,7 @@ inline std::string selftestInBrowser(const std::filesystem::path& page,
     const std::string cmd =
         std::string("timeout 120 ") + chromium +
         " --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking"
-        " --user-data-dir=" +
+        " --hide-scrollbars --window-size=1280,900 --user-data-dir=" +
         (work / "profile").string() + " --virtual-time-budget=5000 --dump-dom 'file://" +
         page.string() + "' > " + dom.string() + " 2>/dev/null";
     if (std::system(cmd.c_str()) != 0) return "chromium failed";

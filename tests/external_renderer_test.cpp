@@ -7,19 +7,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/analytic_sphere.h"
 #include "tests/cli_harness.h"
 
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
+using tt::ADAPTER;
+using tt::SPHERE;
+using tt::SPHERE_ORBIT;
 
 namespace {
-
-const std::string SPHERE = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/one_sphere.toml";
-const std::string ADAPTER =
-    "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) + "/tests/adapters/analytic_sphere.py";
 
 tt::CommandResult external(const fs::path& out, const std::string& command,
                            const std::string& environment = "", const std::string& more = "") {
@@ -133,45 +134,122 @@ TEST(ExternalRenderer, RunPutsItBesideTheReferenceWithTheMetricsItProvides) {
               std::string::npos);
 }
 
-TEST(ExternalRenderer, RunMeasuresStillScenesAndSaysSoOfASequence) {
+// A sequence through the protocol: a request and an image per frame, each frame measured, and
+// the flicker of each consecutive pair against the truth's, as for the built-in renderer. The
+// same frames given later as images (`run --test-images`) measure alike.
+TEST(ExternalRenderer, RunMeasuresASequenceFrameByFrameWithItsFlicker) {
     const fs::path dir = tt::freshDir("external_sequence");
-    const auto r = tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
-                                     "/scenes/collision_sequence.toml --test external "
-                                     "--external-command true --out " +
-                                     dir.string());
-    EXPECT_EQ(r.exitCode, 4) << r.output;
-    EXPECT_NE(r.output.find("measures still scenes"), std::string::npos) << r.output;
+    const std::string orbit = SPHERE_ORBIT;
+    const std::string cache = " --cache " + (dir / "cache").string();
+    const auto r =
+        tt::runTwinrender("run " + orbit + cache + " --test external --external-command '" +
+                          ADAPTER + "' --out " + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const fs::path scene = dir / "out" / "one_sphere_orbit";
+    for (int frame = 0; frame < 3; ++frame) {
+        const std::string folder = "000" + std::to_string(frame);
+        EXPECT_EQ(tt::readJson(scene / "external" / folder / "request.json")["frame"], frame);
+        EXPECT_TRUE(fs::exists(scene / "frames" / folder / "external.exr")) << folder;
+    }
+    EXPECT_TRUE(fs::exists(scene / "sequence.webm"));
+    const nlohmann::json report = tt::readJson(scene / "metrics.json");
+    const auto& frames = report["sequence"]["frames"];
+    ASSERT_EQ(frames.size(), 3u) << report;
+    EXPECT_FALSE(frames[0]["metrics"].contains("temporal.flicker"));
+    for (int k = 0; k < 3; ++k) {
+        const auto& m = frames[k]["metrics"];
+        EXPECT_EQ(m["coverage.iou"], 1.0) << k;
+        EXPECT_EQ(m["time.external_ms"], 0.5) << k;  // from the renderer's out/timings.json
+        if (k == 0) continue;
+        EXPECT_NEAR(m["temporal.flicker"].get<double>(),
+                    m["temporal.frame_flip"].get<double>() -
+                        m["temporal.reference_frame_flip"].get<double>(),
+                    1e-12);
+        // The exact sphere's normals turn with the camera as the truth's do.
+        EXPECT_LT(std::abs(m["temporal.normal_flicker_deg"].get<double>()), 1e-3) << k;
+    }
+    EXPECT_TRUE(report["metrics"]["temporal.flicker_mean"].is_number());
+
+    // The frames as images rendered earlier, DIR/<scene>/<frame>.exr, without their times.
+    const fs::path images = dir / "images" / "one_sphere_orbit";
+    fs::create_directories(images);
+    for (const char* f : {"0000", "0001", "0002"})
+        fs::copy_file(scene / "frames" / f / "external.exr", images / (std::string(f) + ".exr"));
+    const auto later =
+        tt::runTwinrender("run " + orbit + cache + " --test-images " + (dir / "images").string() +
+                          " --out " + (dir / "later").string());
+    ASSERT_EQ(later.exitCode, 0) << later.output;
+    const nlohmann::json again = tt::readJson(dir / "later" / "one_sphere_orbit" / "metrics.json");
+    for (int k = 0; k < 3; ++k) {
+        for (const auto& [key, value] : frames[k]["metrics"].items()) {
+            if (key != "time.external_ms" && key != "time.raymarch_ms") {
+                EXPECT_EQ(again["sequence"]["frames"][k]["metrics"][key], value) << k << " " << key;
+            }
+        }
+    }
+    EXPECT_FALSE(again["metrics"].contains("time.external_ms"));
+}
+
+// Every metric of `a` that both paths make (not the times, nor the error split the built-in path
+// alone makes) is in `b` with the same value; the temporal ones, which measure the frames'
+// display images (the built-in renderer's tonemapped on the GPU, an external frame's on the CPU),
+// within float rounding. Returns how many were compared.
+int expectSameMetrics(const nlohmann::json& a, const nlohmann::json& b, const std::string& where) {
+    int compared = 0;
+    for (const auto& [key, value] : a.items()) {
+        if (key.rfind("time.", 0) == 0 || key.find("surface.") == 0 || key.find("lighting.") == 0 ||
+            key.find("shading.") == 0)
+            continue;
+        EXPECT_TRUE(b.contains(key)) << where << " " << key;
+        if (key.rfind("temporal.", 0) == 0) {
+            EXPECT_NEAR(value.get<double>(), b[key].get<double>(), 1e-6) << where << " " << key;
+        } else {
+            EXPECT_EQ(value, b[key]) << where << " " << key;
+        }
+        ++compared;
+    }
+    return compared;
 }
 
 // The protocol's own end to end: twinrender's real-time renderer run through it by a small
-// adapter (tests/adapters/builtin_realtime.py) measures as the built-in path on the same scene.
-// The renderer is deterministic, so every image metric is the same number.
+// adapter (tests/adapters/builtin_realtime.py) measures as the built-in path on the same scenes,
+// a still one and a sequence (a churning ball, three frames: a request each, and the flicker).
+// The renderer is deterministic, so every image metric is the same number. Bloom is off in the
+// sequence: it is in the built-in renderer's display image only, which the flicker measures.
 TEST(ExternalRenderer, TheBuiltInRendererThroughTheProtocolMeasuresAsTheBuiltInPath) {
     const fs::path dir = tt::freshDir("external_builtin");
     const std::string planet = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/planet.toml";
+    tt::writeFile(dir / "churn.toml",
+                  "name = \"churn\"\n[camera]\nposition = [0.0, -4.0, 1.0]\n"
+                  "[light]\ndirection = [-1.0, 0.6, -0.4]\n[realtime]\nbloom.enabled = false\n"
+                  "[[bodies]]\nname = \"ball\"\nshape = \"ball\"\nradius = 1.0\n"
+                  "particles = 1500\nchurn = 0.3\n[sequence]\nfirst = 0\nlast = 2\nfps = 4.0\n");
+    const std::string scenes = planet + " " + (dir / "churn.toml").string();
     const std::string common = " --set camera.width=96 --set camera.height=72 --cache " +
                                (dir / "cache").string() + " --thresholds " +
                                (dir / "none.toml").string();
     tt::writeFile(dir / "none.toml", "# no bounds\n");
     const auto builtIn =
-        tt::runTwinrender("run " + planet + common + " --out " + (dir / "builtin").string());
+        tt::runTwinrender("run " + scenes + common + " --out " + (dir / "builtin").string());
     ASSERT_EQ(builtIn.exitCode, 0) << builtIn.output;
     const std::string adapter = "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) +
                                 "/tests/adapters/builtin_realtime.py " + TWINRENDER_BIN;
     const auto external =
-        tt::runTwinrender("run " + planet + common + " --test external --external-command '" +
+        tt::runTwinrender("run " + scenes + common + " --test external --external-command '" +
                           adapter + "' --out " + (dir / "external").string());
     ASSERT_EQ(external.exitCode, 0) << external.output;
     const nlohmann::json a = tt::readJson(dir / "builtin" / "planet" / "metrics.json")["metrics"];
     const nlohmann::json b = tt::readJson(dir / "external" / "planet" / "metrics.json")["metrics"];
-    int compared = 0;
-    for (const auto& [key, value] : a.items()) {
-        if (key.rfind("time.", 0) == 0 || key.find("surface.") == 0 || key.find("lighting.") == 0 ||
-            key.find("shading.") == 0)
-            continue;  // times, and the error split the built-in path alone makes
-        ASSERT_TRUE(b.contains(key)) << key;
-        EXPECT_EQ(value, b[key]) << key;
-        ++compared;
-    }
-    EXPECT_GT(compared, 20);
+    EXPECT_GT(expectSameMetrics(a, b, "planet"), 20);
+    const nlohmann::json c = tt::readJson(dir / "builtin" / "churn" / "metrics.json");
+    const nlohmann::json d = tt::readJson(dir / "external" / "churn" / "metrics.json");
+    expectSameMetrics(c["metrics"], d["metrics"], "churn");
+    ASSERT_EQ(c["sequence"]["frames"].size(), 3u);
+    ASSERT_EQ(d["sequence"]["frames"].size(), 3u);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_GT(expectSameMetrics(c["sequence"]["frames"][k]["metrics"],
+                                    d["sequence"]["frames"][k]["metrics"],
+                                    "churn frame " + std::to_string(k)),
+                  20);
+    EXPECT_GT(d["metrics"]["temporal.flicker_mean"].get<double>(), 0.001);  // churn flickers
 }

@@ -5,7 +5,9 @@ Repository.NamesNoPathOutsideIt.
 Checked: every file git tracks or would add (untracked, not ignored); without git, every file
 under the source folder but build*/ and out/, but this file, whose patterns and made-up lines
 name such paths on purpose. In binary files (a NUL byte) only their runs of printable text are
-read, for absolute paths (an image's metadata may hold the command line that made it). Found:
+read, for absolute paths; an image's metadata (EXR attributes, PNG text chunks, compressed ones
+too), which may hold the command line that made it, is read through OpenImageIO's Python module
+(python3-openimageio) and may hold no absolute path at all. Found:
 - a path that climbs with `..` out of the folder of the file naming it (scene files and
   Markdown links are read from their own folder);
 - a path that climbs with `..` into a folder the repository has nowhere (code, scripts and
@@ -15,9 +17,22 @@ read, for absolute paths (an image's metadata may hold the command line that mad
 The matcher checks itself first on made-up lines, so an empty or broken pattern cannot pass."""
 import argparse
 import re
+import struct
 import subprocess
 import sys
+import tempfile
+import zlib
 from pathlib import Path, PurePosixPath
+
+try:
+    import OpenImageIO as oiio
+except ImportError:
+    # An interpreter of its own (a virtual environment, pyenv) does not see Debian's modules.
+    sys.path.append("/usr/lib/python3/dist-packages")
+    try:
+        import OpenImageIO as oiio
+    except ImportError:
+        oiio = None
 
 SELF = "tests/outside_paths_test.py"
 # `../` at least once, then a name: `cd ..` and a lone `..` are not paths to anything.
@@ -31,6 +46,10 @@ ANCHOR = re.compile(r"SOURCE_DIR\W{0,8}$")
 C_SOURCES = {".cpp", ".h", ".hpp", ".c", ".cc"}
 # A name that stands for something else: a variable, a frame pattern, a glob.
 PLACEHOLDER = re.compile(r"[$%*{]")
+# Images whose metadata OpenImageIO reads. Their attributes name no absolute path at all: a
+# tool's command line there names where the image was made (`oiiotool ... -o /x/y/one.exr`).
+IMAGES = {".exr", ".png", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".webp"}
+ABSOLUTE = re.compile(r"(?<![\w.:/])(?:/[\w.-]+){2,}|[A-Za-z]:\\[\w.-]+")
 
 
 def within(root: PurePosixPath, path: PurePosixPath) -> bool:
@@ -114,7 +133,75 @@ def self_check() -> list:
         failures.append("not found in a binary file's text")
     if binary_problems(b"\0\x01Software\0string\0oiiotool -o ./one.exr\0"):
         failures.append("found in a binary file's relative path")
+    failures += image_self_check()
     return failures
+
+
+def image_self_check() -> list:
+    """The metadata reader on made-up images: an EXR whose Software attribute holds oiiotool's
+    command line, and a PNG whose zTXt chunk (compressed: no printable run shows it) holds one;
+    the same images with a relative path pass."""
+    if oiio is None:
+        return ["OpenImageIO's Python module (python3-openimageio) is missing: image metadata "
+                "cannot be read"]
+    import numpy  # OpenImageIO's module needs it: where that imports, this does
+    failures = []
+    with tempfile.TemporaryDirectory() as folder:
+        for name, where in (("one.exr", "/" + "tmp/made/one.exr"), ("two.exr", "./two.exr")):
+            path = Path(folder) / name
+            spec = oiio.ImageSpec(2, 1, 1, "float")
+            spec.attribute("Software", "oiiotool --pattern constant 2x1 1 -o " + where)
+            out = oiio.ImageOutput.create(str(path))
+            if not (out and out.open(str(path), spec)
+                    and out.write_image(numpy.zeros((1, 2, 1), numpy.float32)) and out.close()):
+                return ["cannot write a made-up EXR: " + oiio.geterror()]
+            if bool(image_problems(path)) != where.startswith("/"):
+                failures.append(f"image metadata {'not ' if where[0] == '/' else ''}found: {where}")
+        for name, where in (("one.png", "/" + "tmp/made/one.png"), ("two.png", "two.png")):
+            path = Path(folder) / name
+            path.write_bytes(png_with_ztxt(b"Software", ("oiiotool -o " + where).encode()))
+            if binary_problems(path.read_bytes()):
+                failures.append("a zTXt chunk read as text: the self-check shows nothing")
+            if bool(image_problems(path)) != where.startswith("/"):
+                failures.append(f"PNG zTXt {'not ' if where[0] == '/' else ''}found: {where}")
+    return failures
+
+
+def png_with_ztxt(keyword: bytes, text: bytes) -> bytes:
+    """A 1 x 1 grey PNG with one compressed text chunk."""
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+    return (b"\x89PNG\r\n\x1a\n"
+            + chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 0, 0, 0, 0))
+            + chunk(b"zTXt", keyword + b"\0\0" + zlib.compress(text))
+            + chunk(b"IDAT", zlib.compress(b"\0\x80"))
+            + chunk(b"IEND", b""))
+
+
+def image_problems(path: Path) -> list:
+    """The absolute paths in an image's metadata, as OpenImageIO reads its header (never its
+    pixels: a malformed regression input may claim a huge image). An image OpenImageIO cannot
+    open is left to the binary reading."""
+    found = []
+    image = oiio.ImageInput.open(str(path))
+    if not image:
+        oiio.geterror()
+        return found
+    try:
+        for index in range(64):
+            if not image.seek_subimage(index, 0):
+                break
+            for attribute in image.spec().extra_attribs:
+                value = attribute.value
+                for text in value if isinstance(value, (tuple, list)) else (value,):
+                    if isinstance(text, str):
+                        found += [(0, f"{attribute.name}: {m.group(0)}",
+                                   "an absolute path in the image's metadata")
+                                  for m in ABSOLUTE.finditer(text)]
+    finally:
+        image.close()
+    return found
 
 
 def binary_problems(data: bytes) -> list:
@@ -160,6 +247,8 @@ def main() -> int:
     found = []
     for name in files:
         data = (root / name).read_bytes()
+        if PurePosixPath(name).suffix.lower() in IMAGES:
+            found += [f"{name}: {what} ({why})" for _, what, why in image_problems(root / name)]
         if b"\0" in data:
             found += [f"{name}: {what} ({why})" for _, what, why in binary_problems(data)]
             continue

@@ -203,8 +203,8 @@ void ambientOcclusionConclude(StudyResult& s) {
         {}};
     std::string byFilter;
     for (const std::string& ao : AO_METHODS) {
-        double unsmoothed = NAN, best = INFINITY;
-        std::string bestName;
+        double unsmoothed = NAN;
+        std::vector<Measured> measured;
         for (const auto& [name, rows] : all) {
             if (rows.empty() || name.rfind(ao + " on ", 0) != 0) continue;
             const StudyRow& r = *rows.front();
@@ -218,16 +218,24 @@ void ambientOcclusionConclude(StudyResult& s) {
                                     {"ao_ms", aoTime(r)}}});
             s.facts["by_surface"][ao][surface] = jsonOrNull(e);
             if (surface == "none") unsmoothed = e;
-            if (std::isfinite(e) && e < best) {
-                best = e;
-                bestName = surface;
-            }
+            // Every row is against one reference: two tie within its stated standard error,
+            // half of it each row's noise.
+            const double se = metricOf(r, "reference.ao_standard_error");
+            measured.push_back({surface, e, std::isfinite(se) ? 0.5 * se : 0.0});
         }
-        if (bestName.empty()) continue;
-        s.facts["by_surface"][ao]["best"] = bestName;
-        byFilter +=
-            fmt::format("{}{} {} on the bare impostors, {} on {}", byFilter.empty() ? "" : "; ", ao,
-                        num(unsmoothed), num(best), bestName);
+        const std::vector<std::string> best = lowestOf(measured);
+        if (best.empty()) continue;
+        s.facts["by_surface"][ao]["best"] = best;
+        const double bestError = s.facts["by_surface"][ao][best.front()].get<double>();
+        const double se = 2.0 * measured.front().spread;
+        byFilter += best.size() > 1 ? fmt::format(
+                                          "{}{} {} on the bare impostors, {} tie (within the "
+                                          "reference's standard error, {})",
+                                          byFilter.empty() ? "" : "; ", ao, num(unsmoothed),
+                                          joinNames(best), num(se))
+                                    : fmt::format("{}{} {} on the bare impostors, {} on {}",
+                                                  byFilter.empty() ? "" : "; ", ao, num(unsmoothed),
+                                                  num(bestError), best.front());
     }
     s.tables.push_back(std::move(cross));
     // The noise kinds under the default blur at the fewest samples, where noise matters most.

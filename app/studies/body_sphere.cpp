@@ -34,37 +34,38 @@ double timeOf(const StudyRow& r, const char* stage) {
     return it == r.timingsMs.end() ? NAN : it->second;
 }
 
-// Whether `a` is at most `b` plus `tolerance`; true when neither is measured (a normal error
-// on a ball too small to hold a pixel whose normal compares).
-bool notAbove(double a, double b, double tolerance) {
-    return (std::isnan(a) && std::isnan(b)) || a <= b + tolerance;
+// The sphere's image matches the truth as well as the particles' where its coverage IoU is not
+// lower and its ꟻLIP not higher beyond the noise: the two rows' spreads (their difference from
+// a render half a pixel aside) added.
+bool noWorse(const StudyResult& s, const StudyRow& sphere, const StudyRow& particles,
+             const std::string& metric, bool higherIsBetter) {
+    const double a = metricOf(sphere, metric), b = metricOf(particles, metric);
+    if (std::isnan(a) && std::isnan(b)) return true;  // a ball too small to hold a pixel
+    if (!std::isfinite(a) || !std::isfinite(b)) return false;
+    const double noise = spreadAt(s, sphere, metric) + spreadAt(s, particles, metric);
+    return order(a, b, noise) != (higherIsBetter ? Order::Lower : Order::Higher);
 }
 
-// The sphere's image matches the truth as well as the particles' where its coverage IoU is no
-// lower and its ꟻLIP no higher, within the metrics' noise between two renders of one image:
-// 0.005 of IoU (a pixel or two of a small disc), 5 % of ꟻLIP and 1e-4 of it (the image's mean,
-// which a ball of a few pixels barely moves: 3.93 px measured 1.4e-4 and 1.7e-4).
-bool imageNoWorse(const StudyRow& sphere, const StudyRow& particles) {
-    const double flip = metricOf(particles, "beauty.flip");
-    return notAbove(metricOf(particles, "coverage.iou"), metricOf(sphere, "coverage.iou"), 0.005) &&
-           notAbove(metricOf(sphere, "beauty.flip"), flip, 0.05 * flip + 1e-4);
+bool imageNoWorse(const StudyResult& s, const StudyRow& sphere, const StudyRow& particles) {
+    return noWorse(s, sphere, particles, "coverage.iou", true) &&
+           noWorse(s, sphere, particles, "beauty.flip", false);
 }
 
-// Its normals match as well: the mean normal error no higher, within 0.1 degrees.
-bool normalsNoWorse(const StudyRow& sphere, const StudyRow& particles) {
-    return notAbove(metricOf(sphere, "normal.mean_deg"), metricOf(particles, "normal.mean_deg"),
-                    0.1);
+// Its normals match as well: the mean normal error not higher beyond the noise.
+bool normalsNoWorse(const StudyResult& s, const StudyRow& sphere, const StudyRow& particles) {
+    return noWorse(s, sphere, particles, "normal.mean_deg", false);
 }
 
 // From the smallest ball up: the largest radius up to which `noWorse` holds at every size and
 // `measured` is measured (NaN: not even at the smallest), and its index.
 template <typename Test>
-std::pair<double, std::size_t> noWorseUpTo(const std::vector<const StudyRow*>& sphere,
+std::pair<double, std::size_t> noWorseUpTo(const StudyResult& s,
+                                           const std::vector<const StudyRow*>& sphere,
                                            const std::vector<const StudyRow*>& particles,
                                            Test noWorse, const char* measured) {
     double upTo = NAN;
     std::size_t last = 0;
-    for (std::size_t i = 0; i < sphere.size() && noWorse(*sphere[i], *particles[i]); ++i)
+    for (std::size_t i = 0; i < sphere.size() && noWorse(s, *sphere[i], *particles[i]); ++i)
         if (std::isfinite(metricOf(*sphere[i], measured))) {
             upTo = sphere[i]->x;
             last = i;
@@ -83,15 +84,20 @@ double drawMs(const StudyRow& r) {
 std::vector<StudyPoint> bodySpherePoints(bool quick) {
     const double height = quick ? 48.0 : 240.0;  // the scene's fov_y is 40 degrees
     std::vector<StudyPoint> pts;
-    for (const bool sphere : {false, true})
-        for (const double radius : ballRadii(quick)) {
-            const double distance = BALL_RADIUS * focalPixels(height, 40.0) / radius;
-            pts.push_back(
-                {sphere ? "sphere" : "particles", NAN,
-                 backedAway(set("realtime.particles.body_sphere_pixels", sphere ? "4096" : "0"),
-                            distance, quick),
-                 ""});
-        }
+    for (const bool repeat : {false, true})
+        for (const bool sphere : {false, true})
+            for (const double radius : ballRadii(quick)) {
+                const double distance = BALL_RADIUS * focalPixels(height, 40.0) / radius;
+                StudyPoint p{
+                    std::string(sphere ? "sphere" : "particles") + (repeat ? REPEAT : ""), NAN,
+                    backedAway(set("realtime.particles.body_sphere_pixels", sphere ? "4096" : "0"),
+                               distance, quick),
+                    ""};
+                if (repeat)
+                    for (std::string& c : halfPixelAside(distance, height, 40.0))
+                        p.sets.push_back(std::move(c));
+                pts.push_back(std::move(p));
+            }
     return pts;
 }
 
@@ -137,9 +143,14 @@ void bodySphereConclude(StudyResult& s) {
         s.finding = "no pairs of rows to compare";
         return;
     }
-    const auto [upTo, last] = noWorseUpTo(*sphere, *particles, imageNoWorse, "coverage.iou");
+    for (const auto* rows : {particles, sphere})
+        for (const StudyRow* r : *rows)
+            for (const char* m : {"coverage.iou", "beauty.flip", "normal.mean_deg"})
+                s.facts["spread"][m][r->series][fmt::format("{:.4g}", r->x)] =
+                    jsonOrNull(spreadAt(s, *r, m));
+    const auto [upTo, last] = noWorseUpTo(s, *sphere, *particles, imageNoWorse, "coverage.iou");
     const double normalsUpTo =
-        noWorseUpTo(*sphere, *particles, normalsNoWorse, "normal.mean_deg").first;
+        noWorseUpTo(s, *sphere, *particles, normalsNoWorse, "normal.mean_deg").first;
     s.facts["no_worse_up_to_px"] = jsonOrNull(upTo);
     s.facts["normals_no_worse_up_to_px"] = jsonOrNull(normalsUpTo);
     const double sphereNormal = meanOf(*sphere, "normal.mean_deg");
@@ -169,7 +180,8 @@ void bodySphereConclude(StudyResult& s) {
     s.chart.xMarks.push_back({upTo, "sphere no worse below"});
     s.finding = fmt::format(
         "one sphere's image matches the truth as well as the particles' (coverage IoU no "
-        "lower, ꟻLIP no higher) up to {} px in radius on screen{}; there it saves {} of the "
+        "lower, ꟻLIP no higher, beyond their spread half a pixel aside) up to {} px in radius on "
+        "screen{}; there it saves {} of the "
         "passes that draw it (shadow map, G-buffer, normals: {} ms against {} ms) and {} of the "
         "frame's; {}",
         num(upTo), upTo == sphere->back()->x ? ", the largest size measured" : "",

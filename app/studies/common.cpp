@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iterator>
 #include <numbers>
+#include <string_view>
 
 #include "compare/metric_table.h"
 #include "compare/thresholds.h"
@@ -26,6 +27,21 @@ std::vector<std::string> backedAway(std::string first, double distance, bool qui
     return sets;
 }
 
+std::vector<std::string> halfPixelAside(double distance, double height, double fovYDeg) {
+    const double aside = 0.5 * distance / focalPixels(height, fovYDeg);
+    return {set("camera.position", vec(aside, -distance, 0.0)),
+            set("camera.target", vec(aside, 0.0, 0.0))};
+}
+
+namespace {
+
+bool isRepeat(const StudyRow& r) {
+    const std::string_view suffix = REPEAT;
+    return r.series.size() > suffix.size() && r.series.ends_with(suffix);
+}
+
+}  // namespace
+
 double metricOf(const StudyRow& r, const std::string& metric) {
     const auto it = r.metrics.find(metric);
     return it == r.metrics.end() ? NAN : it->second;
@@ -34,6 +50,7 @@ double metricOf(const StudyRow& r, const std::string& metric) {
 SeriesRows bySeries(const StudyResult& s) {
     SeriesRows out;
     for (const StudyRow& r : s.rows) {
+        if (isRepeat(r)) continue;
         auto it = std::find_if(out.begin(), out.end(),
                                [&](const auto& p) { return p.first == r.series; });
         if (it == out.end()) {
@@ -67,6 +84,62 @@ double meanOf(const std::vector<const StudyRow*>& rows, const std::string& metri
     return n ? sum / n : NAN;
 }
 
+double spreadAt(const StudyResult& s, const StudyRow& r, const std::string& metric) {
+    const std::string series = r.series + REPEAT;
+    const StudyRow* repeat = nullptr;
+    for (const StudyRow& q : s.rows)
+        if (q.series == series && (!repeat || std::abs(q.x - r.x) < std::abs(repeat->x - r.x)))
+            repeat = &q;
+    if (!repeat) return NAN;
+    const double d = std::abs(metricOf(*repeat, metric) - metricOf(r, metric));
+    return std::isfinite(d) ? d : NAN;
+}
+
+Order order(double a, double b, double noise) {
+    if (!std::isfinite(a) || !std::isfinite(b) || !(std::abs(a - b) > (noise >= 0.0 ? noise : 0.0)))
+        return Order::Tie;
+    return a < b ? Order::Lower : Order::Higher;
+}
+
+std::vector<std::string> lowestOf(const std::vector<Measured>& candidates) {
+    const Measured* best = nullptr;
+    for (const Measured& c : candidates)
+        if (std::isfinite(c.value) && (!best || c.value < best->value)) best = &c;
+    std::vector<std::string> names;
+    if (!best) return names;
+    for (const Measured& c : candidates)
+        if (std::isfinite(c.value) &&
+            order(c.value, best->value, c.spread + best->spread) != Order::Higher)
+            names.push_back(c.name);
+    return names;
+}
+
+std::vector<std::string> highestOf(std::vector<Measured> candidates) {
+    for (Measured& c : candidates) c.value = -c.value;
+    return lowestOf(candidates);
+}
+
+double standardErrorOf(const std::vector<const StudyRow*>& rows, const std::string& metric) {
+    const double mean = meanOf(rows, metric);
+    double sum = 0.0;
+    int n = 0;
+    for (const StudyRow* r : rows) {
+        const double v = metricOf(*r, metric);
+        if (std::isfinite(v)) {
+            sum += (v - mean) * (v - mean);
+            ++n;
+        }
+    }
+    return n >= 2 ? std::sqrt(sum / (n - 1) / n) : NAN;
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        out += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+    return out;
+}
+
 std::string xNumber(double x) {
     if (!std::isfinite(x)) return compare::formatValue(x);
     const double e = std::round(std::log10(std::abs(x)));
@@ -78,10 +151,13 @@ std::string xNumber(double x) {
 }
 
 std::string num(double v) {
-    return std::isfinite(v) ? fmt::format("{:.3g}", v) : compare::formatValue(v);
+    if (v == 0.0) return "0";  // never "-0"
+    return std::isfinite(v) ? fmt::format("{:.3g}", v) : std::string("unmeasured");
 }
 
 std::string percent(double fraction) {
+    if (!std::isfinite(fraction)) return "unmeasured";
+    if (std::abs(fraction) < 0.0005) return "0 %";  // never "-0.0 %"
     return std::abs(fraction) < 0.1 ? fmt::format("{:.1f} %", 100.0 * fraction)
                                     : fmt::format("{:.0f} %", 100.0 * fraction);
 }

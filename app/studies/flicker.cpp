@@ -62,6 +62,14 @@ const std::vector<FlickerGroup>& flickerGroups() {
     return groups;
 }
 
+// A mean as the finding writes it: two significant digits and its sign ("+0.0003", "-4.3");
+// "unmeasured" when there is none.
+std::string signedNum(const json& v) {
+    if (!v.is_number()) return "unmeasured";
+    const double x = v.get<double>();
+    return x == 0.0 ? "0" : fmt::format("{:+.2g}", x);
+}
+
 std::string flickerSeries(const std::string& method, const FlickerGroup& g) {
     return fmt::format("{} ({})", method, g.name);
 }
@@ -107,8 +115,7 @@ void flickerConclude(StudyResult& s) {
     for (const FlickerGroup& g : flickerGroups()) {
         report::LineChart chart = empty;
         chart.title = fmt::format("{}, {}: {}", s.title, g.name, metric);
-        std::string least, most;
-        double lo = INFINITY, hi = -INFINITY, loNormal = NAN, hiNormal = NAN;
+        std::vector<Measured> measured;
         for (const char* method : FLICKER_METHODS) {
             const std::string name = flickerSeries(method, g);
             const auto* rows = seriesRows(all, name);
@@ -116,9 +123,11 @@ void flickerConclude(StudyResult& s) {
             const double v = meanOf(*rows, metric), n = meanOf(*rows, normal);
             s.facts["flicker"][name] = jsonOrNull(v);
             s.facts["normal_flicker_deg"][name] = jsonOrNull(n);
+            // The noise of a mean over frames: its standard error.
+            const double se = standardErrorOf(*rows, metric);
+            s.facts["flicker_standard_error"][name] = jsonOrNull(se);
             table.lines.push_back({{g.name, method}, {{metric, v}, {normal, n}}});
-            if (std::isfinite(v) && v < lo) lo = v, loNormal = n, least = method;
-            if (std::isfinite(v) && v > hi) hi = v, hiNormal = n, most = method;
+            measured.push_back({method, v, std::isfinite(se) ? se : 0.0});
             report::LineSeries line{
                 g.legend.empty() ? method : fmt::format("{} ({})", method, g.legend),
                 {},
@@ -126,15 +135,21 @@ void flickerConclude(StudyResult& s) {
             for (const StudyRow* r : *rows) line.points.push_back({r->x, metricOf(*r, metric), ""});
             chart.series.push_back(std::move(line));
         }
-        s.facts["groups"][g.name] = {{"least", least},
-                                     {"least_flicker", jsonOrNull(lo)},
-                                     {"least_normal_flicker_deg", jsonOrNull(loNormal)},
-                                     {"most", most},
-                                     {"most_flicker", jsonOrNull(hi)},
-                                     {"most_normal_flicker_deg", jsonOrNull(hiNormal)}};
-        parts +=
-            fmt::format("{}{}: least {} ({:+.2g}, {:+.2g}°), most {} ({:+.2g}, {:+.2g}°)",
-                        parts.empty() ? "" : "; ", g.name, least, lo, loNormal, most, hi, hiNormal);
+        // The least and the most, with those that tie with them within the two means'
+        // standard errors; each one's numbers in the finding.
+        const std::vector<std::string> least = lowestOf(measured), most = highestOf(measured);
+        const auto numbers = [&](const std::vector<std::string>& methods) {
+            std::vector<std::string> each;
+            for (const std::string& m : methods) {
+                const std::string name = flickerSeries(m, g);
+                each.push_back(fmt::format("{} ({}, {}°)", m, signedNum(s.facts["flicker"][name]),
+                                           signedNum(s.facts["normal_flicker_deg"][name])));
+            }
+            return (each.size() > 1 ? "a tie of " : "") + joinNames(each);
+        };
+        s.facts["groups"][g.name] = {{"least", least}, {"most", most}};
+        parts += fmt::format("{}{}: least {}, most {}", parts.empty() ? "" : "; ", g.name,
+                             numbers(least), numbers(most));
         if (g.figure.empty()) {
             std::move(chart.series.begin(), chart.series.end(), std::back_inserter(s.chart.series));
             continue;
@@ -146,9 +161,10 @@ void flickerConclude(StudyResult& s) {
                          metric, g.name, std::filesystem::path(g.scene).filename().string()),
              std::move(chart)});
         // Does the real sequence's least agree with the churning ball's?
-        const std::string churn = s.facts["groups"][CHURN].value("least", "");
-        agree += fmt::format("{}{} {}", agree.empty() ? "" : ", ", g.name,
-                             least == churn ? "agrees" : "differs (" + least + ")");
+        const json churn = s.facts["groups"][CHURN].value("least", json::array());
+        agree +=
+            fmt::format("{}{} {}", agree.empty() ? "" : ", ", g.name,
+                        json(least) == churn ? "agrees" : "differs (" + joinNames(least) + ")");
     }
     s.tables.push_back(std::move(table));
     s.finding = fmt::format(

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <optional>
 
+#include "core/device_name.h"
 #include "core/error.h"
 #include "realtime/gl/conversions.h"
 
@@ -64,12 +65,6 @@ bool hasExtension(const char* list, const char* name) {
     const std::size_t n = std::strlen(name);
     for (const char* p = list; (p = std::strstr(p, name)); p += n)
         if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-    return false;
-}
-
-bool isSoftwareRenderer(const std::string& renderer) {
-    for (const char* name : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
-        if (renderer.find(name) != std::string::npos) return true;
     return false;
 }
 
@@ -245,7 +240,7 @@ Context::Context(const ContextOptions& options) : mImpl(std::make_unique<Impl>()
             continue;
         }
         const std::string renderer = glString(GL_RENDERER);
-        const bool software = c.software || isSoftwareRenderer(renderer);
+        const bool software = c.software || core::isSoftwareRasteriser(renderer);
         if (options.requireGpu && software) {
             fail(fmt::format("refused, renderer '{}' is software and a GPU is required", renderer));
             eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

@@ -1,8 +1,8 @@
 /* Page self-test, run first in <head>: records script errors, console.error calls, rejected
    promises and resources (images) that fail to load, then, once the page has loaded, checks
-   that every <img> decoded, that every <video> loaded its metadata (its duration is shown) and
-   that the page script ran to its end (it sets data-ready on
-   <html>). The verdict goes into the element with id "selftest": "selftest: ok (N images)", or
+   that every <img> decoded, that every <video> loaded its metadata (its duration is shown),
+   that the page is no wider than its window and no table marked data-fit (the index's) wider
+   than its box (in windows 1280 px wide and wider), and that the page script ran to its end (it sets data-ready on <html>). The verdict goes into the element with id "selftest": "selftest: ok (N images)", or
    "selftest: FAIL" and one line per problem. tests/report_browser_test.cpp reads it from
    Chromium's --dump-dom; a person sees it in the footer. */
 (function () {
@@ -28,6 +28,21 @@
         durations.push(vid.duration.toFixed(3) + " s");
       else
         lines.push("video did not load: " + (vid.currentSrc || vid.getAttribute("id") || "video"));
+    }
+    // The page fits its window, in the widths the report is laid out for (1280 px and more):
+    // nothing wider than the page, and no table marked data-fit (the index's) wider than its
+    // box.
+    var root = document.documentElement;
+    var laidOut = window.innerWidth >= 1280;
+    if (laidOut && root.scrollWidth > root.clientWidth + 1)
+      lines.push("the page overflows its window: " + root.scrollWidth + " px in " +
+                 root.clientWidth + " px");
+    var fits = document.querySelectorAll("[data-fit]");
+    for (var f = 0; laidOut && f < fits.length; f++) {
+      var box = fits[f].parentElement;
+      if (fits[f].scrollWidth > box.clientWidth + 1)
+        lines.push("table #" + (fits[f].id || f) + " overflows its page: " +
+                   fits[f].scrollWidth + " px in " + box.clientWidth + " px");
     }
     if (!document.documentElement.hasAttribute("data-ready"))
       lines.push("the page script did not run to its end");

@@ -1,8 +1,9 @@
 // A small report made without any renderer, for the report tests (report/*_test.cpp)
 // and the browser test (tests/report_browser_test.cpp): two scenes of tiny AOV images (a lit
 // sphere of two bodies; the "real-time" one slightly larger and shifted), their buffer PNGs
-// and ꟻLIP and HDR-ꟻLIP maps written into the report folder, metrics, checks against thresholds and
-// a baseline, timings and settings.
+// and ꟻLIP and HDR-ꟻLIP maps written into the report folder, metrics (the error split among
+// them, emission.rmse not applicable), checks against thresholds and a baseline, timings (a
+// stage that did not run among them) and settings.
 #pragma once
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 #include "compare/thresholds.h"
 #include "core/frame.h"
 #include "core/image.h"
+#include "core/image_io.h"
 #include "report/buffer_display.h"
 #include "report/report.h"
 
@@ -53,6 +55,12 @@ inline SceneReport syntheticScene(const std::filesystem::path& dir, const std::s
         fmt::format("A synthetic sphere of two bodies, the real-time one shifted by {} px", shift);
     s.renderers["raymarch"].images = writeBufferImages(ref, nullptr, sceneDir, "raymarch", vis);
     s.renderers["realtime"].images = writeBufferImages(test, nullptr, sceneDir, "realtime", vis);
+    // The raw files `run` writes beside the PNGs, which the scene page links.
+    for (const char* r : {"raymarch", "realtime"}) {
+        core::writeImage(std::string(r) == "raymarch" ? ref : test,
+                         sceneDir / (std::string(r) + ".exr"));
+        core::writeTextFile(sceneDir / (std::string(r) + ".json"), "{}\n");
+    }
     const FlipResult f =
         flip(core::tonemappedBeauty(ref, 1.0f), core::tonemappedBeauty(test, 1.0f));
     writeErrorMapPng(f.errorMap, 0, 0.0, 1.0, sceneDir / "flip.png");
@@ -67,8 +75,13 @@ inline SceneReport syntheticScene(const std::filesystem::path& dir, const std::s
                  {"coverage.iou", 1.0 - 0.03 * shift},
                  {"normal.mean_deg", 1.5 + 2.0 * shift},
                  {"shadow.iou", 0.95 - 0.1 * shift},
+                 {"emission.rmse", 0.0},
+                 {"surface.beauty.flip", 0.8 * f.mean},
+                 {"lighting.beauty.flip", 0.15 * f.mean},
+                 {"shading.beauty.flip", 1e-5},
                  {"time.realtime_ms", 2.5},
                  {"time.raymarch_ms", 850.0}};
+    s.notApplicable["emission.rmse"] = "neither render has any emission";
     s.checks = evaluate(s.metrics, thresholds.forScene(name));
     if (baseline) {
         const nlohmann::json settings = {{"realtime", {{"ssss", {{"enabled", shift < 1.0}}}}}};
@@ -77,7 +90,8 @@ inline SceneReport syntheticScene(const std::filesystem::path& dir, const std::s
         if (const MetricValues* m = baseline->metrics(name)) s.baseline = *m;
     }
     s.renderers["realtime"].timingsMs = {{"total", 2.5}, {"shadow", 0.3}, {"gbuffer", 0.8},
-                                         {"ssss", 0.9},  {"shade", 0.3},  {"post", 0.2}};
+                                         {"ssss", 0.9},  {"shade", 0.3},  {"post", 0.2},
+                                         {"ao", 0.0}};
     s.renderers["realtime"].device = "llvmpipe (LLVM 15.0.6, 256 bits)";
     s.renderers["raymarch"].timingsMs = {{"total", 850.0}, {"build", 12.0}, {"trace", 838.0}};
     s.renderers["raymarch"].device = "2 CPU threads";

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """twinrender's own real-time renderer as an external renderer of the protocol: it renders the
-request's source scene (scene.json's "source") with `twinrender render --renderer realtime` at
-the request's size and frame, and hands its AOV image over. The protocol's own end-to-end test
+request's source scene (scene.json's "source") with `twinrender render --renderer realtime
+--frames FRAME` at the request's size and frame, and hands its AOV image over. The protocol's own end-to-end test
 (tests/external_renderer_test.cpp) runs a suite through it and through the built-in path and
 finds the same metrics. Usage: builtin_realtime.py TWINRENDER REQUEST.json"""
 import shutil
@@ -18,11 +18,15 @@ def main() -> int:
     request, scene = read_request(request_path)
     folder = request_path.parent
     out = folder / "builtin"
+    frame = request["frame"]
     cmd = [tool, "render", scene["source"], "--renderer", "realtime", "--out", str(out),
-           "--set", f"camera.width={request['width']}",
+           "--frames", str(frame), "--set", f"camera.width={request['width']}",
            "--set", f"camera.height={request['height']}"]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    shutil.copy(out / scene["scene"] / "realtime.exr", folder / request["output"]["image"])
+    # render --frames writes each frame into its folder: four digits, a minus sign below zero.
+    folder_name = f"{frame:04d}" if frame >= 0 else f"-{-frame:04d}"
+    shutil.copy(out / scene["scene"] / folder_name / "realtime.exr",
+                folder / request["output"]["image"])
     return 0
 
 
