@@ -110,7 +110,8 @@ SphericalUv sphericalUv(const glm::dvec3& position, const glm::dvec3& center,
     if (u >= 1.0) u = 0.0;
     out.uv = glm::dvec2(u, std::atan2(p.z, rho) / std::numbers::pi + 0.5);
     if (r2 == 0.0 || rho <= 1e-9 * std::sqrt(r2)) return out;  // on the pole axis
-    const glm::dvec3 du(-p.y / (2.0 * std::numbers::pi * rho2), p.x / (2.0 * std::numbers::pi * rho2), 0.0);
+    const glm::dvec3 du(-p.y / (2.0 * std::numbers::pi * rho2),
+                        p.x / (2.0 * std::numbers::pi * rho2), 0.0);
     const glm::dvec3 dv(-p.z * p.x / rho, -p.z * p.y / rho, rho);
     out.dudx = frame * du;
     out.dvdx = frame * (dv / (std::numbers::pi * r2));

@@ -8,7 +8,6 @@ namespace twinrender::core {
 
 namespace {
 
-
 // The box of the finite positions and the largest finite h of some particles of a set.
 struct Box {
     glm::dvec3 lo{INFINITY};
