@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 
 #include "app/doctor_command.h"
 #include "app/exit_code.h"
@@ -247,9 +248,15 @@ int main(int argc, char** argv) {
     runCmd
         ->add_option(
             "--studies", runStudies,
-            "also run every stability study into OUT/studies, linked from the report: quick | full")
-        ->check(CLI::IsMember({"quick", "full"}))
-        ->type_name("quick|full");
+            "also run the stability studies into OUT/studies, linked from the report: quick | "
+            "full, every study, or quick:NAME,... | full:NAME,..., the studies named")
+        ->check([](const std::string& v) -> std::string {
+            const std::string mode = v.substr(0, v.find(':'));
+            if (mode == "quick" || mode == "full") return "";
+            return "--studies: \"" + v +
+                   "\" is neither quick nor full (quick, full, quick:NAME,...)";
+        })
+        ->type_name("quick|full[:NAME,...]");
     addCommon(runCmd, runCommon);
 
     tr::app::SweepOptions sweepOpts;
@@ -393,12 +400,25 @@ int main(int argc, char** argv) {
                         "run --studies with --shard: the studies are not sharded; run them once "
                         "with "
                         "`twinrender study`");
+                // quick:NAME,NAME: only those, each checked before the suite renders.
+                std::vector<std::string> runStudyNames;
+                if (const auto colon = runStudies.find(':'); colon != std::string::npos) {
+                    std::stringstream names(runStudies.substr(colon + 1));
+                    for (std::string name; std::getline(names, name, ',');) {
+                        if (!tr::app::findStudy(name))
+                            throw tr::core::InputError(
+                                fmt::format("run --studies: no study {}; the studies are {}",
+                                            name.empty() ? "\"\"" : name, tr::app::studyNames()));
+                        runStudyNames.push_back(name);
+                    }
+                }
                 rc = tr::app::runSuite(runOpts);
                 if (!runStudies.empty()) {
                     // The study scenes are not the suite's: the run's --set does not apply.
                     tr::app::StudyOptions so;
                     so.out = (std::filesystem::path(runCommon.out) / "studies").string();
-                    so.quick = runStudies == "quick";
+                    so.quick = runStudies.starts_with("quick");
+                    so.names = runStudyNames;
                     so.requireGpu = runCommon.requireGpu;
                     so.selfCheck = runCommon.selfCheck;
                     so.ppd = runOpts.ppd;

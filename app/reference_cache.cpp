@@ -27,10 +27,6 @@ namespace {
 // Bump when the cached reference's format or what goes into its key changes.
 constexpr const char* CACHE_KEY_VERSION = "twinrender-reference-v1";
 
-bool startsWith(const std::string& s, const char* prefix) {
-    return s.rfind(prefix, 0) == 0;
-}
-
 }  // namespace
 
 // The cache key of a reference render, and a readable account of what went into it:
@@ -48,7 +44,7 @@ std::pair<std::string, json> referenceKey(const LoadedScene& s,
     what["scene_file"] = s.scene.file.string();
     std::vector<std::string> used;
     for (const auto& o : overrides)
-        if (!startsWith(o, "realtime.")) {
+        if (!o.starts_with("realtime.")) {
             h.add(o);
             used.push_back(o);
         }

@@ -46,10 +46,6 @@ namespace {
 constexpr double TIGHT_ROOT_TOLERANCE = 1e-7;
 constexpr int TIGHT_SPP = 16;
 
-bool startsWith(const std::string& s, const char* prefix) {
-    return s.rfind(prefix, 0) == 0;
-}
-
 std::string keyOf(const std::string& assignment) {
     return assignment.substr(0, assignment.find('='));
 }
@@ -241,8 +237,8 @@ ExitCode runSweep(const SweepOptions& o) {
     if (vary.empty()) throw core::InputError("sweep: give at least one --vary KEY=V1,V2,...");
     bool anyRealtime = false, anyRaymarch = false;
     for (const auto& [k, _] : vary) {
-        anyRealtime = anyRealtime || startsWith(k, "realtime.");
-        anyRaymarch = anyRaymarch || startsWith(k, "raymarch.");
+        anyRealtime = anyRealtime || k.starts_with("realtime.");
+        anyRaymarch = anyRaymarch || k.starts_with("raymarch.");
     }
     if (anyRealtime && anyRaymarch)
         throw core::InputError(
@@ -329,7 +325,7 @@ ExitCode runSweep(const SweepOptions& o) {
             job.bounds = thresholds->forScene(job.test.scene.name, &job.test.scene.compare);
         if (convergence) {
             for (const auto& s : job.testOverrides)
-                if (!(startsWith(s, "raymarch.") &&
+                if (!(s.starts_with("raymarch.") &&
                       std::any_of(vary.begin(), vary.end(),
                                   [&](const auto& kv) { return kv.first == keyOf(s); })) &&
                     keyOf(s) != "raymarch.root_tolerance" && keyOf(s) != "raymarch.spp")

@@ -10,7 +10,7 @@ namespace twinrender::compare {
 
 namespace {
 
-constexpr float INF = std::numeric_limits<float>::infinity();
+constexpr float FAR = std::numeric_limits<float>::infinity();
 // Columns handled together in the vertical pass, so it walks memory row by row.
 constexpr int COLUMN_BLOCK = 256;
 
@@ -21,7 +21,7 @@ constexpr int COLUMN_BLOCK = 256;
 void transform1d(const float* f, int n, float* d, int* v, double* z) {
     int k = -1;
     for (int q = 0; q < n; ++q) {
-        if (f[q] == INF) continue;
+        if (f[q] == FAR) continue;
         if (k < 0) {
             k = 0;
             v[0] = q;
@@ -44,7 +44,7 @@ void transform1d(const float* f, int n, float* d, int* v, double* z) {
         z[k + 1] = std::numeric_limits<double>::infinity();
     }
     if (k < 0) {
-        std::fill(d, d + n, INF);
+        std::fill(d, d + n, FAR);
         return;
     }
     k = 0;
@@ -60,7 +60,7 @@ void transform1d(const float* f, int n, float* d, int* v, double* z) {
 std::vector<float> squaredDistanceTransform(const Mask& features) {
     const int w = features.width();
     const int h = features.height();
-    std::vector<float> g(features.pixelCount(), INF);
+    std::vector<float> g(features.pixelCount(), FAR);
     if (features.pixelCount() == 0) return g;
 
     // Columns: the vertical distance to the nearest feature in the same column, by a downward
@@ -75,7 +75,7 @@ std::vector<float> squaredDistanceTransform(const Mask& features) {
                                   const float* above = y > 0 ? row - w : nullptr;
                                   for (int x = x0; x < x1; ++x)
                                       row[x] =
-                                          features(x, y) ? 0.0f : (above ? above[x] + 1.0f : INF);
+                                          features(x, y) ? 0.0f : (above ? above[x] + 1.0f : FAR);
                               }
                               for (int y = h - 2; y >= 0; --y) {
                                   float* row = &g[static_cast<std::size_t>(y) * w];

@@ -5,19 +5,14 @@
 
 #include <stdexcept>
 
+#include "compare/testdata/constant_image.h"
 #include "compare/testdata/test_pairs.h"
 #include "core/error.h"
 
 namespace twinrender::compare {
 namespace {
 
-core::Image constant(int width, int height, float r, float g, float b) {
-    core::Image image(width, height, {"R", "G", "B"});
-    image.fillChannel(0, r);
-    image.fillChannel(1, g);
-    image.fillChannel(2, b);
-    return image;
-}
+using testdata::constant;
 
 TEST(Flip, IdenticalImagesGiveExactlyZero) {
     for (const auto& pair : testdata::referencePairs()) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "compare/testdata/constant_image.h"
 #include "compare/testdata/test_pairs.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -16,13 +17,7 @@
 namespace twinrender::compare {
 namespace {
 
-core::Image constant(int width, int height, float r, float g, float b) {
-    core::Image image(width, height, {"R", "G", "B"});
-    image.fillChannel(0, r);
-    image.fillChannel(1, g);
-    image.fillChannel(2, b);
-    return image;
-}
+using testdata::constant;
 
 TEST(Psnr, ConstantOffsetOfOneTenthIs20Decibels) {
     // MSE = 0.1^2 = 0.01, PSNR = 10 log10(1 / 0.01) = 20 dB. 0.6f - 0.5f is 0.1 + 2.4e-8,

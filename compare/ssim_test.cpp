@@ -3,19 +3,14 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include "compare/testdata/constant_image.h"
 #include "compare/testdata/test_pairs.h"
 #include "core/error.h"
 
 namespace twinrender::compare {
 namespace {
 
-core::Image constant(int width, int height, float r, float g, float b) {
-    core::Image image(width, height, {"R", "G", "B"});
-    image.fillChannel(0, r);
-    image.fillChannel(1, g);
-    image.fillChannel(2, b);
-    return image;
-}
+using testdata::constant;
 
 TEST(Ssim, IdenticalImagesGiveExactlyOne) {
     const auto pair = testdata::gradientNoise();

@@ -22,7 +22,6 @@ namespace twinrender::core {
 
 namespace {
 
-constexpr double PI = std::numbers::pi;
 constexpr std::size_t GRAIN = 1024;                   // particles per task
 constexpr std::uint32_t LANES = ParticleGrid::LANES;  // partial sums of the gradient loop
 
@@ -106,15 +105,16 @@ SphericalUv sphericalUv(const glm::dvec3& position, const glm::dvec3& center,
     const double rho = std::sqrt(rho2);
     const double r2 = rho2 + p.z * p.z;
     SphericalUv out;
-    double u = std::atan2(p.y, p.x) / (2.0 * PI);
+    double u = std::atan2(p.y, p.x) / (2.0 * std::numbers::pi);
     if (u < 0.0) u += 1.0;
     if (u >= 1.0) u = 0.0;
-    out.uv = glm::dvec2(u, std::atan2(p.z, rho) / PI + 0.5);
+    out.uv = glm::dvec2(u, std::atan2(p.z, rho) / std::numbers::pi + 0.5);
     if (r2 == 0.0 || rho <= 1e-9 * std::sqrt(r2)) return out;  // on the pole axis
-    const glm::dvec3 du(-p.y / (2.0 * PI * rho2), p.x / (2.0 * PI * rho2), 0.0);
+    const glm::dvec3 du(-p.y / (2.0 * std::numbers::pi * rho2),
+                        p.x / (2.0 * std::numbers::pi * rho2), 0.0);
     const glm::dvec3 dv(-p.z * p.x / rho, -p.z * p.y / rho, rho);
     out.dudx = frame * du;
-    out.dvdx = frame * (dv / (PI * r2));
+    out.dvdx = frame * (dv / (std::numbers::pi * r2));
     return out;
 }
 

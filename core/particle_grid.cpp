@@ -8,8 +8,6 @@ namespace twinrender::core {
 
 namespace {
 
-constexpr double PI = std::numbers::pi;
-
 // The box of the finite positions and the largest finite h of some particles of a set.
 struct Box {
     glm::dvec3 lo{INFINITY};
@@ -101,7 +99,7 @@ ParticleGrid::Level buildLevel(const ParticleSet& set, const std::vector<std::ui
         g.py[k] = p.y;
         g.pz[k] = p.z;
         g.invH[k] = static_cast<float>(1.0 / h);
-        g.coef[k] = static_cast<float>(set.volume[i] / (PI * h * h * h * h));
+        g.coef[k] = static_cast<float>(set.volume[i] / (std::numbers::pi * h * h * h * h));
         g.index[k] = i;
     }
     for (std::size_t k = members.size(); k < g.px.size(); ++k) {

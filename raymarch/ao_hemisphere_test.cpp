@@ -24,7 +24,7 @@ bool hitsSphere(const glm::dvec3& d, const glm::dvec3& c, double a, double R) {
 // R at least that the occluded fraction is (a / h)^2.
 TEST(AoHemisphere, ASphereAboveAPlaneOccludesTheClosedFormWithinTheStandardError) {
     const glm::dvec3 normal(0.0, 0.0, 1.0);
-    for (const auto [a, h] : {std::pair{0.5, 1.0}, std::pair{0.3, 1.5}, std::pair{0.9, 1.0}}) {
+    for (const auto& [a, h] : {std::pair{0.5, 1.0}, std::pair{0.3, 1.5}, std::pair{0.9, 1.0}}) {
         const double R = std::sqrt(h * h - a * a) + 1e-9;
         const int side = 32;
         const auto dirs = aoDirections(normal, side, 7);

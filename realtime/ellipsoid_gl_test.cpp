@@ -54,15 +54,15 @@ Settings ellipsoidSettings() {
 }
 
 // A ray against particle i's ellipsoid, in its unit-sphere space.
-struct RayHit {
+struct EllipsoidHit {
     double t = std::numeric_limits<double>::infinity();  // nearest entry along the ray
     glm::dvec3 normal{0.0};                              // world, unit
     double miss2 =
         std::numeric_limits<double>::infinity();  // squared closest approach (1: grazing)
 };
 
-RayHit castAt(const core::ParticleSet& ps, const Ellipsoid& e, std::size_t i,
-              const core::Ray& ray) {
+EllipsoidHit castAt(const core::ParticleSet& ps, const Ellipsoid& e, std::size_t i,
+                    const core::Ray& ray) {
     glm::dmat3 inverse;  // rows: axis_k / |axis_k|^2
     for (int k = 0; k < 3; ++k) {
         const glm::dvec3 a(e.axes[k]);
@@ -72,7 +72,7 @@ RayHit castAt(const core::ParticleSet& ps, const Ellipsoid& e, std::size_t i,
     const glm::dvec3 o = inverse * (ray.origin - glm::dvec3(ps.position[i]) - glm::dvec3(e.shift));
     const glm::dvec3 m = inverse * ray.direction;
     const double a = glm::dot(m, m), b = glm::dot(o, m), c = glm::dot(o, o) - 1.0;
-    RayHit hit;
+    EllipsoidHit hit;
     hit.miss2 = glm::dot(o, o) - b * b / a;
     const double disc = b * b - a * c;
     if (disc < 0.0) return hit;
@@ -120,10 +120,10 @@ TEST_F(EllipsoidTest, TheGBufferHoldsTheEllipsoids) {
     for (int y = 0; y < camera.height(); ++y)
         for (int x = 0; x < camera.width(); ++x) {
             const core::Ray ray = camera.ray(x + 0.5, y + 0.5);
-            RayHit front, second;
+            EllipsoidHit front, second;
             bool grazing = false;
             for (std::size_t i = 0; i < ps.size(); ++i) {
-                const RayHit hit = castAt(ps, ellipsoids[i], i, ray);
+                const EllipsoidHit hit = castAt(ps, ellipsoids[i], i, ray);
                 grazing = grazing || std::abs(hit.miss2 - 1.0) < 0.02;
                 if (hit.t < front.t) {
                     second = front;
@@ -187,7 +187,7 @@ TEST_F(EllipsoidTest, TheShadowMapCastsTheEllipsoids) {
             const core::Ray up{ground, {0.0, 0.0, 1.0}};
             bool blocked = false, grazing = false;
             for (std::size_t i = 0; i < layer; ++i) {
-                const RayHit hit = castAt(ps, ellipsoids[i], i, up);
+                const EllipsoidHit hit = castAt(ps, ellipsoids[i], i, up);
                 blocked = blocked || std::isfinite(hit.t);
                 grazing = grazing || std::abs(hit.miss2 - 1.0) < 0.03;
             }

@@ -19,8 +19,8 @@ using testing::RendererTest;
 using testing::TestScene;
 using testing::WIDTH;
 
-const glm::vec3 RADIANCE(2.0f, 1.0f, 0.5f);
-constexpr float H = 0.1f;  // the particle's h: a sphere of radius_scale h
+const glm::vec3 HALO_RADIANCE(2.0f, 1.0f, 0.5f);
+constexpr float HALO_H = 0.1f;  // the particle's h: a sphere of radius_scale h
 
 // One glowing particle on black at `centre`, seen from (0, 0, 10) (no sun, no ambient light);
 // with `occluderZ`, a grey particle of h = 0.5 at that z on the line of sight.
@@ -30,9 +30,9 @@ TestScene glowingParticle(glm::vec3 centre, std::optional<float> occluderZ = std
     t.scene.light.ambient = 0.0;
     core::Material glowing = t.materials[0];
     glowing.diffuse = constantTexture(glm::vec3(0.0f));
-    glowing.emission = constantTexture(RADIANCE);
+    glowing.emission = constantTexture(HALO_RADIANCE);
     t.materials.push_back(glowing);
-    t.particles.particles.material[t.add(0, centre, H)] = 1;
+    t.particles.particles.material[t.add(0, centre, HALO_H)] = 1;
     if (occluderZ) t.add(1, glm::vec3(centre.x, centre.y, *occluderZ), 0.5f);
     return t;
 }
@@ -54,7 +54,7 @@ glm::dvec3 flux(const core::Frame& frame) {
 glm::dvec3 sphereFlux(const TestScene& t, double r, double z) {
     const double rho =
         r * 0.5 * HEIGHT / (std::tan(0.5 * t.scene.camera.fovYDeg * std::numbers::pi / 180.0) * z);
-    return std::numbers::pi * rho * rho * glm::dvec3(RADIANCE);
+    return std::numbers::pi * rho * rho * glm::dvec3(HALO_RADIANCE);
 }
 
 class Halo : public RendererTest {};
@@ -68,7 +68,7 @@ TEST_F(Halo, CarriesTheSpheresFluxWhereverItLies) {
     for (int k = 0; k < 5; ++k) {
         const float shift = static_cast<float>(0.2 * k * pixel);
         TestScene t = glowingParticle({shift, 0.7f * shift, -40.0f});
-        const glm::dvec3 expected = sphereFlux(t, 0.9 * H, 50.0);
+        const glm::dvec3 expected = sphereFlux(t, 0.9 * HALO_H, 50.0);
         const glm::dvec3 drawn = flux(render(t, halo));
         // The Gaussian (sigma 0.7 px) sampled at the pixel centres sums to 1 within 0.03 %
         // wherever it lies (Poisson summation: 2 exp(-2 pi^2 sigma^2) an axis), and its tail
@@ -93,7 +93,7 @@ TEST_F(Halo, ANearerSurfaceHidesIt) {
     // on black (within 2e-3, as above), where the sphere drawn without one gives less than half
     // of it (CarriesTheSpheresFluxWhereverItLies). So a halo option doing nothing fails here.
     TestScene behind = glowingParticle({0.0f, 0.0f, -40.0f}, -50.0f);
-    const glm::dvec3 expected = sphereFlux(behind, 0.9 * H, 50.0);
+    const glm::dvec3 expected = sphereFlux(behind, 0.9 * HALO_H, 50.0);
     const glm::dvec3 drawn = flux(render(behind, halo));
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(drawn[c] / expected[c], 1.0, 2e-3) << "channel " << c;
 }

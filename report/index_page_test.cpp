@@ -8,6 +8,7 @@
 
 #include "report/report_html.h"
 #include "report/scene_facts.h"
+#include "report/testdata/read_text.h"
 #include "report/testdata/synthetic_report.h"
 #include "tests/scratch_dir.h"
 
@@ -16,12 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using testdata::readText;
 
 // A sequence of three frames whose header frame is not the median one.
 SceneReport sequenceScene() {

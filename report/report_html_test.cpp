@@ -11,6 +11,7 @@
 #include "report/buffer_display.h"
 #include "report/junit.h"
 #include "report/markup.h"
+#include "report/testdata/read_text.h"
 #include "report/testdata/synthetic_report.h"
 #include "tests/scratch_dir.h"
 
@@ -26,12 +27,7 @@ fs::path freshDir(const std::string& name) {
     return twinrender::testing::freshDir("report_" + name);
 }
 
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using testdata::readText;
 
 TEST(ReportHtml, EveryImageExistsAndNothingComesFromTheNetwork) {
     const fs::path dir = freshDir("html");

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "report/testdata/read_text.h"
 #include "report/testdata/xml_check.h"
 #include "tests/scratch_dir.h"
 
@@ -46,12 +47,7 @@ tc::StudyResult twoRows() {
     return s;
 }
 
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using tc::testdata::readText;
 
 }  // namespace
 

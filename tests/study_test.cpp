@@ -769,23 +769,28 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
     EXPECT_NE(readText(dir / "study.md").find("**Finding:** " + finding), std::string::npos);
 }
 
+// `run --studies quick:NAME,...` runs the studies named (each quick study has a test of its own
+// above; `--studies quick`, every study, is the same path with no names).
 TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
     const fs::path out = tt::freshDir("study_run");
     // No bounds: the planet at this size is far from the suite's thresholds.
     const fs::path none = tt::freshDir("study_run_thresholds") / "none.toml";
     tt::writeFile(none, "");
-    const auto r =
-        tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
-                          "/scenes/planet.toml --set camera.width=64 --set camera.height=48"
-                          " --set bodies.planet.particles=1500 --thresholds " +
-                          none.string() + " --studies quick --out " + out.string());
+    const std::string planet = std::string(TWINRENDER_SOURCE_DIR) +
+                               "/scenes/planet.toml --set camera.width=64 --set camera.height=48"
+                               " --set bodies.planet.particles=1500 --thresholds " +
+                               none.string();
+    const auto r = tt::runTwinrender(
+        "run " + planet + " --studies quick:subpixel_emitters,body_sphere --out " + out.string());
     EXPECT_EQ(r.exitCode, 0) << r.output;
     const std::string index = readText(out / "index.html");
     EXPECT_NE(index.find("<a href=\"studies/index.html\">stability studies</a>"),
               std::string::npos);
     const json all = readJson(out / "studies" / "studies.json");
     ASSERT_FALSE(all.is_discarded()) << r.output;
-    ASSERT_EQ(all["studies"].size(), 14u);
+    ASSERT_EQ(all["studies"].size(), 2u);
+    EXPECT_EQ(all["studies"][0]["name"], "subpixel_emitters");
+    EXPECT_EQ(all["studies"][1]["name"], "body_sphere");
     const std::string page = readText(out / "studies" / "index.html");
     for (const json& s : all["studies"]) {
         EXPECT_FALSE(s["finding"].get<std::string>().empty()) << s;
@@ -804,6 +809,14 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
                           "/scenes/planet.toml --studies quick --shard 1/2 --out " +
                           tt::freshDir("study_run_shard").string());
     EXPECT_EQ(sharded.exitCode, 4) << sharded.output;
+    // A study that does not exist is found before anything renders.
+    const fs::path badOut = tt::freshDir("study_run_unknown");
+    const auto unknown = tt::runTwinrender(
+        "run " + planet + " --studies quick:body_sphere,nonsense --out " + badOut.string());
+    EXPECT_EQ(unknown.exitCode, 4) << unknown.output;
+    EXPECT_NE(unknown.output.find("run --studies: no study nonsense"), std::string::npos)
+        << unknown.output;
+    EXPECT_EQ(tt::countFiles(badOut), 0u);
 }
 
 TEST(Study, UnknownStudyIsExitFourWithNoOutput) {
