@@ -26,6 +26,9 @@ or bilateral, or none (the unfiltered display modes). Run under a display (xvfb-
 """
 import argparse
 import json
+import os
+import signal
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -133,5 +136,26 @@ def main() -> int:
     return 0
 
 
+def main_with_retries(tries: int = 5) -> int:
+    """main() in a child process, tried again when VTK aborted it for want of an X connection.
+
+    VTK aborts the process (SIGABRT, "bad X server connection") when it cannot open the display
+    for a window, which a loaded Xvfb sometimes refuses for a moment; the same request then draws
+    on the next try. Any other failure, and the last try's, is the adapter's own result."""
+    if os.environ.get("TWINRENDER_VTK_CHILD") == "1":
+        return main()
+    env = dict(os.environ, TWINRENDER_VTK_CHILD="1")
+    for attempt in range(tries):
+        child = subprocess.run([sys.executable, os.path.abspath(__file__), *sys.argv[1:]],
+                               env=env, stderr=subprocess.PIPE, text=True)
+        refused = (child.returncode == -signal.SIGABRT
+                   and "bad X server connection" in child.stderr)
+        if not refused or attempt == tries - 1:
+            sys.stderr.write(child.stderr)
+            return 128 + signal.SIGABRT if child.returncode == -signal.SIGABRT else child.returncode
+        time.sleep(1.0 + attempt)
+    return 1
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main_with_retries())
