@@ -21,6 +21,11 @@ struct StudyPoint {
     // A scene of its own, relative to scenes/studies/ ("../planet.toml" is a default scene),
     // for a study that spans several; its rows then name their scene. Empty: StudyDef::scene.
     std::string scene;
+    // A repeat of another point (app/studies/common.h repeatOf): rendered with the camera turned
+    // right by half a pixel, an override of camera.target set from the loaded scene's own camera
+    // (x is the unturned camera's). How much a metric moves with where the pixel grid falls:
+    // the noise that a study's ties rest on.
+    bool turnHalfPixel = false;
 };
 
 struct StudyDef {

@@ -18,6 +18,7 @@
 #include "app/output_folder.h"
 #include "app/reference_cache.h"
 #include "app/studies.h"
+#include "app/studies/common.h"
 #include "compare/contact_band.h"
 #include "compare/flip.h"
 #include "compare/masks.h"
@@ -179,6 +180,14 @@ ExitCode runStudies(const StudyOptions& o) {
                                 sp.x, e.what()));
             }
             if (std::isnan(sp.x) && d->xOf) sp.x = d->xOf(pt.scene);
+            if (sp.turnHalfPixel) {
+                // The repeat's camera, turned from the scene's own; loaded again to check it.
+                for (const std::string& c : study::turnedHalfPixel(pt.scene.scene.camera)) {
+                    sp.sets.push_back(c);
+                    pt.overrides.push_back(c);
+                }
+                pt.scene = loadScene(sceneFile, pt.overrides);
+            }
             pt.file = sceneFile;
             unloadPoint(pt);  // loaded again for its renders
             pt.point = std::move(sp);

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <iterator>
 #include <numbers>
 #include <string_view>
 
 #include "compare/metric_table.h"
 #include "compare/thresholds.h"
+#include "core/camera.h"
 
 namespace twinrender::app::study {
 
@@ -33,14 +35,29 @@ std::vector<std::string> halfPixelAside(double distance, double height, double f
             set("camera.target", vec(aside, 0.0, 0.0))};
 }
 
-namespace {
+StudyPoint repeatOf(StudyPoint p) {
+    p.series += REPEAT;
+    p.turnHalfPixel = true;
+    return p;
+}
+
+void addRepeats(std::vector<StudyPoint>& pts) {
+    const std::size_t n = pts.size();
+    for (std::size_t i = 0; i < n; ++i) pts.push_back(repeatOf(pts[i]));
+}
+
+std::vector<std::string> turnedHalfPixel(const core::CameraSettings& camera) {
+    const core::Camera c(camera);
+    const double distance = glm::length(camera.target - camera.position);
+    const glm::dvec3 target =
+        camera.target + c.right() * (0.5 * distance / focalPixels(camera.height, camera.fovYDeg));
+    return {set("camera.target", vec(target.x, target.y, target.z))};
+}
 
 bool isRepeat(const StudyRow& r) {
     const std::string_view suffix = REPEAT;
     return r.series.size() > suffix.size() && r.series.ends_with(suffix);
 }
-
-}  // namespace
 
 double metricOf(const StudyRow& r, const std::string& metric) {
     const auto it = r.metrics.find(metric);
@@ -88,7 +105,8 @@ double spreadAt(const StudyResult& s, const StudyRow& r, const std::string& metr
     const std::string series = r.series + REPEAT;
     const StudyRow* repeat = nullptr;
     for (const StudyRow& q : s.rows)
-        if (q.series == series && (!repeat || std::abs(q.x - r.x) < std::abs(repeat->x - r.x)))
+        if (q.series == series && q.scene == r.scene &&
+            (!repeat || std::abs(q.x - r.x) < std::abs(repeat->x - r.x)))
             repeat = &q;
     if (!repeat) return NAN;
     const double d = std::abs(metricOf(*repeat, metric) - metricOf(r, metric));
@@ -99,6 +117,24 @@ Order order(double a, double b, double noise) {
     if (!std::isfinite(a) || !std::isfinite(b) || !(std::abs(a - b) > (noise >= 0.0 ? noise : 0.0)))
         return Order::Tie;
     return a < b ? Order::Lower : Order::Higher;
+}
+
+Measured measuredOf(const StudyResult& s, const StudyRow& r, const std::string& metric) {
+    return {.name = r.series, .value = metricOf(r, metric), .spread = spreadAt(s, r, metric)};
+}
+
+Order orderWithin(const Measured& a, const Measured& b) {
+    auto noise = [](double spread) { return std::isfinite(spread) ? spread : 0.0; };
+    return order(a.value, b.value, noise(a.spread) + noise(b.spread));
+}
+
+Order orderOf(const StudyResult& s, const StudyRow& a, const StudyRow& b,
+              const std::string& metric) {
+    return orderWithin(measuredOf(s, a, metric), measuredOf(s, b, metric));
+}
+
+std::string orderName(Order o) {
+    return o == Order::Lower ? "lower" : o == Order::Higher ? "higher" : "tie";
 }
 
 std::vector<std::string> lowestOf(const std::vector<Measured>& candidates) {

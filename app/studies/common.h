@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "app/studies.h"
+#include "core/scene.h"
 #include "report/study_report.h"
 
 namespace twinrender::app::study {
@@ -33,11 +35,23 @@ std::vector<std::string> backedAway(std::string first, double distance, bool qui
 // what differs between two renders of one setting; its series is the original's + REPEAT.
 inline constexpr char REPEAT[] = " (repeat)";
 std::vector<std::string> halfPixelAside(double distance, double height, double fovYDeg);
+// A repeat of a point whose camera the study does not place, or whose bodies lie far from the
+// camera's target: the same settings, its series + REPEAT, rendered with the camera turned right
+// by half a pixel (StudyPoint::turnHalfPixel), which moves every depth alike.
+StudyPoint repeatOf(StudyPoint p);
+// Every point of `pts` again as its repeat, after them all.
+void addRepeats(std::vector<StudyPoint>& pts);
+// The override that turns a camera right by half a pixel: its target moved sideways by half a
+// pixel at the target's distance.
+std::vector<std::string> turnedHalfPixel(const core::CameraSettings& camera);
 
 // ---- a conclusion's rows ----------------------------------------------------------------------
 
 // A row's value of a metric; NaN when it has none.
 double metricOf(const StudyRow& r, const std::string& metric);
+
+// Whether a row is a repeat (its series ends with REPEAT).
+bool isRepeat(const StudyRow& r);
 
 using SeriesRows = std::vector<std::pair<std::string, std::vector<const StudyRow*>>>;
 // The rows of each series, in order of first appearance, each sorted by x; repeats left out.
@@ -51,7 +65,8 @@ double meanOf(const std::vector<const StudyRow*>& rows, const std::string& metri
 // ---- noise: when two values tie ------------------------------------------------------------
 
 // The measured noise of a row's metric: the absolute difference from its repeat's (the row of
-// series + REPEAT at the nearest x); NaN when it has no repeat or either value is not finite.
+// series + REPEAT of the same scene at the nearest x); NaN when it has no repeat or either value
+// is not finite.
 double spreadAt(const StudyResult& s, const StudyRow& r, const std::string& metric);
 
 // How `a` stands to `b` when each may move by its noise: Lower or Higher only when the two are
@@ -66,6 +81,17 @@ struct Measured {
     double value = NAN;
     double spread = 0.0;
 };
+// A row's value of a metric and its spread, named after its series.
+Measured measuredOf(const StudyResult& s, const StudyRow& r, const std::string& metric);
+// How `a` stands to `b` beyond the sum of their spreads (order; a spread not measured counts as
+// 0).
+Order orderWithin(const Measured& a, const Measured& b);
+// How a row's metric stands to another's beyond the two rows' spreads (order).
+Order orderOf(const StudyResult& s, const StudyRow& a, const StudyRow& b,
+              const std::string& metric);
+// "lower", "tie", "higher": an order as the facts write it.
+std::string orderName(Order o);
+
 // The names of the candidates that tie with the lowest (order(value, lowest) is not Higher),
 // in the candidates' order; empty when no value is finite.
 std::vector<std::string> lowestOf(const std::vector<Measured>& candidates);

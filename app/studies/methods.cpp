@@ -155,14 +155,24 @@ StudyPoint methodPoint(const MethodSweep& m, double x, const std::string& shape,
 
 // On the default scenes, x is the method's parameter (0 for none); along particle size the
 // pixels per particle (NaN here: particlePixels computes it), along view angle the degrees.
+// Where the conclusion compares normal errors (each method at its default on the default
+// scenes, every point along size and angle) a point is rendered again with the camera turned
+// half a pixel: the noise its ties rest on.
 std::vector<StudyPoint> methodsPoints(bool quick) {
     std::vector<StudyPoint> pts;
-    for (const SuiteScene& scene : suiteScenes(quick))
+    for (const SuiteScene& scene : suiteScenes(quick)) {
+        std::vector<StudyPoint> repeats;
         for (const std::string& shape : SHAPES)
             for (const MethodSweep& m : methodSweeps())
-                for (double v : sweepValues(m, quick))
+                for (double v : sweepValues(m, quick)) {
                     pts.push_back(
                         methodPoint(m, v, shape, "../" + scene.name + ".toml", scene.sets));
+                    // Each method at its default again with the camera turned half a pixel (the
+                    // noise its comparison with none rests on), timed with its scene's points.
+                    if (v == m.defaultValue || !m.key) repeats.push_back(repeatOf(pts.back()));
+                }
+        pts.insert(pts.end(), repeats.begin(), repeats.end());
+    }
     // Quick: the largest and a small particle, face-on and grazing.
     const std::vector<double> distances =
         quick ? std::vector<double>{sizeDistances(true)[0], sizeDistances(true)[2]}
@@ -178,6 +188,7 @@ std::vector<StudyPoint> methodsPoints(bool quick) {
                 if (quick) p.sets.push_back(SIZE_QUICK_PARTICLES);
                 p.x = NAN;
                 pts.push_back(std::move(p));
+                pts.push_back(repeatOf(pts.back()));
             }
     for (const std::string& shape : SHAPES)
         for (const MethodSweep& m : methodSweeps())
@@ -186,6 +197,7 @@ std::vector<StudyPoint> methodsPoints(bool quick) {
                     methodPoint(m, m.defaultValue, shape, ANGLE_SCENE + ".toml", angleCamera(deg));
                 p.x = deg;
                 pts.push_back(std::move(p));
+                pts.push_back(repeatOf(pts.back()));
             }
     // Quick: a coarse shadow map, the largest stage of these small frames on llvmpipe.
     if (quick)
@@ -233,23 +245,24 @@ std::string methodName(const std::string& series) {
     return method + shapeSuffix(shape);
 }
 
-// Per series in order of first appearance, its x -> normal.mean_deg over some rows (one
-// scene's).
-using NormalErrors = std::vector<std::pair<std::string, std::map<double, double>>>;
-NormalErrors normalBySeries(const std::vector<const StudyRow*>& rows) {
-    NormalErrors out;
+const std::string NORMAL = "normal.mean_deg";
+
+// Per series in order of first appearance, its x -> row over some rows (one scene's).
+using RowsByX = std::vector<std::pair<std::string, std::map<double, const StudyRow*>>>;
+RowsByX rowsBySeries(const std::vector<const StudyRow*>& rows) {
+    RowsByX out;
     for (const StudyRow* r : rows) {
         if (!r->error.empty()) continue;
         auto it = std::find_if(out.begin(), out.end(),
                                [&](const auto& p) { return p.first == r->series; });
         if (it == out.end()) it = out.insert(out.end(), {r->series, {}});
-        it->second[r->x] = metricOf(*r, "normal.mean_deg");
+        it->second[r->x] = r;
     }
     return out;
 }
-const std::map<double, double>* errorsOf(const NormalErrors& all, const std::string& series) {
-    for (const auto& [name, errors] : all)
-        if (name == series) return &errors;
+const std::map<double, const StudyRow*>* rowsOf(const RowsByX& all, const std::string& series) {
+    for (const auto& [name, rows] : all)
+        if (name == series) return &rows;
     return nullptr;
 }
 
@@ -267,27 +280,27 @@ std::string noneOf(const std::string& series) {
                        methodAndShape(series).second);
 }
 
-// A filter helps where it lowers the normal error against none by this fraction or more, and
-// raises it where it is this fraction or more above none's.
-constexpr double HELP_MARGIN = 0.10;
-
-// Along particle size: where each method helps and where it raises the error against its
-// control.
-std::string sizeFinding(const std::vector<const StudyRow*>& rows, json& facts) {
-    const auto normal = normalBySeries(rows);
+// Along particle size: where each method helps (its normal error below its control's beyond
+// the two rows' spreads, their difference from a render with the camera turned half a pixel)
+// and where it raises the error (above it likewise).
+std::string sizeFinding(const StudyResult& s, const std::vector<const StudyRow*>& rows,
+                        json& facts) {
+    const auto all = rowsBySeries(rows);
     std::string out;
-    for (const auto& [series, errors] : normal) {
-        const auto* none = errorsOf(normal, controlOf(series));
-        if (!none) continue;
+    for (const auto& [series, byX] : all) {
+        const auto* control = rowsOf(all, controlOf(series));
+        if (!control) continue;
         std::vector<double> helps, raises;
-        json gains = json::object();
-        for (const auto& [x, e] : errors) {
-            const auto n = none->find(x);
-            if (n == none->end()) continue;
-            const double g = 1.0 - e / n->second;
-            gains[fmt::format("{:.4g}", x)] = jsonOrNull(g);
-            if (g >= HELP_MARGIN) helps.push_back(x);
-            if (g <= -HELP_MARGIN) raises.push_back(x);
+        json gains = json::object(), against = json::object();
+        for (const auto& [x, r] : byX) {
+            const auto c = control->find(x);
+            if (c == control->end()) continue;
+            const std::string key = fmt::format("{:.4g}", x);
+            gains[key] = jsonOrNull(1.0 - metricOf(*r, NORMAL) / metricOf(*c->second, NORMAL));
+            const Order o = orderOf(s, *r, *c->second, NORMAL);
+            against[key] = orderName(o);
+            if (o == Order::Lower) helps.push_back(x);
+            if (o == Order::Higher) raises.push_back(x);
         }
         auto list = [](const std::vector<double>& xs) {
             std::string t;
@@ -296,13 +309,14 @@ std::string sizeFinding(const std::vector<const StudyRow*>& rows, json& facts) {
         };
         // Contiguous: every size between the smallest and the largest that helps helps too.
         bool contiguous = true;
-        for (const auto& [x, e] : errors)
+        for (const auto& [x, r] : byX)
             if (!helps.empty() && x > helps.front() && x < helps.back() &&
                 std::find(helps.begin(), helps.end(), x) == helps.end())
                 contiguous = false;
         json& f = facts[series];
         f["control"] = controlOf(series);
         f["gain"] = gains;
+        f["against_control"] = against;
         f["smallest_helping_px"] = helps.empty() ? json(nullptr) : json(helps.front());
         f["largest_helping_px"] = helps.empty() ? json(nullptr) : json(helps.back());
         f["raises_at_px"] = raises;
@@ -319,31 +333,43 @@ std::string sizeFinding(const std::vector<const StudyRow*>& rows, json& facts) {
     return out;
 }
 
-// Along view angle: from which angle each method raises the error against its control for
-// good, and its error face-on and at the largest angle.
-std::string angleFinding(const std::vector<const StudyRow*>& rows, json& facts) {
-    const auto normal = normalBySeries(rows);
+// "lower", "a tie", "higher": an order as a finding's brackets write it.
+std::string orderWords(Order o) {
+    return o == Order::Tie ? "a tie" : orderName(o);
+}
+
+// Along view angle, each beyond the two rows' spreads: from which angle each method raises the
+// error above its control's for good, and how its error at the largest angle stands to its
+// face-on one.
+std::string angleFinding(const StudyResult& s, const std::vector<const StudyRow*>& rows,
+                         json& facts) {
+    const auto all = rowsBySeries(rows);
     std::string raised, growth;
-    for (const auto& [series, errors] : normal) {
-        const auto* none = errorsOf(normal, controlOf(series));
-        if (!none || errors.empty()) continue;
+    for (const auto& [series, byX] : all) {
+        const auto* control = rowsOf(all, controlOf(series));
+        if (!control || byX.empty()) continue;
         double from = NAN;
-        for (auto it = errors.rbegin(); it != errors.rend(); ++it) {
-            const auto n = none->find(it->first);
-            if (n == none->end() || !(1.0 - it->second / n->second <= -HELP_MARGIN)) break;
+        for (auto it = byX.rbegin(); it != byX.rend(); ++it) {
+            const auto c = control->find(it->first);
+            if (c == control->end() || orderOf(s, *it->second, *c->second, NORMAL) != Order::Higher)
+                break;
             from = it->first;
         }
+        const StudyRow &faceOn = *byX.begin()->second, &last = *byX.rbegin()->second;
+        const Order trend = orderOf(s, last, faceOn, NORMAL);
         const std::string name = methodName(series);
         json& f = facts[series];
         f["control"] = controlOf(series);
         f["raises_from_deg"] = jsonOrNull(from);
-        f["face_on_deg"] = jsonOrNull(errors.begin()->second);
-        f["last_angle"] = errors.rbegin()->first;
-        f["last_deg"] = jsonOrNull(errors.rbegin()->second);
+        f["face_on_deg"] = jsonOrNull(metricOf(faceOn, NORMAL));
+        f["last_angle"] = last.x;
+        f["last_deg"] = jsonOrNull(metricOf(last, NORMAL));
+        f["toward_grazing"] = orderName(trend);
         if (std::isfinite(from))
             raised += fmt::format("{}{} from {}°", raised.empty() ? "" : ", ", name, num(from));
-        growth += fmt::format("{}{} {}° → {}°", growth.empty() ? "" : ", ", name,
-                              num(errors.begin()->second), num(errors.rbegin()->second));
+        growth += fmt::format("{}{} {}° → {}° ({})", growth.empty() ? "" : ", ", name,
+                              num(metricOf(faceOn, NORMAL)), num(metricOf(last, NORMAL)),
+                              orderWords(trend));
     }
     const double last = rows.empty() ? NAN : [&] {
         double a = -INFINITY;
@@ -354,7 +380,8 @@ std::string angleFinding(const std::vector<const StudyRow*>& rows, json& facts) 
                 ? fmt::format("no method raises the normal error above its control's up to {}°",
                               num(last))
                 : "the normal error rises above the control's for " + raised) +
-           fmt::format("; face-on → {}°: {}", num(last), growth);
+           fmt::format("; face-on → {}° (the error at {}° against face-on's): {}", num(last),
+                       num(last), growth);
 }
 
 report::LineChart alongChart(const std::vector<const StudyRow*>& rows, const std::string& title,
@@ -364,9 +391,9 @@ report::LineChart alongChart(const std::vector<const StudyRow*>& rows, const std
     c.xLabel = xLabel;
     c.yLabel = "normal.mean_deg (°)";
     c.xScale = xLog ? report::AxisScale::Log : report::AxisScale::Linear;
-    for (const auto& [series, errors] : normalBySeries(rows)) {
+    for (const auto& [series, byX] : rowsBySeries(rows)) {
         report::LineSeries line{series, {}, false};
-        for (const auto& [x, e] : errors) line.points.push_back({x, e, ""});
+        for (const auto& [x, r] : byX) line.points.push_back({x, metricOf(*r, NORMAL), ""});
         c.series.push_back(std::move(line));
     }
     return c;
@@ -455,10 +482,10 @@ report::StudyTable alongTable(const std::string& file, const std::string& captio
     std::set<double> xs;
     for (const StudyRow* r : rows) xs.insert(r->x);
     for (double x : xs) t.columns.push_back(column(x));
-    for (const auto& [series, errors] : normalBySeries(rows)) {
+    for (const auto& [series, byX] : rowsBySeries(rows)) {
         const auto [method, shape] = methodAndShape(series);
         report::StudyTable::Line line{{method, shape}, {}};
-        for (const auto& [x, e] : errors) line.values[column(x)] = e;
+        for (const auto& [x, r] : byX) line.values[column(x)] = metricOf(*r, NORMAL);
         t.lines.push_back(std::move(line));
     }
     return t;
@@ -485,9 +512,25 @@ std::string frontFinding(const std::vector<report::SettingMedians>& settings,
     return text;
 }
 
+// A setting's median normal error and its noise: the difference from the median of its repeats
+// (the same setting on the same scenes with the camera turned half a pixel); NaN where it has
+// none.
+Measured medianNormal(const report::SettingMedians& st,
+                      const std::vector<report::SettingMedians>& repeats) {
+    Measured m{.name = st.series, .value = normalOf(st), .spread = NAN};
+    for (const auto& r : repeats)
+        if (r.series == st.series + REPEAT && r.x == st.x) {
+            const double d = std::abs(normalOf(r) - m.value);
+            m.spread = std::isfinite(d) ? d : NAN;
+        }
+    return m;
+}
+
 // Each method at its default against none of its shape: its error and time over none's, and a
-// depth filter's error over its control's.
-std::string againstNoneFinding(const std::vector<report::SettingMedians>& settings, json& facts) {
+// depth filter's error over its control's; lower, a tie or higher beyond the two medians'
+// spreads.
+std::string againstNoneFinding(const std::vector<report::SettingMedians>& settings,
+                               const std::vector<report::SettingMedians>& repeats, json& facts) {
     auto find = [&](const std::string& series) -> const report::SettingMedians* {
         for (const auto& o : settings)
             if (o.series == series) return &o;
@@ -505,23 +548,36 @@ std::string againstNoneFinding(const std::vector<report::SettingMedians>& settin
         const MethodSweep* m = sweepOf(methodAndShape(st.series).first);
         const auto* n = find(noneOf(st.series));
         if (!m || (m->key && st.x != m->defaultValue) || !n) continue;
+        const Measured self = medianNormal(st, repeats);
         const double e = normalOf(st) / normalOf(*n), t = timeOf(st) / timeOf(*n);
-        facts[label] = {{"normal_ratio", jsonOrNull(e)}, {"time_ratio", jsonOrNull(t)}};
-        std::string versus = fmt::format("{}x {}", num(e), settingLabel(n->series, n->x));
+        const Order toNone = orderWithin(self, medianNormal(*n, repeats));
+        facts[label] = {{"normal_ratio", jsonOrNull(e)},
+                        {"time_ratio", jsonOrNull(t)},
+                        {"normal_spread", jsonOrNull(self.spread)},
+                        {"against_none", orderName(toNone)}};
+        std::string versus =
+            fmt::format("{}x {}: {}", num(e), settingLabel(n->series, n->x), orderWords(toNone));
         if (const auto* c = find(controlOf(st.series)); c && c != n) {
+            const Order toControl = orderWithin(self, medianNormal(*c, repeats));
             facts[label]["control_normal_ratio"] = jsonOrNull(normalOf(st) / normalOf(*c));
-            versus += fmt::format(", {}x {}", num(normalOf(st) / normalOf(*c)),
-                                  settingLabel(c->series, c->x));
+            facts[label]["against_control"] = orderName(toControl);
+            versus += fmt::format(", {}x {}: {}", num(normalOf(st) / normalOf(*c)),
+                                  settingLabel(c->series, c->x), orderWords(toControl));
         }
         against += fmt::format("{}{} {}° ({}) at {}x the time", against.empty() ? "" : ", ", label,
                                num(normalOf(st)), versus, num(t));
     }
-    return fmt::format("at their defaults against none ({}): {}", none, against);
+    return fmt::format(
+        "at their defaults against none ({}; lower, a tie or higher beyond the two medians' "
+        "noise, their difference from the medians of renders with the camera turned half a "
+        "pixel): {}",
+        none, against);
 }
 
 // The chart of the default scenes: a point per setting, a colour per method and shape; and
 // the settings as facts.
 report::ScatterChart frontChart(const std::vector<report::SettingMedians>& settings,
+                                const std::vector<report::SettingMedians>& repeats,
                                 const std::vector<std::size_t>& front, std::size_t scenes,
                                 json& facts) {
     report::ScatterChart chart;
@@ -547,6 +603,7 @@ report::ScatterChart frontChart(const std::vector<report::SettingMedians>& setti
                          {"scenes", st.scenes.size()},
                          {"time_ms", jsonOrNull(timeOf(st))},
                          {"normal_mean_deg", jsonOrNull(normalOf(st))},
+                         {"normal_spread", jsonOrNull(medianNormal(st, repeats).spread)},
                          {"on_front", std::find(front.begin(), front.end(), i) != front.end()}});
     }
     return chart;
@@ -573,19 +630,28 @@ void addAlong(StudyResult& s, const std::vector<const StudyRow*>& rows, const st
 }  // namespace
 
 void methodsConclude(StudyResult& s) {
-    std::vector<const StudyRow*> suite, size, angle;
+    // The rows of each part, and the default scenes' repeats apart (along size and angle the
+    // repeats are found by spreadAt).
+    std::vector<const StudyRow*> suite, suiteRepeats, size, angle;
     for (const StudyRow& r : s.rows)
-        (r.scene == SIZE_SCENE ? size : r.scene == ANGLE_SCENE ? angle : suite).push_back(&r);
+        (r.scene == SIZE_SCENE    ? size
+         : r.scene == ANGLE_SCENE ? angle
+         : isRepeat(r)            ? suiteRepeats
+                                  : suite)
+            .push_back(&r);
+    std::erase_if(size, [](const StudyRow* r) { return isRepeat(*r); });
+    std::erase_if(angle, [](const StudyRow* r) { return isRepeat(*r); });
     std::vector<std::string> scenes;
     for (const StudyRow* r : suite)
         if (std::find(scenes.begin(), scenes.end(), r->scene) == scenes.end())
             scenes.push_back(r->scene);
     const auto settings = report::mediansOverScenes(suite);
+    const auto repeats = report::mediansOverScenes(suiteRepeats);
     const auto front = report::settingsFront(settings, "normal.mean_deg");
     s.facts["scenes"] = scenes;
     s.facts["shapes"] = SHAPES;
     s.facts["aggregate"] = "median over the default scenes";
-    s.scatter = frontChart(settings, front, scenes.size(), s.facts["settings"]);
+    s.scatter = frontChart(settings, repeats, front, scenes.size(), s.facts["settings"]);
     if (settings.empty()) {
         s.finding = "no render of the default scenes to compare";
         return;
@@ -594,14 +660,17 @@ void methodsConclude(StudyResult& s) {
         "on {} default scenes (medians), the Pareto front of frame time against normal error is "
         "{}; {}",
         scenes.size(), frontFinding(settings, front, s.facts["front"]),
-        againstNoneFinding(settings, s.facts["against_none"]));
+        againstNoneFinding(settings, repeats, s.facts["against_none"]));
     if (!size.empty())
         s.finding +=
-            "; along particle size, where each method's normal error is at least 10 % below its "
-            "control's (none for ssss and depth_normals, depth_normals for the depth filters): " +
-            sizeFinding(size, s.facts["particle_size"]);
+            "; along particle size, where each method's normal error is below its control's "
+            "(none for ssss and depth_normals, depth_normals for the depth filters) beyond the "
+            "two rows' noise, their difference from a render with the camera turned half a "
+            "pixel: " +
+            sizeFinding(s, size, s.facts["particle_size"]);
     if (!angle.empty())
-        s.finding += "; along view angle, " + angleFinding(angle, s.facts["view_angle"]);
+        s.finding += "; along view angle, beyond the same noise, " +
+                     angleFinding(s, angle, s.facts["view_angle"]);
 
     suiteTables(s, settings, front, suite, scenes);
     addAlong(s, size, SIZE_SCENE, "particle size", "particle diameter on screen (px)", true,

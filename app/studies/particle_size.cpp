@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <iterator>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <string>
@@ -34,6 +34,8 @@ std::vector<StudyPoint> particleSizePoints(bool quick) {
                            ""});
     if (quick)
         for (auto& p : pts) p.sets.push_back(SIZE_QUICK_PARTICLES);
+    // Each again with the camera turned half a pixel: the noise the conclusion's ties rest on.
+    addRepeats(pts);
     return pts;
 }
 
@@ -49,44 +51,64 @@ double particlePixels(const LoadedScene& s) {
     return 2.0 * s.realtime.particles.radiusScale * h * f / d;
 }
 
+SsssPairs ssssAgainstOff(StudyResult& s, const SeriesRows& all,
+                         const std::function<std::string(double)>& key) {
+    const std::string metric = "normal.mean_deg";
+    const auto* on = seriesRows(all, "SSSS on");
+    const auto* off = seriesRows(all, "SSSS off");
+    if (!on || !off || on->empty() || on->size() != off->size()) return {};
+    SsssPairs p{*on, *off, {}};
+    for (std::size_t i = 0; i < on->size(); ++i) {
+        const StudyRow &a = *(*on)[i], &b = *(*off)[i];
+        const std::string x = key(a.x);
+        p.against.push_back(orderOf(s, a, b, metric));
+        s.facts["normal_gain"][x] = jsonOrNull(1.0 - metricOf(a, metric) / metricOf(b, metric));
+        s.facts["against_off"][x] = orderName(p.against.back());
+        s.facts["spread"]["SSSS on"][x] = jsonOrNull(spreadAt(s, a, metric));
+        s.facts["spread"]["SSSS off"][x] = jsonOrNull(spreadAt(s, b, metric));
+    }
+    return p;
+}
+
+// SSSS helps at a size where its normal error is below SSSS off's beyond the two rows' spreads
+// (their difference from a render with the camera turned half a pixel).
 void particleSizeConclude(StudyResult& s) {
-    s.chart = seriesChart(s, "normal.mean_deg");
-    const auto gain = gainOf(s, "normal.mean_deg", "SSSS on", "SSSS off");
-    for (const auto& [x, g] : gain)
-        s.facts["normal_gain"][fmt::format("{:.4g}", x)] = jsonOrNull(g);
-    if (gain.empty()) {
+    const std::string metric = "normal.mean_deg";
+    s.chart = seriesChart(s, metric);
+    const SsssPairs pairs =
+        ssssAgainstOff(s, bySeries(s), [](double x) { return fmt::format("{:.4g}", x); });
+    if (pairs.on.empty()) {
         s.finding = "no pair of SSSS on/off renders to compare";
         return;
     }
-    // From the largest particles down: where the gain falls below 10 % for good.
+    const auto &on = pairs.on, &off = pairs.off;
+    const std::vector<Order>& against = pairs.against;
+    // From the smallest particles up: the largest size up to which SSSS lowers the error at no
+    // size.
     double stops = NAN;
-    for (auto it = gain.begin(); it != gain.end(); ++it) {
-        bool below = true;
-        for (auto jt = gain.begin(); jt != std::next(it); ++jt)
-            below = below && !(jt->second >= 0.10);
-        if (below) stops = it->first;
-    }
-    const auto& [xMax, gMax] = *gain.rbegin();
-    const auto all = bySeries(s);
-    const StudyRow* onBig = seriesRows(all, "SSSS on")->back();
-    double offBig = NAN;
-    for (const StudyRow* q : *seriesRows(all, "SSSS off"))
-        if (q->x == onBig->x) offBig = metricOf(*q, "normal.mean_deg");
+    for (std::size_t i = 0; i < against.size() && against[i] != Order::Lower; ++i) stops = on[i]->x;
+    const StudyRow &onBig = *on.back(), &offBig = *off.back();
+    const double gainBig = 1.0 - metricOf(onBig, metric) / metricOf(offBig, metric);
     s.facts["stops_below_px"] = jsonOrNull(stops);
-    s.facts["largest_px"] = xMax;
-    s.finding = fmt::format("SSSS {} the normal error by {} at {} px per particle ({}° vs {}°)",
-                            gMax >= 0 ? "lowers" : "raises", percent(std::abs(gMax)), num(xMax),
-                            num(metricOf(*onBig, "normal.mean_deg")), num(offBig));
-    if (std::isfinite(stops)) {
-        s.finding += fmt::format(
-            "; at {} px per particle and below it helps less than 10 % (the filter radius no "
-            "longer "
-            "spans the particle bumps)",
-            num(stops));
-        s.chart.xMarks.push_back({stops, "gain < 10 %"});
+    s.facts["largest_px"] = onBig.x;
+    s.finding = fmt::format(
+        "at {} px per particle SSSS {} ({}° vs {}°; beyond the noise: each row's difference from "
+        "a render with the camera turned half a pixel)",
+        num(onBig.x),
+        against.back() == Order::Lower    ? "lowers the normal error by " + percent(gainBig)
+        : against.back() == Order::Higher ? "raises the normal error by " + percent(-gainBig)
+                                          : "ties with none within the noise",
+        num(metricOf(onBig, metric)), num(metricOf(offBig, metric)));
+    if (std::isnan(stops)) {
+        s.finding += fmt::format("; it still lowers it at {} px per particle", num(on.front()->x));
+    } else if (stops == onBig.x) {
+        s.finding += "; it lowers it at no size";
     } else {
-        s.finding += fmt::format("; it still helps by {} at {} px per particle",
-                                 percent(gain.begin()->second), num(gain.begin()->first));
+        s.finding += fmt::format(
+            "; at {} px per particle and below it no longer lowers it (the filter radius no "
+            "longer spans the particle bumps)",
+            num(stops));
+        s.chart.xMarks.push_back({stops, "no gain below"});
     }
 }
 

@@ -4,11 +4,13 @@
 // its methods along them.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "app/render_job.h"
 #include "app/studies.h"
+#include "app/studies/common.h"
 #include "report/study_report.h"
 
 namespace twinrender::app::study {
@@ -31,6 +33,16 @@ std::vector<double> sizeDistances(bool quick);
 std::string sizeCamera(double distance);
 // What quick runs of the particle_size scene add: fewer, larger particles.
 inline constexpr char SIZE_QUICK_PARTICLES[] = "bodies.slab.particles=6000";
+// The rows of SSSS on and off (the particle_size and view_angle studies) paired by x, and how
+// on's normal error stands to off's beyond the two rows' spreads. Per x, keyed `key(x)`, the
+// facts get the gain 1 - on/off (normal_gain), that order (against_off) and both spreads
+// (spread); empty when the two series do not pair.
+struct SsssPairs {
+    std::vector<const StudyRow*> on, off;  // by x
+    std::vector<Order> against;            // on against off, per x
+};
+SsssPairs ssssAgainstOff(StudyResult& s, const SeriesRows& all,
+                         const std::function<std::string(double)>& key);
 
 // ---- view_angle (view_angle.cpp) ----
 std::vector<StudyPoint> viewAnglePoints(bool quick);

@@ -35,36 +35,57 @@ std::vector<StudyPoint> viewAnglePoints(bool quick) {
             for (std::string& c : angleCamera(deg)) p.sets.push_back(std::move(c));
             pts.push_back(std::move(p));
         }
+    // Each again with the camera turned half a pixel: the noise the conclusion's ties rest on.
+    addRepeats(pts);
     return pts;
 }
 
+// Two things, each beyond the two rows' spreads (their difference from a render with the camera
+// turned half a pixel): how each series' normal error at the largest angle stands to its
+// face-on one, and at which angles SSSS lowers the error against none.
 void viewAngleConclude(StudyResult& s) {
-    s.chart = seriesChart(s, "normal.mean_deg");
-    const auto all = bySeries(s);
-    const auto* on = seriesRows(all, "SSSS on");
-    const auto gain = gainOf(s, "normal.mean_deg", "SSSS on", "SSSS off");
-    if (!on || on->empty() || gain.empty()) {
+    const std::string metric = "normal.mean_deg";
+    s.chart = seriesChart(s, metric);
+    const SsssPairs pairs =
+        ssssAgainstOff(s, bySeries(s), [](double x) { return fmt::format("{:g}", x); });
+    if (pairs.on.empty()) {
         s.finding = "no pair of SSSS on/off renders to compare";
         return;
     }
-    const StudyRow& first = *on->front();
-    const StudyRow& last = *on->back();
-    for (const StudyRow* r : *on) {
-        s.facts["normal_deg"][fmt::format("{:g}", r->x)] =
-            jsonOrNull(metricOf(*r, "normal.mean_deg"));
-        s.facts["smoothness"][fmt::format("{:g}", r->x)] =
-            jsonOrNull(metricOf(*r, "smoothness.ratio"));
+    const auto &on = pairs.on, &off = pairs.off;
+    std::vector<std::string> lower, tie, higher;
+    for (std::size_t i = 0; i < on.size(); ++i) {
+        const StudyRow& a = *on[i];
+        const std::string x = fmt::format("{:g}", a.x);
+        s.facts["normal_deg"][x] = jsonOrNull(metricOf(a, metric));
+        s.facts["smoothness"][x] = jsonOrNull(metricOf(a, "smoothness.ratio"));
+        const Order o = pairs.against[i];
+        (o == Order::Lower ? lower : o == Order::Higher ? higher : tie).push_back(x + "°");
     }
-    for (const auto& [x, g] : gain) s.facts["normal_gain"][fmt::format("{:g}", x)] = jsonOrNull(g);
-    const double g0 = gain.begin()->second, g1 = gain.rbegin()->second;
-    s.facts["growth"] = metricOf(last, "normal.mean_deg") / metricOf(first, "normal.mean_deg");
+    // The largest angle's error against face-on's.
+    const Order onTrend = orderOf(s, *on.back(), *on.front(), metric);
+    const Order offTrend = orderOf(s, *off.back(), *off.front(), metric);
+    s.facts["toward_grazing"]["SSSS on"] = orderName(onTrend);
+    s.facts["toward_grazing"]["SSSS off"] = orderName(offTrend);
+    auto trend = [](Order o) {
+        return o == Order::Lower    ? "lower toward grazing"
+               : o == Order::Higher ? "higher toward grazing"
+                                    : "a tie";
+    };
+    const StudyRow &first = *on.front(), &last = *on.back();
+    std::string against;
+    for (const auto& [names, what] :
+         {std::pair{&lower, "lowers it at "}, std::pair{&tie, "ties with none at "},
+          std::pair{&higher, "raises it at "}})
+        if (!names->empty())
+            against += (against.empty() ? "" : ", ") + std::string(what) + joinNames(*names);
     s.finding = fmt::format(
-        "with SSSS the normal error goes from {}° face-on to {}° at {}° ({}x); smoothing's gain "
-        "over none goes from {} to {}, "
-        "smoothness.ratio from {} to {}",
-        num(metricOf(first, "normal.mean_deg")), num(metricOf(last, "normal.mean_deg")),
-        num(last.x), num(s.facts["growth"].get<double>()), percent(g0), percent(g1),
-        num(metricOf(first, "smoothness.ratio")), num(metricOf(last, "smoothness.ratio")));
+        "with SSSS the normal error is {}° face-on and {}° at {}°: {}; without, {}° and {}°: {} "
+        "(beyond the noise: each row's difference from a render with the camera turned half a "
+        "pixel); SSSS {}; smoothness.ratio from {} to {}",
+        num(metricOf(first, metric)), num(metricOf(last, metric)), num(last.x), trend(onTrend),
+        num(metricOf(*off.front(), metric)), num(metricOf(*off.back(), metric)), trend(offTrend),
+        against, num(metricOf(first, "smoothness.ratio")), num(metricOf(last, "smoothness.ratio")));
 }
 
 }  // namespace twinrender::app::study
