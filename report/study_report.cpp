@@ -96,6 +96,21 @@ json studySummaryJson(const StudyResult& s) {
 
 }  // namespace
 
+std::vector<std::pair<double, std::string>> boundMarks(const compare::Bounds& bounds,
+                                                       const std::string& metric) {
+    std::vector<std::pair<double, std::string>> marks;
+    const auto it = bounds.find(metric);
+    if (it == bounds.end()) return marks;
+    const compare::MetricBounds& b = it->second;
+    for (const auto& [limit, name] :
+         {std::pair{&b.max, "max"}, std::pair{&b.min, "min"}, std::pair{&b.warnMax, "warn_max"},
+          std::pair{&b.warnMin, "warn_min"}})
+        if (*limit)
+            marks.emplace_back((*limit)->value,
+                               fmt::format("{} {}", name, formatValue((*limit)->value)));
+    return marks;
+}
+
 json studyJson(const StudyResult& s) {
     json j = studySummaryJson(s);
     j["format"] = "twinrender-study";
