@@ -8,6 +8,7 @@
 #include <ctime>
 
 #include "core/camera.h"
+#include "core/install_layout.h"
 #include "core/sph_kernel.h"
 #include "raymarch/renderer.h"
 #include "raymarch/sphere_scene.h"
@@ -30,7 +31,8 @@ struct BallScene {
     tr::core::SceneParticles particles;
     tr::raymarch::Settings settings;
     explicit BallScene(std::vector<std::string> overrides = {}) {
-        scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/opensph_ball.toml", overrides);
+        scene = tr::core::loadScene((::twinrender::core::sourceDir() / "scenes/opensph_ball.toml"),
+                                    overrides);
         settings = tr::raymarch::parseSettings(scene.raymarch);
         materials = tr::core::loadMaterials(scene);
         particles = tr::core::buildParticles(scene);

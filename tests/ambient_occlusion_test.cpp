@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENES = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes";
+const fs::path SCENES = ::twinrender::testing::sourceDir() / "tests" / "scenes";
 const fs::path SCENE = SCENES / "ball_on_slab.toml";
 const fs::path GAP_SCENE = SCENES / "ball_over_slab.toml";
 

@@ -11,7 +11,7 @@ using tt::count;
 
 namespace {
 
-const std::string SOURCE = TWINRENDER_SOURCE_DIR;
+const std::string SOURCE = ::twinrender::testing::sourceDir().string();
 const std::string PLANET = SOURCE +
                            "/scenes/planet.toml --set camera.width=64 --set "
                            "camera.height=48 --set bodies.planet.particles=1500";

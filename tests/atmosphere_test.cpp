@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path SCENE =
-    fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "atmosphere_ball.toml";
+    ::twinrender::testing::sourceDir() / "tests" / "scenes" / "atmosphere_ball.toml";
 
 std::map<std::string, double> runWith(const fs::path& dir, const std::string& name,
                                       std::vector<std::string> sets) {

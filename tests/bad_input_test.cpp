@@ -52,7 +52,8 @@ Rejected renderBroken(const std::string& name, const std::string& scene,
     return {r.output, tt::countFiles(out)};
 }
 
-constexpr const char* BALL_SSF = TWINRENDER_SOURCE_DIR "/data/opensph_ball/ball.ssf";
+const std::filesystem::path BALL_SSF =
+    ::twinrender::testing::sourceDir() / "data" / "opensph_ball" / "ball.ssf";
 
 // The OpenSPH ball's bytes (empty when it is missing).
 std::string readBall() {

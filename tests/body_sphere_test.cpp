@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENE = fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies" / "body_sphere.toml";
+const fs::path SCENE =
+    ::twinrender::testing::sourceDir() / "scenes" / "studies" / "body_sphere.toml";
 
 // At 96 x 72 (focal length 98.9 px) the ball's level set (radius about 1.1) is 30 px in radius
 // on screen from 3.63 away.

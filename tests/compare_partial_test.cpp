@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string PLANET = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/planet.toml";
+const std::string PLANET = ::twinrender::testing::sourceDir().string() + "/scenes/planet.toml";
 const std::string SMALL = " --set camera.width=96 --set camera.height=72";
 
 // The planet's two renders, the real-time one also as a partial AOV image.

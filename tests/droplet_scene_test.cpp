@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path DROPLETS = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "droplets.toml";
+const fs::path DROPLETS = ::twinrender::testing::sourceDir() / "tests" / "scenes" / "droplets.toml";
 
 nlohmann::json renderDroplets(const fs::path& dir, int dropletAtoms) {
     const fs::path out = dir / std::to_string(dropletAtoms);

@@ -14,7 +14,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENE = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "lamp_over_slab.toml";
+const fs::path SCENE =
+    ::twinrender::testing::sourceDir() / "tests" / "scenes" / "lamp_over_slab.toml";
 
 // The lamp beside the camera, 60 degrees from the view direction: far off the screen, whose
 // edge is at about 26 degrees, and still lighting the slab in view.

@@ -15,7 +15,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENE = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "ball_on_slab.toml";
+const fs::path SCENE =
+    ::twinrender::testing::sourceDir() / "tests" / "scenes" / "ball_on_slab.toml";
 
 std::map<std::string, double> metricsOf(const fs::path& dir, const std::string& name,
                                         const std::vector<std::string>& sets) {

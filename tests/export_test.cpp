@@ -25,7 +25,7 @@ namespace core = twinrender::core;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 
 glm::dmat4 matrix(const nlohmann::json& rows) {
     glm::dmat4 m(0.0);

@@ -27,7 +27,7 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-const std::string SLAB = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/slab.toml";
+const std::string SLAB = ::twinrender::testing::sourceDir().string() + "/tests/scenes/slab.toml";
 // A tiny frame: these tests are about files, not pictures.
 const std::string TINY = " --set camera.width=48 --set camera.height=32";
 
@@ -185,6 +185,7 @@ struct Child {
 Child start(const std::vector<std::string>& args, const fs::path& log) {
     Child c;
     c.log = log;
+    const std::string program = ::twinrender::testing::twinrenderProgram();  // before the fork
     c.pid = fork();
     if (c.pid == 0) {
         signal(SIGINT, SIG_DFL);
@@ -196,10 +197,10 @@ Child start(const std::vector<std::string>& args, const fs::path& log) {
         dup2(fd, STDOUT_FILENO);
         dup2(fd, STDERR_FILENO);
         std::vector<char*> argv;
-        argv.push_back(const_cast<char*>(TWINRENDER_BIN));
+        argv.push_back(const_cast<char*>(program.c_str()));
         for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
-        execv(TWINRENDER_BIN, argv.data());
+        execv(program.c_str(), argv.data());
         _exit(127);
     }
     return c;

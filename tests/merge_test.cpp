@@ -18,7 +18,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 const std::string SMALL = " --set camera.width=64 --set camera.height=48";
 
 // Times are measured anew by every run; the rest must be equal. Drops time.* metrics,

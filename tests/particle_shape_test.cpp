@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // A disc of hcp particles 2-3 layers thick, seen at 40 degrees from its normal.
-const fs::path SLAB = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "slab.toml";
+const fs::path SLAB = ::twinrender::testing::sourceDir() / "tests" / "scenes" / "slab.toml";
 
 // The metrics and real-time timings of the slab with impostors of `shape`, their own normals
 // in the G-buffer (realtime.particles.normal = "sphere": the impostor geometry is what the

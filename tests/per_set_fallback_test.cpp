@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string PLANET = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/planet.toml";
+const std::string PLANET = ::twinrender::testing::sourceDir().string() + "/scenes/planet.toml";
 const std::string SMALL = " --set camera.width=96 --set camera.height=72";
 const std::string FAULT = "TWINRENDER_TEST_PER_SET_FAULT=zero_positions";
 

@@ -63,7 +63,8 @@ PageResult openPage(const std::string& chromium, const fs::path& page, const fs:
     // scripts/headless-chromium: the flags scripts/report-pictures photographs the report with.
     const std::string cmd =
         "TWINRENDER_CHROMIUM=" + shellQuote(chromium) + " " +
-        shellQuote((fs::path(TWINRENDER_SOURCE_DIR) / "scripts" / "headless-chromium").string()) +
+        shellQuote(
+            (::twinrender::testing::sourceDir() / "scripts" / "headless-chromium").string()) +
         " " + std::to_string(width) + " 900 " + shellQuote(profile.string()) + " " +
         shellQuote("file://" + page.string()) + " --dump-dom 2>" +
         shellQuote((work / "chromium_stderr.txt").string());

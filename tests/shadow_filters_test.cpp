@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENES = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes";
+const fs::path SCENES = ::twinrender::testing::sourceDir() / "tests" / "scenes";
 
 // The metrics of `scene` (a file of tests/scenes/) with the --set overrides `sets`.
 std::map<std::string, double> metricsOf(const fs::path& dir, const std::string& scene,

@@ -620,7 +620,7 @@ TEST(Study, FlickerOfTheSurfaceMethodsOnChurningParticlesAndRealSequences) {
     EXPECT_GT(means["none (churn, impostor spheres)"], 0.02);
     EXPECT_LT(std::abs(means["none (churn)"]), 0.01);
     // A chart per real sequence, a line per method; a table line per series.
-    const fs::path dir = fs::path(TWINRENDER_TEST_SCRATCH) / "study_flicker" / "flicker";
+    const fs::path dir = ::twinrender::testing::scratchRoot() / "study_flicker" / "flicker";
     for (const char* figure : {"collision.svg", "splash.svg"}) {
         auto xml = tt::checkXml(readText(dir / figure));
         EXPECT_EQ(xml.error, "") << figure;
@@ -759,7 +759,7 @@ TEST(Study, MethodsAcrossScenesTheirMediansFrontAndBreaks) {
     EXPECT_LE(ssss["normal_ratio"].get<double>(), 1.0) << ssss;
 
     // The tables and the Markdown section beside the rows.
-    const fs::path dir = fs::path(TWINRENDER_TEST_SCRATCH) / "study_methods" / "methods";
+    const fs::path dir = ::twinrender::testing::scratchRoot() / "study_methods" / "methods";
     std::istringstream summary(readText(dir / "summary.csv"));
     std::string line;
     std::getline(summary, line);
@@ -780,7 +780,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
     // No bounds: the planet at this size is far from the suite's thresholds.
     const fs::path none = tt::freshDir("study_run_thresholds") / "none.toml";
     tt::writeFile(none, "");
-    const std::string planet = std::string(TWINRENDER_SOURCE_DIR) +
+    const std::string planet = ::twinrender::testing::sourceDir().string() +
                                "/scenes/planet.toml --set camera.width=64 --set camera.height=48"
                                " --set bodies.planet.particles=1500 --thresholds " +
                                none.string();
@@ -809,7 +809,7 @@ TEST(Study, RunWithStudiesLinksEveryStudyFromTheReport) {
     }
     // --studies is not sharded.
     const auto sharded =
-        tt::runTwinrender("run " + std::string(TWINRENDER_SOURCE_DIR) +
+        tt::runTwinrender("run " + ::twinrender::testing::sourceDir().string() +
                           "/scenes/planet.toml --studies quick --shard 1/2 --out " +
                           tt::freshDir("study_run_shard").string());
     EXPECT_EQ(sharded.exitCode, 4) << sharded.output;

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path SCENE =
-    fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies" / "subpixel_emitters.toml";
+    ::twinrender::testing::sourceDir() / "scenes" / "studies" / "subpixel_emitters.toml";
 
 // At 64 x 48 (focal length 65.9 px) the ball (radius about 0.28) is 0.3 px across from 123
 // away, 30 px across from 1.23 away.

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 const std::string THRESHOLDS = SCENES + "thresholds.toml";
 
 struct RunResult {

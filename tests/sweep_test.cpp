@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 // SSSS at radius 0.6 (its default before the gradient normals), whose effect on the metrics
 // these small images show clearly: the threshold tests tell its rows from the others.
 const std::string SMALL =

@@ -63,7 +63,7 @@ TEST(TestImages, AMissingOrUnsoundImageIsBadInputNamingTheSceneFrameAndFile) {
               0);
     const std::string writeNan =
         "/usr/bin/python3 -c 'import sys; sys.path.insert(0, \"" +
-        std::string(TWINRENDER_SOURCE_DIR) +
+        ::twinrender::testing::sourceDir().string() +
         "/examples/external\"); import numpy as np; from pathlib import Path; "
         "from twinrender_external import write_exr; "
         "r = np.zeros((48, 64)); r[3, 5] = np.nan; write_exr(Path(sys.argv[1]), "

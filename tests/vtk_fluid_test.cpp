@@ -21,7 +21,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string SPHERE = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/one_sphere.toml";
+const std::string SPHERE =
+    ::twinrender::testing::sourceDir().string() + "/tests/scenes/one_sphere.toml";
 const std::string SIZE = " --set camera.width=160 --set camera.height=120";
 
 // One X server (Xvfb) for the test's VTK windows: xvfb-run -a per frame races with the server
@@ -56,7 +57,7 @@ class VirtualDisplay {
 
 nlohmann::json vtkMetrics(const fs::path& dir, const std::string& filter,
                           const VirtualDisplay& display) {
-    const std::string command = "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) +
+    const std::string command = "/usr/bin/python3 " + ::twinrender::testing::sourceDir().string() +
                                 "/examples/vtk_fluid/render.py --radius-scale 0.851 --filter " +
                                 filter;
     const fs::path out = dir / filter;
