@@ -11,6 +11,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::ambient_occlusion_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -81,3 +84,5 @@ TEST(AmbientOcclusion, HorizonMethodsInventOcclusionWhereTheTruthIsOpen) {
                     none.at("ao.mean_abs"));
     }
 }
+
+}  // namespace twinrender::e2e::ambient_occlusion_test

@@ -5,6 +5,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::annotations_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using tt::count;
@@ -63,3 +66,5 @@ TEST(Annotations, GithubLinesWhenAskedOrOnGithubActionsOnly) {
     EXPECT_EQ(bad.exitCode, 4) << bad.output;
     EXPECT_FALSE(fs::exists(dir / "c"));
 }
+
+}  // namespace twinrender::e2e::annotations_test

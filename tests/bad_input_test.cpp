@@ -12,6 +12,9 @@
 #include "core/particle_file.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::bad_input_test {
+
 namespace tt = twinrender::test;
 
 namespace {
@@ -305,3 +308,5 @@ TEST(BadInput, MissingUserShaderNamesTheKeyAndThePath) {
     EXPECT_NE(r.output.find("nowhere/mine.glsl"), std::string::npos) << r.output;
     EXPECT_EQ(r.filesWritten, 0u);
 }
+
+}  // namespace twinrender::e2e::bad_input_test

@@ -11,6 +11,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::body_sphere_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -70,3 +73,5 @@ TEST(BodySphere, AboveTheThresholdTheImageIsUnchanged) {
         EXPECT_EQ(off.at(key), on.at(key)) << key;
     }
 }
+
+}  // namespace twinrender::e2e::body_sphere_test

@@ -13,6 +13,9 @@
 #include "core/image_io.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::compare_partial_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -104,3 +107,5 @@ TEST(CompareCommand, TheSceneGivesTheExposureAndLightOfRun) {
     for (const char* key : {"beauty.flip", "shadow.iou", "normal.mean_deg"})
         EXPECT_EQ(measured[key], scene[key]) << key;
 }
+
+}  // namespace twinrender::e2e::compare_partial_test

@@ -6,6 +6,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::doctor_test {
+
 namespace tt = twinrender::test;
 
 TEST(DoctorCommand, CompilesEveryVariantAndPassesTheSelfCheck) {
@@ -47,3 +50,5 @@ TEST(RenderCommand, SelfCheckRunsBeforeTheRender) {
     EXPECT_NE(r.output.find("(planet): pass"), std::string::npos) << r.output;
     EXPECT_TRUE(std::filesystem::exists(dir / "planet" / "realtime.exr"));
 }
+
+}  // namespace twinrender::e2e::doctor_test

@@ -9,6 +9,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::emissive_light_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -64,3 +67,5 @@ TEST(EmissiveLight, AnOffScreenEmitterIsMissedByScreenSpaceGathering) {
     EXPECT_LT(point.at("indirect.missed"), 0.5);
     EXPECT_LT(point.at("indirect.rmse"), ssem.at("indirect.rmse"));
 }
+
+}  // namespace twinrender::e2e::emissive_light_test

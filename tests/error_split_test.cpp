@@ -10,6 +10,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::error_split_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -49,3 +52,5 @@ TEST(ErrorSplit, EachPartVanishesWhereTheExactOneStandsIn) {
         EXPECT_LT(lit.at(key), lit.at("beauty.flip")) << key;
     }
 }
+
+}  // namespace twinrender::e2e::error_split_test

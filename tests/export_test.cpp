@@ -19,6 +19,9 @@
 #include "core/texture.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::export_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 namespace core = twinrender::core;
@@ -125,3 +128,5 @@ TEST(Export, AStillSceneHasNoFramesToChoose) {
     EXPECT_NE(r.output.find("not a sequence"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "planet" / "scene.json"));
 }
+
+}  // namespace twinrender::e2e::export_test

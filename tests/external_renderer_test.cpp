@@ -14,6 +14,9 @@
 #include "tests/analytic_sphere.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::external_renderer_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using tt::ADAPTER;
@@ -254,3 +257,5 @@ TEST(ExternalRenderer, TheBuiltInRendererThroughTheProtocolMeasuresAsTheBuiltInP
                   20);
     EXPECT_GT(d["metrics"]["temporal.flicker_mean"].get<double>(), 0.001);  // churn flickers
 }
+
+}  // namespace twinrender::e2e::external_renderer_test

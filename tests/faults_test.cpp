@@ -21,6 +21,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::faults_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -173,8 +176,6 @@ TEST(Faults, FullDiskIsExit4NamingTheFileWithNoTemporaryFileAndNoHalfReport) {
     EXPECT_GT(failures, 0) << "no size was small enough to fill";
 }
 
-namespace {
-
 // A twinrender process started with SIGINT and SIGTERM at their default action (a background
 // job of a non-interactive shell ignores SIGINT, and a child inherits that: PLATFORM.md).
 struct Child {
@@ -251,8 +252,6 @@ void PrintTo(const Interruption& p, std::ostream* os) {
 }
 
 class InterruptTest : public ::testing::TestWithParam<Interruption> {};
-
-}  // namespace
 
 // A signal in the middle of the reference render: the process stops within about a second
 // (the raymarcher polls the flag between tiles of milliseconds), exits with 128 + the signal,
@@ -356,3 +355,5 @@ TEST(Faults, TwoProcessesSharingACacheFinishWithTheSameResult) {
     const auto hit = tt::runTwinrender(args + (dir / "d").string());
     EXPECT_NE(hit.output.find("cache hit"), std::string::npos) << hit.output;
 }
+
+}  // namespace twinrender::e2e::faults_test

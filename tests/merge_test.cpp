@@ -9,6 +9,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::merge_test {
+
 namespace tt = twinrender::test;
 using tt::count;
 using tt::readJson;
@@ -181,3 +184,5 @@ TEST(Merge, RefusesShardsThatDoNotBelongTogether) {
     EXPECT_NE(good.exitCode, 4) << good.output;
     EXPECT_EQ(readJson(dir / "m6" / "summary.json")["scenes"].size(), 1u);
 }
+
+}  // namespace twinrender::e2e::merge_test

@@ -6,6 +6,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::particle_shape_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -50,3 +53,5 @@ TEST(ParticleShape, EllipsoidsOnAFlatSlabGiveALowerNormalErrorThanSpheres) {
     EXPECT_GT(ellipsoid["timings_ms"]["realtime"]["anisotropy"].get<double>(), 0.0);
     EXPECT_EQ(sphere["timings_ms"]["realtime"]["anisotropy"].get<double>(), 0.0);
 }
+
+}  // namespace twinrender::e2e::particle_shape_test

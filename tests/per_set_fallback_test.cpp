@@ -11,6 +11,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::per_set_fallback_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -108,3 +111,5 @@ TEST(DoctorCommand, NamesTheFirstPerSetStageApart) {
             << r.output;
     EXPECT_NE(r.output.find("verdict: FAIL"), std::string::npos) << r.output;
 }
+
+}  // namespace twinrender::e2e::per_set_fallback_test

@@ -7,6 +7,9 @@
 #include "core/image_io.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::render_test {
+
 namespace tt = twinrender::test;
 
 TEST(RenderCommand, WritesTheAovExrPngAndJson) {
@@ -61,3 +64,5 @@ TEST(RenderCommand, PassThroughExampleShaderEqualsNone) {
     EXPECT_EQ(tt::readText(dir / "none" / "planet" / "realtime.png"),
               tt::readText(dir / "pass" / "planet" / "realtime.png"));
 }
+
+}  // namespace twinrender::e2e::render_test

@@ -26,6 +26,9 @@
 #include "report/testdata/synthetic_report.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::report_browser_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -299,3 +302,5 @@ TEST_F(ReportInBrowser, NoTwoChartSeriesShareAColour) {
 }
 
 }  // namespace
+
+}  // namespace twinrender::e2e::report_browser_test

@@ -11,6 +11,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::shadow_filters_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -116,3 +119,5 @@ TEST(ShadowFilters, VarianceShadowMapsBleedLightWhereCastersOverlap) {
                              "bodies.moon.center=[40,0,0]"});
     EXPECT_GT(distant, 2.0 * vsm);
 }
+
+}  // namespace twinrender::e2e::shadow_filters_test

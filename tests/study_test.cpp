@@ -18,6 +18,9 @@
 #include "report/testdata/xml_check.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::study_test {
+
 namespace tt = twinrender::test;
 using tt::readJson;
 using tt::readText;
@@ -835,3 +838,5 @@ TEST(Study, UnknownStudyIsExitFourWithNoOutput) {
     EXPECT_NE(badSet.output.find("nonsense"), std::string::npos) << badSet.output;
     EXPECT_EQ(tt::countFiles(out), 0u);
 }
+
+}  // namespace twinrender::e2e::study_test

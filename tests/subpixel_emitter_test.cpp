@@ -11,6 +11,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::subpixel_emitter_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -85,3 +88,5 @@ TEST(SubpixelEmitter, AboveMinPixelsTheImageIsUnchanged) {
     }
     EXPECT_NEAR(off.at("flux.ratio"), 1.0, 0.10);
 }
+
+}  // namespace twinrender::e2e::subpixel_emitter_test

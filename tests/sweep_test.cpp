@@ -18,6 +18,9 @@
 #include "report/testdata/xml_check.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::sweep_test {
+
 namespace tt = twinrender::test;
 using tt::count;
 using tt::readJson;
@@ -435,3 +438,5 @@ TEST(Sweep, ASequenceRendersEveryFrameAndHoldsTheSummaryOverThem) {
         << v.output;
     EXPECT_EQ(tt::countFiles(ranges), 0u);
 }
+
+}  // namespace twinrender::e2e::sweep_test

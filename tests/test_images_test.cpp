@@ -11,6 +11,9 @@
 #include "tests/analytic_sphere.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::test_images_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using tt::ADAPTER;
@@ -132,3 +135,5 @@ TEST(TestImages, AMissingOrUnsoundImageIsBadInputNamingTheSceneFrameAndFile) {
         << r.output;
     EXPECT_FALSE(fs::exists(dir / "sequence" / "out"));
 }
+
+}  // namespace twinrender::e2e::test_images_test

@@ -16,6 +16,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::vtk_fluid_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -102,3 +105,5 @@ TEST(VtkFluid, TheAdapterMeetsTheProtocolsConventions) {
     EXPECT_GT(filtered["metrics"]["normal.mean_deg"].get<double>(),
               none["metrics"]["normal.mean_deg"].get<double>());
 }
+
+}  // namespace twinrender::e2e::vtk_fluid_test
