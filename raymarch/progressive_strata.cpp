@@ -61,32 +61,48 @@ double ProgressiveStrata::mean() const {
 
 // The estimate at level L is the mean of n = 4^L values y_c, one per cell c, each point
 // uniform in its cell: a stratified estimator with one sample per stratum, whose variance
-//   Var = sum_c (1 / n)^2 sigma_c^2   (sigma_c^2: the variance of y over cell c)
-// cannot be estimated from one value per cell. The cells are therefore collapsed into their
-// parents of level L - 1, four to a parent p, and the four values of p are taken as four
-// independent draws from p: the variance of that coarser design is estimated without bias by
-//   V = sum_p (4 / n)^2 s_p^2 / 4,   s_p^2 = sum_{c in p} (y_c - mean_p)^2 / 3,
-// i.e. V = sum_p sum_{c in p} (y_c - mean_p)^2 / (12 (n / 4)^2). One sample in each quarter of
-// a parent never has more variance than four independent ones in it (stratification with
-// proportional allocation), so V is conservative: its expectation is at least the true Var.
-// On an occluder's outline (a variance of y that comes from the cells the outline crosses)
-// it is about twice Var, twice as many children as parents being cut; inside a region of
-// constant y it is 0, which is what lets such a pixel stop early. The standard error is
-// sqrt(V); at level 1 it is the textbook s / sqrt(4) of four independent values.
+//   Var = sum_c sigma_c^2 / n^2   (sigma_c^2: the variance of y over cell c)
+// cannot be estimated from one value per cell without assuming something of how y varies
+// between cells. Two textbook estimates are taken, and the larger:
+// - collapsed strata (Cochran, "Sampling Techniques", 5A.12): the cells are collapsed into
+//   their parents of level L - 1, four to a parent p, whose four values are taken as four
+//   independent draws from p. That coarser design's variance is estimated without bias by
+//     V_p = sum_p (4 / n)^2 s_p^2 / 4,  s_p^2 = sum_{c in p} (y_c - mean_p)^2 / 3,
+//   and one point in each quarter of a parent never has more variance than four independent
+//   ones in it (proportional stratification), so V_p is conservative: its expectation is at
+//   least Var. On an outline (the variance of y comes from the cells it crosses) it is about
+//   twice Var, twice as many children as parents being cut.
+// - successive differences (Wolter, "Introduction to Variance Estimation", 8.2): each value
+//   against its neighbours in the grid, V_d = mean over adjacent pairs of (y_c - y_c')^2 / 2,
+//   divided by n. It sees what V_p cannot: an outline that runs between parents, each parent
+//   on one side of it (a straight edge across the sun's disc along the grid), leaves every
+//   parent uniform and V_p = 0, while the neighbours across it differ.
+// Inside a region of constant y both are 0, which is what lets such a pixel stop early; a
+// feature smaller than the cells that no point met is invisible to both. The standard error
+// is sqrt(max(V_p, V_d)); at level 1, V_p is the textbook s^2 / 4 of four independent values.
 double ProgressiveStrata::standardError() const {
     if (mLevel < 1) return std::numeric_limits<double>::infinity();
     const int side = 1 << mLevel, parentSide = side / 2;
+    const auto y = [&](int i, int j) { return mValues[std::size_t(i) * side + j]; };
     double squares = 0.0;
     for (int pi = 0; pi < parentSide; ++pi)
         for (int pj = 0; pj < parentSide; ++pj) {
-            const double* row0 = &mValues[std::size_t(2 * pi) * side + 2 * pj];
-            const double* row1 = row0 + side;
-            const double y[4] = {row0[0], row0[1], row1[0], row1[1]};
-            const double m = 0.25 * (y[0] + y[1] + y[2] + y[3]);
-            for (const double v : y) squares += (v - m) * (v - m);
+            const double four[4] = {y(2 * pi, 2 * pj), y(2 * pi, 2 * pj + 1), y(2 * pi + 1, 2 * pj),
+                                    y(2 * pi + 1, 2 * pj + 1)};
+            const double m = 0.25 * (four[0] + four[1] + four[2] + four[3]);
+            for (const double v : four) squares += (v - m) * (v - m);
         }
     const double parents = double(parentSide) * parentSide;
-    return std::sqrt(squares / (12.0 * parents * parents));
+    const double collapsed = squares / (12.0 * parents * parents);
+    double differences = 0.0;
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j) {
+            if (i + 1 < side) differences += (y(i, j) - y(i + 1, j)) * (y(i, j) - y(i + 1, j));
+            if (j + 1 < side) differences += (y(i, j) - y(i, j + 1)) * (y(i, j) - y(i, j + 1));
+        }
+    const double n = double(side) * side, pairs = 2.0 * side * (side - 1);
+    const double successive = differences / (2.0 * pairs * n);
+    return std::sqrt(std::max(collapsed, successive));
 }
 
 bool roundsDone(const ProgressiveStrata& strata, const RoundLimits& limits) {

@@ -75,6 +75,16 @@ TEST(ProgressiveStrata, AtTheFirstLevelTheErrorIsThatOfFourIndependentValues) {
     EXPECT_DOUBLE_EQ(strata.standardError(), std::sqrt(1.0 / 3.0) / 2.0);
 }
 
+TEST(ProgressiveStrata, AnEdgeBetweenParentsStillHasAnError) {
+    // 1 on the half x < 0.5: every parent of level 1 lies on one side, so their four values
+    // agree and the collapsed strata see no spread; the neighbours across the edge differ.
+    ProgressiveStrata strata(4);
+    fill(strata, 2, [](glm::dvec2 p) { return p.x < 0.5 ? 1.0 : 0.0; });
+    EXPECT_DOUBLE_EQ(strata.mean(), 0.5);
+    // 4 of the 24 adjacent pairs differ: sqrt(4 / (2 x 24) / 16).
+    EXPECT_DOUBLE_EQ(strata.standardError(), std::sqrt(4.0 / 48.0 / 16.0));
+}
+
 // A disc of the unit square, 1 inside (an occluder's outline across the strata): over many
 // seeds the estimate is unbiased, and its stated standard error is not smaller than its true
 // spread (the collapsed strata overstate the variance, by about 2 on an outline), nor many
