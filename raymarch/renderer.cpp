@@ -72,7 +72,8 @@ float hashToUnit(std::uint32_t x, std::uint32_t y, std::uint32_t k, std::uint32_
 struct EstimateTally {
     std::int64_t estimates = 0;  // hit samples
     std::int64_t rays = 0;
-    std::int64_t atCap = 0;  // with a target: rounds that reached the cap above it
+    std::int64_t atCap = 0;  // with a target: estimates (a body's, for the emitters) that
+                             // stopped at the cap with their error not below it
     double errorSum = 0.0;   // of the hit samples' standard errors
     double errorMax = 0.0;
 
@@ -129,6 +130,13 @@ struct StageTicks {
     }
 };
 
+// The limits of each emitting body's rounds: the irradiance sums the bodies' independent
+// estimates, so its variance is the sum of theirs, and each body aims at target / sqrt(bodies).
+RoundLimits lightRounds(const Settings& settings, std::size_t bodies) {
+    return roundLimits(settings.emissiveError / std::sqrt(double(std::max<std::size_t>(bodies, 1))),
+                       settings.emissiveSamples);
+}
+
 // Seeds of a hit sample's progressive rounds, one stream per kind of secondary ray, so that
 // the occlusion, the emitters and the sun of one pixel do not share their jitter.
 enum class Stream : std::uint64_t { Occlusion = 0, Sun = 1, Emitters = 2 };
@@ -183,11 +191,7 @@ class FrameTrace {
                         : std::vector<core::EmittingBody>{}),
           mEmissiveSide(emissiveSide(settings)),
           mAoRounds(roundLimits(settings.aoError, settings.aoSamples)),
-          // Each body's rounds aim at target / sqrt(bodies): the irradiance sums the bodies'
-          // independent estimates, so its variance is the sum of theirs.
-          mLightRounds(roundLimits(settings.emissiveError / std::sqrt(double(std::max<std::size_t>(
-                                                                mEmitters.size(), 1))),
-                                   settings.emissiveSamples)),
+          mLightRounds(lightRounds(settings, mEmitters.size())),
           mSunRounds(roundLimits(settings.sunError, settings.sunSamples)),
           mSunDisc(input.scene.light.angularRadiusDeg > 0.0
                        ? std::optional<SunDisc>(std::in_place, -input.scene.light.direction,
