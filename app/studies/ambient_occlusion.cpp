@@ -103,7 +103,7 @@ std::vector<AoSetting> aoSettings(bool quick) {
 // study has no such series.
 std::string defaultSeries(const std::string& method) {
     const realtime::AoSettings d;
-    const std::string depth = d.depth == realtime::AoDepth::Filtered ? "filtered" : "shaded";
+    const std::string depth(realtime::toString(d.depth));
     for (const AoSetting& a : aoSettings(false))
         if (a.method == method && a.surface == "ssss" && a.depth == depth &&
             a.thickness == d.thickness)
@@ -119,7 +119,7 @@ struct AoCell {
     double standardError = NAN;  // the reference's, per pixel
     double aoMs = NAN;
 };
-// scene -> setting -> R -> its cell, in the scenes' order.
+// scene -> setting -> R -> its cell.
 using AoCells = std::map<std::string, std::map<std::string, std::map<double, AoCell>>>;
 
 // The rows of one scene, as a study of its own (the shared helpers group by series).
