@@ -157,7 +157,7 @@ void renderSecondary(benchmark::State& state, const std::string& scene, const st
     const std::vector<std::string> sets = {"raymarch." + key + "_samples=64",
                                            "raymarch." + key + "_error=" + std::to_string(target)};
     const tr::core::Scene s =
-        tr::core::loadScene(TWINRENDER_SOURCE_DIR "/tests/scenes/" + scene + ".toml", sets);
+        tr::core::loadScene(tr::core::sourceDir() / "tests" / "scenes" / (scene + ".toml"), sets);
     const tr::raymarch::Settings settings = tr::raymarch::parseSettings(s.raymarch);
     const std::vector<tr::core::Material> materials = tr::core::loadMaterials(s);
     const tr::core::SceneParticles particles = tr::core::buildParticles(s);
