@@ -2,6 +2,7 @@
 // rows, numbers and charts their conclusions are drawn from.
 #pragma once
 
+#include <array>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -44,6 +45,16 @@ void addRepeats(std::vector<StudyPoint>& pts);
 // The override that turns a camera right by half a pixel: its target moved sideways by half a
 // pixel at the target's distance.
 std::vector<std::string> turnedHalfPixel(const core::CameraSettings& camera);
+
+// A camera's position and target (scene units) and its up vector, as a scene file gives them.
+struct CameraPose {
+    std::array<double, 3> position, target, up;
+};
+// The overrides of a camera at `pose` (camera.position, camera.target), moved half a pixel
+// sideways (along the image's +x at the target's distance) when `aside`: a repeat of a point
+// for a camera looking any way, on an image `height` pixels high.
+std::vector<std::string> cameraAt(const CameraPose& pose, bool aside, double height,
+                                  double fovYDeg);
 
 // ---- a conclusion's rows ----------------------------------------------------------------------
 
