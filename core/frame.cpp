@@ -1,7 +1,11 @@
 #include "core/frame.h"
 
+#include <fmt/format.h>
+
+#include <fstream>
 #include <limits>
 
+#include "core/error.h"
 #include "core/image_io.h"
 #include "core/shading.h"
 
@@ -38,7 +42,34 @@ void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nloh
     j["resolution"] = {frame.image.width(), frame.image.height()};
     j["counters"] = frame.counters;
     j["timings_ms"] = frame.timingsMs;
+    if (frame.part) j["tile"] = toJson(*frame.part);
     writeTextFile(dir / (name + ".json"), j.dump(2) + "\n");
+}
+
+Frame readFrame(const std::filesystem::path& dir, const std::string& renderer,
+                nlohmann::json* json) {
+    const std::filesystem::path meta = dir / (renderer + ".json");
+    std::ifstream in(meta);
+    if (!in) throw InputError(fmt::format("{}: cannot be read", meta.string()));
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object())
+        throw InputError(fmt::format("{}: not a JSON object", meta.string()));
+    Frame f;
+    f.image = readImage(dir / (renderer + ".exr"));
+    f.renderer = renderer;
+    f.device = j.value("device", "");
+    f.settings = j.value("settings", nlohmann::json());
+    // Bound to locals: items() of a temporary would dangle.
+    const nlohmann::json timings = j.value("timings_ms", nlohmann::json::object());
+    const nlohmann::json counters = j.value("counters", nlohmann::json::object());
+    for (const auto& [k, v] : timings.items())
+        if (v.is_number()) f.timingsMs[k] = v.get<double>();
+    for (const auto& [k, v] : counters.items())
+        if (v.is_number()) f.counters[k] = v.get<double>();
+    f.particleCount = j.value("particle_count", std::size_t{0});
+    if (j.contains("tile")) f.part = partRecordFromJson(j.at("tile"), meta.string());
+    if (json) *json = j;
+    return f;
 }
 
 }  // namespace twinrender::core

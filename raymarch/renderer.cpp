@@ -127,7 +127,8 @@ class FrameTrace {
 
     std::size_t emitterCount() const { return mEmitters.size(); }
 
-    int tileCount() const { return mTilesX * mTilesY; }
+    int tileColumns() const { return mTilesX; }
+    int tileRows() const { return mTilesY; }
 
     // Tile `index` of the tiles in rows, tileSize pixels a side; its blocks are cut at the
     // tile's edge (a tile may be smaller than a block).
@@ -347,16 +348,29 @@ class FrameTrace {
     core::AtmosphereSun mSun;
 };
 
-// The tiles in parallel on the caller's arena, on one workspace per thread; the thread time
-// of each part summed over the tiles.
-StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
-                      const core::RenderInput& input) {
-    const int tiles = trace.tileCount();
+// What tracing a frame's tiles (or one part's) adds up: the thread time of each part of the
+// work, and the standard errors' sums per row of tiles held, in row order.
+struct TracedTiles {
+    StageTicks ticks;  // aoErrorSum and lightErrorSum: the rows' sums added in row order
+    std::vector<double> aoRowSums, lightRowSums;
+};
+
+// The tiles of `part` (every tile of a whole frame) in parallel on the caller's arena, on one
+// workspace per thread; the thread time of each part of the work summed over the tiles.
+TracedTiles traceTiles(const FrameTrace& trace, Workspaces& workspaces,
+                       const core::RenderInput& input) {
+    std::vector<int> held;  // the tiles traced, in tile order
+    for (int row = 0; row < trace.tileRows(); ++row)
+        if (input.part.holdsRow(row))
+            for (int column = 0; column < trace.tileColumns(); ++column)
+                held.push_back(row * trace.tileColumns() + column);
+    const int tiles = static_cast<int>(held.size());
     std::atomic<int> done{0};
     std::atomic<std::int64_t> traceTicks{0}, aoTicks{0}, emissiveTicks{0}, shadeTicks{0},
         atmosphereTicks{0}, aoSamples{0}, lightSamples{0}, lightRays{0};
     // The standard errors' sums, per tile, added in tile order after the loop (a sum of
-    // doubles in the order threads finish would depend on the threads).
+    // doubles in the order threads finish would depend on the threads), by rows of tiles (so
+    // that parts holding whole rows join to the same sums).
     std::vector<double> aoErrors(static_cast<std::size_t>(tiles), 0.0);
     std::vector<double> lightErrors(static_cast<std::size_t>(tiles), 0.0);
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
@@ -369,7 +383,7 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
             // (TBB cancels the tiles not yet started and rethrows in the caller).
             core::throwIfCancelled(input.cancel);
             StageTicks ticks;
-            trace.traceTile(t, w, ticks);
+            trace.traceTile(held[static_cast<std::size_t>(t)], w, ticks);
             traceTicks += ticks.trace;
             aoTicks += ticks.ao;
             emissiveTicks += ticks.emissive;
@@ -384,17 +398,28 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
             if (input.progress) input.progress(double(finished) / tiles);
         }
     });
-    StageTicks sum{.trace = traceTicks.load(),
-                   .ao = aoTicks.load(),
-                   .emissive = emissiveTicks.load(),
-                   .shade = shadeTicks.load(),
-                   .atmosphere = atmosphereTicks.load()};
-    for (const double e : aoErrors) sum.aoErrorSum += e;
-    for (const double e : lightErrors) sum.lightErrorSum += e;
-    sum.aoSamples = aoSamples.load();
-    sum.lightSamples = lightSamples.load();
-    sum.lightRays = lightRays.load();
-    return sum;
+    TracedTiles out;
+    out.ticks = {.trace = traceTicks.load(),
+                 .ao = aoTicks.load(),
+                 .emissive = emissiveTicks.load(),
+                 .shade = shadeTicks.load(),
+                 .atmosphere = atmosphereTicks.load()};
+    const std::size_t columns = static_cast<std::size_t>(trace.tileColumns());
+    for (std::size_t start = 0; start < held.size(); start += columns) {
+        double ao = 0.0, light = 0.0;
+        for (std::size_t t = start; t < start + columns; ++t) {
+            ao += aoErrors[t];
+            light += lightErrors[t];
+        }
+        out.aoRowSums.push_back(ao);
+        out.lightRowSums.push_back(light);
+        out.ticks.aoErrorSum += ao;
+        out.ticks.lightErrorSum += light;
+    }
+    out.ticks.aoSamples = aoSamples.load();
+    out.ticks.lightSamples = lightSamples.load();
+    out.ticks.lightRays = lightRays.load();
+    return out;
 }
 
 // The counters of every thread's workspace, summed.
@@ -440,7 +465,8 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     const FrameTrace trace(tracer, camera, input, mSettings, frame);
     Workspaces workspaces([&] { return tracer.makeWorkspace(); });
     const auto start = Clock::now();
-    const StageTicks ticks = traceTiles(trace, workspaces, input);
+    const TracedTiles traced = traceTiles(trace, workspaces, input);
+    const StageTicks& ticks = traced.ticks;
     const double traceMs = msSince(start);
     // Split the parallel wall time by the thread time of each part.
     const double sum = std::max(double(ticks.trace) + double(ticks.ao) + double(ticks.emissive) +
@@ -474,6 +500,21 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     frame.device =
         fmt::format("{} ({} threads)", cpuName(), tbb::this_task_arena::max_concurrency());
     frame.settings = toJson(mSettings);
+    if (!input.part.whole()) {
+        // The rows' sums of the means, for the join (core/part_join.h); every other counter
+        // is a sum over the tiles but the count of emitting bodies, a fact of the whole frame.
+        core::PartRecord& part = frame.part.emplace();
+        part.part = input.part;
+        part.tileSize = mSettings.tileSize;
+        if (occlusion)
+            part.means["ao_standard_error"] = {.rowSums = traced.aoRowSums,
+                                               .samples = ticks.aoSamples};
+        if (emissive) {
+            part.means["irradiance_standard_error"] = {.rowSums = traced.lightRowSums,
+                                                       .samples = ticks.lightSamples};
+            part.shared = {"emitting_bodies"};
+        }
+    }
     return frame;
 }
 

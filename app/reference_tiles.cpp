@@ -1,0 +1,312 @@
+#include "app/reference_tiles.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <functional>
+#include <optional>
+#include <set>
+
+#include "app/comparison.h"
+#include "app/output_folder.h"
+#include "app/reference_cache.h"
+#include "app/sequence_run.h"
+#include "app/shard.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/part_join.h"
+#include "core/sequence.h"
+
+namespace twinrender::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Every reference frame a run takes of the scene: a still scene's, or each frame of a
+// sequence's range (`visit` sees the scene moved to it, and its number).
+void forEachReference(
+    LoadedScene& s,
+    const std::function<void(LoadedScene&, std::optional<std::int64_t> frame)>& visit) {
+    if (!s.scene.sequence) {
+        visit(s, std::nullopt);
+        return;
+    }
+    for (const std::int64_t n : core::sequenceFrames(s.scene)) {
+        setFrame(s, n);
+        visit(s, n);
+    }
+}
+
+// A reference as the manifest lists it.
+json referenceEntry(const std::string& folder, const std::string& key, const json& what,
+                    const LoadedScene& s, std::optional<std::int64_t> frame) {
+    json entry = {{"folder", folder}, {"key", key}, {"what", what}, {"scene", s.scene.name}};
+    if (frame) entry["frame"] = *frame;
+    return entry;
+}
+
+// "planet" or "splash frame 16": a reference for the terminal and the errors.
+std::string label(const json& entry) {
+    const std::string scene = entry.value("scene", "?");
+    return entry.contains("frame") ? fmt::format("{} frame {}", scene, entry.at("frame").dump())
+                                   : scene;
+}
+
+// Renders part `part` of the scene's frame into OUT/folder and says so.
+void renderPart(const LoadedScene& s, core::Renderer& renderer, const core::FramePart& part,
+                const fs::path& out, const std::string& folder) {
+    const core::Frame f = render(renderer, "raymarch", s, nullptr, part);
+    writeRender(s, f, out / folder);
+    std::printf("%s: raymarch tile %d/%d, %d of %d rows of tiles, %.1f ms -> %s\n",
+                s.scene.name.c_str(), part.index, part.count,
+                part.rowsHeld(f.image.height(), f.part->tileSize),
+                core::FramePart{}.rowsHeld(f.image.height(), f.part->tileSize),
+                f.timingsMs.at("total"), (out / folder / "raymarch.exr").c_str());
+    std::fflush(stdout);
+}
+
+void writeTilesManifest(const core::FramePart& part, const std::string& command,
+                        const json& settings, const json& references,
+                        const std::string& commandLine, const fs::path& out) {
+    const json manifest = {{"command", command},   {"split", "tiles"},
+                           {"settings", settings}, {"references", references},
+                           {"created", nowUtc()},  {"command_line", commandLine}};
+    writeTogether(out, [&](const fs::path& staging) {
+        writeShardManifest({.index = part.index, .count = part.count}, manifest, staging);
+    });
+}
+
+// The run's arguments that its tiles share and its merge runs with.
+json runSettings(const RunOptions& o, const std::string& thresholdsFile) {
+    return {{"inputs", o.inputs},
+            {"sets", o.sets},
+            {"thresholds", thresholdsFile},
+            {"baseline", o.baseline},
+            {"ppd", o.ppd},
+            {"flip_over", o.flipOver},
+            {"junit", !o.junit.empty()},
+            {"tests", o.tests},
+            {"external",
+             {{"command", o.external.command},
+              {"images", o.external.images.string()},
+              {"timeout", o.external.timeoutSeconds}}},
+            {"require_gpu", o.requireGpu},
+            {"self_check", o.selfCheck}};
+}
+
+// The run the tiles were rendered for, into `out` with its references from
+// OUT/reference_cache.
+RunOptions runFromSettings(const json& settings, const fs::path& out, const MergeOptions& m) {
+    RunOptions o;
+    o.inputs = settings.at("inputs").get<std::vector<std::string>>();
+    o.sets = settings.at("sets").get<std::vector<std::string>>();
+    o.thresholds = settings.at("thresholds").get<std::string>();
+    o.baseline = settings.at("baseline").get<std::string>();
+    o.ppd = settings.at("ppd").get<double>();
+    o.flipOver = settings.at("flip_over").get<double>();
+    if (settings.at("junit").get<bool>()) o.junit = (out / "junit.xml").string();
+    o.tests = settings.at("tests").get<std::vector<std::string>>();
+    const json& external = settings.at("external");
+    o.external.command = external.at("command").get<std::string>();
+    o.external.images = external.at("images").get<std::string>();
+    o.external.timeoutSeconds = external.at("timeout").get<double>();
+    o.requireGpu = settings.at("require_gpu").get<bool>();
+    o.selfCheck = settings.at("self_check").get<bool>();
+    o.out = out.string();
+    o.cache = (out / "reference_cache").string();
+    o.commandLine = m.commandLine;
+    o.annotations = m.annotations;
+    return o;
+}
+
+// What differs between two accounts of a reference (app/reference_cache.h's "what"), as
+// "/raymarch/spp 1 against 4; ...".
+std::string differences(const json& a, const json& b) {
+    std::string out;
+    for (const json& op : json::diff(a, b)) {
+        const std::string path = op.at("path").get<std::string>();
+        const json::json_pointer at(path);
+        out += fmt::format("{}{} {} against {}", out.empty() ? "" : "; ", path,
+                           a.contains(at) ? a.at(at).dump() : "nothing",
+                           b.contains(at) ? b.at(at).dump() : "nothing");
+    }
+    return out.empty() ? "the same account, another key" : out;
+}
+
+// Every part holds the same references, in the same order.
+void checkSameReferences(const std::vector<fs::path>& dirs, const std::vector<json>& manifests) {
+    const json& refs = manifests.front().at("references");
+    for (std::size_t i = 1; i < dirs.size(); ++i) {
+        const json& other = manifests[i].at("references");
+        if (other == refs) continue;
+        if (other.size() != refs.size())
+            throw core::InputError(
+                fmt::format("{} holds tiles of {} frames, {} of {}: not tiles of one render",
+                            dirs[i].string(), other.size(), dirs[0].string(), refs.size()));
+        for (std::size_t k = 0; k < refs.size(); ++k)
+            if (other[k] != refs[k])
+                throw core::InputError(fmt::format(
+                    "{} and {} hold tiles of different frames: {}: {}; not tiles of one render",
+                    dirs[0].string(), dirs[i].string(), label(refs[k]),
+                    differences(refs[k].value("what", json()), other[k].value("what", json()))));
+    }
+}
+
+// The references the run takes now are those its tiles hold: the same scene files and the
+// files they name, overrides, raymarch settings and raymarcher build.
+void checkRunReferences(const RunOptions& o, const json& refs) {
+    std::vector<json> now;
+    std::set<std::string> seen;
+    for (const fs::path& file : runSceneFiles(o)) {
+        LoadedScene s = loadScene(file, o.sets);
+        forEachReference(s, [&](LoadedScene& at, std::optional<std::int64_t> frame) {
+            const auto [key, what] = referenceKey(at, o.sets);
+            if (seen.insert(key).second) now.push_back(referenceEntry("", key, what, at, frame));
+        });
+    }
+    for (std::size_t k = 0; k < std::max(now.size(), refs.size()); ++k) {
+        if (k >= refs.size())
+            throw core::InputError(fmt::format(
+                "{}: the run takes this reference now and the tiles hold none of it; render the "
+                "tiles again",
+                label(now[k])));
+        if (k >= now.size() || now[k].at("key") != refs[k].at("key"))
+            throw core::InputError(fmt::format(
+                "{}: the tiles were rendered for another reference than the run takes now ({}); "
+                "merge with the build, scene files and overrides the tiles were rendered with, or "
+                "render them again",
+                label(refs[k]),
+                k >= now.size() ? "it takes none"
+                                : differences(refs[k].at("what"), now[k].at("what"))));
+    }
+}
+
+// The parts of one frame, from the same folder of each part's folder, joined; `meta` receives
+// the first part's JSON.
+core::Frame joinParts(const std::vector<fs::path>& dirs, const std::string& folder, json& meta) {
+    core::PartJoin join;
+    for (const fs::path& dir : dirs) {
+        const fs::path at = folderInShard(dir, folder, "the tile's folder");
+        json j;
+        core::Frame part = core::readFrame(at, "raymarch", &j);
+        if (meta.is_null()) meta = j;
+        join.add(std::move(part), (at / "raymarch.json").string());
+    }
+    const json::json_pointer exposure("/camera/exposure");
+    if (!meta.contains(exposure) || !meta.at(exposure).is_number())
+        throw core::InputError(fmt::format("{}: no camera.exposure",
+                                           (dirs.front() / folder / "raymarch.json").string()));
+    core::Frame whole = join.frame(static_cast<float>(meta.at(exposure).get<double>()));
+    // The JSON beside the frame: the render's own keys (scene, camera, ...) and each part's
+    // device and times.
+    for (const char* key : {"renderer", "device", "settings", "particle_count", "resolution",
+                            "counters", "timings_ms", "tile"})
+        meta.erase(key);
+    meta["tiles"] = join.parts();
+    return whole;
+}
+
+}  // namespace
+
+core::FramePart parseTiles(const std::string& text) {
+    const Shard s = parseShard(text, "--tiles");
+    return {.index = s.index, .count = s.count};
+}
+
+void renderTiles(LoadedScene& s, const core::FramePart& part, bool frames,
+                 const std::vector<std::string>& overrides, const json& settings,
+                 const std::string& commandLine, Devices& devices, const fs::path& out) {
+    const auto renderer = makeRenderer("raymarch", devices, s);
+    prepareOutputFolder(out / s.scene.name);
+    json references = json::array();
+    const auto one = [&](const std::string& folder, std::optional<std::int64_t> frame) {
+        const auto [key, what] = referenceKey(s, overrides);
+        renderPart(s, *renderer, part, out, folder);
+        references.push_back(referenceEntry(folder, key, what, s, frame));
+    };
+    // As `render` writes them: without --frames the scene's (a sequence's first) frame in
+    // OUT/<scene>/, with it each frame of the range in OUT/<scene>/<frame>/.
+    if (!frames) one(s.scene.name, std::nullopt);
+    if (frames)
+        for (const std::int64_t n : core::sequenceFrames(s.scene)) {
+            setFrame(s, n);
+            one(s.scene.name + "/" + frameFolder(n),
+                s.scene.sequence ? std::optional<std::int64_t>(n) : std::nullopt);
+        }
+    writeTilesManifest(part, "render", settings, references, commandLine, out);
+}
+
+ExitCode runTiles(std::vector<LoadedScene>& scenes, const core::FramePart& part,
+                  const RunOptions& o, const std::string& thresholdsFile, Devices& devices) {
+    const fs::path out(o.out);
+    prepareOutputFolder(out);
+    json references = json::array();
+    std::set<std::string> seen;
+    for (LoadedScene& s : scenes) {
+        const auto renderer = makeRenderer("raymarch", devices, s);
+        forEachReference(s, [&](LoadedScene& at, std::optional<std::int64_t> frame) {
+            const auto [key, what] = referenceKey(at, o.sets);
+            if (!seen.insert(key).second) return;
+            const std::string folder = "reference_tiles/" + key;
+            renderPart(at, *renderer, part, out, folder);
+            references.push_back(referenceEntry(folder, key, what, at, frame));
+        });
+    }
+    writeTilesManifest(part, "run", runSettings(o, thresholdsFile), references, o.commandLine, out);
+    std::printf(
+        "tile %d/%d of %zu reference frames -> %s; `twinrender merge` of the %d tiles' "
+        "folders joins them and runs the run\n",
+        part.index, part.count, references.size(), out.c_str(), part.count);
+    return ExitCode::Pass;
+}
+
+ExitCode mergeTiles(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
+                    const fs::path& out, const MergeOptions& o) {
+    const json& first = manifests.front();
+    const std::string command = first.at("command").get<std::string>();
+    if (command != "render" && command != "run")
+        throw core::InputError(
+            fmt::format("{}: tiles of `{}`; only `render` and `run` render tiles",
+                        (dirs.front() / "shard.json").string(), command));
+    checkSameReferences(dirs, manifests);
+    const json refs = first.at("references");
+    // Every part's files are there before anything is written.
+    for (const fs::path& dir : dirs)
+        for (const json& ref : refs) {
+            const fs::path at =
+                folderInShard(dir, ref.at("folder").get<std::string>(), "the tile's folder");
+            for (const char* file : {"raymarch.exr", "raymarch.json"})
+                if (!fs::is_regular_file(at / file))
+                    throw core::InputError(fmt::format(
+                        "{}: missing; the tile of {} is not whole (was its job cut short?)",
+                        (at / file).string(), label(ref)));
+        }
+    std::optional<RunOptions> run;
+    if (command == "run") {
+        run = runFromSettings(first.at("settings"), out, o);
+        checkRunReferences(*run, refs);
+    }
+    // The joined frames appear together or not at all.
+    writeTogether(out, [&](const fs::path& staging) {
+        for (const json& ref : refs) {
+            const std::string folder = ref.at("folder").get<std::string>();
+            json meta;
+            const core::Frame whole = joinParts(dirs, folder, meta);
+            const fs::path target =
+                run ? staging / "reference_cache" / ref.at("key").get<std::string>()
+                    : staging / folder;
+            core::writeFrame(whole, target, meta);
+            if (run) core::writeTextFile(target / "key.json", ref.at("what").dump(2) + "\n");
+            std::printf(
+                "%s: %zu tiles joined -> %s\n", label(ref).c_str(), dirs.size(),
+                (run ? out / "reference_cache" / ref.at("key").get<std::string>() : out / folder)
+                    .c_str());
+        }
+    });
+    std::fflush(stdout);
+    return run ? runSuite(*run) : ExitCode::Pass;
+}
+
+}  // namespace twinrender::app

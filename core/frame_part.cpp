@@ -1,0 +1,75 @@
+#include "core/frame_part.h"
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace twinrender::core {
+
+using nlohmann::json;
+
+int FramePart::rowsHeld(int height, int tileSize) const {
+    const int rows = (height + tileSize - 1) / tileSize;
+    return rows < index ? 0 : (rows - index) / count + 1;
+}
+
+json toJson(const PartRecord& r) {
+    json means = json::object();
+    for (const auto& [name, m] : r.means)
+        means[name] = {{"row_sums", m.rowSums}, {"samples", m.samples}};
+    return {{"part", r.part.index},
+            {"of", r.part.count},
+            {"tile_size", r.tileSize},
+            {"means", means},
+            {"shared", r.shared}};
+}
+
+PartRecord partRecordFromJson(const json& j, const std::string& where) {
+    // Types are checked, never converted: a damaged part is bad input naming the key.
+    const auto bad = [&](const std::string& key, const char* what) {
+        return InputError(fmt::format("{}: \"tile\".{} is {}, not {}", where, key,
+                                      j.contains(key) ? j.at(key).dump() : "missing", what));
+    };
+    if (!j.is_object())
+        throw InputError(fmt::format("{}: \"tile\" is {}, not an object", where, j.dump()));
+    const auto integer = [&](const char* key, long long least) {
+        const auto it = j.find(key);
+        if (it == j.end() || !it->is_number_integer() || it->get<long long>() < least ||
+            it->get<long long>() > 1 << 20)
+            throw bad(key, least == 0 ? "a whole number" : "a positive whole number");
+        return static_cast<int>(it->get<long long>());
+    };
+    PartRecord r;
+    r.part = {.index = integer("part", 1), .count = integer("of", 1)};
+    if (r.part.index > r.part.count) throw bad("part", "a part number between 1 and \"of\"");
+    r.tileSize = integer("tile_size", 1);
+    const auto means = j.find("means");
+    if (means == j.end() || !means->is_object()) throw bad("means", "an object");
+    for (const auto& [name, m] : means->items()) {
+        const std::string key = "means." + name;
+        if (!m.is_object() || !m.contains("row_sums") || !m.at("row_sums").is_array() ||
+            !m.contains("samples") || !m.at("samples").is_number_integer())
+            throw InputError(
+                fmt::format("{}: \"tile\".{} is {}, not {{\"row_sums\": [...], "
+                            "\"samples\": N}}",
+                            where, key, m.dump()));
+        PartMean mean;
+        for (const json& v : m.at("row_sums")) {
+            if (!v.is_number())
+                throw InputError(fmt::format("{}: \"tile\".{}.row_sums holds {}, not a number",
+                                             where, key, v.dump()));
+            mean.rowSums.push_back(v.get<double>());
+        }
+        mean.samples = m.at("samples").get<std::int64_t>();
+        r.means.emplace(name, std::move(mean));
+    }
+    const auto shared = j.find("shared");
+    if (shared == j.end() || !shared->is_array()) throw bad("shared", "a list of counters");
+    for (const json& v : *shared) {
+        if (!v.is_string()) throw bad("shared", "a list of counters");
+        r.shared.push_back(v.get<std::string>());
+    }
+    return r;
+}
+
+}  // namespace twinrender::core
