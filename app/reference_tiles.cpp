@@ -132,7 +132,8 @@ std::string differences(const json& a, const json& b) {
                            a.contains(at) ? a.at(at).dump() : "nothing",
                            b.contains(at) ? b.at(at).dump() : "nothing");
     }
-    return out.empty() ? "the same account, another key" : out;
+    // The same account, another key: a file it names has other contents.
+    return out.empty() ? "the scene file or a file it names has changed" : out;
 }
 
 // Every part holds the same references, in the same order.

@@ -32,8 +32,13 @@ Image tonemappedBeauty(const Image& aovImage, float exposure) {
 
 void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nlohmann::json& extra) {
     const std::string& name = frame.renderer;
-    writeImage(frame.image, dir / (name + ".exr"));
-    writeImage(frame.display, dir / (name + ".png"));
+    // A part: its rows alone, and no picture (the joined frame has one).
+    if (frame.part) {
+        writeImage(heldRows(frame.image, *frame.part), dir / (name + ".exr"));
+    } else {
+        writeImage(frame.image, dir / (name + ".exr"));
+        writeImage(frame.display, dir / (name + ".png"));
+    }
     nlohmann::json j = extra;
     j["renderer"] = frame.renderer;
     j["device"] = frame.device;
@@ -67,7 +72,17 @@ Frame readFrame(const std::filesystem::path& dir, const std::string& renderer,
     for (const auto& [k, v] : counters.items())
         if (v.is_number()) f.counters[k] = v.get<double>();
     f.particleCount = j.value("particle_count", std::size_t{0});
-    if (j.contains("tile")) f.part = partRecordFromJson(j.at("tile"), meta.string());
+    if (j.contains("tile")) {
+        f.part = partRecordFromJson(j.at("tile"), meta.string());
+        const auto resolution = j.find("resolution");
+        if (resolution == j.end() || !resolution->is_array() || resolution->size() != 2 ||
+            !resolution->at(0).is_number_integer() || !resolution->at(1).is_number_integer() ||
+            resolution->at(0).get<int>() != f.image.width())
+            throw InputError(fmt::format("{}: \"resolution\" is not [{}, height]", meta.string(),
+                                         f.image.width()));
+        f.image = placeHeldRows(f.image, *f.part, resolution->at(1).get<int>(),
+                                (dir / (renderer + ".exr")).string());
+    }
     if (json) *json = j;
     return f;
 }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace twinrender::core {
@@ -11,6 +13,50 @@ using nlohmann::json;
 int FramePart::rowsHeld(int height, int tileSize) const {
     const int rows = (height + tileSize - 1) / tileSize;
     return rows < index ? 0 : (rows - index) / count + 1;
+}
+
+namespace {
+
+// Calls visit(y, k) for each row of pixels y of a frame `height` pixels high that the part
+// holds, k counting them from 0.
+template <typename Visit>
+int forEachHeldRow(const PartRecord& r, int height, Visit visit) {
+    int k = 0;
+    for (int y = 0; y < height; ++y)
+        if (r.part.holdsRow(y / r.tileSize)) visit(y, k++);
+    return k;
+}
+
+std::size_t rowValues(const Image& image) {
+    return static_cast<std::size_t>(image.width()) * image.channelCount();
+}
+
+}  // namespace
+
+Image heldRows(const Image& whole, const PartRecord& r) {
+    Image held(whole.width(), forEachHeldRow(r, whole.height(), [](int, int) {}),
+               whole.channelNames());
+    const std::size_t n = rowValues(whole);
+    forEachHeldRow(r, whole.height(), [&](int y, int k) {
+        std::copy_n(whole.pixels().data() + std::size_t(y) * n, n,
+                    held.pixels().data() + std::size_t(k) * n);
+    });
+    return held;
+}
+
+Image placeHeldRows(const Image& held, const PartRecord& r, int height, const std::string& where) {
+    const int rows = forEachHeldRow(r, height, [](int, int) {});
+    if (held.height() != rows)
+        throw InputError(fmt::format(
+            "{}: {} rows of pixels; part {}/{} of a frame {} pixels high in tiles of {} holds {}",
+            where, held.height(), r.part.index, r.part.count, height, r.tileSize, rows));
+    Image whole(held.width(), height, held.channelNames());
+    const std::size_t n = rowValues(whole);
+    forEachHeldRow(r, height, [&](int y, int k) {
+        std::copy_n(held.pixels().data() + std::size_t(k) * n, n,
+                    whole.pixels().data() + std::size_t(y) * n);
+    });
+    return whole;
 }
 
 json toJson(const PartRecord& r) {

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
+
 namespace twinrender::core {
 
 struct FramePart {
@@ -44,6 +46,15 @@ struct PartRecord {
     std::map<std::string, PartMean> means;
     std::vector<std::string> shared;
 };
+
+// A part's image as its file holds it: the rows of pixels of the rows of tiles it holds, top to
+// bottom, so that a part of N is about 1/N of the frame's file to write and to read.
+Image heldRows(const Image& whole, const PartRecord& record);
+// And back: the image of the whole frame, `height` pixels high, the held rows in place, the
+// others zero. Throws InputError naming `where` when `held` has another height than the part's
+// rows.
+Image placeHeldRows(const Image& held, const PartRecord& record, int height,
+                    const std::string& where);
 
 // A render JSON's "tile" object: {"part": K, "of": N, "tile_size", "means": {counter:
 // {"row_sums": [...], "samples"}}, "shared": [...]}.

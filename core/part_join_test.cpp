@@ -127,3 +127,17 @@ TEST(PartJoin, TheRecordReadsBackAndADamagedOneIsNamed) {
             << e.what();
     }
 }
+
+TEST(PartJoin, APartsFileHoldsItsRowsAlone) {
+    const Frame f = part(2);
+    const tr::core::Image held = tr::core::heldRows(f.image, *f.part);
+    // Rows of tiles 1 and 3: the rows of pixels 2, 3, 6 and 7.
+    ASSERT_EQ(held.height(), 4);
+    EXPECT_EQ(held.at(4, 0, 1), 11.0f);
+    EXPECT_EQ(held.at(0, 3, 3), 33.0f);
+    const tr::core::Image back = tr::core::placeHeldRows(held, *f.part, 10, "p.exr");
+    for (int y = 0; y < 10; ++y)
+        EXPECT_EQ(back.at(2, y, 0), f.part->part.holdsRow(y / 2) ? f.image.at(2, y, 0) : 0.0f)
+            << y;
+    EXPECT_THROW(tr::core::placeHeldRows(held, *f.part, 12, "p.exr"), tr::core::InputError);
+}
