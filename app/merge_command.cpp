@@ -150,6 +150,7 @@ ExitCode mergeManifests(const std::vector<fs::path>& dirs, const std::vector<jso
         return s == "tiles" ? "tiles of a frame (--tiles)" : "shards of the work (--shard)";
     };
     const char* part = split == "tiles" ? "tile" : "shard";
+    const std::string command = first.at("command").get<std::string>();
     std::map<int, fs::path> shards;
     for (std::size_t i = 0; i < dirs.size(); ++i) {
         const json& m = manifests[i];
@@ -163,10 +164,10 @@ ExitCode mergeManifests(const std::vector<fs::path>& dirs, const std::vector<jso
                                                dirs[i].string(), kind(splitOf(m)), dirs[0].string(),
                                                kind(split)));
         if (m.at("of").get<int>() != n)
-            throw core::InputError(fmt::format("{} is {} {}/{}, {} is {} {}/{}: not {}s of one run",
+            throw core::InputError(fmt::format("{} is {} {}/{}, {} is {} {}/{}: not {}s of one {}",
                                                dirs[i].string(), part, m.at("shard").get<int>(),
                                                m.at("of").get<int>(), dirs[0].string(), part,
-                                               first.at("shard").get<int>(), n, part));
+                                               first.at("shard").get<int>(), n, part, command));
         if (m.at("settings") != first.at("settings")) {
             std::string diff;
             for (const auto& [k, v] : m.at("settings").items())
@@ -174,8 +175,8 @@ ExitCode mergeManifests(const std::vector<fs::path>& dirs, const std::vector<jso
                     diff += fmt::format("{}{}: {} vs {}", diff.empty() ? "" : "; ", k,
                                         first.at("settings").value(k, json()).dump(), v.dump());
             throw core::InputError(
-                fmt::format("{} and {} were run with different settings ({}); not {}s of one run",
-                            dirs[0].string(), dirs[i].string(), diff, part));
+                fmt::format("{} and {} were run with different settings ({}); not {}s of one {}",
+                            dirs[0].string(), dirs[i].string(), diff, part, command));
         }
         const int k = m.at("shard").get<int>();
         if (shards.count(k))
@@ -187,7 +188,6 @@ ExitCode mergeManifests(const std::vector<fs::path>& dirs, const std::vector<jso
         if (!shards.count(k))
             throw core::InputError(
                 fmt::format("{} {}/{} is missing; give all {} {} folders", part, k, n, n, part));
-    const std::string command = first.at("command").get<std::string>();
     // The tiles' merge checks the frames they hold before it writes.
     if (split == "tiles") return mergeTiles(dirs, manifests, out, o);
     prepareOutputFolder(out);
