@@ -32,19 +32,15 @@ Image tonemappedBeauty(const Image& aovImage, float exposure) {
 
 void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nlohmann::json& extra) {
     const std::string& name = frame.renderer;
-    // A part: its rows alone, and no picture (the joined frame has one).
-    if (frame.part) {
-        writeImage(heldRows(frame.image, *frame.part), dir / (name + ".exr"));
-    } else {
-        writeImage(frame.image, dir / (name + ".exr"));
-        writeImage(frame.display, dir / (name + ".png"));
-    }
+    writeImage(frame.image, dir / (name + ".exr"));
+    // A part's rows alone make no picture; the joined frame has one.
+    if (!frame.part) writeImage(frame.display, dir / (name + ".png"));
     nlohmann::json j = extra;
     j["renderer"] = frame.renderer;
     j["device"] = frame.device;
     j["settings"] = frame.settings;
     j["particle_count"] = frame.particleCount;
-    j["resolution"] = {frame.image.width(), frame.image.height()};
+    j["resolution"] = {frame.image.width(), frame.part ? frame.part->height : frame.image.height()};
     j["counters"] = frame.counters;
     j["timings_ms"] = frame.timingsMs;
     if (frame.part) j["tile"] = toJson(*frame.part);
@@ -74,14 +70,12 @@ Frame readFrame(const std::filesystem::path& dir, const std::string& renderer,
     f.particleCount = j.value("particle_count", std::size_t{0});
     if (j.contains("tile")) {
         f.part = partRecordFromJson(j.at("tile"), meta.string());
-        const auto resolution = j.find("resolution");
-        if (resolution == j.end() || !resolution->is_array() || resolution->size() != 2 ||
-            !resolution->at(0).is_number_integer() || !resolution->at(1).is_number_integer() ||
-            resolution->at(0).get<int>() != f.image.width())
-            throw InputError(fmt::format("{}: \"resolution\" is not [{}, height]", meta.string(),
-                                         f.image.width()));
-        f.image = placeHeldRows(f.image, *f.part, resolution->at(1).get<int>(),
-                                (dir / (renderer + ".exr")).string());
+        if (f.image.height() != f.part->heightHeld())
+            throw InputError(fmt::format(
+                "{}: {} rows of pixels; part {}/{} of a frame {} pixels high in tiles of {} "
+                "holds {}",
+                (dir / (renderer + ".exr")).string(), f.image.height(), f.part->part.index,
+                f.part->part.count, f.part->height, f.part->tileSize, f.part->heightHeld()));
     }
     if (json) *json = j;
     return f;

@@ -65,7 +65,7 @@ struct Frame {
     // ("shading": what its shading alone costs, rounding).
     std::map<std::string, Image> split;
     // Set when the renderer drew one part of the frame (RenderInput::part): which, and what
-    // joining the parts needs (core/part_join.h).
+    // joining the parts needs (core/part_join.h). The images then hold the part's rows alone.
     std::optional<PartRecord> part;
 };
 
@@ -74,12 +74,12 @@ Image tonemappedBeauty(const Image& aovImage, float exposure);
 
 // Writes DIR/R.exr (all AOV channels, linear), DIR/R.png (the display image) and DIR/R.json,
 // R the frame's renderer; each file atomically. `extra` is merged into the JSON (scene name,
-// resolution, ...). A part of a frame writes R.exr with its rows alone (core/frame_part.h) and
-// R.json with its record as "tile", and no R.png.
+// resolution, ...). A part of a frame (core/frame_part.h) writes no R.png, and its record as
+// R.json's "tile".
 void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nlohmann::json& extra);
 
 // Reads what writeFrame wrote for `renderer` in DIR (the display image left empty): the AOV
-// image (a part's at the whole frame's size, its rows in place), and from the JSON the device,
+// image, and from the JSON the device,
 // settings, particle count, counters, timings and a part's record. `json`, when given, receives the
 // whole JSON. Throws InputError naming the file when one is missing or unreadable, or the JSON is
 // not an object or holds a damaged "tile".

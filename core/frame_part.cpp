@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-
 #include "core/error.h"
 
 namespace twinrender::core {
@@ -15,59 +13,19 @@ int FramePart::rowsHeld(int height, int tileSize) const {
     return rows < index ? 0 : (rows - index) / count + 1;
 }
 
-namespace {
-
-// Calls visit(y, k) for each row of pixels y of a frame `height` pixels high that the part
-// holds, k counting them from 0.
-template <typename Visit>
-int forEachHeldRow(const PartRecord& r, int height, Visit visit) {
-    int k = 0;
-    for (int y = 0; y < height; ++y)
-        if (r.part.holdsRow(y / r.tileSize)) visit(y, k++);
-    return k;
-}
-
-std::size_t rowValues(const Image& image) {
-    return static_cast<std::size_t>(image.width()) * image.channelCount();
-}
-
-}  // namespace
-
-Image heldRows(const Image& whole, const PartRecord& r) {
-    Image held(whole.width(), forEachHeldRow(r, whole.height(), [](int, int) {}),
-               whole.channelNames());
-    const std::size_t n = rowValues(whole);
-    forEachHeldRow(r, whole.height(), [&](int y, int k) {
-        std::copy_n(whole.pixels().data() + std::size_t(y) * n, n,
-                    held.pixels().data() + std::size_t(k) * n);
-    });
-    return held;
-}
-
-Image placeHeldRows(const Image& held, const PartRecord& r, int height, const std::string& where) {
-    const int rows = forEachHeldRow(r, height, [](int, int) {});
-    if (held.height() != rows)
-        throw InputError(fmt::format(
-            "{}: {} rows of pixels; part {}/{} of a frame {} pixels high in tiles of {} holds {}",
-            where, held.height(), r.part.index, r.part.count, height, r.tileSize, rows));
-    Image whole(held.width(), height, held.channelNames());
-    const std::size_t n = rowValues(whole);
-    forEachHeldRow(r, height, [&](int y, int k) {
-        std::copy_n(held.pixels().data() + std::size_t(k) * n, n,
-                    whole.pixels().data() + std::size_t(y) * n);
-    });
-    return whole;
+int FramePart::heightHeld(int height, int tileSize) const {
+    const int rows = (height + tileSize - 1) / tileSize;
+    // A held last row of tiles may be cut short by the frame's edge.
+    const int cut = holdsRow(rows - 1) ? rows * tileSize - height : 0;
+    return rowsHeld(height, tileSize) * tileSize - cut;
 }
 
 json toJson(const PartRecord& r) {
     json means = json::object();
     for (const auto& [name, m] : r.means)
         means[name] = {{"row_sums", m.rowSums}, {"samples", m.samples}};
-    return {{"part", r.part.index},
-            {"of", r.part.count},
-            {"tile_size", r.tileSize},
-            {"means", means},
-            {"shared", r.shared}};
+    return {{"part", r.part.index}, {"of", r.part.count}, {"tile_size", r.tileSize},
+            {"height", r.height},   {"means", means},     {"shared", r.shared}};
 }
 
 PartRecord partRecordFromJson(const json& j, const std::string& where) {
@@ -89,6 +47,8 @@ PartRecord partRecordFromJson(const json& j, const std::string& where) {
     r.part = {.index = integer("part", 1), .count = integer("of", 1)};
     if (r.part.index > r.part.count) throw bad("part", "a part number between 1 and \"of\"");
     r.tileSize = integer("tile_size", 1);
+    r.height = integer("height", 1);
+    if (r.height > 16384) throw bad("height", "a frame's height, 1 to 16384 (camera.height)");
     const auto means = j.find("means");
     if (means == j.end() || !means->is_object()) throw bad("means", "an object");
     for (const auto& [name, m] : means->items()) {

@@ -2,8 +2,9 @@
 // holds the rows of the renderer's square tiles whose index r (0 at the top) has
 // r % N == K - 1, so that every part takes rows from every height of the frame and the parts
 // cost about the same wherever the scene's objects lie (docs/performance.md, "Tiles of one
-// frame"). A renderer that draws a part records in it what joining the parts needs
-// (PartRecord), and the joined parts (core/part_join.h) are the frame one render gives, bit for
+// frame"). A part's images hold its rows of pixels alone, top to bottom (about 1/N of the
+// frame's memory and file), and the renderer records in it what joining the parts needs
+// (PartRecord); the joined parts (core/part_join.h) are the frame one render gives, bit for
 // bit, its times aside.
 #pragma once
 
@@ -12,8 +13,6 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include "core/image.h"
 
 namespace twinrender::core {
 
@@ -26,6 +25,16 @@ struct FramePart {
     bool holdsRow(int row) const { return row % count == index - 1; }
     // The rows of tiles it holds of a frame `height` pixels high cut into tiles `tileSize` high.
     int rowsHeld(int height, int tileSize) const;
+    // The rows of pixels it holds of that frame: its images' height.
+    int heightHeld(int height, int tileSize) const;
+    // The row of its images that holds the frame's row of pixels y (in a row of tiles it
+    // holds), and the frame's row that its images' row `row` holds.
+    int imageRow(int y, int tileSize) const {
+        return y / tileSize / count * tileSize + y % tileSize;
+    }
+    int frameRow(int row, int tileSize) const {
+        return (row / tileSize * count + index - 1) * tileSize + row % tileSize;
+    }
 };
 
 // A counter that is a mean over the frame's samples (the raymarcher's ao_standard_error): per
@@ -37,26 +46,21 @@ struct PartMean {
     std::int64_t samples = 0;
 };
 
-// What a part of a frame records beside its image (of the whole frame's size, the rows it does
-// not hold left zero). Its counters are sums over its tiles, but the `means` and the `shared`
-// ones: facts of the whole frame (the raymarcher's emitting_bodies), equal in every part.
+// What a part of a frame records beside its images. Its counters are sums over its tiles, but
+// the `means` and the `shared` ones: facts of the whole frame (the raymarcher's
+// emitting_bodies), equal in every part.
 struct PartRecord {
     FramePart part;
     int tileSize = 0;  // the side of the renderer's tiles, pixels
+    int height = 0;    // the whole frame's, pixels
     std::map<std::string, PartMean> means;
     std::vector<std::string> shared;
+
+    // The part's images' height.
+    int heightHeld() const { return part.heightHeld(height, tileSize); }
 };
 
-// A part's image as its file holds it: the rows of pixels of the rows of tiles it holds, top to
-// bottom, so that a part of N is about 1/N of the frame's file to write and to read.
-Image heldRows(const Image& whole, const PartRecord& record);
-// And back: the image of the whole frame, `height` pixels high, the held rows in place, the
-// others zero. Throws InputError naming `where` when `held` has another height than the part's
-// rows.
-Image placeHeldRows(const Image& held, const PartRecord& record, int height,
-                    const std::string& where);
-
-// A render JSON's "tile" object: {"part": K, "of": N, "tile_size", "means": {counter:
+// A render JSON's "tile" object: {"part": K, "of": N, "tile_size", "height", "means": {counter:
 // {"row_sums": [...], "samples"}}, "shared": [...]}.
 nlohmann::json toJson(const PartRecord& record);
 // Reads it back; throws InputError naming `where` and the key when it is not one.

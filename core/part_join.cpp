@@ -43,9 +43,9 @@ void PartJoin::check(const Frame& part, const std::string& where) const {
     auto namesA = a.channelNames(), namesB = b.channelNames();
     std::sort(namesA.begin(), namesA.end());
     std::sort(namesB.begin(), namesB.end());
-    if (a.width() != b.width() || a.height() != b.height() || namesA != namesB)
+    if (a.width() != b.width() || r.height != b.height() || namesA != namesB)
         throw refuse(fmt::format("{}x{} with {} channels against {}x{} with {}", a.width(),
-                                 a.height(), a.channelCount(), b.width(), b.height(),
+                                 r.height, a.channelCount(), b.width(), b.height(),
                                  b.channelCount()));
     if (part.renderer != mFrame.renderer)
         throw refuse(fmt::format("renderers {} and {}", part.renderer, mFrame.renderer));
@@ -84,16 +84,16 @@ void PartJoin::copyRows(const Frame& part) {
     for (int c = 0; c < channels; ++c) from[c] = in.channelIndex(out.channelNames()[c]);
     const bool sameOrder = in.channelNames() == out.channelNames();
     const std::size_t rowValues = static_cast<std::size_t>(out.width()) * channels;
-    for (int y = 0; y < out.height(); ++y) {
-        if (!r.part.holdsRow(y / r.tileSize)) continue;
-        const std::size_t start = static_cast<std::size_t>(y) * rowValues;
+    for (int row = 0; row < in.height(); ++row) {
+        const int y = r.part.frameRow(row, r.tileSize);
         if (sameOrder) {
-            std::memcpy(out.pixels().data() + start, in.pixels().data() + start,
+            std::memcpy(out.pixels().data() + static_cast<std::size_t>(y) * rowValues,
+                        in.pixels().data() + static_cast<std::size_t>(row) * rowValues,
                         rowValues * sizeof(float));
             continue;
         }
         for (int x = 0; x < out.width(); ++x)
-            for (int c = 0; c < channels; ++c) out.at(x, y, c) = in.at(x, y, from[c]);
+            for (int c = 0; c < channels; ++c) out.at(x, y, c) = in.at(x, row, from[c]);
     }
 }
 
@@ -104,16 +104,20 @@ void PartJoin::add(Frame part, const std::string& where) {
             "write parts",
             where));
     const PartRecord& r = *part.part;
-    const int rows = r.part.rowsHeld(part.image.height(), r.tileSize);
+    if (part.image.height() != r.heightHeld())
+        throw InputError(fmt::format(
+            "{}: an image {} pixels high; {} of a frame {} pixels high in tiles of {} holds {} "
+            "rows of pixels",
+            where, part.image.height(), partName(r.part), r.height, r.tileSize, r.heightHeld()));
+    const int rows = r.part.rowsHeld(r.height, r.tileSize);
     for (const auto& [name, mean] : r.means)
         if (static_cast<int>(mean.rowSums.size()) != rows)
             throw InputError(fmt::format(
                 "{}: \"tile\".means.{} has {} row sums; {} of a frame {} pixels high in tiles of "
                 "{} holds {} rows",
-                where, name, mean.rowSums.size(), partName(r.part), part.image.height(), r.tileSize,
-                rows));
+                where, name, mean.rowSums.size(), partName(r.part), r.height, r.tileSize, rows));
     if (mParts.empty()) {
-        mFrame.image = Image(part.image.width(), part.image.height(), part.image.channelNames());
+        mFrame.image = Image(part.image.width(), r.height, part.image.channelNames());
         mFrame.renderer = part.renderer;
         mFrame.settings = part.settings;
         mFrame.particleCount = part.particleCount;

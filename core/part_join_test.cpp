@@ -16,22 +16,23 @@ using tr::core::PartJoin;
 namespace {
 
 // A frame 5 x 10 pixels in tiles of 2 (five rows of tiles): part 1 of 2 holds rows 0, 2 and 4,
-// part 2 rows 1 and 3. Every pixel of a held row holds 10 * row + channel; the rows it does
-// not hold hold -7, which the join must not keep.
+// part 2 rows 1 and 3, each in an image of its rows of pixels alone. The frame's pixel in the
+// row of tiles r holds 10 * r + channel.
 Frame part(int index, int count = 2) {
     Frame f;
     f.renderer = "raymarch";
     f.device = index == 1 ? "cpu A" : "cpu B";
     f.settings = {{"spp", 4}};
     f.particleCount = 12;
-    f.image = tr::core::Image(5, 10, {"R", "G", "B", "Z"});
     tr::core::PartRecord r;
     r.part = {.index = index, .count = count};
     r.tileSize = 2;
-    for (int y = 0; y < 10; ++y)
+    r.height = 10;
+    f.image = tr::core::Image(5, r.heightHeld(), {"R", "G", "B", "Z"});
+    for (int row = 0; row < f.image.height(); ++row)
         for (int x = 0; x < 5; ++x)
             for (int c = 0; c < 4; ++c)
-                f.image.at(x, y, c) = r.part.holdsRow(y / 2) ? 10.0f * (y / 2) + c : -7.0f;
+                f.image.at(x, row, c) = 10.0f * (r.part.frameRow(row, 2) / 2) + c;
     // Sums whose order matters: in row order 1e16 + 1 - 1e16 + 1 + 0.5 is 1.5, in part order
     // (1e16 - 1e16 + 0.5) + (1 + 1) is 2.5.
     r.means["error"] = index == 1 ? tr::core::PartMean{.rowSums = {1e16, -1e16, 0.5}, .samples = 3}
@@ -85,8 +86,11 @@ TEST(PartJoin, RefusesPartsThatDoNotBelongTogether) {
     EXPECT_NE(refusal(join, part(2, 3), "c.json").find("split into 3 and 2 parts"),
               std::string::npos);
     Frame wider = part(2);
-    wider.image = tr::core::Image(6, 10, {"R", "G", "B", "Z"});
+    wider.image = tr::core::Image(6, 4, {"R", "G", "B", "Z"});
     EXPECT_NE(refusal(join, wider, "w.json").find("6x10"), std::string::npos);
+    Frame higher = part(2);
+    higher.image = tr::core::Image(5, 10, {"R", "G", "B", "Z"});
+    EXPECT_NE(refusal(join, higher, "h.json").find("an image 10 pixels high"), std::string::npos);
     Frame other = part(2);
     other.settings = {{"spp", 16}};
     EXPECT_NE(refusal(join, other, "s.json").find("spp 16 against 4"), std::string::npos);
@@ -114,6 +118,7 @@ TEST(PartJoin, TheRecordReadsBackAndADamagedOneIsNamed) {
     EXPECT_EQ(back.part.index, 1);
     EXPECT_EQ(back.part.count, 2);
     EXPECT_EQ(back.tileSize, 2);
+    EXPECT_EQ(back.height, 10);
     EXPECT_EQ(back.means.at("error").rowSums, r.means.at("error").rowSums);
     EXPECT_EQ(back.means.at("error").samples, 3);
     EXPECT_EQ(back.shared, r.shared);
@@ -128,16 +133,18 @@ TEST(PartJoin, TheRecordReadsBackAndADamagedOneIsNamed) {
     }
 }
 
-TEST(PartJoin, APartsFileHoldsItsRowsAlone) {
-    const Frame f = part(2);
-    const tr::core::Image held = tr::core::heldRows(f.image, *f.part);
-    // Rows of tiles 1 and 3: the rows of pixels 2, 3, 6 and 7.
-    ASSERT_EQ(held.height(), 4);
-    EXPECT_EQ(held.at(4, 0, 1), 11.0f);
-    EXPECT_EQ(held.at(0, 3, 3), 33.0f);
-    const tr::core::Image back = tr::core::placeHeldRows(held, *f.part, 10, "p.exr");
-    for (int y = 0; y < 10; ++y)
-        EXPECT_EQ(back.at(2, y, 0), f.part->part.holdsRow(y / 2) ? f.image.at(2, y, 0) : 0.0f)
-            << y;
-    EXPECT_THROW(tr::core::placeHeldRows(held, *f.part, 12, "p.exr"), tr::core::InputError);
+TEST(PartJoin, APartHoldsItsRowsOfPixelsAloneTheLastOneCutByTheFrame) {
+    // 10 pixels high in tiles of 4: rows of tiles 0 (pixels 0-3), 1 (4-7) and 2 (8-9).
+    const tr::core::FramePart first{.index = 1, .count = 2}, second{.index = 2, .count = 2};
+    EXPECT_EQ(first.heightHeld(10, 4), 6);
+    EXPECT_EQ(second.heightHeld(10, 4), 4);
+    EXPECT_EQ(first.frameRow(3, 4), 3);
+    EXPECT_EQ(first.frameRow(4, 4), 8);
+    EXPECT_EQ(first.frameRow(5, 4), 9);
+    EXPECT_EQ(second.frameRow(0, 4), 4);
+    for (int row = 0; row < 6; ++row) EXPECT_EQ(first.imageRow(first.frameRow(row, 4), 4), row);
+    for (int row = 0; row < 4; ++row) EXPECT_EQ(second.imageRow(second.frameRow(row, 4), 4), row);
+    // A whole frame is its own part.
+    EXPECT_EQ(tr::core::FramePart{}.heightHeld(10, 4), 10);
+    EXPECT_EQ(tr::core::FramePart{}.imageRow(9, 4), 9);
 }

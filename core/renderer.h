@@ -30,9 +30,8 @@ struct RenderInput {
     // too, to say where its own image's error comes from, and fills Frame::split.
     const Image* exactSurface = nullptr;
     // Optional: draw only this part of the frame (core/frame_part.h; `render --tiles K/N`). The
-    // frame's images have the whole frame's size, the other parts' rows left zero, and
-    // Frame::part records which part it is. A renderer that draws whole frames only refuses
-    // a part (requireWholeFrame).
+    // frame's images hold the part's rows of pixels alone, and Frame::part records which part
+    // it is. A renderer that draws whole frames only refuses a part (requireWholeFrame).
     FramePart part{};
 };
 

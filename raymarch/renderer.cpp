@@ -149,8 +149,10 @@ class FrameTrace {
         // they see an atmosphere).
         if (mAtmosphere || mTracer.blockMayHit(b.central))
             for (int k = 0; k < mSettings.spp; ++k) traceSample(b, k, pixels, w, ticks);
+        // A part's images hold its rows alone (core/frame_part.h).
         for (int i = 0; i < b.n; ++i)
-            writePixel(pixels[i], mSettings.spp, mExposure, b.px[i], b.py[i], mChannels, mAov,
+            writePixel(pixels[i], mSettings.spp, mExposure, b.px[i],
+                       mInput.part.imageRow(b.py[i], mSettings.tileSize), mChannels, mAov,
                        mDisplay);
     }
 
@@ -458,8 +460,9 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
     // written by the tiles, in parallel, with the pixels they cover: filling the channels
     // first is a serial pass over the whole image.
-    frame.image = core::Image(camera.width(), camera.height(), core::aov::channelNames());
-    frame.display = core::Image(camera.width(), camera.height(), {"R", "G", "B"});
+    const int height = input.part.heightHeld(camera.height(), mSettings.tileSize);
+    frame.image = core::Image(camera.width(), height, core::aov::channelNames());
+    frame.display = core::Image(camera.width(), height, {"R", "G", "B"});
     frame.particleCount = input.particles.particles.size();
 
     const FrameTrace trace(tracer, camera, input, mSettings, frame);
@@ -506,6 +509,7 @@ core::Frame Renderer::render(const core::RenderInput& input) {
         core::PartRecord& part = frame.part.emplace();
         part.part = input.part;
         part.tileSize = mSettings.tileSize;
+        part.height = camera.height();
         if (occlusion)
             part.means["ao_standard_error"] = {.rowSums = traced.aoRowSums,
                                                .samples = ticks.aoSamples};
