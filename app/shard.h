@@ -9,6 +9,9 @@
 //   "scenes": [every scene name of the whole run, in its order], "reports": [the full report
 //   of each scene this shard ran], "junit": bool; sweep -> "combinations": the product's size,
 //   "indices": [the combinations this shard ran]}.
+// The parts of `render --tiles K/N` and `run --tiles K/N` carry the same manifest with
+// "split": "tiles" (a shard's is "scenes", or none) and their "references"
+// (app/reference_tiles.h); "shard" and "of" are then the part's K and N.
 #pragma once
 
 #include <cstddef>
