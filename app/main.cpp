@@ -119,10 +119,8 @@ ExitCode runRenderTiles(const std::string& scenePath, const std::string& rendere
         sets.insert(sets.end(), range.begin(), range.end());
     }
     auto loaded = tr::app::loadScene(scenePath, sets);
-    tr::app::Devices devices;
     const nlohmann::json settings = {{"scene", scenePath}, {"sets", o.sets}, {"frames", frames}};
-    tr::app::renderTiles(loaded, part, !frames.empty(), sets, settings, commandLine, devices,
-                         o.out);
+    tr::app::renderTiles(loaded, part, !frames.empty(), sets, settings, commandLine, o.out);
     return ExitCode::Pass;
 }
 
@@ -326,6 +324,11 @@ int main(int argc, char** argv) {
     sweepCmd
         ->add_option("--shard", sweepOpts.shard,
                      "K/N: every N-th combination starting at the K-th; join with `merge`")
+        ->type_name("K/N");
+    sweepCmd
+        ->add_option("--tiles", sweepOpts.tiles,
+                     "K/N: render part K of N of every reference the sweep takes and nothing "
+                     "else; `merge` joins the N parts and runs the sweep")
         ->type_name("K/N");
     addCommon(sweepCmd, sweepCommon);
 

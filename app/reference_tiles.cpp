@@ -24,18 +24,19 @@ using nlohmann::json;
 
 namespace {
 
-// Every reference frame a run takes of the scene: a still scene's, or each frame of a
-// sequence's range (`visit` sees the scene moved to it, and its number).
-void forEachReference(
-    LoadedScene& s,
-    const std::function<void(LoadedScene&, std::optional<std::int64_t> frame)>& visit) {
-    if (!s.scene.sequence) {
-        visit(s, std::nullopt);
-        return;
-    }
-    for (const std::int64_t n : core::sequenceFrames(s.scene)) {
-        setFrame(s, n);
-        visit(s, n);
+// Every reference frame a run takes of its scenes: a still scene's, or each frame of a
+// sequence's range; the key of each is of the run's --set overrides.
+void walkRun(std::vector<LoadedScene>& scenes, const std::vector<std::string>& sets,
+             const ReferenceVisit& visit) {
+    for (LoadedScene& s : scenes) {
+        if (!s.scene.sequence) {
+            visit(s, sets, std::nullopt);
+            continue;
+        }
+        for (const std::int64_t n : core::sequenceFrames(s.scene)) {
+            setFrame(s, n);
+            visit(s, sets, n);
+        }
     }
 }
 
@@ -61,8 +62,8 @@ void renderPart(const LoadedScene& s, core::Renderer& renderer, const core::Fram
     writeRender(s, f, out / folder);
     std::printf("%s: raymarch tile %d/%d, %d of %d rows of tiles, %.1f ms -> %s\n",
                 s.scene.name.c_str(), part.index, part.count,
-                part.rowsHeld(f.image.height(), f.part->tileSize),
-                core::FramePart{}.rowsHeld(f.image.height(), f.part->tileSize),
+                part.rowsHeld(f.part->height, f.part->tileSize),
+                core::FramePart{}.rowsHeld(f.part->height, f.part->tileSize),
                 f.timingsMs.at("total"), (out / folder / "raymarch.exr").c_str());
     std::fflush(stdout);
 }
@@ -121,6 +122,40 @@ RunOptions runFromSettings(const json& settings, const fs::path& out, const Merg
     return o;
 }
 
+// The sweep's arguments that its tiles share and its merge runs with.
+json sweepSettings(const SweepOptions& o) {
+    return {{"scene", o.scene},
+            {"vary", o.vary},
+            {"sets", o.sets},
+            {"metric", o.metric},
+            {"thresholds", o.thresholds},
+            {"frames", o.frames},
+            {"ppd", o.ppd},
+            {"flip_over", o.flipOver},
+            {"require_gpu", o.requireGpu},
+            {"self_check", o.selfCheck}};
+}
+
+// The sweep the tiles were rendered for, into `out` with its references from
+// OUT/reference_cache.
+SweepOptions sweepFromSettings(const json& settings, const fs::path& out, const MergeOptions& m) {
+    SweepOptions o;
+    o.scene = settings.at("scene").get<std::string>();
+    o.vary = settings.at("vary").get<std::vector<std::string>>();
+    o.sets = settings.at("sets").get<std::vector<std::string>>();
+    o.metric = settings.at("metric").get<std::string>();
+    o.thresholds = settings.at("thresholds").get<std::string>();
+    o.frames = settings.at("frames").get<int>();
+    o.ppd = settings.at("ppd").get<double>();
+    o.flipOver = settings.at("flip_over").get<double>();
+    o.requireGpu = settings.at("require_gpu").get<bool>();
+    o.selfCheck = settings.at("self_check").get<bool>();
+    o.out = out.string();
+    o.cache = (out / "reference_cache").string();
+    o.commandLine = m.commandLine;
+    return o;
+}
+
 // What differs between two accounts of a reference (app/reference_cache.h's "what"), as
 // "/raymarch/spp 1 against 4; ...".
 std::string differences(const json& a, const json& b) {
@@ -155,33 +190,55 @@ void checkSameReferences(const std::vector<fs::path>& dirs, const std::vector<js
     }
 }
 
-// The references the run takes now are those its tiles hold: the same scene files and the
-// files they name, overrides, raymarch settings and raymarcher build.
-void checkRunReferences(const RunOptions& o, const json& refs) {
+// The references the command takes now (`walk`) are those its tiles hold: the same scene
+// files and the files they name, overrides, raymarch settings and raymarcher build.
+void checkReferences(const std::string& command, const ReferenceWalk& walk, const json& refs) {
     std::vector<json> now;
     std::set<std::string> seen;
-    for (const fs::path& file : runSceneFiles(o)) {
-        LoadedScene s = loadScene(file, o.sets);
-        forEachReference(s, [&](LoadedScene& at, std::optional<std::int64_t> frame) {
-            const auto [key, what] = referenceKey(at, o.sets);
-            if (seen.insert(key).second) now.push_back(referenceEntry("", key, what, at, frame));
-        });
-    }
+    walk([&](LoadedScene& s, const std::vector<std::string>& overrides,
+             std::optional<std::int64_t> frame) {
+        const auto [key, what] = referenceKey(s, overrides);
+        if (seen.insert(key).second) now.push_back(referenceEntry("", key, what, s, frame));
+    });
     for (std::size_t k = 0; k < std::max(now.size(), refs.size()); ++k) {
         if (k >= refs.size())
-            throw core::InputError(fmt::format(
-                "{}: the run takes this reference now and the tiles hold none of it; render the "
-                "tiles again",
-                label(now[k])));
+            throw core::InputError(
+                fmt::format("{}: this reference is taken now and none of the tiles holds it; "
+                            "render the tiles again",
+                            label(now[k])));
         if (k >= now.size() || now[k].at("key") != refs[k].at("key"))
             throw core::InputError(fmt::format(
-                "{}: the tiles were rendered for another reference than the run takes now ({}); "
+                "{}: the tiles were rendered for another reference than the {} takes now ({}); "
                 "merge with the build, scene files and overrides the tiles were rendered with, or "
                 "render them again",
-                label(refs[k]),
+                label(refs[k]), command,
                 k >= now.size() ? "it takes none"
                                 : differences(refs[k].at("what"), now[k].at("what"))));
     }
+}
+
+// Part `part` of every reference `walk` visits, each once, into OUT/reference_tiles/<key>/,
+// and the manifest.
+void renderReferenceTiles(const ReferenceWalk& walk, const core::FramePart& part,
+                          const std::string& command, const json& settings,
+                          const std::string& commandLine, const fs::path& out) {
+    prepareOutputFolder(out);
+    Devices devices;
+    json references = json::array();
+    std::set<std::string> seen;
+    walk([&](LoadedScene& s, const std::vector<std::string>& overrides,
+             std::optional<std::int64_t> frame) {
+        const auto [key, what] = referenceKey(s, overrides);
+        if (!seen.insert(key).second) return;
+        const std::string folder = "reference_tiles/" + key;
+        renderPart(s, *makeRenderer("raymarch", devices, s), part, out, folder);
+        references.push_back(referenceEntry(folder, key, what, s, frame));
+    });
+    writeTilesManifest(part, command, settings, references, commandLine, out);
+    std::printf(
+        "tile %d/%d of %zu reference frames -> %s; `twinrender merge` of the %d tiles' "
+        "folders joins them and runs the %s\n",
+        part.index, part.count, references.size(), out.c_str(), part.count, command.c_str());
 }
 
 // The parts of one frame, from the same folder of each part's folder, joined; `meta` receives
@@ -218,7 +275,8 @@ core::FramePart parseTiles(const std::string& text) {
 
 void renderTiles(LoadedScene& s, const core::FramePart& part, bool frames,
                  const std::vector<std::string>& overrides, const json& settings,
-                 const std::string& commandLine, Devices& devices, const fs::path& out) {
+                 const std::string& commandLine, const fs::path& out) {
+    Devices devices;
     const auto renderer = makeRenderer("raymarch", devices, s);
     prepareOutputFolder(out / s.scene.name);
     json references = json::array();
@@ -240,26 +298,14 @@ void renderTiles(LoadedScene& s, const core::FramePart& part, bool frames,
 }
 
 ExitCode runTiles(std::vector<LoadedScene>& scenes, const core::FramePart& part,
-                  const RunOptions& o, const std::string& thresholdsFile, Devices& devices) {
-    const fs::path out(o.out);
-    prepareOutputFolder(out);
-    json references = json::array();
-    std::set<std::string> seen;
-    for (LoadedScene& s : scenes) {
-        const auto renderer = makeRenderer("raymarch", devices, s);
-        forEachReference(s, [&](LoadedScene& at, std::optional<std::int64_t> frame) {
-            const auto [key, what] = referenceKey(at, o.sets);
-            if (!seen.insert(key).second) return;
-            const std::string folder = "reference_tiles/" + key;
-            renderPart(at, *renderer, part, out, folder);
-            references.push_back(referenceEntry(folder, key, what, at, frame));
-        });
-    }
-    writeTilesManifest(part, "run", runSettings(o, thresholdsFile), references, o.commandLine, out);
-    std::printf(
-        "tile %d/%d of %zu reference frames -> %s; `twinrender merge` of the %d tiles' "
-        "folders joins them and runs the run\n",
-        part.index, part.count, references.size(), out.c_str(), part.count);
+                  const RunOptions& o, const std::string& thresholdsFile) {
+    renderReferenceTiles([&](const ReferenceVisit& visit) { walkRun(scenes, o.sets, visit); }, part,
+                         "run", runSettings(o, thresholdsFile), o.commandLine, o.out);
+    return ExitCode::Pass;
+}
+
+ExitCode sweepTiles(const ReferenceWalk& walk, const core::FramePart& part, const SweepOptions& o) {
+    renderReferenceTiles(walk, part, "sweep", sweepSettings(o), o.commandLine, o.out);
     return ExitCode::Pass;
 }
 
@@ -267,9 +313,9 @@ ExitCode mergeTiles(const std::vector<fs::path>& dirs, const std::vector<json>& 
                     const fs::path& out, const MergeOptions& o) {
     const json& first = manifests.front();
     const std::string command = first.at("command").get<std::string>();
-    if (command != "render" && command != "run")
+    if (command != "render" && command != "run" && command != "sweep")
         throw core::InputError(
-            fmt::format("{}: tiles of `{}`; only `render` and `run` render tiles",
+            fmt::format("{}: tiles of `{}`; `render`, `run` and `sweep` render tiles",
                         (dirs.front() / "shard.json").string(), command));
     checkSameReferences(dirs, manifests);
     const json refs = first.at("references");
@@ -284,11 +330,28 @@ ExitCode mergeTiles(const std::vector<fs::path>& dirs, const std::vector<json>& 
                         "{}: missing; the tile of {} is not whole (was its job cut short?)",
                         (at / file).string(), label(ref)));
         }
+    // A run or a sweep runs after the join, as it was given to the tile jobs.
     std::optional<RunOptions> run;
+    std::optional<SweepOptions> sweep;
     if (command == "run") {
         run = runFromSettings(first.at("settings"), out, o);
-        checkRunReferences(*run, refs);
+        checkReferences(
+            command,
+            [&](const ReferenceVisit& visit) {
+                std::vector<LoadedScene> scenes;
+                for (const fs::path& file : runSceneFiles(*run))
+                    scenes.push_back(loadScene(file, run->sets));
+                walkRun(scenes, run->sets, visit);
+            },
+            refs);
     }
+    if (command == "sweep") {
+        sweep = sweepFromSettings(first.at("settings"), out, o);
+        checkReferences(
+            command, [&](const ReferenceVisit& visit) { forEachSweepReference(*sweep, visit); },
+            refs);
+    }
+    const bool cached = run || sweep;
     // The joined frames appear together or not at all.
     writeTogether(out, [&](const fs::path& staging) {
         for (const json& ref : refs) {
@@ -296,18 +359,20 @@ ExitCode mergeTiles(const std::vector<fs::path>& dirs, const std::vector<json>& 
             json meta;
             const core::Frame whole = joinParts(dirs, folder, meta);
             const fs::path target =
-                run ? staging / "reference_cache" / ref.at("key").get<std::string>()
-                    : staging / folder;
+                cached ? staging / "reference_cache" / ref.at("key").get<std::string>()
+                       : staging / folder;
             core::writeFrame(whole, target, meta);
-            if (run) core::writeTextFile(target / "key.json", ref.at("what").dump(2) + "\n");
+            if (cached) core::writeTextFile(target / "key.json", ref.at("what").dump(2) + "\n");
             std::printf(
                 "%s: %zu tiles joined -> %s\n", label(ref).c_str(), dirs.size(),
-                (run ? out / "reference_cache" / ref.at("key").get<std::string>() : out / folder)
+                (cached ? out / "reference_cache" / ref.at("key").get<std::string>() : out / folder)
                     .c_str());
         }
     });
     std::fflush(stdout);
-    return run ? runSuite(*run) : ExitCode::Pass;
+    if (run) return runSuite(*run);
+    if (sweep) return runSweep(*sweep);
+    return ExitCode::Pass;
 }
 
 }  // namespace twinrender::app

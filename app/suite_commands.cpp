@@ -327,7 +327,7 @@ ExitCode runSuite(const RunOptions& o) {
                 if (selected[i]) checkTestImages(o.external.images, scenes[i]);
     }
     // Tiles of the references: the merge renders and compares the rest.
-    if (tiles) return runTiles(scenes, *tiles, o, thresholdsFile, devices);
+    if (tiles) return runTiles(scenes, *tiles, o, thresholdsFile);
     if (tests("realtime")) devices.realtime();
     // Sequences take their references from the cache, frame by frame; with --cache, every
     // scene does.

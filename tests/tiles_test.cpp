@@ -143,6 +143,40 @@ TEST(Tiles, ARunInTilesMergesToTheWholeRun) {
               tt::readText(dir / "merged" / "summary.md"));
 }
 
+TEST(Tiles, ASweepInTilesMergesToTheWholeSweep) {
+    const fs::path dir = tt::freshDir("tiles_sweep");
+    // The raymarcher's convergence: both combinations against one tight reference, which the
+    // tiles split.
+    const std::string sweep = "sweep " + TEST_SCENES +
+                              "one_sphere.toml --set camera.width=48 --set camera.height=48"
+                              " --vary raymarch.spp=1,2";
+    const auto whole = tt::runTwinrender(sweep + " --out " + (dir / "whole").string());
+    ASSERT_EQ(whole.exitCode, 0) << whole.output;
+    for (const char* k : {"1", "2"}) {
+        const auto r =
+            tt::runTwinrender(sweep + " --tiles " + k + "/2 --out " + (dir / k).string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_FALSE(fs::exists(dir / k / "sweep.json"));
+    }
+    const auto merge =
+        tt::runTwinrender("merge " + (dir / "2").string() + " " + (dir / "1").string() + " --out " +
+                          (dir / "merged").string());
+    ASSERT_EQ(merge.exitCode, 0) << merge.output;
+    json a = readJson(dir / "whole" / "sweep.json"), b = readJson(dir / "merged" / "sweep.json");
+    ASSERT_FALSE(b.is_discarded()) << merge.output;
+    // The times are measured anew.
+    for (json* j : {&a, &b}) {
+        j->erase("created");
+        j->erase("command");
+        for (json& row : (*j)["rows"]) {
+            row.erase("timings_ms");
+            for (auto it = row["metrics"].begin(); it != row["metrics"].end();)
+                it = it.key().rfind("time.", 0) == 0 ? row["metrics"].erase(it) : std::next(it);
+        }
+    }
+    EXPECT_EQ(a, b) << a.dump(1) << "\n---\n" << b.dump(1);
+}
+
 TEST(Tiles, RefusesPartsThatDoNotBelongTogether) {
     const fs::path dir = tt::freshDir("tiles_refused");
     // Three rows of tiles of 16 pixels, one a part.
