@@ -79,80 +79,75 @@ void writeTilesManifest(const core::FramePart& part, const std::string& command,
     });
 }
 
-// The run's arguments that its tiles share and its merge runs with.
-json runSettings(const RunOptions& o, const std::string& thresholdsFile) {
-    return {{"inputs", o.inputs},
-            {"sets", o.sets},
-            {"thresholds", thresholdsFile},
-            {"baseline", o.baseline},
-            {"ppd", o.ppd},
-            {"flip_over", o.flipOver},
-            {"junit", !o.junit.empty()},
-            {"tests", o.tests},
-            {"external",
-             {{"command", o.external.command},
-              {"images", o.external.images.string()},
-              {"timeout", o.external.timeoutSeconds}}},
-            {"require_gpu", o.requireGpu},
-            {"self_check", o.selfCheck}};
+// The arguments `run` and `sweep` share, as their tiles' manifest holds them.
+template <typename Options>
+json sharedSettings(const Options& o) {
+    return {{"sets", o.sets},          {"thresholds", o.thresholds},  {"ppd", o.ppd},
+            {"flip_over", o.flipOver}, {"require_gpu", o.requireGpu}, {"self_check", o.selfCheck}};
 }
 
-// The run the tiles were rendered for, into `out` with its references from
+// And back, for the command the merge runs into `out`, its references from
 // OUT/reference_cache.
-RunOptions runFromSettings(const json& settings, const fs::path& out, const MergeOptions& m) {
-    RunOptions o;
-    o.inputs = settings.at("inputs").get<std::vector<std::string>>();
+template <typename Options>
+Options fromSharedSettings(const json& settings, const fs::path& out,
+                           const std::string& commandLine) {
+    Options o;
     o.sets = settings.at("sets").get<std::vector<std::string>>();
     o.thresholds = settings.at("thresholds").get<std::string>();
-    o.baseline = settings.at("baseline").get<std::string>();
     o.ppd = settings.at("ppd").get<double>();
     o.flipOver = settings.at("flip_over").get<double>();
+    o.requireGpu = settings.at("require_gpu").get<bool>();
+    o.selfCheck = settings.at("self_check").get<bool>();
+    o.out = out.string();
+    o.cache = (out / "reference_cache").string();
+    o.commandLine = commandLine;
+    return o;
+}
+
+// The run's arguments that its tiles share and its merge runs with: the thresholds file as
+// the run found it.
+json runSettings(const RunOptions& o, const std::string& thresholdsFile) {
+    json j = sharedSettings(o);
+    j["thresholds"] = thresholdsFile;
+    j["inputs"] = o.inputs;
+    j["baseline"] = o.baseline;
+    j["junit"] = !o.junit.empty();
+    j["tests"] = o.tests;
+    j["external"] = {{"command", o.external.command},
+                     {"images", o.external.images.string()},
+                     {"timeout", o.external.timeoutSeconds}};
+    return j;
+}
+
+RunOptions runFromSettings(const json& settings, const fs::path& out, const MergeOptions& m) {
+    RunOptions o = fromSharedSettings<RunOptions>(settings, out, m.commandLine);
+    o.inputs = settings.at("inputs").get<std::vector<std::string>>();
+    o.baseline = settings.at("baseline").get<std::string>();
     if (settings.at("junit").get<bool>()) o.junit = (out / "junit.xml").string();
     o.tests = settings.at("tests").get<std::vector<std::string>>();
     const json& external = settings.at("external");
     o.external.command = external.at("command").get<std::string>();
     o.external.images = external.at("images").get<std::string>();
     o.external.timeoutSeconds = external.at("timeout").get<double>();
-    o.requireGpu = settings.at("require_gpu").get<bool>();
-    o.selfCheck = settings.at("self_check").get<bool>();
-    o.out = out.string();
-    o.cache = (out / "reference_cache").string();
-    o.commandLine = m.commandLine;
     o.annotations = m.annotations;
     return o;
 }
 
-// The sweep's arguments that its tiles share and its merge runs with.
 json sweepSettings(const SweepOptions& o) {
-    return {{"scene", o.scene},
-            {"vary", o.vary},
-            {"sets", o.sets},
-            {"metric", o.metric},
-            {"thresholds", o.thresholds},
-            {"frames", o.frames},
-            {"ppd", o.ppd},
-            {"flip_over", o.flipOver},
-            {"require_gpu", o.requireGpu},
-            {"self_check", o.selfCheck}};
+    json j = sharedSettings(o);
+    j["scene"] = o.scene;
+    j["vary"] = o.vary;
+    j["metric"] = o.metric;
+    j["frames"] = o.frames;
+    return j;
 }
 
-// The sweep the tiles were rendered for, into `out` with its references from
-// OUT/reference_cache.
 SweepOptions sweepFromSettings(const json& settings, const fs::path& out, const MergeOptions& m) {
-    SweepOptions o;
+    SweepOptions o = fromSharedSettings<SweepOptions>(settings, out, m.commandLine);
     o.scene = settings.at("scene").get<std::string>();
     o.vary = settings.at("vary").get<std::vector<std::string>>();
-    o.sets = settings.at("sets").get<std::vector<std::string>>();
     o.metric = settings.at("metric").get<std::string>();
-    o.thresholds = settings.at("thresholds").get<std::string>();
     o.frames = settings.at("frames").get<int>();
-    o.ppd = settings.at("ppd").get<double>();
-    o.flipOver = settings.at("flip_over").get<double>();
-    o.requireGpu = settings.at("require_gpu").get<bool>();
-    o.selfCheck = settings.at("self_check").get<bool>();
-    o.out = out.string();
-    o.cache = (out / "reference_cache").string();
-    o.commandLine = m.commandLine;
     return o;
 }
 
@@ -271,6 +266,20 @@ core::Frame joinParts(const std::vector<fs::path>& dirs, const std::string& fold
 core::FramePart parseTiles(const std::string& text) {
     const Shard s = parseShard(text, "--tiles");
     return {.index = s.index, .count = s.count};
+}
+
+void refuseTilesWith(const std::string& command, const std::string& shardSplits, bool shard,
+                     bool cache) {
+    if (shard)
+        throw core::InputError(fmt::format(
+            "{} --tiles with --shard: give one; --shard splits {}, --tiles each reference frame",
+            command, shardSplits));
+    if (cache)
+        throw core::InputError(fmt::format(
+            "{0} --tiles with --cache: a tile job renders its part of every reference; the merge "
+            "keeps the whole references in OUT/reference_cache, which a later {0} can take with "
+            "--cache",
+            command));
 }
 
 void renderTiles(LoadedScene& s, const core::FramePart& part, bool frames,

@@ -32,6 +32,11 @@ namespace twinrender::app {
 // "K/N" of --tiles; throws core::InputError naming the option.
 core::FramePart parseTiles(const std::string& text);
 
+// `command --tiles` with --shard (`shard`; `shardSplits`: what that splits) or --cache
+// (`cache`) throws core::InputError naming both: a tile job renders its part of every reference.
+void refuseTilesWith(const std::string& command, const std::string& shardSplits, bool shard,
+                     bool cache);
+
 // A command's reference frames: a walk calls `visit` with each one's scene (moved to the
 // frame), the overrides its key is of (app/reference_cache.h) and, for a sequence, its frame.
 using ReferenceVisit =

@@ -239,15 +239,7 @@ std::vector<fs::path> runSceneFiles(const RunOptions& o) {
 
 ExitCode runSuite(const RunOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
-    if (!o.tiles.empty() && !o.shard.empty())
-        throw core::InputError(
-            "run --tiles with --shard: give one; --shard splits the scenes, --tiles each "
-            "reference frame");
-    if (!o.tiles.empty() && !o.cache.empty())
-        throw core::InputError(
-            "run --tiles with --cache: a tile job renders its part of every reference; the "
-            "merge keeps the whole references in OUT/reference_cache, which a later run can "
-            "take with --cache");
+    if (!o.tiles.empty()) refuseTilesWith("run", "the scenes", !o.shard.empty(), !o.cache.empty());
     // Everything is read and checked before the first render.
     std::vector<std::string> inputs = o.inputs;
     if (inputs.empty()) inputs.push_back(defaultScenesDir().string());

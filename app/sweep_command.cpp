@@ -387,15 +387,8 @@ void forEachSweepReference(const SweepOptions& o, const ReferenceVisit& visit) {
 
 ExitCode runSweep(const SweepOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
-    if (!o.tiles.empty() && !o.shard.empty())
-        throw core::InputError(
-            "sweep --tiles with --shard: give one; --shard splits the combinations, --tiles each "
-            "reference frame");
-    if (!o.tiles.empty() && !o.cache.empty())
-        throw core::InputError(
-            "sweep --tiles with --cache: a tile job renders its part of every reference; the "
-            "merge keeps the whole references in OUT/reference_cache, which a later sweep can "
-            "take with --cache");
+    if (!o.tiles.empty())
+        refuseTilesWith("sweep", "the combinations", !o.shard.empty(), !o.cache.empty());
     SweepPlan plan = planSweep(o);
     auto& [vary, convergence, testRenderer, frames, shard, thresholds, total, tightTolerance,
            tightSpp, jobs, sequence, count] = plan;
