@@ -23,6 +23,7 @@
 #include "compare/masks.h"
 #include "compare/metrics.h"
 #include "compare/temporal_error.h"
+#include "compare/thresholds.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/install_layout.h"
@@ -187,6 +188,11 @@ ExitCode runStudies(const StudyOptions& o) {
         plans.push_back(std::move(p));
     }
 
+    std::optional<compare::Bounds> suiteBounds;
+    if (const fs::path t = (scenesDir / ".." / "thresholds.toml").lexically_normal();
+        fs::is_regular_file(t))
+        suiteBounds = compare::Thresholds::parseFile(t).global();
+
     const fs::path out(o.out);
     const fs::path cacheDir = o.cache.empty() ? out / "reference_cache" : fs::path(o.cache);
     Devices devices(o.requireGpu, {.force = o.selfCheck, .cache = o.cache});
@@ -312,6 +318,10 @@ ExitCode runStudies(const StudyOptions& o) {
         s.references = unbracketed.size();
         for (const auto& [k, n] : unbracketed) s.unbracketedRays += n;
         d.conclude(s);
+        // The suite's bound of the charted metric, where it has one (scenes/thresholds.toml,
+        // beside the studies' folder): a reader sees where a setting leaves the default bounds.
+        if (!s.scatter && s.chart.yMarks.empty() && suiteBounds)
+            s.chart.yMarks = report::boundMarks(*suiteBounds, d.metric);
         s.wallSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         // A signal during the renders leaves no report of this study; one from here on lets

@@ -17,6 +17,7 @@
 
 #include "bench/render_like_pair.h"
 #include "core/image_io.h"
+#include "core/install_layout.h"
 
 namespace twinrender::compare {
 namespace {
@@ -61,7 +62,7 @@ const char* toolFrom(benchmark::State& state, const char* variable, const char* 
 }
 
 void BM_TwinrenderCompare(benchmark::State& state) {
-    runCompare(state, TWINRENDER_BIN);
+    runCompare(state, (::twinrender::core::buildDir() / "app" / "twinrender").string());
 }
 BENCHMARK(BM_TwinrenderCompare)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 

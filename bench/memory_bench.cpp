@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/install_layout.h"
 #include "core/particles.h"
 #include "core/renderer.h"
 #include "core/scene.h"
@@ -55,7 +56,8 @@ Scene smallPlanet() {
     const std::vector<std::string> overrides = {"bodies.0.particles=2000", "camera.width=64",
                                                 "camera.height=48",
                                                 "realtime.shadow_map.resolution=256"};
-    s.scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/planet.toml", overrides);
+    s.scene =
+        tr::core::loadScene((::twinrender::core::sourceDir() / "scenes/planet.toml"), overrides);
     s.particles = tr::core::buildParticles(s.scene);
     s.materials = tr::core::loadMaterials(s.scene);
     return s;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/derived_attributes.h"
+#include "core/install_layout.h"
 #include "core/particles.h"
 #include "core/scene.h"
 
@@ -24,8 +25,8 @@ const tr::core::SceneParticles& planet(int particles) {
     if (!slot) {
         const std::vector<std::string> overrides = {
             fmt::format("bodies.0.particles={}", particles)};
-        const tr::core::Scene scene =
-            tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/planet.toml", overrides);
+        const tr::core::Scene scene = tr::core::loadScene(
+            (::twinrender::core::sourceDir() / "scenes/planet.toml"), overrides);
         slot = std::make_unique<tr::core::SceneParticles>(tr::core::buildParticles(scene));
     }
     return *slot;

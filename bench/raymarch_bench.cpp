@@ -1,13 +1,18 @@
 // The reference raymarcher's speed on OpenSPH's own benchmark view of ball.ssf (issue:
 // "OpenSPH's raymarcher takes 0.46 s per pass on these 2 cores"): the full render with
 // shadows, the same rays against plain spheres (the cost floor), and the Embree queries the
-// implicit surface is built on. Run: build/bench/raymarch_bench [--benchmark_repetitions=5]
+// implicit surface is built on. Then each kind of secondary ray on its study scene, at the
+// fixed count and with a standard-error target. Run:
+// build/bench/raymarch_bench [--benchmark_repetitions=5]
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
 #include <ctime>
+#include <string>
+#include <vector>
 
 #include "core/camera.h"
+#include "core/install_layout.h"
 #include "core/sph_kernel.h"
 #include "raymarch/renderer.h"
 #include "raymarch/sphere_scene.h"
@@ -30,7 +35,8 @@ struct BallScene {
     tr::core::SceneParticles particles;
     tr::raymarch::Settings settings;
     explicit BallScene(std::vector<std::string> overrides = {}) {
-        scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/opensph_ball.toml", overrides);
+        scene = tr::core::loadScene((::twinrender::core::sourceDir() / "scenes/opensph_ball.toml"),
+                                    overrides);
         settings = tr::raymarch::parseSettings(scene.raymarch);
         materials = tr::core::loadMaterials(scene);
         particles = tr::core::buildParticles(scene);
@@ -133,7 +139,77 @@ void BM_BallGatherPerHitPixel(benchmark::State& state) {
                                                  benchmark::Counter::kInvert);
 }
 
+// CPU time of the calling thread, in ms.
+double threadCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+// One kind of secondary ray on its study scene (tests/scenes/), rendered on one thread (the
+// calling one, whose CPU time is steadier than wall time on a shared machine) and split among
+// the stages as the frame's times are: the primary pass (stage "trace": the camera rays, and
+// a point sun's shadow rays where the scene has one) and the kind's stage, their rays per
+// second, and the rays, mean and largest standard error the frame states for the kind. The
+// fixed count is 64 directions; `target` > 0 sets the kind's raymarch.*_error.
+void renderSecondary(benchmark::State& state, const std::string& scene, const std::string& kind,
+                     const std::string& stage, const std::string& key, double target) {
+    const std::vector<std::string> sets = {"raymarch." + key + "_samples=64",
+                                           "raymarch." + key + "_error=" + std::to_string(target)};
+    const tr::core::Scene s =
+        tr::core::loadScene(tr::core::sourceDir() / "tests" / "scenes" / (scene + ".toml"), sets);
+    const tr::raymarch::Settings settings = tr::raymarch::parseSettings(s.raymarch);
+    const std::vector<tr::core::Material> materials = tr::core::loadMaterials(s);
+    const tr::core::SceneParticles particles = tr::core::buildParticles(s);
+    tr::raymarch::EmbreeDevice device;
+    tr::raymarch::Renderer renderer(device, settings);
+    tbb::task_arena arena(1);
+    tr::core::Frame frame;
+    double primaryMs = 0.0, stageMs = 0.0;
+    for (auto _ : state) {
+        const double start = threadCpuMs();
+        arena.execute([&] { frame = renderer.render({s, particles, materials}); });
+        const double cpuPerWallMs = (threadCpuMs() - start) / frame.timingsMs.at("total");
+        primaryMs += frame.timingsMs.at("trace") * cpuPerWallMs;
+        stageMs += frame.timingsMs.at(stage) * cpuPerWallMs;
+        benchmark::DoNotOptimize(frame.image.pixels().data());
+    }
+    const double n = double(state.iterations());
+    state.counters["primary_ms"] = primaryMs / n;
+    state.counters["primary_Mrays_s"] = frame.counters.at("primary_rays") / (primaryMs / n) / 1e3;
+    state.counters["kind_ms"] = stageMs / n;
+    state.counters["kind_rays"] = frame.counters.at(kind + "_rays");
+    state.counters["kind_Mrays_s"] = frame.counters.at(kind + "_rays") / (stageMs / n) / 1e3;
+    state.counters["se_mean"] = frame.counters.at(kind + "_standard_error");
+    state.counters["se_max"] = frame.counters.at(kind + "_standard_error_max");
+}
+
 }  // namespace
+
+// Per kind, the fixed count and two targets: the first takes about a third of the fixed
+// count's rays on the study scene, the second is about as far from a converged reference
+// (docs/performance.md, "Secondary rays in rounds").
+BENCHMARK_CAPTURE(renderSecondary, occlusion_fixed64, "ball_on_slab", "ao", "ao", "ao", 0.0)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, occlusion_error_0_05, "ball_on_slab", "ao", "ao", "ao", 0.05)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, occlusion_error_0_03, "ball_on_slab", "ao", "ao", "ao", 0.03)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, emissive_fixed64, "lamp_over_slab", "irradiance", "emissive",
+                  "emissive", 0.0)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, emissive_error_0_2, "lamp_over_slab", "irradiance", "emissive",
+                  "emissive", 0.2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, emissive_error_0_1, "lamp_over_slab", "irradiance", "emissive",
+                  "emissive", 0.1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, sun_fixed64, "ring_shadow", "sun", "sun", "sun", 0.0)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, sun_error_0_05, "ring_shadow", "sun", "sun", "sun", 0.05)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(renderSecondary, sun_error_0_02, "ring_shadow", "sun", "sun", "sun", 0.02)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_BallImplicitShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallImplicitNoShadows)->Unit(benchmark::kMillisecond)->UseRealTime();

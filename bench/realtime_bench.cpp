@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/install_layout.h"
 #include "core/particles.h"
 #include "core/scene.h"
 #include "core/texture.h"
@@ -67,7 +68,8 @@ const LoadedScene& planet(int particles, int width, int height,
                                               fmt::format("camera.width={}", width),
                                               fmt::format("camera.height={}", height)};
         overrides.insert(overrides.end(), more.begin(), more.end());
-        slot->scene = tr::core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/planet.toml", overrides);
+        slot->scene = tr::core::loadScene((::twinrender::core::sourceDir() / "scenes/planet.toml"),
+                                          overrides);
         slot->settings = tr::realtime::parseSettings(slot->scene.realtime);
         slot->particles = tr::core::buildParticles(slot->scene);
         slot->materials = tr::core::loadMaterials(slot->scene);

@@ -1,10 +1,3 @@
-# twinrender_test_scratch(TARGET): the test binary TARGET writes its files under the build
-# tree (tests/scratch_dir.h), never in a folder another build tree's tests also use.
-function(twinrender_test_scratch target)
-  target_compile_definitions(${target} PRIVATE
-    TWINRENDER_TEST_SCRATCH="${CMAKE_BINARY_DIR}/test_scratch/${target}")
-endfunction()
-
 # twinrender_library(NAME DEPS...): one library per folder. Sources are the folder's *.cpp
 # files except the *_test.cpp ones, which form the folder's test binary NAME_tests.
 # Tests whose file name ends in _gl_test.cpp need an OpenGL context: they go into a separate
@@ -27,17 +20,13 @@ function(twinrender_library name)
   add_library(${name} STATIC ${_src})
   target_include_directories(${name} PUBLIC "${TWINRENDER_SOURCE_DIR}")
   target_link_libraries(${name} PUBLIC ${ARG_DEPS})
-  target_compile_definitions(${name} PUBLIC
-    TWINRENDER_SOURCE_DIR="${TWINRENDER_SOURCE_DIR}")
   if(TWINRENDER_BUILD_TESTS AND _tests)
     add_executable(${name}_tests ${_tests})
-    twinrender_test_scratch(${name}_tests)
     target_link_libraries(${name}_tests PRIVATE ${name} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main)
     gtest_discover_tests(${name}_tests DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "unit")
   endif()
   if(TWINRENDER_BUILD_TESTS AND _gl_tests)
     add_executable(${name}_gl_tests ${_gl_tests})
-    twinrender_test_scratch(${name}_gl_tests)
     target_link_libraries(${name}_gl_tests PRIVATE ${name} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main)
     # The GL tests run in poison mode (realtime/gl/poison.h): memory nobody wrote is not zero.
     gtest_discover_tests(${name}_gl_tests DISCOVERY_TIMEOUT 60

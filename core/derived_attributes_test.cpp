@@ -13,6 +13,7 @@
 
 #include "core/blackbody.h"
 #include "core/error.h"
+#include "core/install_layout.h"
 #include "core/particle_generators.h"
 #include "core/particles.h"
 #include "core/scene.h"
@@ -487,7 +488,7 @@ TEST(BuildParticles, FileValuesBeyondTheFloatRangeAreRejected) {
 // The real OpenSPH output (data/opensph_ball/): one body, volumes m/rho capped.
 TEST(BuildParticles, OpenSphBall) {
     const std::filesystem::path path =
-        std::filesystem::path(TWINRENDER_SOURCE_DIR) / "data" / "opensph_ball" / "ball.ssf";
+        ::twinrender::core::sourceDir() / "data" / "opensph_ball" / "ball.ssf";
     ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing";
     BodyDesc b;
     b.name = "ball";

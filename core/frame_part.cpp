@@ -25,7 +25,8 @@ json toJson(const PartRecord& r) {
     for (const auto& [name, m] : r.means)
         means[name] = {{"row_sums", m.rowSums}, {"samples", m.samples}};
     return {{"part", r.part.index}, {"of", r.part.count}, {"tile_size", r.tileSize},
-            {"height", r.height},   {"means", means},     {"shared", r.shared}};
+            {"height", r.height},   {"means", means},     {"maxima", r.maxima},
+            {"shared", r.shared}};
 }
 
 PartRecord partRecordFromJson(const json& j, const std::string& where) {
@@ -69,12 +70,16 @@ PartRecord partRecordFromJson(const json& j, const std::string& where) {
         mean.samples = m.at("samples").get<std::int64_t>();
         r.means.emplace(name, std::move(mean));
     }
-    const auto shared = j.find("shared");
-    if (shared == j.end() || !shared->is_array()) throw bad("shared", "a list of counters");
-    for (const json& v : *shared) {
-        if (!v.is_string()) throw bad("shared", "a list of counters");
-        r.shared.push_back(v.get<std::string>());
-    }
+    const auto names = [&](const char* key, std::vector<std::string>& into) {
+        const auto list = j.find(key);
+        if (list == j.end() || !list->is_array()) throw bad(key, "a list of counters");
+        for (const json& v : *list) {
+            if (!v.is_string()) throw bad(key, "a list of counters");
+            into.push_back(v.get<std::string>());
+        }
+    };
+    names("maxima", r.maxima);
+    names("shared", r.shared);
     return r;
 }
 

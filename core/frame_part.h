@@ -47,13 +47,15 @@ struct PartMean {
 };
 
 // What a part of a frame records beside its images. Its counters are sums over its tiles, but
-// the `means` and the `shared` ones: facts of the whole frame (the raymarcher's
-// emitting_bodies), equal in every part.
+// the `means`, the `maxima` (the largest over the part: the frame's is the largest over the
+// parts) and the `shared` ones: facts of the whole frame (the raymarcher's emitting_bodies),
+// equal in every part.
 struct PartRecord {
     FramePart part;
     int tileSize = 0;  // the side of the renderer's tiles, pixels
     int height = 0;    // the whole frame's, pixels
     std::map<std::string, PartMean> means;
+    std::vector<std::string> maxima;
     std::vector<std::string> shared;
 
     // The part's images' height.
@@ -61,7 +63,7 @@ struct PartRecord {
 };
 
 // A render JSON's "tile" object: {"part": K, "of": N, "tile_size", "height", "means": {counter:
-// {"row_sums": [...], "samples"}}, "shared": [...]}.
+// {"row_sums": [...], "samples"}}, "maxima": [...], "shared": [...]}.
 nlohmann::json toJson(const PartRecord& record);
 // Reads it back; throws InputError naming `where` and the key when it is not one.
 PartRecord partRecordFromJson(const nlohmann::json& j, const std::string& where);

@@ -64,7 +64,7 @@ void PartJoin::check(const Frame& part, const std::string& where) const {
         part.counters.size() == mFrame.counters.size() &&
         std::equal(part.counters.begin(), part.counters.end(), mFrame.counters.begin(),
                    [](const auto& x, const auto& y) { return x.first == y.first; });
-    if (!sameCounters || r.shared != first.record.shared)
+    if (!sameCounters || r.shared != first.record.shared || r.maxima != first.record.maxima)
         throw refuse(fmt::format("counters {} against {}", counterNames(part.counters),
                                  counterNames(mFrame.counters)));
     for (const std::string& name : r.shared)
@@ -123,14 +123,20 @@ void PartJoin::add(Frame part, const std::string& where) {
         mFrame.particleCount = part.particleCount;
         for (const auto& [name, value] : part.counters) mFrame.counters[name] = 0.0;
         for (const std::string& name : r.shared) mFrame.counters[name] = part.counters.at(name);
+        for (const std::string& name : r.maxima) mFrame.counters[name] = part.counters.at(name);
     } else {
         check(part, where);
     }
     copyRows(part);
-    for (const auto& [name, value] : part.counters)
-        if (std::find(r.shared.begin(), r.shared.end(), name) == r.shared.end() &&
-            !r.means.count(name))
+    const auto listed = [](const std::vector<std::string>& names, const std::string& name) {
+        return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    for (const auto& [name, value] : part.counters) {
+        if (listed(r.maxima, name))
+            mFrame.counters[name] = std::max(mFrame.counters[name], value);
+        else if (!listed(r.shared, name) && !r.means.count(name))
             mFrame.counters[name] += value;
+    }
     mParts.emplace(r.part.index, Added{.record = r,
                                        .where = where,
                                        .device = std::move(part.device),

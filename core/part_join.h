@@ -19,7 +19,8 @@ class PartJoin {
     void add(Frame part, const std::string& where);
 
     // The whole frame: every part's rows; the counters summed over the parts, the means
-    // computed from every row's sum in row order, the shared ones as every part has them; each
+    // computed from every row's sum in row order, the maxima the largest of the parts', the
+    // shared ones as every part has them; each
     // stage's time summed over the parts (their build stages too: the time the parts took
     // together); the device the parts' devices, each once, in part order; the display image
     // the beauty tonemapped with `exposure`, as the renderer writes it. Throws InputError

@@ -38,7 +38,11 @@ Frame part(int index, int count = 2) {
     r.means["error"] = index == 1 ? tr::core::PartMean{.rowSums = {1e16, -1e16, 0.5}, .samples = 3}
                                   : tr::core::PartMean{.rowSums = {1.0, 1.0}, .samples = 5};
     r.shared = {"bodies"};
-    f.counters = {{"rays", index == 1 ? 300.0 : 40.0}, {"bodies", 2.0}, {"error", 0.0}};
+    r.maxima = {"error_max"};
+    f.counters = {{"rays", index == 1 ? 300.0 : 40.0},
+                  {"bodies", 2.0},
+                  {"error", 0.0},
+                  {"error_max", index == 1 ? 0.25 : 0.75}};
     f.timingsMs = {{"build", 1.0}, {"total", index == 1 ? 10.0 : 6.0}};
     f.part = r;
     return f;
@@ -67,6 +71,7 @@ TEST(PartJoin, KeepsEachPartsRowsAndCountsAsOneRender) {
     EXPECT_EQ(whole.counters.at("rays"), 340.0);
     EXPECT_EQ(whole.counters.at("bodies"), 2.0);
     EXPECT_EQ(whole.counters.at("error"), 1.5 / 8.0);
+    EXPECT_EQ(whole.counters.at("error_max"), 0.75);
     EXPECT_EQ(whole.timingsMs.at("total"), 16.0);
     EXPECT_EQ(whole.timingsMs.at("build"), 2.0);
     EXPECT_EQ(whole.device, "cpu A; cpu B");
@@ -122,6 +127,7 @@ TEST(PartJoin, TheRecordReadsBackAndADamagedOneIsNamed) {
     EXPECT_EQ(back.means.at("error").rowSums, r.means.at("error").rowSums);
     EXPECT_EQ(back.means.at("error").samples, 3);
     EXPECT_EQ(back.shared, r.shared);
+    EXPECT_EQ(back.maxima, r.maxima);
     nlohmann::json damaged = toJson(r);
     damaged["part"] = 3;
     try {

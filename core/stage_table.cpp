@@ -62,7 +62,9 @@ constexpr std::array STAGES = {
     StageInfo{.key = "build", .renderer = "raymarch", .cadence = StageCadence::Frame,
               .meaning = "the Embree scene and the neighbour grids"},
     StageInfo{.key = "trace", .renderer = "raymarch", .cadence = StageCadence::Frame,
-              .meaning = "the rays: primary, shadow, and what the settings add"},
+              .meaning = "the camera rays, and the shadow rays of a point sun"},
+    StageInfo{.key = "sun", .renderer = "raymarch", .cadence = StageCadence::Frame,
+              .meaning = "the shadow rays over the sun's disc (light.angular_radius > 0)"},
 };
 // clang-format on
 }  // namespace

@@ -39,16 +39,26 @@ std::vector<glm::dvec3> aoDirections(const glm::dvec3& normal, int side, std::ui
     orthonormalBasis(normal, u, v);
     std::vector<glm::dvec3> out;
     out.reserve(static_cast<std::size_t>(side) * side);
-    for (int i = 0; i < side; ++i) {
-        for (int j = 0; j < side; ++j) {
-            const glm::dvec2 st = jitteredStratum(i, j, side, seed);
-            const double s = st.x, t = st.y;
-            const double r = std::sqrt(s), phi = 2.0 * M_PI * t;
-            const double z = std::sqrt(std::max(0.0, 1.0 - s));
-            out.push_back(glm::normalize(z * normal + r * (std::cos(phi) * u + std::sin(phi) * v)));
-        }
-    }
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j)
+            out.push_back(hemisphereDirection(normal, u, v, jitteredStratum(i, j, side, seed)));
     return out;
+}
+
+glm::dvec3 hemisphereDirection(const glm::dvec3& normal, const glm::dvec3& u, const glm::dvec3& v,
+                               glm::dvec2 st) {
+    const double s = st.x, t = st.y;
+    const double r = std::sqrt(s), phi = 2.0 * M_PI * t;
+    const double z = std::sqrt(std::max(0.0, 1.0 - s));
+    return glm::normalize(z * normal + r * (std::cos(phi) * u + std::sin(phi) * v));
+}
+
+glm::dvec3 coneDirection(const glm::dvec3& axis, const glm::dvec3& u, const glm::dvec3& v,
+                         double oneMinusCos, glm::dvec2 st) {
+    const double cosTheta = 1.0 - st.x * oneMinusCos;
+    const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+    const double phi = 2.0 * M_PI * st.y;
+    return glm::normalize(cosTheta * axis + sinTheta * (std::cos(phi) * u + std::sin(phi) * v));
 }
 
 double aoStandardError(double open, int samples) {

@@ -24,6 +24,18 @@ glm::dvec2 jitteredStratum(int i, int j, int side, std::uint64_t seed);
 
 std::vector<glm::dvec3> aoDirections(const glm::dvec3& normal, int side, std::uint64_t seed);
 
+// The point st of the unit square on the disc (r = sqrt(s), phi = 2 pi t) lifted onto the
+// hemisphere about `normal` ((u, v, normal) orthonormal): aoDirections' map, density
+// cos(theta) / pi.
+glm::dvec3 hemisphereDirection(const glm::dvec3& normal, const glm::dvec3& u, const glm::dvec3& v,
+                               glm::dvec2 st);
+
+// The point st of the unit square on the cone of directions about `axis` ((u, v, axis)
+// orthonormal) whose cos(theta) reaches down to 1 - oneMinusCos: cos(theta) = 1 - s oneMinusCos,
+// phi = 2 pi t, so the density is uniform in solid angle, 1 / (2 pi oneMinusCos).
+glm::dvec3 coneDirection(const glm::dvec3& axis, const glm::dvec3& u, const glm::dvec3& v,
+                         double oneMinusCos, glm::dvec2 st);
+
 // The standard error of the unoccluded fraction `open` estimated from `samples` directions.
 // Jittered stratification never has a larger variance than independent samples, so the
 // binomial value sqrt(open (1 - open) / samples) bounds it (at most 0.5 / sqrt(samples)).

@@ -32,16 +32,38 @@ std::vector<EmitterSample> emitterSamples(const glm::dvec3& point, const glm::dv
     orthonormalBasis(axis, u, v);
     for (int i = 0; i < side; ++i)
         for (int j = 0; j < side; ++j) {
-            const glm::dvec2 st = jitteredStratum(i, j, side, seed);
-            const double cosTheta = 1.0 - st.x * (1.0 - cosMax);
-            const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-            const double phi = 2.0 * std::numbers::pi * st.y;
-            const glm::dvec3 dir = glm::normalize(
-                cosTheta * axis + sinTheta * (std::cos(phi) * u + std::sin(phi) * v));
+            const glm::dvec3 dir =
+                coneDirection(axis, u, v, 1.0 - cosMax, jitteredStratum(i, j, side, seed));
             const double cosN = glm::dot(dir, normal);
             out.push_back({dir, cosN > 0.0 ? solidAngle / count * cosN : 0.0});
         }
     return out;
+}
+
+EmitterCone::EmitterCone(const glm::dvec3& point, const glm::dvec3& normal,
+                         const glm::dvec3& centre, double radius)
+    : mNormal(normal), mAxis(normal) {
+    const glm::dvec3 toCentre = centre - point;
+    const double d = glm::length(toCentre);
+    mInside = !(d > radius);
+    if (!mInside) {
+        mAxis = toCentre / d;
+        const double sinMax = radius / d;
+        mOneMinusCos = 1.0 - std::sqrt(std::max(0.0, 1.0 - sinMax * sinMax));
+        mSolidAngle = 2.0 * std::numbers::pi * mOneMinusCos;
+    }
+    orthonormalBasis(mAxis, mU, mV);
+}
+
+glm::dvec3 EmitterCone::direction(glm::dvec2 st) const {
+    return mInside ? hemisphereDirection(mNormal, mU, mV, st)
+                   : coneDirection(mAxis, mU, mV, mOneMinusCos, st);
+}
+
+double EmitterCone::weight(const glm::dvec3& direction) const {
+    if (mInside) return std::numbers::pi;
+    const double cosN = glm::dot(direction, mNormal);
+    return cosN > 0.0 ? mSolidAngle * cosN : 0.0;
 }
 
 }  // namespace twinrender::raymarch

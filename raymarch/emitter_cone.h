@@ -20,6 +20,25 @@ struct EmitterSample {
     double weight = 0.0;
 };
 
+// The directions toward one body's bounding sphere from one point, as a map of the unit square
+// (for raymarch/progressive_strata.h's rounds): the cone, or the hemisphere from inside.
+class EmitterCone {
+  public:
+    EmitterCone(const glm::dvec3& point, const glm::dvec3& normal, const glm::dvec3& centre,
+                double radius);
+    glm::dvec3 direction(glm::dvec2 st) const;
+    // The irradiance E is the mean over such directions of weight(direction) L, L the radiance
+    // the direction sees: solidAngle cos(theta) on the cone (0 below the horizon, not traced),
+    // pi on the hemisphere.
+    double weight(const glm::dvec3& direction) const;
+
+  private:
+    glm::dvec3 mNormal, mAxis, mU,
+        mV;  // (mU, mV, mAxis) orthonormal; the axis is the normal inside
+    bool mInside = false;
+    double mOneMinusCos = 0.0, mSolidAngle = 0.0;
+};
+
 // `side` x `side` directions from `point` (normal `normal`, unit) toward the sphere (centre,
 // radius), stratified and jittered by `seed` as raymarch/ao_hemisphere.h's are, so that the
 // estimate does not depend on the thread.

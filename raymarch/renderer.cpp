@@ -13,7 +13,10 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <optional>
+#include <string>
 
 #include "core/atmosphere.h"
 #include "core/camera.h"
@@ -23,6 +26,7 @@
 #include "raymarch/ao_hemisphere.h"
 #include "raymarch/emitter_cone.h"
 #include "raymarch/pixel_samples.h"
+#include "raymarch/progressive_strata.h"
 #include "raymarch/sun_disc.h"
 #include "raymarch/surface_tracer.h"
 
@@ -63,20 +67,86 @@ float hashToUnit(std::uint32_t x, std::uint32_t y, std::uint32_t k, std::uint32_
     return (h >> 8) * (1.0f / 16777216.0f);
 }
 
-// Thread time of the parts of tracing, in steady-clock ticks, and the standard errors of the
-// ambient occlusion and of the emitters' irradiance.
-struct StageTicks {
-    std::int64_t trace = 0;         // camera rays and shadow rays
-    std::int64_t ao = 0;            // ambient occlusion rays
-    std::int64_t emissive = 0;      // rays toward the emitting bodies
-    std::int64_t shade = 0;         // shading the hits
-    std::int64_t atmosphere = 0;    // the atmosphere's quadrature along the camera rays
-    double aoErrorSum = 0.0;        // of aoStandardError over the hit samples
-    std::int64_t aoSamples = 0;     // hit samples with occlusion traced
-    double lightErrorSum = 0.0;     // of the irradiance's standard error (luminance)
-    std::int64_t lightSamples = 0;  // hit samples with the emitters' light traced
-    std::int64_t lightRays = 0;     // rays traced toward emitters
+// One kind of secondary estimate (occlusion, the emitters' light, the sun's disc) over some
+// hit samples: the rays it took and the standard errors it reached.
+struct EstimateTally {
+    std::int64_t estimates = 0;  // hit samples
+    std::int64_t rays = 0;
+    std::int64_t atCap = 0;  // with a target: estimates (a body's, for the emitters) that
+                             // stopped at the cap with their error not below it
+    double errorSum = 0.0;   // of the hit samples' standard errors
+    double errorMax = 0.0;
+
+    void add(double standardError, std::int64_t rayCount) {
+        ++estimates;
+        rays += rayCount;
+        errorSum += standardError;
+        errorMax = std::max(errorMax, standardError);
+    }
+    // Tallies are merged in tile order: the sum of doubles then does not depend on the threads.
+    void merge(const EstimateTally& t) {
+        estimates += t.estimates;
+        rays += t.rays;
+        atCap += t.atCap;
+        errorSum += t.errorSum;
+        errorMax = std::max(errorMax, t.errorMax);
+    }
+    // The frame's counters PREFIX_standard_error (the mean over the hit samples),
+    // PREFIX_standard_error_max, PREFIX_rays, and PREFIX_at_cap with a target.
+    void write(const std::string& prefix, bool target,
+               std::map<std::string, double>& counters) const {
+        counters[prefix + "_standard_error"] = estimates > 0 ? errorSum / double(estimates) : 0.0;
+        counters[prefix + "_standard_error_max"] = errorMax;
+        counters[prefix + "_rays"] = double(rays);
+        if (target) counters[prefix + "_at_cap"] = double(atCap);
+    }
 };
+
+// Thread time of the parts of tracing, in steady-clock ticks, and the secondary estimates'
+// tallies, of one tile.
+struct StageTicks {
+    std::int64_t trace = 0;        // camera rays, and the shadow rays of a point sun
+    std::int64_t sun = 0;          // shadow rays over the sun's disc (light.angular_radius > 0)
+    std::int64_t ao = 0;           // ambient occlusion rays
+    std::int64_t emissive = 0;     // rays toward the emitting bodies
+    std::int64_t shade = 0;        // shading the hits
+    std::int64_t atmosphere = 0;   // the atmosphere's quadrature along the camera rays
+    std::int64_t primaryRays = 0;  // camera rays traced
+    EstimateTally occlusion;       // the open fraction (aoStandardError without a target)
+    EstimateTally light;           // the irradiance's luminance
+    EstimateTally sunlight;        // the visible share of the sun's disc
+
+    void merge(const StageTicks& t) {
+        trace += t.trace;
+        sun += t.sun;
+        ao += t.ao;
+        emissive += t.emissive;
+        shade += t.shade;
+        atmosphere += t.atmosphere;
+        primaryRays += t.primaryRays;
+        occlusion.merge(t.occlusion);
+        light.merge(t.light);
+        sunlight.merge(t.sunlight);
+    }
+};
+
+// The limits of each emitting body's rounds: the irradiance sums the bodies' independent
+// estimates, so its variance is the sum of theirs, and each body aims at target / sqrt(bodies).
+RoundLimits lightRounds(const Settings& settings, std::size_t bodies) {
+    return roundLimits(settings.emissiveError / std::sqrt(double(std::max<std::size_t>(bodies, 1))),
+                       settings.emissiveSamples);
+}
+
+// Seeds of a hit sample's progressive rounds, one stream per kind of secondary ray, so that
+// the occlusion, the emitters and the sun of one pixel do not share their jitter.
+enum class Stream : std::uint64_t { Occlusion = 0, Sun = 1, Emitters = 2 };
+std::uint64_t streamSeed(std::uint64_t index, Stream stream) {
+    return index * 4u + static_cast<std::uint64_t>(stream);
+}
+
+double luminance(const glm::dvec3& c) {
+    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
 
 // The pixels of one block, in rows, and the ray through the centre of the full block.
 struct Block {
@@ -120,10 +190,20 @@ class FrameTrace {
                         ? core::emittingBodies(input.particles, input.materials)
                         : std::vector<core::EmittingBody>{}),
           mEmissiveSide(emissiveSide(settings)),
+          mAoRounds(roundLimits(settings.aoError, settings.aoSamples)),
+          mLightRounds(lightRounds(settings, mEmitters.size())),
+          mSunRounds(roundLimits(settings.sunError, settings.sunSamples)),
+          mSunDisc(input.scene.light.angularRadiusDeg > 0.0
+                       ? std::optional<SunDisc>(std::in_place, -input.scene.light.direction,
+                                                input.scene.light.angularRadiusDeg)
+                       : std::nullopt),
           mAtmosphere(core::sceneAtmosphere(input.scene, input.particles, settings.surfaceLevel)),
           mSun(core::atmosphereSun(input.scene.light)) {}
 
     bool hasAtmosphere() const { return mAtmosphere.has_value(); }
+
+    // Whether the sun has a disc whose shadow rays the stage "sun" times.
+    bool sunDisc() const { return mSettings.shadows && mSunDirections.size() > 1; }
 
     std::size_t emitterCount() const { return mEmitters.size(); }
 
@@ -166,12 +246,15 @@ class FrameTrace {
         glm::vec3 light[N];
         const auto t0 = Clock::now();
         mTracer.tracePrimary(b.n, b.rowLength, r.rays, r.tnear, r.tfar, b.central, hits, found, w);
+        ticks.primaryRays += b.n;
+        const auto tSun = Clock::now();
         if (mSettings.shadows)
-            traceVisibility(b.n, hits, found, vis, w);
+            traceVisibility(b, k, hits, found, vis, w, ticks);
         else
             std::fill_n(vis, b.n, 1.0f);
         const auto tAo = Clock::now();
-        ticks.trace += (tAo - t0).count();
+        ticks.trace += (tSun - t0).count();
+        (sunDisc() ? ticks.sun : ticks.trace) += (tAo - tSun).count();
         std::fill_n(open, b.n, 1.0f);
         if (mAoRadius > 0.0) traceOcclusion(b, k, hits, found, open, w, ticks);
         const auto tLight = Clock::now();
@@ -214,22 +297,54 @@ class FrameTrace {
         }
     }
 
+    // The index of sample k of pixel i of a block among all the frame's samples: the seed of
+    // its jitter, so that no value depends on the thread.
+    std::uint64_t sampleIndex(const Block& b, int i, int k) const {
+        const std::uint64_t pixel =
+            std::uint64_t(b.py[i]) * std::uint64_t(mCamera.width()) + std::uint64_t(b.px[i]);
+        return pixel * std::uint64_t(mSettings.spp) + std::uint64_t(k);
+    }
+
     // The open fraction of each hit's hemisphere within light.ao_radius: aoSamples
     // cosine-weighted directions, stratified and jittered by the pixel and the sample, so
-    // that the value does not depend on the thread.
+    // that the value does not depend on the thread; with raymarch.ao_error, in rounds.
     void traceOcclusion(const Block& b, int k, const SurfaceHit* hits, const bool* found,
                         float* open, Workspace& w, StageTicks& ticks) const {
         const int samples = mAoSide * mAoSide;
         for (int i = 0; i < b.n; ++i) {
             if (!found[i]) continue;
-            const std::uint64_t pixel =
-                std::uint64_t(b.py[i]) * std::uint64_t(mCamera.width()) + std::uint64_t(b.px[i]);
-            const std::vector<glm::dvec3> directions = aoDirections(
-                glm::dvec3(hits[i].normal), mAoSide, pixel * std::uint64_t(mSettings.spp) + k);
+            if (mSettings.aoError > 0.0) {
+                open[i] = occlusionInRounds(hits[i], sampleIndex(b, i, k), w, ticks.occlusion);
+                continue;
+            }
+            const std::vector<glm::dvec3> directions =
+                aoDirections(glm::dvec3(hits[i].normal), mAoSide, sampleIndex(b, i, k));
             open[i] = mTracer.traceOpen(hits[i], directions.data(), samples, mAoRadius, w);
-            ticks.aoErrorSum += aoStandardError(open[i], samples);
-            ++ticks.aoSamples;
+            ticks.occlusion.add(aoStandardError(open[i], samples), samples);
         }
+    }
+
+    // One hit's open fraction from rounds of cosine-weighted directions until its standard
+    // error is below raymarch.ao_error (raymarch/progressive_strata.h).
+    float occlusionInRounds(const SurfaceHit& hit, std::uint64_t index, Workspace& w,
+                            EstimateTally& tally) const {
+        const glm::dvec3 normal(hit.normal);
+        glm::dvec3 u, v;
+        orthonormalBasis(normal, u, v);
+        ProgressiveStrata strata(streamSeed(index, Stream::Occlusion));
+        std::vector<glm::dvec3> directions;
+        sampleInRounds(strata, mAoRounds, [&](const std::vector<glm::dvec2>& points, double* y) {
+            directions.clear();
+            for (const glm::dvec2& st : points)
+                directions.push_back(hemisphereDirection(normal, u, v, st));
+            const auto isOpen = std::make_unique<bool[]>(points.size());
+            mTracer.traceOpen(hit, directions.data(), int(points.size()), mAoRadius, w,
+                              isOpen.get());
+            for (std::size_t j = 0; j < points.size(); ++j) y[j] = isOpen[j] ? 1.0 : 0.0;
+        });
+        tally.add(strata.standardError(), strata.points());
+        tally.atCap += stoppedAtCap(strata, mAoRounds);
+        return static_cast<float>(strata.mean());
     }
 
     // The irradiance at each hit from the emitting bodies: per body, emissiveSamples rays over
@@ -238,36 +353,35 @@ class FrameTrace {
     // another emitter, whose light its own cone counts, gives 0). Stratified and jittered by the
     // pixel, the sample and the body, so that the value does not depend on the thread. The
     // standard error of the luminance is summed over the bodies' variances.
+    // With raymarch.emissive_error, each body's estimate is taken in rounds instead.
     void traceEmitters(const Block& b, int k, const SurfaceHit* hits, const bool* found,
                        glm::vec3* light, Workspace& w, StageTicks& ticks) const {
         const int count = mEmissiveSide * mEmissiveSide;
         for (int i = 0; i < b.n; ++i) {
             if (!found[i]) continue;
-            const std::uint64_t pixel =
-                std::uint64_t(b.py[i]) * std::uint64_t(mCamera.width()) + std::uint64_t(b.px[i]);
             const glm::dvec3 normal(hits[i].normal);
             glm::dvec3 sum(0.0);
             double variance = 0.0;
+            std::int64_t rays = 0;
             for (std::size_t e = 0; e < mEmitters.size(); ++e) {
                 const core::EmittingBody& emitter = mEmitters[e];
-                const std::uint64_t seed =
-                    (pixel * std::uint64_t(mSettings.spp) + std::uint64_t(k)) * mEmitters.size() +
-                    e;
+                const std::uint64_t seed = sampleIndex(b, i, k) * mEmitters.size() + e;
+                if (mSettings.emissiveError > 0.0) {
+                    const double se =
+                        emitterInRounds(hits[i], emitter, seed, sum, rays, w, ticks.light);
+                    variance += se * se;
+                    continue;
+                }
                 double y = 0.0, yy = 0.0;  // of count x weight x luminance, for the variance
                 for (const EmitterSample& s :
                      emitterSamples(hits[i].outside, normal, emitter.centre, emitter.radius,
                                     mEmissiveSide, seed)) {
                     if (!(s.weight > 0.0)) continue;
-                    ++ticks.lightRays;
-                    SurfaceHit at;
-                    if (!mTracer.traceFirst(hits[i], s.direction, at, w) || at.body != emitter.body)
-                        continue;
-                    const glm::dvec3 radiance(
-                        core::surfaceEmission(mInput.materials[at.material], at.uv, at.glow));
+                    ++rays;
+                    const glm::dvec3 radiance = emittedAlong(hits[i], s.direction, emitter, w);
+                    if (radiance == glm::dvec3(0.0)) continue;
                     sum += s.weight * radiance;
-                    const double x =
-                        count * s.weight *
-                        (0.2126 * radiance.r + 0.7152 * radiance.g + 0.0722 * radiance.b);
+                    const double x = count * s.weight * luminance(radiance);
                     y += x;
                     yy += x * x;
                 }
@@ -275,27 +389,123 @@ class FrameTrace {
                     variance += std::max(0.0, yy - y * y / count) / (double(count) * (count - 1));
             }
             light[i] = glm::vec3(sum);
-            ticks.lightErrorSum += std::sqrt(variance);
-            ++ticks.lightSamples;
+            ticks.light.add(std::sqrt(variance), rays);
         }
+    }
+
+    // The radiance the ray from `from` along `direction` meets, if it meets `emitter` first;
+    // 0 otherwise.
+    glm::dvec3 emittedAlong(const SurfaceHit& from, const glm::dvec3& direction,
+                            const core::EmittingBody& emitter, Workspace& w) const {
+        SurfaceHit at;
+        if (!mTracer.traceFirst(from, direction, at, w) || at.body != emitter.body)
+            return glm::dvec3(0.0);
+        return glm::dvec3(core::surfaceEmission(mInput.materials[at.material], at.uv, at.glow));
+    }
+
+    // One body's irradiance at a hit from rounds over its cone (raymarch/emitter_cone.h) until
+    // the standard error of its luminance is below its share of raymarch.emissive_error: adds
+    // the irradiance to `sum` and the rays traced to `rays`, returns the standard error.
+    double emitterInRounds(const SurfaceHit& hit, const core::EmittingBody& emitter,
+                           std::uint64_t seed, glm::dvec3& sum, std::int64_t& rays, Workspace& w,
+                           EstimateTally& tally) const {
+        const EmitterCone cone(hit.outside, glm::dvec3(hit.normal), emitter.centre, emitter.radius);
+        ProgressiveStrata strata(streamSeed(seed, Stream::Emitters));
+        glm::dvec3 weighted(0.0);  // of weight x radiance over every point
+        sampleInRounds(strata, mLightRounds, [&](const std::vector<glm::dvec2>& points, double* y) {
+            for (std::size_t j = 0; j < points.size(); ++j) {
+                const glm::dvec3 direction = cone.direction(points[j]);
+                const double weight = cone.weight(direction);
+                y[j] = 0.0;
+                if (!(weight > 0.0)) continue;
+                ++rays;
+                const glm::dvec3 radiance = emittedAlong(hit, direction, emitter, w);
+                weighted += weight * radiance;
+                y[j] = weight * luminance(radiance);
+            }
+        });
+        sum += weighted / double(strata.points());
+        tally.atCap += stoppedAtCap(strata, mLightRounds);
+        return strata.standardError();
     }
 
     // The sun's visibility from each hit: one bundle of parallel shadow rays per sun
     // direction, averaged (each direction's own n.l test included, so a point where part of
-    // the disc has set sees that part occluded).
-    void traceVisibility(int n, const SurfaceHit* hits, const bool* found, float* vis,
-                         Workspace& w) const {
+    // the disc has set sees that part occluded). With raymarch.sun_error, rounds per hit.
+    void traceVisibility(const Block& b, int k, const SurfaceHit* hits, const bool* found,
+                         float* vis, Workspace& w, StageTicks& ticks) const {
+        const int n = b.n;
         if (mSunDirections.size() == 1) {
             mTracer.traceShadows(n, hits, found, mSunDirections[0], vis, w);
             return;
         }
+        if (mSettings.sunError > 0.0) {
+            sunInRounds(b, k, hits, found, vis, w, ticks.sunlight);
+            return;
+        }
         float one[N];
         double sum[N] = {};
+        std::int64_t rays[N] = {};
         for (const glm::dvec3& toLight : mSunDirections) {
             mTracer.traceShadows(n, hits, found, toLight, one, w);
-            for (int i = 0; i < n; ++i) sum[i] += one[i];
+            for (int i = 0; i < n; ++i) {
+                sum[i] += one[i];
+                // traceShadows traces no ray where the light is below the horizon.
+                rays[i] += glm::dot(glm::dvec3(hits[i].normal), toLight) > 0.0;
+            }
         }
-        for (int i = 0; i < n; ++i) vis[i] = static_cast<float>(sum[i] / mSunDirections.size());
+        const int count = static_cast<int>(mSunDirections.size());
+        for (int i = 0; i < n; ++i) {
+            vis[i] = static_cast<float>(sum[i] / count);
+            // The spiral is fixed, not random: the binomial value of as many independent
+            // directions stands for its error, as aoStandardError does for the occlusion.
+            if (found[i]) ticks.sunlight.add(aoStandardError(sum[i] / count, count), rays[i]);
+        }
+    }
+
+    // Each hit's visible share of the sun's disc from rounds of directions uniform over it,
+    // until its standard error is below raymarch.sun_error. Every pixel takes the same
+    // progressive pattern (seeded by the sample, not the pixel), as every pixel takes the same
+    // spiral without a target: a round's new directions are then the block's, and their shadow
+    // rays stay the parallel bundles of traceShadows, for the pixels still taking rounds.
+    void sunInRounds(const Block& b, int k, const SurfaceHit* hits, const bool* found, float* vis,
+                     Workspace& w, EstimateTally& tally) const {
+        const int n = b.n;
+        std::vector<ProgressiveStrata> strata(n, ProgressiveStrata(streamSeed(k, Stream::Sun)));
+        bool active[N];
+        std::int64_t rays[N] = {};
+        std::copy_n(found, n, active);
+        std::vector<double> y;
+        float one[N];
+        while (std::any_of(active, active + n, [](bool a) { return a; })) {
+            const std::vector<glm::dvec2>* points = nullptr;
+            for (int i = 0; i < n; ++i)
+                if (active[i]) points = &strata[i].refine();  // the same points for every pixel
+            const std::size_t m = points->size();
+            y.assign(std::size_t(n) * m, 0.0);
+            for (std::size_t j = 0; j < m; ++j) {
+                const glm::dvec3 toLight = mSunDisc->direction((*points)[j]);
+                mTracer.traceShadows(n, hits, active, toLight, one, w);
+                for (int i = 0; i < n; ++i) {
+                    if (!active[i]) continue;
+                    y[std::size_t(i) * m + j] = one[i];
+                    // traceShadows traces no ray where the light is below the horizon.
+                    rays[i] += glm::dot(glm::dvec3(hits[i].normal), toLight) > 0.0;
+                }
+            }
+            for (int i = 0; i < n; ++i) {
+                if (!active[i]) continue;
+                strata[i].record(&y[std::size_t(i) * m]);
+                active[i] = !roundsDone(strata[i], mSunRounds);
+            }
+        }
+        for (int i = 0; i < n; ++i) {
+            vis[i] = 0.0f;
+            if (!found[i]) continue;
+            vis[i] = static_cast<float>(strata[i].mean());
+            tally.add(strata[i].standardError(), rays[i]);
+            tally.atCap += stoppedAtCap(strata[i], mSunRounds);
+        }
     }
 
     // The pixels [x0, x1) x [y0, y1) of the block whose corner is (x0, y0).
@@ -341,24 +551,26 @@ class FrameTrace {
     int mTilesX, mTilesY;
     int mGrid;  // strata per side of a pixel's samples
     float mExposure;
-    std::vector<glm::dvec3> mSunDirections;       // towards the light; one for a point sun
-    double mAoRadius;                             // light.ao_radius; 0: no occlusion rays
-    int mAoSide;                                  // the occlusion pattern's side
-    std::vector<core::EmittingBody> mEmitters;    // light.emissive_light: the emitting bodies
-    int mEmissiveSide;                            // the emitters' pattern's side
-    std::optional<core::Atmosphere> mAtmosphere;  // a body's atmosphere, if the scene has one
+    std::vector<glm::dvec3> mSunDirections;           // towards the light; one for a point sun
+    double mAoRadius;                                 // light.ao_radius; 0: no occlusion rays
+    int mAoSide;                                      // the occlusion pattern's side
+    std::vector<core::EmittingBody> mEmitters;        // light.emissive_light: the emitting bodies
+    int mEmissiveSide;                                // the emitters' pattern's side
+    RoundLimits mAoRounds, mLightRounds, mSunRounds;  // with raymarch.*_error > 0
+    std::optional<SunDisc> mSunDisc;                  // light.angular_radius > 0
+    std::optional<core::Atmosphere> mAtmosphere;      // a body's atmosphere, if the scene has one
     core::AtmosphereSun mSun;
 };
 
-// What tracing a frame's tiles (or one part's) adds up: the thread time of each part of the
-// work, and the standard errors' sums per row of tiles held, in row order.
+// What tracing a frame's tiles (or one part's) adds up: the thread time and the secondary
+// estimates' tallies per row of tiles held, in row order, and their sum in that order.
 struct TracedTiles {
-    StageTicks ticks;  // aoErrorSum and lightErrorSum: the rows' sums added in row order
-    std::vector<double> aoRowSums, lightRowSums;
+    StageTicks ticks;
+    std::vector<StageTicks> rows;
 };
 
-// The tiles of `part` (every tile of a whole frame) in parallel on the caller's arena, on one
-// workspace per thread; the thread time of each part of the work summed over the tiles.
+// The tiles of `input.part` (every tile of a whole frame) in parallel on the caller's arena, on
+// one workspace per thread.
 TracedTiles traceTiles(const FrameTrace& trace, Workspaces& workspaces,
                        const core::RenderInput& input) {
     std::vector<int> held;  // the tiles traced, in tile order
@@ -368,13 +580,10 @@ TracedTiles traceTiles(const FrameTrace& trace, Workspaces& workspaces,
                 held.push_back(row * trace.tileColumns() + column);
     const int tiles = static_cast<int>(held.size());
     std::atomic<int> done{0};
-    std::atomic<std::int64_t> traceTicks{0}, aoTicks{0}, emissiveTicks{0}, shadeTicks{0},
-        atmosphereTicks{0}, aoSamples{0}, lightSamples{0}, lightRays{0};
-    // The standard errors' sums, per tile, added in tile order after the loop (a sum of
-    // doubles in the order threads finish would depend on the threads), by rows of tiles (so
-    // that parts holding whole rows join to the same sums).
-    std::vector<double> aoErrors(static_cast<std::size_t>(tiles), 0.0);
-    std::vector<double> lightErrors(static_cast<std::size_t>(tiles), 0.0);
+    // Each tile's own, summed in tile order after the loop (a sum of doubles in the order
+    // threads finish would depend on the threads), row by row of tiles (so that parts holding
+    // whole rows join to the same sums: core/part_join.h).
+    std::vector<StageTicks> perTile(static_cast<std::size_t>(tiles));
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
         // Embree wants flush-to-zero and denormals-are-zero on every thread that traces.
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
@@ -384,44 +593,46 @@ TracedTiles traceTiles(const FrameTrace& trace, Workspaces& workspaces,
             // A tile takes milliseconds: a cancelled frame stops within one tile per thread
             // (TBB cancels the tiles not yet started and rethrows in the caller).
             core::throwIfCancelled(input.cancel);
-            StageTicks ticks;
-            trace.traceTile(held[static_cast<std::size_t>(t)], w, ticks);
-            traceTicks += ticks.trace;
-            aoTicks += ticks.ao;
-            emissiveTicks += ticks.emissive;
-            shadeTicks += ticks.shade;
-            atmosphereTicks += ticks.atmosphere;
-            aoSamples += ticks.aoSamples;
-            lightSamples += ticks.lightSamples;
-            lightRays += ticks.lightRays;
-            aoErrors[static_cast<std::size_t>(t)] = ticks.aoErrorSum;
-            lightErrors[static_cast<std::size_t>(t)] = ticks.lightErrorSum;
+            const std::size_t i = static_cast<std::size_t>(t);
+            trace.traceTile(held[i], w, perTile[i]);
             const int finished = ++done;
             if (input.progress) input.progress(double(finished) / tiles);
         }
     });
     TracedTiles out;
-    out.ticks = {.trace = traceTicks.load(),
-                 .ao = aoTicks.load(),
-                 .emissive = emissiveTicks.load(),
-                 .shade = shadeTicks.load(),
-                 .atmosphere = atmosphereTicks.load()};
     const std::size_t columns = static_cast<std::size_t>(trace.tileColumns());
-    for (std::size_t start = 0; start < held.size(); start += columns) {
-        double ao = 0.0, light = 0.0;
-        for (std::size_t t = start; t < start + columns; ++t) {
-            ao += aoErrors[t];
-            light += lightErrors[t];
-        }
-        out.aoRowSums.push_back(ao);
-        out.lightRowSums.push_back(light);
-        out.ticks.aoErrorSum += ao;
-        out.ticks.lightErrorSum += light;
+    for (std::size_t start = 0; start < perTile.size(); start += columns) {
+        StageTicks row;
+        for (std::size_t t = start; t < start + columns; ++t) row.merge(perTile[t]);
+        out.ticks.merge(row);
+        out.rows.push_back(row);
     }
-    out.ticks.aoSamples = aoSamples.load();
-    out.ticks.lightSamples = lightSamples.load();
-    out.ticks.lightRays = lightRays.load();
     return out;
+}
+
+// What joining a part's frame with the others needs (core/part_join.h): each secondary
+// estimate's mean standard error as the rows' sums and the hit samples, its largest error
+// joined by the largest; every other counter is a sum over the tiles but the count of emitting
+// bodies, a fact of the whole frame.
+core::PartRecord partRecord(const core::FramePart& part, int tileSize, int height,
+                            const TracedTiles& traced,
+                            const std::map<std::string, double>& counters) {
+    core::PartRecord r;
+    r.part = part;
+    r.tileSize = tileSize;
+    r.height = height;
+    const auto mean = [&](const std::string& prefix, EstimateTally StageTicks::*tally) {
+        if (!counters.count(prefix + "_standard_error")) return;
+        core::PartMean& m = r.means[prefix + "_standard_error"];
+        for (const StageTicks& row : traced.rows) m.rowSums.push_back((row.*tally).errorSum);
+        m.samples = (traced.ticks.*tally).estimates;
+        r.maxima.push_back(prefix + "_standard_error_max");
+    };
+    mean("ao", &StageTicks::occlusion);
+    mean("irradiance", &StageTicks::light);
+    mean("sun", &StageTicks::sunlight);
+    if (counters.count("emitting_bodies")) r.shared = {"emitting_bodies"};
+    return r;
 }
 
 // The counters of every thread's workspace, summed.
@@ -472,11 +683,13 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     const StageTicks& ticks = traced.ticks;
     const double traceMs = msSince(start);
     // Split the parallel wall time by the thread time of each part.
-    const double sum = std::max(double(ticks.trace) + double(ticks.ao) + double(ticks.emissive) +
-                                    double(ticks.shade) + double(ticks.atmosphere),
-                                1.0);
+    const double sum =
+        std::max(double(ticks.trace) + double(ticks.sun) + double(ticks.ao) +
+                     double(ticks.emissive) + double(ticks.shade) + double(ticks.atmosphere),
+                 1.0);
     frame.timingsMs["build"] = tracer.buildMs();
     frame.timingsMs["trace"] = traceMs * double(ticks.trace) / sum;  // surfaces, shadow rays
+    if (trace.sunDisc()) frame.timingsMs["sun"] = traceMs * double(ticks.sun) / sum;
     frame.timingsMs["ao"] = traceMs * double(ticks.ao) / sum;
     if (emissive) frame.timingsMs["emissive"] = traceMs * double(ticks.emissive) / sum;
     if (trace.hasAtmosphere())
@@ -485,40 +698,23 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     frame.timingsMs["total"] = tracer.buildMs() + traceMs;
 
     collectCounters(tracer, workspaces, frame.counters);
-    if (occlusion) {
-        // The mean over the hit samples of each one's standard error: what the reference's
-        // own noise adds to a per-pixel occlusion error (ao.mean_abs).
-        frame.counters["ao_standard_error"] =
-            ticks.aoSamples > 0 ? ticks.aoErrorSum / double(ticks.aoSamples) : 0.0;
-        frame.counters["ao_rays"] = double(ticks.aoSamples) * aoSide(mSettings) * aoSide(mSettings);
-    }
+    frame.counters["primary_rays"] = double(ticks.primaryRays);
+    // Per kind of secondary ray, the mean over the hit samples of each one's standard error
+    // (what the reference's own noise adds to a per-pixel error: ao.mean_abs, indirect.rmse),
+    // the largest, and the rays traced.
+    if (occlusion) ticks.occlusion.write("ao", mSettings.aoError > 0.0, frame.counters);
     if (emissive) {
-        // The mean over the hit samples of the irradiance's standard error (luminance, the
-        // unit of the irradiance channels): the reference's own noise in indirect.rmse.
-        frame.counters["irradiance_standard_error"] =
-            ticks.lightSamples > 0 ? ticks.lightErrorSum / double(ticks.lightSamples) : 0.0;
-        frame.counters["irradiance_rays"] = double(ticks.lightRays);
+        // In luminance, the unit of the irradiance channels.
+        ticks.light.write("irradiance", mSettings.emissiveError > 0.0, frame.counters);
         frame.counters["emitting_bodies"] = double(trace.emitterCount());
     }
+    if (trace.sunDisc()) ticks.sunlight.write("sun", mSettings.sunError > 0.0, frame.counters);
     frame.device =
         fmt::format("{} ({} threads)", cpuName(), tbb::this_task_arena::max_concurrency());
     frame.settings = toJson(mSettings);
-    if (!input.part.whole()) {
-        // The rows' sums of the means, for the join (core/part_join.h); every other counter
-        // is a sum over the tiles but the count of emitting bodies, a fact of the whole frame.
-        core::PartRecord& part = frame.part.emplace();
-        part.part = input.part;
-        part.tileSize = mSettings.tileSize;
-        part.height = camera.height();
-        if (occlusion)
-            part.means["ao_standard_error"] = {.rowSums = traced.aoRowSums,
-                                               .samples = ticks.aoSamples};
-        if (emissive) {
-            part.means["irradiance_standard_error"] = {.rowSums = traced.lightRowSums,
-                                                       .samples = ticks.lightSamples};
-            part.shared = {"emitting_bodies"};
-        }
-    }
+    if (!input.part.whole())
+        frame.part =
+            partRecord(input.part, mSettings.tileSize, camera.height(), traced, frame.counters);
     return frame;
 }
 

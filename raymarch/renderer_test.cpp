@@ -13,67 +13,15 @@
 #include "core/camera.h"
 #include "core/sph_kernel.h"
 #include "raymarch/testing/ray_field_testing.h"
+#include "raymarch/testing/renderer_scenes.h"
 
 namespace tr = twinrender;
+
 using tr::core::Image;
-
-namespace {
-
+using tr::raymarch::testing::render;
 using tr::raymarch::testing::singleParticleRadius;
-
-struct TestScene {
-    tr::core::Scene scene;
-    tr::core::SceneParticles particles;
-    std::vector<tr::core::Material> materials;
-
-    TestScene() {
-        scene.name = "test";
-        scene.camera.width = 64;
-        scene.camera.height = 64;
-        scene.light.direction = {0.0, 0.0, -1.0};
-        tr::core::MaterialDesc m;
-        m.name = "white";
-        m.diffuse.value = glm::dvec3(0.8);
-        scene.materials.push_back(m);
-        materials = tr::core::loadMaterials(scene);
-    }
-
-    // Appends particles as one body (uv, normals and glow are not needed by these tests).
-    void addBody(const std::vector<glm::vec3>& positions, float h, float volume) {
-        auto& ps = particles.particles;
-        const std::size_t begin = ps.size();
-        ps.resize(begin + positions.size());
-        tr::core::BodyInfo body;
-        body.name = "body" + std::to_string(particles.bodies.size());
-        body.begin = begin;
-        body.end = ps.size();
-        body.meanH = h;
-        for (std::size_t i = 0; i < positions.size(); ++i) {
-            ps.position[begin + i] = positions[i];
-            ps.h[begin + i] = h;
-            ps.volume[begin + i] = volume;
-            ps.body[begin + i] = static_cast<std::uint32_t>(particles.bodies.size());
-            ps.normal[begin + i] = {0, 0, 1};
-            particles.boundsMin = glm::min(particles.boundsMin, glm::dvec3(positions[i]) - 2.0 * h);
-            particles.boundsMax = glm::max(particles.boundsMax, glm::dvec3(positions[i]) + 2.0 * h);
-        }
-        particles.bodies.push_back(body);
-    }
-};
-
-tr::core::Frame render(const TestScene& s, const tr::raymarch::Settings& settings,
-                       int threads = 2) {
-    tr::raymarch::EmbreeDevice device;
-    tr::core::Frame frame;
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
-        tr::raymarch::Renderer renderer(device, settings);
-        frame = renderer.render({s.scene, s.particles, s.materials});
-    });
-    return frame;
-}
-
-}  // namespace
+using tr::raymarch::testing::SphereOverFloor;
+using tr::raymarch::testing::TestScene;
 
 TEST(Raymarch, OneParticleIsASphereOfTheAnalyticRadius) {
     TestScene s;
@@ -166,65 +114,6 @@ TEST(Raymarch, LatticeHalfSpaceIsFlatAtTheComputedHeight) {
     EXPECT_LT(centreZ, 1.0 * h);
 }
 
-// One particle (an exact sphere) above a lattice floor, lit at 37 degrees from the vertical,
-// seen from above.
-struct SphereOverFloor {
-    TestScene s;
-    tr::raymarch::Settings settings;
-    double radius = 0.0;  // the sphere's
-    const glm::dvec3 toLight{-0.6, 0.0, 0.8}, centre{0.0, 0.0, 1.0};
-
-    SphereOverFloor() {
-        const float spacing = 0.1f, h = 1.3f * spacing;
-        const float v =
-            std::min(spacing * spacing * spacing, float(tr::core::maxParticleVolume(h)));
-        std::vector<glm::vec3> floor;
-        for (int i = -25; i <= 25; ++i)
-            for (int j = -25; j <= 25; ++j)
-                for (int k = 0; k < 3; ++k)
-                    floor.emplace_back(i * spacing, j * spacing, -k * spacing);
-        s.addBody(floor, h, v);
-        // The ball's support (2 h = 0.8) stays clear of the floor's, so its surface is an exact
-        // sphere: its volume is chosen so that the field peaks at twice the level.
-        const float hBall = 0.4f;
-        const float vBall =
-            float(2.0 * settings.surfaceLevel / tr::core::m4Kernel(0.0, double(hBall)));
-        s.addBody({glm::vec3(centre)}, hBall, vBall);
-        radius = singleParticleRadius(vBall, hBall, settings.surfaceLevel);
-        s.scene.light.direction = -toLight;
-        s.scene.camera.position = {0.3, -0.01, 4.0};
-        s.scene.camera.target = {0.3, 0.0, 0.0};
-        s.scene.camera.up = {0.0, 1.0, 0.0};
-        s.scene.camera.fovYDeg = 25.0;
-        s.scene.camera.width = s.scene.camera.height = 64;
-    }
-
-    // Calls visit(x, y, p, angle, pixel) for each floor pixel: its point p, the angle between
-    // toLight and the direction from p to the sphere's centre minus the sphere's angular radius
-    // seen from p (radians; negative: the light's centre is behind the sphere), and the angle a
-    // pixel's footprint spans there.
-    template <typename Visit>
-    void forEachFloorPixel(const Image& img, Visit&& visit) const {
-        const tr::core::Camera camera(s.scene.camera);
-        for (int y = 0; y < 64; ++y)
-            for (int x = 0; x < 64; ++x) {
-                if (img.at(x, y, img.channelIndex("id")) != 0.0f) continue;  // the floor only
-                const auto ray = camera.ray(x + 0.5, y + 0.5);
-                const double t =
-                    img.at(x, y, img.channelIndex("Z")) / glm::dot(ray.direction, camera.forward());
-                const glm::dvec3 p = ray.origin + t * ray.direction;
-                const glm::dvec3 toCentre = centre - p;
-                const double d = glm::length(toCentre);
-                const double between =
-                    std::acos(std::clamp(glm::dot(toCentre / d, toLight), -1.0, 1.0));
-                const double angle = between - std::asin(radius / d);
-                // A pixel's footprint on the floor, stretched by the light's slant.
-                const double pixel = 2.0 * 2.0 * t * camera.tanHalfFovY() / 64.0 / d;
-                visit(x, y, p, angle, pixel);
-            }
-    }
-};
-
 TEST(Raymarch, SphereShadowOnAPlaneMatchesTheAnalyticOutline) {
     // A floor point is in shadow exactly when the line from it toward the light passes within
     // the sphere's radius of its centre.
@@ -297,23 +186,16 @@ TEST(Raymarch, AmbientOcclusionOfAFloorByASphereMatchesTheClosedForm) {
     const int ao = img.channelIndex("ao"), nx = img.channelIndex("N.X");
     int pixels = 0, outside = 0;
     double sum = 0.0, variance = 0.0;
-    f.forEachFloorPixel(img, [&](int x, int y, const glm::dvec3& p, double, double) {
-        const glm::dvec3 n(img.at(x, y, nx), img.at(x, y, nx + 1), img.at(x, y, nx + 2));
-        const glm::dvec3 toCentre = f.centre - p;
-        const double d = glm::length(toCentre);
-        const double cosBeta = glm::dot(n, toCentre) / d;
-        // Wholly above the horizon: beta + asin(r / d) < 90 degrees.
-        if (std::acos(std::clamp(cosBeta, -1.0, 1.0)) + std::asin(f.radius / d) >
-            0.5 * std::numbers::pi - 0.02)
-            return;
-        const double expected = 1.0 - (f.radius / d) * (f.radius / d) * cosBeta;
-        const double error = img.at(x, y, ao) - expected;
-        const double se = std::sqrt(expected * (1.0 - expected) / 64.0);
-        outside += std::abs(error) > 4.0 * se + 1e-3;
-        sum += error;
-        variance += se * se;
-        ++pixels;
-    });
+    f.forEachFloorPixelUnderTheSphere(
+        img, [&](int x, int y, const glm::dvec3&, double d, double cosBeta) {
+            const double expected = 1.0 - (f.radius / d) * (f.radius / d) * cosBeta;
+            const double error = img.at(x, y, ao) - expected;
+            const double se = std::sqrt(expected * (1.0 - expected) / 64.0);
+            outside += std::abs(error) > 4.0 * se + 1e-3;
+            sum += error;
+            variance += se * se;
+            ++pixels;
+        });
     ASSERT_GT(pixels, 1000);
     EXPECT_EQ(outside, 0);
     const double meanError = sum / pixels, meanSe = std::sqrt(variance) / pixels;
@@ -373,44 +255,28 @@ TEST(Raymarch, LightOfAGlowingSphereOnAFloorMatchesTheClosedForm) {
     f.settings.shadows = false;
     f.settings.emissiveSamples = 64;
     const glm::dvec3 radiance(2.0, 1.0, 0.5);
-    tr::core::MaterialDesc glowing;
-    glowing.name = "glowing";
-    glowing.diffuse.value = glm::dvec3(0.0);
-    glowing.emission.value = radiance;
-    f.s.scene.materials.push_back(glowing);
-    f.s.materials = tr::core::loadMaterials(f.s.scene);
-    f.s.particles.bodies[1].material = 1;
-    for (std::size_t i = f.s.particles.bodies[1].begin; i < f.s.particles.bodies[1].end; ++i)
-        f.s.particles.particles.material[i] = 1;
+    f.makeTheSphereGlow(radiance);
     const auto frame = render(f.s, f.settings);
     const Image& img = frame.image;
-    const int e = img.channelIndex("irradiance.R"), nx = img.channelIndex("N.X");
-    const double support = 2.0 * 0.4;  // the ball's one particle: h = 0.4
+    const int e = img.channelIndex("irradiance.R");
     int pixels = 0, outside = 0;
     double sum = 0.0, variance = 0.0;
-    f.forEachFloorPixel(img, [&](int x, int y, const glm::dvec3& p, double, double) {
-        const glm::dvec3 n(img.at(x, y, nx), img.at(x, y, nx + 1), img.at(x, y, nx + 2));
-        const glm::dvec3 toCentre = f.centre - p;
-        const double d = glm::length(toCentre);
-        const double cosBeta = glm::dot(n, toCentre) / d;
-        if (std::acos(std::clamp(cosBeta, -1.0, 1.0)) + std::asin(f.radius / d) >
-            0.5 * std::numbers::pi - 0.02)
-            return;
-        const double geometry = (f.radius / d) * (f.radius / d) * cosBeta;
-        const double solidAngle =
-            2.0 * std::numbers::pi * (1.0 - std::sqrt(1.0 - (support / d) * (support / d)));
-        for (int k = 0; k < 3; ++k) {
-            const double expected = std::numbers::pi * radiance[k] * geometry;
-            const double error = img.at(x, y, e + k) - expected;
-            const double se = solidAngle * radiance[k] / (2.0 * 8.0);
-            outside += std::abs(error) > 4.0 * se + 1e-4;
-            if (k == 0) {
-                sum += error;
-                variance += se * se;
+    f.forEachFloorPixelUnderTheSphere(
+        img, [&](int x, int y, const glm::dvec3&, double d, double cosBeta) {
+            const double geometry = (f.radius / d) * (f.radius / d) * cosBeta;
+            const double solidAngle = f.supportSolidAngle(d);
+            for (int k = 0; k < 3; ++k) {
+                const double expected = std::numbers::pi * radiance[k] * geometry;
+                const double error = img.at(x, y, e + k) - expected;
+                const double se = solidAngle * radiance[k] / (2.0 * 8.0);
+                outside += std::abs(error) > 4.0 * se + 1e-4;
+                if (k == 0) {
+                    sum += error;
+                    variance += se * se;
+                }
             }
-        }
-        ++pixels;
-    });
+            ++pixels;
+        });
     ASSERT_GT(pixels, 1000);
     EXPECT_EQ(outside, 0);
     const double meanError = sum / pixels, meanSe = std::sqrt(variance) / pixels;
@@ -444,13 +310,7 @@ TEST(Raymarch, AnOccluderBetweenEmitterAndFloorCastsNoLight) {
     // 64: the first of the 8 rings of strata about the cone's axis is the central eighth of
     // the cone, which the sphere covers, so a point that sees the sphere never draws 0.
     f.settings.emissiveSamples = 64;
-    tr::core::MaterialDesc glowing;
-    glowing.name = "glowing";
-    glowing.emission.value = glm::dvec3(1.0);
-    f.s.scene.materials.push_back(glowing);
-    f.s.materials = tr::core::loadMaterials(f.s.scene);
-    f.s.particles.bodies[1].material = 1;
-    f.s.particles.particles.material[f.s.particles.bodies[1].begin] = 1;
+    f.makeTheSphereGlow(glm::dvec3(1.0));
     // One layer of particles at z = 0.45, |x|, |y| <= 0.3, between the ball (bottom 1 - r)
     // and the floor (0); its surface reaches about h past its particles. Seen from the side,
     // below the slab, so that the floor under it shows.

@@ -23,6 +23,9 @@ Settings parseSettings(const core::ParameterTable& t) {
     s.sunSamples = static_cast<int>(t.getInt("sun_samples", s.sunSamples, 1, 1024));
     s.aoSamples = static_cast<int>(t.getInt("ao_samples", s.aoSamples, 1, 4096));
     s.emissiveSamples = static_cast<int>(t.getInt("emissive_samples", s.emissiveSamples, 1, 4096));
+    s.aoError = t.getDouble("ao_error", s.aoError, 0.0, 0.5);
+    s.emissiveError = t.getDouble("emissive_error", s.emissiveError, 0.0, 1e6);
+    s.sunError = t.getDouble("sun_error", s.sunError, 0.0, 0.5);
     for (const auto& [key, value] : {std::pair<const char*, int>{"ao_samples", s.aoSamples},
                                      {"emissive_samples", s.emissiveSamples}}) {
         const int side = static_cast<int>(std::lround(std::sqrt(double(value))));
@@ -57,7 +60,10 @@ nlohmann::json toJson(const Settings& s) {
             {"raymarch.tile_size", s.tileSize},
             {"raymarch.sun_samples", s.sunSamples},
             {"raymarch.ao_samples", s.aoSamples},
-            {"raymarch.emissive_samples", s.emissiveSamples}};
+            {"raymarch.emissive_samples", s.emissiveSamples},
+            {"raymarch.ao_error", s.aoError},
+            {"raymarch.emissive_error", s.emissiveError},
+            {"raymarch.sun_error", s.sunError}};
 }
 
 }  // namespace twinrender::raymarch

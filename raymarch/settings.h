@@ -31,6 +31,14 @@ struct Settings {
     // bounding sphere subtends, raymarch/emitter_cone.h); the frame's
     // irradiance_standard_error counter states the resulting noise.
     int emissiveSamples = 64;
+    // Per-pixel standard-error targets of the three secondary estimates (raymarch/
+    // progressive_strata.h): with a target > 0 each hit sample takes its rays in stratified
+    // rounds to 1, 4, 16, 64, ... until the estimate's standard error is below it (tested from
+    // 16 rays on) or the cap, the largest power of 4 not above 4 x the matching *_samples
+    // (256 for 64), is reached. 0: the fixed count of *_samples for every pixel.
+    double aoError = 0.0;        // of the open fraction, [0, 0.5]
+    double emissiveError = 0.0;  // of the irradiance's luminance, [0, 1e6]
+    double sunError = 0.0;       // of the sun's visible share, [0, 0.5]
 };
 
 // Reads every key of the table and rejects the ones it does not know.

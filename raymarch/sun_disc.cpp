@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "raymarch/ao_hemisphere.h"
+
 namespace twinrender::raymarch {
 
 std::vector<glm::dvec3> sunDirections(const glm::dvec3& toLight, double angularRadiusDeg,
@@ -24,6 +26,15 @@ std::vector<glm::dvec3> sunDirections(const glm::dvec3& toLight, double angularR
                                      sinTheta * (std::cos(phi) * u + std::sin(phi) * v)));
     }
     return out;
+}
+
+SunDisc::SunDisc(const glm::dvec3& toLight, double angularRadiusDeg)
+    : mAxis(toLight), mOneMinusCos(1.0 - std::cos(glm::radians(angularRadiusDeg))) {
+    orthonormalBasis(mAxis, mU, mV);
+}
+
+glm::dvec3 SunDisc::direction(glm::dvec2 st) const {
+    return coneDirection(mAxis, mU, mV, mOneMinusCos, st);
 }
 
 }  // namespace twinrender::raymarch

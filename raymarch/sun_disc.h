@@ -16,4 +16,17 @@ namespace twinrender::raymarch {
 std::vector<glm::dvec3> sunDirections(const glm::dvec3& toLight, double angularRadiusDeg,
                                       int samples);
 
+// The sun's disc as a map of the unit square, uniform in solid angle over the cone of
+// half-angle angularRadiusDeg (> 0) about toLight: the directions of raymarch.sun_error's
+// rounds (raymarch/progressive_strata.h), jittered per pixel where the spiral is fixed.
+class SunDisc {
+  public:
+    SunDisc(const glm::dvec3& toLight, double angularRadiusDeg);
+    glm::dvec3 direction(glm::dvec2 st) const;
+
+  private:
+    glm::dvec3 mAxis, mU, mV;
+    double mOneMinusCos;
+};
+
 }  // namespace twinrender::raymarch

@@ -601,6 +601,26 @@ struct SurfaceTracer::Impl {
         return true;
     }
 
+    // Whether the surface is not met within `radius` of the hit along d (unit): from just
+    // outside the surface, as a shadow ray, but stopping at the radius; a ray alone is its own
+    // bundle (the directions spread over the hemisphere).
+    bool openAlong(const SurfaceHit& hit, const glm::dvec3& d, double radius, Workspace& w) const {
+        if (settings.spheres)
+            return !spheres->occluded(glm::vec3(hit.outside), glm::vec3(d), 0.0f,
+                                      static_cast<float>(radius));
+        MarchRay& r = w.rays[0];
+        r = MarchRay{};
+        r.ray = core::Ray{hit.outside, d};
+        r.t = 2.0 * settings.rootTolerance * hit.hRef;
+        r.tEnd = std::min(radius, exitDistance(hit.outside, d));
+        if (!(r.t < r.tEnd)) return true;
+        r.hRef = hit.hRef;
+        r.needEntry = false;
+        const int id = 0;
+        march(&id, 1, d, true, w, nullptr);
+        return !r.hit;
+    }
+
     // Distance from p along dir to the exit of the scene bounds (no surface lies beyond).
     double exitDistance(const glm::dvec3& p, const glm::dvec3& dir) const {
         const glm::dvec3 lo = particles.boundsMin, hi = particles.boundsMax;
@@ -719,32 +739,13 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
 }
 
 float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count,
-                               double radius, Workspace& w) const {
+                               double radius, Workspace& w, bool* openEach) const {
     const Impl& im = *mImpl;
     int open = 0;
     for (int j = 0; j < count; ++j) {
-        const glm::dvec3& d = directions[j];
-        if (im.settings.spheres) {
-            open += !im.spheres->occluded(glm::vec3(hit.outside), glm::vec3(d), 0.0f,
-                                          static_cast<float>(radius));
-            continue;
-        }
-        // From just outside the surface, as a shadow ray, but stopping at the radius; a ray
-        // alone is its own bundle (the directions spread over the hemisphere).
-        MarchRay& r = w.rays[0];
-        r = MarchRay{};
-        r.ray = core::Ray{hit.outside, d};
-        r.t = 2.0 * im.settings.rootTolerance * hit.hRef;
-        r.tEnd = std::min(radius, im.exitDistance(hit.outside, d));
-        if (!(r.t < r.tEnd)) {
-            ++open;
-            continue;
-        }
-        r.hRef = hit.hRef;
-        r.needEntry = false;
-        const int id = 0;
-        im.march(&id, 1, d, true, w, nullptr);
-        open += r.hit ? 0 : 1;
+        const bool isOpen = im.openAlong(hit, directions[j], radius, w);
+        open += isOpen ? 1 : 0;
+        if (openEach) openEach[j] = isOpen;
     }
     return count > 0 ? static_cast<float>(open) / static_cast<float>(count) : 1.0f;
 }

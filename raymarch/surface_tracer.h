@@ -83,9 +83,10 @@ class SurfaceTracer {
 
     // The fraction of the `count` directions (unit, in the hemisphere about hit.normal) along
     // which the surface is not met within `radius` of the hit: the ambient occlusion's open
-    // fraction when they are cosine-weighted (raymarch/ao_hemisphere.h). Needs occlusionRays.
+    // fraction when they are cosine-weighted (raymarch/ao_hemisphere.h). `openEach`, when
+    // given, receives each direction's answer. Needs occlusionRays.
     float traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count, double radius,
-                    Workspace& w) const;
+                    Workspace& w, bool* openEach = nullptr) const;
 
     // Where the ray from just outside `from` (a hit) along `direction` (unit) first meets the
     // surface, with its attributes: false where it leaves the scene first. A ray alone, as an

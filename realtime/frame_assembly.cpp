@@ -58,7 +58,7 @@ void assembleFrame(const ReadBackBuffers& in, core::Image& aov, core::Image& dis
             o[cG] = in.beautyShadow[g + 1];
             o[cB] = in.beautyShadow[g + 2];
             o[cShadow] = in.beautyShadow[g + 3];
-            o[cAo] = occluded ? in.ambientOcclusion[glRow + x] : 1.0f;
+            o[cAo] = occluded ? std::min(in.ambientOcclusion[glRow + x], 1.0f) : 1.0f;  // as shaded
             o[cA] = 1.0f;
             o[cZ] = in.surface[g + 0];
             o[cId] = body;

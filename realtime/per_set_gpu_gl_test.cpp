@@ -14,6 +14,7 @@
 
 #include "core/camera.h"
 #include "core/colour_field.h"
+#include "core/install_layout.h"
 #include "core/particles.h"
 #include "core/scene.h"
 #include "realtime/anisotropy.h"
@@ -44,7 +45,8 @@ const Loaded& contact() {
         const std::vector<std::string> overrides = {"bodies.left.particles=2000",
                                                     "bodies.right.particles=100",
                                                     "camera.width=160", "camera.height=120"};
-        l.scene = core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/contact.toml", overrides);
+        l.scene =
+            core::loadScene((::twinrender::core::sourceDir() / "scenes/contact.toml"), overrides);
         l.particles = core::buildParticles(l.scene);
         l.withNormals = l.particles;
         core::deriveNormals(l.withNormals);
@@ -436,7 +438,8 @@ TEST_F(PerSetGpu, PerSetWorkIsRedoneExactlyWhenTheSetChanges) {
 // hidden particles.
 TEST_F(PerSetGpu, DropletFramesMatchTheCpu) {
     Loaded l;
-    l.scene = core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/splash_droplets.toml", {});
+    l.scene =
+        core::loadScene((::twinrender::core::sourceDir() / "scenes/splash_droplets.toml"), {});
     l.particles = core::buildParticles(l.scene);
     l.materials = core::loadMaterials(l.scene);
     Device device(context);
@@ -487,7 +490,7 @@ TEST_F(PerSetGpu, DropletFramesMatchTheCpu) {
 // level the answer moves by that much (measured: 3e-4 h at most).
 TEST_F(PerSetGpu, DropletStagesFitTheCpusDroplets) {
     const core::Scene scene =
-        core::loadScene(TWINRENDER_SOURCE_DIR "/scenes/splash_droplets.toml", {});
+        core::loadScene((::twinrender::core::sourceDir() / "scenes/splash_droplets.toml"), {});
     const core::SceneParticles particles = core::buildParticles(scene);
     ASSERT_FALSE(particles.hasNormals);
     const core::ParticleSet& ps = particles.particles;

@@ -96,7 +96,7 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.gbuffer.format"), "compact");
     EXPECT_EQ(j.at("realtime.particles.min_pixels"), 1.5);
     EXPECT_EQ(j.at("realtime.particles.body_sphere_pixels"), 8.0);
-    EXPECT_EQ(j.at("realtime.ao.depth"), "shaded");
+    EXPECT_EQ(j.at("realtime.ao.depth"), "filtered");
     EXPECT_EQ(j.at("realtime.ao.thickness"), 0.0);
     EXPECT_EQ(j.size(), 82u);
 }

@@ -13,6 +13,7 @@
 #include "report/html_page.h"
 #include "report/markup.h"
 #include "report/sequence_summary.h"
+#include "report/study_report.h"
 #include "report/svg_chart.h"
 
 namespace twinrender::report {
@@ -68,22 +69,6 @@ bool flatOrNotApplicable(const SequenceReport& q, const std::string& metric) {
         first = it->second;
     }
     return true;
-}
-
-// The metric's bounds as the chart's horizontal marks: "max 0.05", "warn_max 0.03".
-std::vector<std::pair<double, std::string>> boundMarks(const compare::Bounds& bounds,
-                                                       const std::string& metric) {
-    std::vector<std::pair<double, std::string>> marks;
-    const auto it = bounds.find(metric);
-    if (it == bounds.end()) return marks;
-    const compare::MetricBounds& b = it->second;
-    for (const auto& [limit, name] :
-         {std::pair{&b.max, "max"}, std::pair{&b.min, "min"}, std::pair{&b.warnMax, "warn_max"},
-          std::pair{&b.warnMin, "warn_min"}})
-        if (*limit)
-            marks.emplace_back((*limit)->value,
-                               fmt::format("{} {}", name, formatValue((*limit)->value)));
-    return marks;
 }
 
 }  // namespace

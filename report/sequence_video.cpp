@@ -17,12 +17,12 @@ namespace {
 
 constexpr int GAP_PX = 2;  // dark line between the panels
 
-// Copies channels R, G, B of `from` into `to` at column `x0`.
-void blit(const core::Image& from, core::Image& to, int x0) {
+// Copies channels R, G, B of `from` into `to` with its top left corner at (x0, y0).
+void blit(const core::Image& from, core::Image& to, int x0, int y0) {
     const int fr = from.requireChannel("R");
     for (int y = 0; y < from.height(); ++y)
         for (int x = 0; x < from.width(); ++x)
-            for (int c = 0; c < 3; ++c) to.at(x0 + x, y, c) = from.at(x, y, fr + c);
+            for (int c = 0; c < 3; ++c) to.at(x0 + x, y0 + y, c) = from.at(x, y, fr + c);
 }
 
 // Text on a dark box, so that it reads on any image.
@@ -50,15 +50,17 @@ core::Image sideBySideFrame(const core::Image& realtime, const core::Image& refe
     const int band = GLYPH_HEIGHT * scale + 4 * scale;
     const int width = 3 * w + 2 * GAP_PX, height = h + band;
     core::Image frame(width + width % 2, height + height % 2, {"R", "G", "B"});
-    blit(realtime, frame, 0);
-    blit(reference, frame, w + GAP_PX);
-    blit(colourMapped(flipMap, 0, 0.0, 1.0), frame, 2 * (w + GAP_PX));
+    // The caption's band on top: a paused player draws its controls over the bottom of the
+    // picture, where a caption would be hidden.
+    blit(realtime, frame, 0, band);
+    blit(reference, frame, w + GAP_PX, band);
+    blit(colourMapped(flipMap, 0, 0.0, 1.0), frame, 2 * (w + GAP_PX), band);
     const int margin = scale;
-    label(frame, margin, margin, "REAL-TIME", scale);
-    label(frame, w + GAP_PX + margin, margin, "REFERENCE", scale);
-    label(frame, 2 * (w + GAP_PX) + margin, margin, "FLIP", scale);
+    label(frame, margin, band + margin, "REAL-TIME", scale);
+    label(frame, w + GAP_PX + margin, band + margin, "REFERENCE", scale);
+    label(frame, 2 * (w + GAP_PX) + margin, band + margin, "FLIP", scale);
     const float grey[3] = {0.85f, 0.85f, 0.85f};
-    drawText(frame, margin, h + 2 * scale, caption, scale, grey);
+    drawText(frame, margin, 2 * scale, caption, scale, grey);
     return frame;
 }
 

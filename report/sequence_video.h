@@ -14,9 +14,9 @@ namespace twinrender::report {
 
 // The video frame of one sequence frame. `realtime` and `reference` are display images
 // (sRGB R, G, B in [0, 1]) of one size; `flipMap` is ꟻLIP's per-pixel error (channel 0, in
-// [0, 1]) of that size, shown through magma. Width and height are even (H.264's yuv420p needs
-// them so); the text is scaled with the panels. Throws core::NotComparableError for sizes that
-// differ.
+// [0, 1]) of that size, shown through magma, side by side under a band holding `caption`.
+// Width and height are even (H.264's yuv420p needs them so); the text is scaled with the
+// panels. Throws core::NotComparableError for sizes that differ.
 core::Image sideBySideFrame(const core::Image& realtime, const core::Image& reference,
                             const core::Image& flipMap, const std::string& caption);
 

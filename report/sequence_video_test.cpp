@@ -24,12 +24,15 @@ TEST(SequenceVideo, ThreePanelsSideBySideWithTextAndEvenSize) {
     EXPECT_EQ(frame.height() % 2, 0);
     EXPECT_GE(frame.width(), 3 * 33);
     EXPECT_GT(frame.height(), 25);
-    // The panels' pixels away from the labels (bottom right of each panel).
-    EXPECT_FLOAT_EQ(frame.at(32, 24, 0), 0.25f);
-    EXPECT_FLOAT_EQ(frame.at(33 + 2 + 32, 24, 0), 0.5f);
-    // The caption is drawn under the panels: some bright pixels there.
+    // The caption's band is on top (a paused player's controls cover the bottom): the panels
+    // sit under it, their pixels away from the labels (bottom right of each panel) unchanged.
+    const int band = GLYPH_HEIGHT + 4;  // the font at scale 1 (25 rows / 80, rounded up to 1)
+    EXPECT_EQ(frame.height(), band + 25 + (band + 25) % 2);
+    EXPECT_FLOAT_EQ(frame.at(32, band + 24, 0), 0.25f);
+    EXPECT_FLOAT_EQ(frame.at(33 + 2 + 32, band + 24, 0), 0.5f);
+    // The caption: some bright pixels in the band.
     int lit = 0;
-    for (int y = 25; y < frame.height(); ++y)
+    for (int y = 0; y < band; ++y)
         for (int x = 0; x < frame.width(); ++x) lit += frame.at(x, y, 0) > 0.5f;
     EXPECT_GT(lit, 20);
     EXPECT_THROW(sideBySideFrame(rt, filled(32, 25, 0.f), map, ""), core::NotComparableError);

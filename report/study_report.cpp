@@ -14,6 +14,7 @@
 #include "report/csv.h"
 #include "report/html_page.h"
 #include "report/markup.h"
+#include "report/published_findings.h"
 
 namespace twinrender::report {
 
@@ -94,6 +95,21 @@ json studySummaryJson(const StudyResult& s) {
 }
 
 }  // namespace
+
+std::vector<std::pair<double, std::string>> boundMarks(const compare::Bounds& bounds,
+                                                       const std::string& metric) {
+    std::vector<std::pair<double, std::string>> marks;
+    const auto it = bounds.find(metric);
+    if (it == bounds.end()) return marks;
+    const compare::MetricBounds& b = it->second;
+    for (const auto& [limit, name] :
+         {std::pair{&b.max, "max"}, std::pair{&b.min, "min"}, std::pair{&b.warnMax, "warn_max"},
+          std::pair{&b.warnMin, "warn_min"}})
+        if (*limit)
+            marks.emplace_back((*limit)->value,
+                               fmt::format("{} {}", name, formatValue((*limit)->value)));
+    return marks;
+}
 
 json studyJson(const StudyResult& s) {
     json j = studySummaryJson(s);
@@ -233,8 +249,8 @@ namespace {
 
 // What a quick run's finding is, beside it: not the published figure.
 const char* QUICK_NOTE =
-    "quick run: fewer points and particles than the published study (docs/studies.md), so its "
-    "figures can differ from the published ones";
+    "quick run: fewer points and particles than the published study, so its figures can differ "
+    "from the published ones (under it)";
 
 std::string quickLabel(bool quick) {
     return quick ? fmt::format("<span class=\"badge warn\" title=\"{}\">quick run</span> ",
@@ -242,21 +258,35 @@ std::string quickLabel(bool quick) {
                  : "";
 }
 
+// A quick run's finding is followed by the published one (docs/findings.json), the full
+// study's, and where the docs show it; nothing for a full run or a study the docs do not publish.
+std::string publishedLine(const StudyResult& s, bool quick) {
+    if (!quick) return "";
+    const auto p = publishedFinding(s.name);
+    if (!p) return "";
+    return fmt::format(
+        "<div class=\"published muted\"><b>Published</b> (full run{}, <code>{}</code>): "
+        "{}</div>",
+        p->measured.empty() ? "" : ", " + htmlEscape(p->measured), htmlEscape(p->page),
+        htmlEscape(p->finding));
+}
+
 std::string findingsSection(const std::vector<StudyResult>& studies, bool quick) {
     std::string h = "<section>\n<h2>Findings</h2>\n";
     if (quick)
         h += "<p class=\"device-note\">These are <b>quick runs</b>: each study renders fewer "
              "points and particles than its published form, so a figure here can differ from "
-             "the published one in <code>docs/studies.md</code>, which <code>twinrender "
+             "the published one, shown under it with the docs page that holds it; <code>twinrender "
              "study</code> without <code>--quick</code> (or <code>scripts/run --studies "
-             "full</code>) reproduces.</p>\n";
+             "full</code>) reproduces the published figures.</p>\n";
     h += "<table class=\"scenes\">\n<thead><tr><th>Study</th><th>Finding</th><th "
          "class=\"num\">Unbracketed rays</th></tr></thead>\n<tbody>\n";
     for (const auto& s : studies)
         h += fmt::format(
-            "<tr><td><a href=\"#{0}\">{1}</a></td><td>{4}{2}</td><td class=\"num\">{3}</td></tr>\n",
+            "<tr><td><a href=\"#{0}\">{1}</a></td><td>{4}{2}{5}</td><td "
+            "class=\"num\">{3}</td></tr>\n",
             htmlEscape(s.name), htmlEscape(s.title), htmlEscape(s.finding),
-            htmlEscape(formatValue(s.unbracketedRays)), quickLabel(quick));
+            htmlEscape(formatValue(s.unbracketedRays)), quickLabel(quick), publishedLine(s, quick));
     return h + "</tbody></table>\n</section>\n";
 }
 
@@ -312,7 +342,8 @@ std::string studySection(const StudyResult& s, bool quick) {
     std::string h =
         fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", htmlEscape(s.name), htmlEscape(s.title));
     h += "<p class=\"lead\">" + htmlEscape(s.question) + "</p>\n";
-    h += "<p><strong>Finding:</strong> " + quickLabel(quick) + htmlEscape(s.finding) + "</p>\n";
+    h += "<p><strong>Finding:</strong> " + quickLabel(quick) + htmlEscape(s.finding) + "</p>\n" +
+         publishedLine(s, quick) + "\n";
     h += fmt::format(
         "<p class=\"muted\">Scene <code>{}</code>; {} point{}, {} reference render{} with {} "
         "unbracketed ray{}; {:.1f} s. Data: <a href=\"{}study.csv\">study.csv</a>, <a "

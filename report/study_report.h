@@ -89,6 +89,12 @@ struct StudyResult {
     std::vector<StudyRow> rows;
 };
 
+// The metric's bounds as a chart's horizontal marks (LineChart::yMarks): "max 0.05",
+// "warn_max 0.03"; none for a metric `bounds` does not hold. The studies' and the sequences'
+// charts draw them.
+std::vector<std::pair<double, std::string>> boundMarks(const compare::Bounds& bounds,
+                                                       const std::string& metric);
+
 nlohmann::json studyJson(const StudyResult& study);
 // [scene,] series, x, the overrides (one column, ";"-joined), time.<stage>_ms, reference_ms,
 // every metric (the study's columns first, then the metric table's order), error. Numbers at

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "report/markup.h"
+#include "report/published_findings.h"
 #include "report/testdata/read_text.h"
 #include "report/testdata/xml_check.h"
 #include "tests/scratch_dir.h"
@@ -111,13 +113,44 @@ TEST(StudyReport, AQuickRunSaysSoBesideEachFindingAndLinksBackToItsReport) {
     const std::string html = readText(dir / "index.html");
     EXPECT_NE(html.find("<a class=\"back\" href=\"../index.html\">← Report</a>"),
               std::string::npos);
-    EXPECT_NE(html.find("published one in <code>docs/studies.md</code>"), std::string::npos);
-    // In the findings' table and under the study's heading.
+    // In the findings' table and under the study's heading, each followed by the published
+    // finding of the full study and the docs page that holds it (docs/findings.json).
+    const auto published = tc::publishedFinding("depth_range");
+    ASSERT_TRUE(published);
+    const std::string after = "</span> standard depth breaks from far/near 1e6";
     std::size_t labels = 0;
-    for (auto at = html.find(">quick run</span> standard depth breaks"); at != std::string::npos;
-         at = html.find(">quick run</span> standard depth breaks", at + 1))
+    for (auto at = html.find(">quick run" + after); at != std::string::npos;
+         at = html.find(">quick run" + after, at + 1)) {
         ++labels;
+        const auto next = html.find("<b>Published</b> (full run", at);
+        ASSERT_NE(next, std::string::npos);
+        EXPECT_LT(next - at, 400u) << "the published finding follows the quick one";
+        EXPECT_EQ(
+            html.compare(html.find("<code>", next) + 6, published->page.size(), published->page),
+            0);
+    }
     EXPECT_EQ(labels, 2u);
+    std::size_t shown = 0;
+    for (auto at = html.find(tc::htmlEscape(published->finding)); at != std::string::npos;
+         at = html.find(tc::htmlEscape(published->finding), at + 1))
+        ++shown;
+    EXPECT_EQ(shown, 2u);
+    fs::remove_all(dir);
+}
+
+TEST(StudyReport, PublishedFindingsAreShownForQuickRunsOnly) {
+    // The compiled-in docs/findings.json publishes depth_range, not a study it does not know.
+    EXPECT_TRUE(tc::publishedFinding("depth_range"));
+    EXPECT_FALSE(tc::publishedFinding("no_such_study"));
+    const fs::path dir = twinrender::testing::freshDir("study_report_published");
+    tc::StudyResult s = twoRows();
+    tc::writeStudiesIndex({s}, dir, "", "twinrender study depth_range");
+    EXPECT_EQ(readText(dir / "index.html").find("<b>Published</b>"), std::string::npos);
+    s.name = "no_such_study";
+    tc::writeStudiesIndex({s}, dir, "", "twinrender run --studies quick", true);
+    const std::string html = readText(dir / "index.html");
+    EXPECT_NE(html.find(">quick run</span>"), std::string::npos);
+    EXPECT_EQ(html.find("<b>Published</b>"), std::string::npos);
     fs::remove_all(dir);
 }
 

@@ -4,13 +4,16 @@
 
 #include <string>
 
+#include "tests/scratch_dir.h"
+
 namespace twinrender::test {
 
 inline const std::string SPHERE =
-    std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/one_sphere.toml";
+    ::twinrender::testing::sourceDir().string() + "/tests/scenes/one_sphere.toml";
 inline const std::string SPHERE_ORBIT =
-    std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/one_sphere_orbit.toml";
-inline const std::string ADAPTER =
-    "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) + "/tests/adapters/analytic_sphere.py";
+    ::twinrender::testing::sourceDir().string() + "/tests/scenes/one_sphere_orbit.toml";
+inline const std::string ADAPTER = "/usr/bin/python3 " +
+                                   ::twinrender::testing::sourceDir().string() +
+                                   "/tests/adapters/analytic_sphere.py";
 
 }  // namespace twinrender::test

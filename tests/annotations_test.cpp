@@ -5,13 +5,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::annotations_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using tt::count;
 
 namespace {
 
-const std::string SOURCE = TWINRENDER_SOURCE_DIR;
+const std::string SOURCE = ::twinrender::testing::sourceDir().string();
 const std::string PLANET = SOURCE +
                            "/scenes/planet.toml --set camera.width=64 --set "
                            "camera.height=48 --set bodies.planet.particles=1500";
@@ -63,3 +66,5 @@ TEST(Annotations, GithubLinesWhenAskedOrOnGithubActionsOnly) {
     EXPECT_EQ(bad.exitCode, 4) << bad.output;
     EXPECT_FALSE(fs::exists(dir / "c"));
 }
+
+}  // namespace twinrender::e2e::annotations_test

@@ -10,13 +10,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::atmosphere_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path SCENE =
-    fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "atmosphere_ball.toml";
+    ::twinrender::testing::sourceDir() / "tests" / "scenes" / "atmosphere_ball.toml";
 
 std::map<std::string, double> runWith(const fs::path& dir, const std::string& name,
                                       std::vector<std::string> sets) {
@@ -67,3 +70,5 @@ TEST(AtmosphereRun, TheSphereEndPointBeatsTheImpostorsOnAFacetedBall) {
     EXPECT_LT(r["sphere"].at("inscatter.rmse"), 0.7 * r["impostor"].at("inscatter.rmse"));
     EXPECT_LT(r["sphere"].at("inscatter.rel"), 0.25);
 }
+
+}  // namespace twinrender::e2e::atmosphere_test

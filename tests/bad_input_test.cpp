@@ -12,6 +12,9 @@
 #include "core/particle_file.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::bad_input_test {
+
 namespace tt = twinrender::test;
 
 namespace {
@@ -52,7 +55,8 @@ Rejected renderBroken(const std::string& name, const std::string& scene,
     return {r.output, tt::countFiles(out)};
 }
 
-constexpr const char* BALL_SSF = TWINRENDER_SOURCE_DIR "/data/opensph_ball/ball.ssf";
+const std::filesystem::path BALL_SSF =
+    ::twinrender::testing::sourceDir() / "data" / "opensph_ball" / "ball.ssf";
 
 // The OpenSPH ball's bytes (empty when it is missing).
 std::string readBall() {
@@ -304,3 +308,5 @@ TEST(BadInput, MissingUserShaderNamesTheKeyAndThePath) {
     EXPECT_NE(r.output.find("nowhere/mine.glsl"), std::string::npos) << r.output;
     EXPECT_EQ(r.filesWritten, 0u);
 }
+
+}  // namespace twinrender::e2e::bad_input_test

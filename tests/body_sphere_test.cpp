@@ -11,12 +11,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::body_sphere_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENE = fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies" / "body_sphere.toml";
+const fs::path SCENE =
+    ::twinrender::testing::sourceDir() / "scenes" / "studies" / "body_sphere.toml";
 
 // At 96 x 72 (focal length 98.9 px) the ball's level set (radius about 1.1) is 30 px in radius
 // on screen from 3.63 away.
@@ -69,3 +73,5 @@ TEST(BodySphere, AboveTheThresholdTheImageIsUnchanged) {
         EXPECT_EQ(off.at(key), on.at(key)) << key;
     }
 }
+
+}  // namespace twinrender::e2e::body_sphere_test

@@ -29,7 +29,7 @@ struct CommandResult {
 inline CommandResult runTwinrender(const std::string& args, const std::string& environment = "",
                                    const std::string& prefix = "") {
     const std::string cmd = (environment.empty() ? "" : "env " + environment + " ") + prefix +
-                            std::string(TWINRENDER_BIN) + " " + args + " 2>&1";
+                            ::twinrender::testing::twinrenderProgram() + " " + args + " 2>&1";
     CommandResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;

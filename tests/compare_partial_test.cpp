@@ -13,12 +13,15 @@
 #include "core/image_io.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::compare_partial_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string PLANET = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/planet.toml";
+const std::string PLANET = ::twinrender::testing::sourceDir().string() + "/scenes/planet.toml";
 const std::string SMALL = " --set camera.width=96 --set camera.height=72";
 
 // The planet's two renders, the real-time one also as a partial AOV image.
@@ -104,3 +107,5 @@ TEST(CompareCommand, TheSceneGivesTheExposureAndLightOfRun) {
     for (const char* key : {"beauty.flip", "shadow.iou", "normal.mean_deg"})
         EXPECT_EQ(measured[key], scene[key]) << key;
 }
+
+}  // namespace twinrender::e2e::compare_partial_test

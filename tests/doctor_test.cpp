@@ -6,12 +6,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::doctor_test {
+
 namespace tt = twinrender::test;
 
 TEST(DoctorCommand, CompilesEveryVariantAndPassesTheSelfCheck) {
-    const auto r = tt::runTwinrender(
-        std::string("doctor --scene ") + TWINRENDER_SOURCE_DIR + "/scenes/planet.toml",
-        "TWINRENDER_GL_POISON=1");
+    const auto r =
+        tt::runTwinrender(std::string("doctor --scene ") +
+                              ::twinrender::testing::sourceDir().string() + "/scenes/planet.toml",
+                          "TWINRENDER_GL_POISON=1");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("device: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << r.output;
@@ -38,7 +42,7 @@ TEST(DoctorCommand, AMissingSceneIsBadInput) {
 TEST(RenderCommand, SelfCheckRunsBeforeTheRender) {
     const auto dir = tt::freshDir("render_self_check");
     const auto r =
-        tt::runTwinrender(std::string("render ") + TWINRENDER_SOURCE_DIR +
+        tt::runTwinrender(std::string("render ") + ::twinrender::testing::sourceDir().string() +
                           "/scenes/planet.toml --renderer realtime --self-check --out " +
                           dir.string() + " --set camera.width=96 --set camera.height=72");
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -46,3 +50,5 @@ TEST(RenderCommand, SelfCheckRunsBeforeTheRender) {
     EXPECT_NE(r.output.find("(planet): pass"), std::string::npos) << r.output;
     EXPECT_TRUE(std::filesystem::exists(dir / "planet" / "realtime.exr"));
 }
+
+}  // namespace twinrender::e2e::doctor_test

@@ -7,12 +7,15 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::droplet_scene_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path DROPLETS = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "droplets.toml";
+const fs::path DROPLETS = ::twinrender::testing::sourceDir() / "tests" / "scenes" / "droplets.toml";
 
 nlohmann::json renderDroplets(const fs::path& dir, int dropletAtoms) {
     const fs::path out = dir / std::to_string(dropletAtoms);
@@ -52,3 +55,5 @@ TEST(DropletScene, SmallClustersAsEllipsoidsCoverTheirDroplets) {
     EXPECT_EQ(spheres["realtime"]["counters"]["droplets"].get<double>(), 0.0);
     EXPECT_GT(droplets["timings_ms"]["realtime"]["droplets"].get<double>(), 0.0);
 }
+
+}  // namespace twinrender::e2e::droplet_scene_test

@@ -9,12 +9,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::emissive_light_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENE = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "lamp_over_slab.toml";
+const fs::path SCENE =
+    ::twinrender::testing::sourceDir() / "tests" / "scenes" / "lamp_over_slab.toml";
 
 // The lamp beside the camera, 60 degrees from the view direction: far off the screen, whose
 // edge is at about 26 degrees, and still lighting the slab in view.
@@ -63,3 +67,5 @@ TEST(EmissiveLight, AnOffScreenEmitterIsMissedByScreenSpaceGathering) {
     EXPECT_LT(point.at("indirect.missed"), 0.5);
     EXPECT_LT(point.at("indirect.rmse"), ssem.at("indirect.rmse"));
 }
+
+}  // namespace twinrender::e2e::emissive_light_test

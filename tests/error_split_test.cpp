@@ -10,12 +10,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::error_split_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENE = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "ball_on_slab.toml";
+const fs::path SCENE =
+    ::twinrender::testing::sourceDir() / "tests" / "scenes" / "ball_on_slab.toml";
 
 std::map<std::string, double> metricsOf(const fs::path& dir, const std::string& name,
                                         const std::vector<std::string>& sets) {
@@ -48,3 +52,5 @@ TEST(ErrorSplit, EachPartVanishesWhereTheExactOneStandsIn) {
         EXPECT_LT(lit.at(key), lit.at("beauty.flip")) << key;
     }
 }
+
+}  // namespace twinrender::e2e::error_split_test

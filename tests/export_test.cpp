@@ -19,13 +19,16 @@
 #include "core/texture.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::export_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 namespace core = twinrender::core;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 
 glm::dmat4 matrix(const nlohmann::json& rows) {
     glm::dmat4 m(0.0);
@@ -125,3 +128,5 @@ TEST(Export, AStillSceneHasNoFramesToChoose) {
     EXPECT_NE(r.output.find("not a sequence"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "planet" / "scene.json"));
 }
+
+}  // namespace twinrender::e2e::export_test

@@ -14,6 +14,9 @@
 #include "tests/analytic_sphere.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::external_renderer_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using tt::ADAPTER;
@@ -218,7 +221,7 @@ int expectSameMetrics(const nlohmann::json& a, const nlohmann::json& b, const st
 // sequence: it is in the built-in renderer's display image only, which the flicker measures.
 TEST(ExternalRenderer, TheBuiltInRendererThroughTheProtocolMeasuresAsTheBuiltInPath) {
     const fs::path dir = tt::freshDir("external_builtin");
-    const std::string planet = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/planet.toml";
+    const std::string planet = ::twinrender::testing::sourceDir().string() + "/scenes/planet.toml";
     tt::writeFile(dir / "churn.toml",
                   "name = \"churn\"\n[camera]\nposition = [0.0, -4.0, 1.0]\n"
                   "[light]\ndirection = [-1.0, 0.6, -0.4]\n[realtime]\nbloom.enabled = false\n"
@@ -232,8 +235,9 @@ TEST(ExternalRenderer, TheBuiltInRendererThroughTheProtocolMeasuresAsTheBuiltInP
     const auto builtIn =
         tt::runTwinrender("run " + scenes + common + " --out " + (dir / "builtin").string());
     ASSERT_EQ(builtIn.exitCode, 0) << builtIn.output;
-    const std::string adapter = "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) +
-                                "/tests/adapters/builtin_realtime.py " + TWINRENDER_BIN;
+    const std::string adapter = "/usr/bin/python3 " + ::twinrender::testing::sourceDir().string() +
+                                "/tests/adapters/builtin_realtime.py " +
+                                ::twinrender::testing::twinrenderProgram();
     const auto external =
         tt::runTwinrender("run " + scenes + common + " --test external --external-command '" +
                           adapter + "' --out " + (dir / "external").string());
@@ -253,3 +257,5 @@ TEST(ExternalRenderer, TheBuiltInRendererThroughTheProtocolMeasuresAsTheBuiltInP
                   20);
     EXPECT_GT(d["metrics"]["temporal.flicker_mean"].get<double>(), 0.001);  // churn flickers
 }
+
+}  // namespace twinrender::e2e::external_renderer_test

@@ -21,13 +21,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::faults_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
-const std::string SLAB = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/slab.toml";
+const std::string SLAB = ::twinrender::testing::sourceDir().string() + "/tests/scenes/slab.toml";
 // A tiny frame: these tests are about files, not pictures.
 const std::string TINY = " --set camera.width=48 --set camera.height=32";
 
@@ -173,8 +176,6 @@ TEST(Faults, FullDiskIsExit4NamingTheFileWithNoTemporaryFileAndNoHalfReport) {
     EXPECT_GT(failures, 0) << "no size was small enough to fill";
 }
 
-namespace {
-
 // A twinrender process started with SIGINT and SIGTERM at their default action (a background
 // job of a non-interactive shell ignores SIGINT, and a child inherits that: PLATFORM.md).
 struct Child {
@@ -185,6 +186,7 @@ struct Child {
 Child start(const std::vector<std::string>& args, const fs::path& log) {
     Child c;
     c.log = log;
+    const std::string program = ::twinrender::testing::twinrenderProgram();  // before the fork
     c.pid = fork();
     if (c.pid == 0) {
         signal(SIGINT, SIG_DFL);
@@ -196,10 +198,10 @@ Child start(const std::vector<std::string>& args, const fs::path& log) {
         dup2(fd, STDOUT_FILENO);
         dup2(fd, STDERR_FILENO);
         std::vector<char*> argv;
-        argv.push_back(const_cast<char*>(TWINRENDER_BIN));
+        argv.push_back(const_cast<char*>(program.c_str()));
         for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
-        execv(TWINRENDER_BIN, argv.data());
+        execv(program.c_str(), argv.data());
         _exit(127);
     }
     return c;
@@ -250,8 +252,6 @@ void PrintTo(const Interruption& p, std::ostream* os) {
 }
 
 class InterruptTest : public ::testing::TestWithParam<Interruption> {};
-
-}  // namespace
 
 // A signal in the middle of the reference render: the process stops within about a second
 // (the raymarcher polls the flag between tiles of milliseconds), exits with 128 + the signal,
@@ -355,3 +355,5 @@ TEST(Faults, TwoProcessesSharingACacheFinishWithTheSameResult) {
     const auto hit = tt::runTwinrender(args + (dir / "d").string());
     EXPECT_NE(hit.output.find("cache hit"), std::string::npos) << hit.output;
 }
+
+}  // namespace twinrender::e2e::faults_test

@@ -12,6 +12,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::hostile_names_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -285,3 +288,5 @@ TEST(HostileNames, BlessAndBaselinesRefuseSceneNamesThatAreNotFolderNames) {
     EXPECT_EQ(tt::countFiles(c.out), 0u);
     c.expectNothingOutsideOut();
 }
+
+}  // namespace twinrender::e2e::hostile_names_test

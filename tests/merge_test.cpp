@@ -9,6 +9,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::merge_test {
+
 namespace tt = twinrender::test;
 using tt::count;
 using tt::readJson;
@@ -18,7 +21,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 const std::string SMALL = " --set camera.width=64 --set camera.height=48";
 
 // Times are measured anew by every run; the rest must be equal. Drops time.* metrics,
@@ -181,3 +184,5 @@ TEST(Merge, RefusesShardsThatDoNotBelongTogether) {
     EXPECT_NE(good.exitCode, 4) << good.output;
     EXPECT_EQ(readJson(dir / "m6" / "summary.json")["scenes"].size(), 1u);
 }
+
+}  // namespace twinrender::e2e::merge_test

@@ -6,13 +6,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::particle_shape_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
 // A disc of hcp particles 2-3 layers thick, seen at 40 degrees from its normal.
-const fs::path SLAB = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes" / "slab.toml";
+const fs::path SLAB = ::twinrender::testing::sourceDir() / "tests" / "scenes" / "slab.toml";
 
 // The metrics and real-time timings of the slab with impostors of `shape`, their own normals
 // in the G-buffer (realtime.particles.normal = "sphere": the impostor geometry is what the
@@ -50,3 +53,5 @@ TEST(ParticleShape, EllipsoidsOnAFlatSlabGiveALowerNormalErrorThanSpheres) {
     EXPECT_GT(ellipsoid["timings_ms"]["realtime"]["anisotropy"].get<double>(), 0.0);
     EXPECT_EQ(sphere["timings_ms"]["realtime"]["anisotropy"].get<double>(), 0.0);
 }
+
+}  // namespace twinrender::e2e::particle_shape_test

@@ -11,12 +11,15 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::per_set_fallback_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string PLANET = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/planet.toml";
+const std::string PLANET = ::twinrender::testing::sourceDir().string() + "/scenes/planet.toml";
 const std::string SMALL = " --set camera.width=96 --set camera.height=72";
 const std::string FAULT = "TWINRENDER_TEST_PER_SET_FAULT=zero_positions";
 
@@ -108,3 +111,5 @@ TEST(DoctorCommand, NamesTheFirstPerSetStageApart) {
             << r.output;
     EXPECT_NE(r.output.find("verdict: FAIL"), std::string::npos) << r.output;
 }
+
+}  // namespace twinrender::e2e::per_set_fallback_test

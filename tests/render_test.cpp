@@ -7,12 +7,15 @@
 #include "core/image_io.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::render_test {
+
 namespace tt = twinrender::test;
 
 TEST(RenderCommand, WritesTheAovExrPngAndJson) {
     const auto dir = tt::freshDir("render_command");
     const auto r =
-        tt::runTwinrender(std::string("render ") + TWINRENDER_SOURCE_DIR +
+        tt::runTwinrender(std::string("render ") + ::twinrender::testing::sourceDir().string() +
                           "/scenes/planet.toml --renderer raymarch --out " + dir.string() +
                           " --set camera.width=48 --set camera.height=36 --threads 2");
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -46,18 +49,20 @@ TEST(RenderCommand, WritesTheAovExrPngAndJson) {
 TEST(RenderCommand, PassThroughExampleShaderEqualsNone) {
     const auto dir = tt::freshDir("pass_through_shader");
     auto render = [&](const std::string& name, const std::string& set) {
-        const auto r = tt::runTwinrender(std::string("render ") + TWINRENDER_SOURCE_DIR +
-                                         "/scenes/planet.toml --renderer realtime --out " +
-                                         (dir / name).string() +
-                                         " --set camera.width=64 --set camera.height=48 " + set);
+        const auto r = tt::runTwinrender(
+            std::string("render ") + ::twinrender::testing::sourceDir().string() +
+            "/scenes/planet.toml --renderer realtime --out " + (dir / name).string() +
+            " --set camera.width=64 --set camera.height=48 " + set);
         EXPECT_EQ(r.exitCode, 0) << r.output;
         return twinrender::core::readImage(dir / name / "planet" / "realtime.exr");
     };
     const auto none = render("none", "--set realtime.surface.method=none");
-    const auto pass =
-        render("pass", std::string("--set realtime.surface.shader=") + TWINRENDER_SOURCE_DIR +
-                           "/examples/surface_pass_through.glsl");
+    const auto pass = render("pass", std::string("--set realtime.surface.shader=") +
+                                         ::twinrender::testing::sourceDir().string() +
+                                         "/examples/surface_pass_through.glsl");
     EXPECT_TRUE(none == pass);
     EXPECT_EQ(tt::readText(dir / "none" / "planet" / "realtime.png"),
               tt::readText(dir / "pass" / "planet" / "realtime.png"));
 }
+
+}  // namespace twinrender::e2e::render_test

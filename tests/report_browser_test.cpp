@@ -26,6 +26,9 @@
 #include "report/testdata/synthetic_report.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::report_browser_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -52,21 +55,21 @@ struct PageResult {
     std::string dom;       // the whole dump, for failure messages
 };
 
-// Opens one page in headless Chromium with a fresh profile in a window `width` px wide, lets it
-// load (virtual time, so the result does not depend on the machine's speed) and returns its
-// self-test verdict.
+// Opens one page in headless Chromium (scripts/headless-chromium) with a fresh profile in a
+// window `width` px wide, lets it load (virtual time, so the result does not depend on the
+// machine's speed) and returns its self-test verdict.
 PageResult openPage(const std::string& chromium, const fs::path& page, const fs::path& work,
                     int width = 1280) {
     static int run = 0;
     const fs::path profile = work / ("profile_" + std::to_string(run++));
     fs::create_directories(profile);
+    // scripts/headless-chromium: the flags scripts/report-pictures photographs the report with.
     const std::string cmd =
-        "timeout 120 " + shellQuote(chromium) +
-        " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-        " --disable-background-networking --disable-component-update --disable-sync"
-        " --hide-scrollbars --window-size=" +
-        std::to_string(width) + ",900 --user-data-dir=" + shellQuote(profile.string()) +
-        " --virtual-time-budget=5000 --dump-dom " + shellQuote("file://" + page.string()) + " 2>" +
+        "TWINRENDER_CHROMIUM=" + shellQuote(chromium) + " " +
+        shellQuote(
+            (::twinrender::testing::sourceDir() / "scripts" / "headless-chromium").string()) +
+        " " + std::to_string(width) + " 900 " + shellQuote(profile.string()) + " " +
+        shellQuote("file://" + page.string()) + " --dump-dom 2>" +
         shellQuote((work / "chromium_stderr.txt").string());
     PageResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
@@ -299,3 +302,5 @@ TEST_F(ReportInBrowser, NoTwoChartSeriesShareAColour) {
 }
 
 }  // namespace
+
+}  // namespace twinrender::e2e::report_browser_test

@@ -8,6 +8,9 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::sequence_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -158,3 +161,5 @@ TEST(Sequence, TheReportPlaysTheVideoForFramesOverFps) {
 }
 
 }  // namespace
+
+}  // namespace twinrender::e2e::sequence_test

@@ -11,12 +11,15 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::shadow_filters_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path SCENES = fs::path(TWINRENDER_SOURCE_DIR) / "tests" / "scenes";
+const fs::path SCENES = ::twinrender::testing::sourceDir() / "tests" / "scenes";
 
 // The metrics of `scene` (a file of tests/scenes/) with the --set overrides `sets`.
 std::map<std::string, double> metricsOf(const fs::path& dir, const std::string& scene,
@@ -116,3 +119,5 @@ TEST(ShadowFilters, VarianceShadowMapsBleedLightWhereCastersOverlap) {
                              "bodies.moon.center=[40,0,0]"});
     EXPECT_GT(distant, 2.0 * vsm);
 }
+
+}  // namespace twinrender::e2e::shadow_filters_test

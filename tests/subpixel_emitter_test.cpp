@@ -11,13 +11,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::subpixel_emitter_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path SCENE =
-    fs::path(TWINRENDER_SOURCE_DIR) / "scenes" / "studies" / "subpixel_emitters.toml";
+    ::twinrender::testing::sourceDir() / "scenes" / "studies" / "subpixel_emitters.toml";
 
 // At 64 x 48 (focal length 65.9 px) the ball (radius about 0.28) is 0.3 px across from 123
 // away, 30 px across from 1.23 away.
@@ -85,3 +88,5 @@ TEST(SubpixelEmitter, AboveMinPixelsTheImageIsUnchanged) {
     }
     EXPECT_NEAR(off.at("flux.ratio"), 1.0, 0.10);
 }
+
+}  // namespace twinrender::e2e::subpixel_emitter_test

@@ -9,12 +9,15 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::suite_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 const std::string THRESHOLDS = SCENES + "thresholds.toml";
 
 struct RunResult {
@@ -317,3 +320,5 @@ TEST(CompareCommand, ExitCodesForImagesAndThresholds) {
     EXPECT_EQ(missing.exitCode, 4) << missing.output;
     EXPECT_NE(missing.output.find("/nonexistent.exr"), std::string::npos);
 }
+
+}  // namespace twinrender::e2e::suite_test

@@ -18,6 +18,9 @@
 #include "report/testdata/xml_check.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::sweep_test {
+
 namespace tt = twinrender::test;
 using tt::count;
 using tt::readJson;
@@ -28,7 +31,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/scenes/";
+const std::string SCENES = ::twinrender::testing::sourceDir().string() + "/scenes/";
 // SSSS at radius 0.6 (its default before the gradient normals), whose effect on the metrics
 // these small images show clearly: the threshold tests tell its rows from the others.
 const std::string SMALL =
@@ -435,3 +438,5 @@ TEST(Sweep, ASequenceRendersEveryFrameAndHoldsTheSummaryOverThem) {
         << v.output;
     EXPECT_EQ(tt::countFiles(ranges), 0u);
 }
+
+}  // namespace twinrender::e2e::sweep_test

@@ -11,6 +11,9 @@
 #include "tests/analytic_sphere.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::test_images_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 using tt::ADAPTER;
@@ -63,7 +66,7 @@ TEST(TestImages, AMissingOrUnsoundImageIsBadInputNamingTheSceneFrameAndFile) {
               0);
     const std::string writeNan =
         "/usr/bin/python3 -c 'import sys; sys.path.insert(0, \"" +
-        std::string(TWINRENDER_SOURCE_DIR) +
+        ::twinrender::testing::sourceDir().string() +
         "/examples/external\"); import numpy as np; from pathlib import Path; "
         "from twinrender_external import write_exr; "
         "r = np.zeros((48, 64)); r[3, 5] = np.nan; write_exr(Path(sys.argv[1]), "
@@ -132,3 +135,5 @@ TEST(TestImages, AMissingOrUnsoundImageIsBadInputNamingTheSceneFrameAndFile) {
         << r.output;
     EXPECT_FALSE(fs::exists(dir / "sequence" / "out"));
 }
+
+}  // namespace twinrender::e2e::test_images_test

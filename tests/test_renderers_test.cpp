@@ -10,6 +10,9 @@
 #include "tests/analytic_sphere.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::test_renderers_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
@@ -73,3 +76,5 @@ TEST(TestRenderers, RunMeasuresSeveralSideBySideEachHeldToTheBounds) {
     EXPECT_EQ(other.exitCode, 4) << other.output;
     EXPECT_NE(other.output.find("is not a realtime.KEY=VALUE setting"), std::string::npos);
 }
+
+}  // namespace twinrender::e2e::test_renderers_test

@@ -11,6 +11,9 @@
 #include "core/image_io.h"
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::tiles_test {
+
 namespace tt = twinrender::test;
 using tt::readJson;
 namespace fs = std::filesystem;
@@ -18,7 +21,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::string TEST_SCENES = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/";
+const std::string TEST_SCENES = ::twinrender::testing::sourceDir().string() + "/tests/scenes/";
 // The ball on a slab with ambient occlusion and 2 samples per pixel: its occlusion rays and
 // jitter are seeded per pixel and sample, so a part must seed each pixel as the whole frame
 // does.
@@ -251,3 +254,5 @@ TEST(Tiles, AMergeRefusesTilesOfAnotherSceneThanTheRunTakesNow) {
         << r.output;
     EXPECT_EQ(tt::countFiles(dir / "m"), 0u);
 }
+
+}  // namespace twinrender::e2e::tiles_test

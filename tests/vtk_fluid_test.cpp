@@ -16,12 +16,16 @@
 
 #include "tests/cli_harness.h"
 
+// Everything of this file in its own namespace: e2e_tests is a unity build.
+namespace twinrender::e2e::vtk_fluid_test {
+
 namespace tt = twinrender::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string SPHERE = std::string(TWINRENDER_SOURCE_DIR) + "/tests/scenes/one_sphere.toml";
+const std::string SPHERE =
+    ::twinrender::testing::sourceDir().string() + "/tests/scenes/one_sphere.toml";
 const std::string SIZE = " --set camera.width=160 --set camera.height=120";
 
 // One X server (Xvfb) for the test's VTK windows: xvfb-run -a per frame races with the server
@@ -56,7 +60,7 @@ class VirtualDisplay {
 
 nlohmann::json vtkMetrics(const fs::path& dir, const std::string& filter,
                           const VirtualDisplay& display) {
-    const std::string command = "/usr/bin/python3 " + std::string(TWINRENDER_SOURCE_DIR) +
+    const std::string command = "/usr/bin/python3 " + ::twinrender::testing::sourceDir().string() +
                                 "/examples/vtk_fluid/render.py --radius-scale 0.851 --filter " +
                                 filter;
     const fs::path out = dir / filter;
@@ -101,3 +105,5 @@ TEST(VtkFluid, TheAdapterMeetsTheProtocolsConventions) {
     EXPECT_GT(filtered["metrics"]["normal.mean_deg"].get<double>(),
               none["metrics"]["normal.mean_deg"].get<double>());
 }
+
+}  // namespace twinrender::e2e::vtk_fluid_test

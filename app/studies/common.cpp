@@ -28,9 +28,24 @@ std::vector<std::string> backedAway(std::string first, double distance, bool qui
 }
 
 std::vector<std::string> halfPixelAside(double distance, double height, double fovYDeg) {
-    const double aside = 0.5 * distance / focalPixels(height, fovYDeg);
-    return {set("camera.position", vec(aside, -distance, 0.0)),
-            set("camera.target", vec(aside, 0.0, 0.0))};
+    return cameraAt({.position = {0.0, -distance, 0.0}, .target = {}, .up = {0.0, 0.0, 1.0}}, true,
+                    height, fovYDeg);
+}
+
+std::vector<std::string> cameraAt(const CameraPose& pose, bool aside, double height,
+                                  double fovYDeg) {
+    const auto& [p, t, up] = pose;
+    const std::array<double, 3> forward = {t[0] - p[0], t[1] - p[1], t[2] - p[2]};
+    const double distance = std::hypot(forward[0], forward[1], forward[2]);
+    // The image's +x: forward x up, of unit length.
+    std::array<double, 3> right = {forward[1] * up[2] - forward[2] * up[1],
+                                   forward[2] * up[0] - forward[0] * up[2],
+                                   forward[0] * up[1] - forward[1] * up[0]};
+    const double norm = std::hypot(right[0], right[1], right[2]);
+    const double shift = aside && norm > 0.0 ? 0.5 * distance / focalPixels(height, fovYDeg) : 0.0;
+    for (double& r : right) r = norm > 0.0 ? r / norm * shift : 0.0;
+    return {set("camera.position", vec(p[0] + right[0], p[1] + right[1], p[2] + right[2])),
+            set("camera.target", vec(t[0] + right[0], t[1] + right[1], t[2] + right[2]))};
 }
 
 namespace {

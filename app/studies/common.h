@@ -2,6 +2,7 @@
 // rows, numbers and charts their conclusions are drawn from.
 #pragma once
 
+#include <array>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -33,6 +34,16 @@ std::vector<std::string> backedAway(std::string first, double distance, bool qui
 // what differs between two renders of one setting; its series is the original's + REPEAT.
 inline constexpr char REPEAT[] = " (repeat)";
 std::vector<std::string> halfPixelAside(double distance, double height, double fovYDeg);
+
+// A camera's position and target (scene units) and its up vector, as a scene file gives them.
+struct CameraPose {
+    std::array<double, 3> position, target, up;
+};
+// The overrides of a camera at `pose` (camera.position, camera.target), moved half a pixel
+// sideways (along the image's +x at the target's distance) when `aside`: a repeat of a point
+// for a camera looking any way, on an image `height` pixels high.
+std::vector<std::string> cameraAt(const CameraPose& pose, bool aside, double height,
+                                  double fovYDeg);
 
 // ---- a conclusion's rows ----------------------------------------------------------------------
 

@@ -149,16 +149,19 @@ const std::vector<StudyDef>& studies() {
         {
             .name = "ambient_occlusion",
             .title = "Ambient occlusion",
-            .question = "A ball resting on a slab: each screen-space occlusion method (ssao, hbao, "
-                        "gtao) along its samples per pixel against the reference's traced "
-                        "occlusion, and on gtao the surface method, the blur, the noise and "
-                        "the G-buffer's format varied; the ao pass's time against its error.",
-            .scene = "ambient_occlusion.toml",
-            .xLabel = "samples per pixel (slices x steps)",
+            .question = "The occlusion radius R from a quarter of a body's radius to ten, on a "
+                        "ball resting on a slab and across two gaps the truth leaves open at "
+                        "small R (a ball hanging two radii over a slab, two balls 1.35 radii "
+                        "apart): where does each screen-space method (ssao, hbao, gtao), on the "
+                        "shaded or the filtered depth, with or without a thickness, add "
+                        "occlusion the traced truth does not have (ao.false), leave out what it "
+                        "has (ao.missed), and come closer to it than no occlusion (ao.mean_abs)?",
+            .scene = "",
+            .xLabel = "occlusion radius R (body radii)",
             .xLog = true,
             .metric = "ao.mean_abs",
-            .columns = {"ao.mean_abs", "ao.bias", "ao.halo", "ao.grain", "ao.banding",
-                        "normal.mean_deg", "uv.mean", "lighting.beauty.flip", "beauty.flip"},
+            .columns = {"ao.mean_abs", "ao.false", "ao.missed", "ao.bias", "ao.halo",
+                        "lighting.beauty.flip", "beauty.flip"},
             .frames = 3,
             .points = study::ambientOcclusionPoints,
             .conclude = study::ambientOcclusionConclude,

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/install_layout.h"
 #include "core/particle_file.h"
 
 namespace twinrender::core::particle_file_testing {
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 
 // The real OpenSPH output (data/opensph_ball/): a basalt ball, 10,648 particles.
 inline fs::path ballPath() {
-    return fs::path(TWINRENDER_SOURCE_DIR) / "data" / "opensph_ball" / "ball.ssf";
+    return ::twinrender::core::sourceDir() / "data" / "opensph_ball" / "ball.ssf";
 }
 
 // A path in the test temp dir, unique per test so that parallel ctest runs do not collide.

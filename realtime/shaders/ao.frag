@@ -298,7 +298,11 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         float h1 = max(-acos(clamp(best[1], -1.0, 1.0)), n - 0.5 * PI);
         open += weight * sliceVisibility(h1, h2, n);
     }
-    return clamp(open / float(uSlices), 0.0, 1.0);
+    // Not capped at 1: one slice's estimate of an open surface is |n_p| (cos n + n sin n), above
+    // 1 for some slice directions and below for others, and only its mean over the directions is
+    // 1. Capping each pixel would darken every open surface (by 0.1 with one slice); the blur
+    // averages first, and the shading caps what is left (shade.frag).
+    return max(open / float(uSlices), 0.0);
 }
 #endif
 

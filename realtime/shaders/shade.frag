@@ -154,7 +154,7 @@ void main() {
     float vis =
         dot(normal, -light.xyz) > 0.0 ? visibility(position, normal, s.y, worldRadius) : 0.0;
 #ifdef AMBIENT_OCCLUSION
-    float open = texelFetch(uAmbientOcclusion, p, 0).r;
+    float open = min(texelFetch(uAmbientOcclusion, p, 0).r, 1.0);  // gtao's may pass 1 (ao.frag)
 #else
     const float open = 1.0;
 #endif
