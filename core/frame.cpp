@@ -32,7 +32,8 @@ Image tonemappedBeauty(const Image& aovImage, float exposure) {
 
 void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nlohmann::json& extra) {
     const std::string& name = frame.renderer;
-    writeImage(frame.image, dir / (name + ".exr"));
+    // A part that holds no row of tiles (more parts than rows) has no image to write.
+    if (frame.image.height() > 0) writeImage(frame.image, dir / (name + ".exr"));
     // A part's rows alone make no picture; the joined frame has one.
     if (!frame.part) writeImage(frame.display, dir / (name + ".png"));
     nlohmann::json j = extra;
@@ -56,7 +57,6 @@ Frame readFrame(const std::filesystem::path& dir, const std::string& renderer,
     if (j.is_discarded() || !j.is_object())
         throw InputError(fmt::format("{}: not a JSON object", meta.string()));
     Frame f;
-    f.image = readImage(dir / (renderer + ".exr"));
     f.renderer = renderer;
     f.device = j.value("device", "");
     f.settings = j.value("settings", nlohmann::json());
@@ -68,15 +68,25 @@ Frame readFrame(const std::filesystem::path& dir, const std::string& renderer,
     for (const auto& [k, v] : counters.items())
         if (v.is_number()) f.counters[k] = v.get<double>();
     f.particleCount = j.value("particle_count", std::size_t{0});
-    if (j.contains("tile")) {
-        f.part = partRecordFromJson(j.at("tile"), meta.string());
-        if (f.image.height() != f.part->heightHeld())
-            throw InputError(fmt::format(
-                "{}: {} rows of pixels; part {}/{} of a frame {} pixels high in tiles of {} "
-                "holds {}",
-                (dir / (renderer + ".exr")).string(), f.image.height(), f.part->part.index,
-                f.part->part.count, f.part->height, f.part->tileSize, f.part->heightHeld()));
+    if (j.contains("tile")) f.part = partRecordFromJson(j.at("tile"), meta.string());
+    const std::filesystem::path exr = dir / (renderer + ".exr");
+    if (f.part && f.part->heightHeld() == 0) {
+        // A part that holds no row wrote no image: one of the frame's width and no row.
+        const nlohmann::json::json_pointer width("/resolution/0");
+        if (!j.contains(width) || !j.at(width).is_number_integer() || j.at(width).get<int>() < 1)
+            throw InputError(
+                fmt::format("{}: \"resolution\" is not [width, height]", meta.string()));
+        f.image = Image(j.at(width).get<int>(), 0, {});
+    } else {
+        if (!std::filesystem::exists(exr))
+            throw InputError(fmt::format("{}: missing (was the render cut short?)", exr.string()));
+        f.image = readImage(exr);
     }
+    if (f.part && f.image.height() != f.part->heightHeld())
+        throw InputError(fmt::format(
+            "{}: {} rows of pixels; part {}/{} of a frame {} pixels high in tiles of {} holds {}",
+            exr.string(), f.image.height(), f.part->part.index, f.part->part.count, f.part->height,
+            f.part->tileSize, f.part->heightHeld()));
     if (json) *json = j;
     return f;
 }

@@ -39,14 +39,16 @@ void PartJoin::check(const Frame& part, const std::string& where) const {
                                      where, partName(r.part)));
     if (r.tileSize != first.record.tileSize)
         throw refuse(fmt::format("tiles of {} and {} pixels", r.tileSize, first.record.tileSize));
-    const Image &a = part.image, &b = mFrame.image;
-    auto namesA = a.channelNames(), namesB = b.channelNames();
-    std::sort(namesA.begin(), namesA.end());
-    std::sort(namesB.begin(), namesB.end());
-    if (a.width() != b.width() || r.height != b.height() || namesA != namesB)
+    // A part that holds no row has no channels to compare.
+    const Image& a = part.image;
+    auto names = a.channelNames(), ours = mFrame.image.channelNames();
+    std::sort(names.begin(), names.end());
+    std::sort(ours.begin(), ours.end());
+    if (a.width() != mWidth || r.height != first.record.height ||
+        (a.height() > 0 && !ours.empty() && names != ours))
         throw refuse(fmt::format("{}x{} with {} channels against {}x{} with {}", a.width(),
-                                 r.height, a.channelCount(), b.width(), b.height(),
-                                 b.channelCount()));
+                                 r.height, a.channelCount(), mWidth, first.record.height,
+                                 mFrame.image.channelCount()));
     if (part.renderer != mFrame.renderer)
         throw refuse(fmt::format("renderers {} and {}", part.renderer, mFrame.renderer));
     if (part.settings != mFrame.settings) {
@@ -117,7 +119,7 @@ void PartJoin::add(Frame part, const std::string& where) {
                 "{} holds {} rows",
                 where, name, mean.rowSums.size(), partName(r.part), r.height, r.tileSize, rows));
     if (mParts.empty()) {
-        mFrame.image = Image(part.image.width(), r.height, part.image.channelNames());
+        mWidth = part.image.width();
         mFrame.renderer = part.renderer;
         mFrame.settings = part.settings;
         mFrame.particleCount = part.particleCount;
@@ -127,7 +129,11 @@ void PartJoin::add(Frame part, const std::string& where) {
     } else {
         check(part, where);
     }
-    copyRows(part);
+    if (part.image.height() > 0) {
+        if (mFrame.image.channelCount() == 0)
+            mFrame.image = Image(mWidth, r.height, part.image.channelNames());
+        copyRows(part);
+    }
     const auto listed = [](const std::vector<std::string>& names, const std::string& name) {
         return std::find(names.begin(), names.end(), name) != names.end();
     };
@@ -150,6 +156,8 @@ Frame PartJoin::frame(float exposure) {
         if (!mParts.count(k))
             throw InputError(
                 fmt::format("part {}/{} is missing; give all {} parts", k, count, count));
+    if (mFrame.image.channelCount() == 0)
+        throw InputError(fmt::format("none of the {} parts holds a row of the frame", count));
     // The means: every row's sum in row order, as one render adds them.
     const Added& first = mParts.begin()->second;
     const int tileRows =

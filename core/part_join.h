@@ -40,7 +40,8 @@ class PartJoin {
     void check(const Frame& part, const std::string& where) const;
     void copyRows(const Frame& part);
 
-    Frame mFrame;  // the first part's facts, the rows added so far, the counters' sums
+    Frame mFrame;    // the first part's facts, the rows added so far, the counters' sums
+    int mWidth = 0;  // the frame's, pixels (a part that holds no row has no image of it)
     std::map<int, Added> mParts;  // by part number
 };
 

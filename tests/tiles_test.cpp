@@ -116,6 +116,27 @@ TEST(Tiles, PartsOfOtherThreadCountsJoinToTheSameBits) {
     EXPECT_NE(device.find("(1 threads); "), std::string::npos) << device;
 }
 
+TEST(Tiles, PartsBeyondTheRowsOfTilesAreEmptyAndJoinAlike) {
+    const fs::path dir = tt::freshDir("tiles_empty");
+    // 32 pixels high: two rows of tiles of 16 for three parts.
+    const std::string two = TEST_SCENES +
+                            "one_sphere.toml --set camera.width=32 "
+                            "--set camera.height=32";
+    ASSERT_EQ(tt::runTwinrender("render " + two + " --renderer raymarch --out " +
+                                (dir / "whole").string())
+                  .exitCode,
+              0);
+    for (const char* k : {"1", "2", "3"})
+        ASSERT_EQ(renderPart(two, std::string(k) + "/3", dir / k).exitCode, 0);
+    EXPECT_FALSE(fs::exists(dir / "3" / "one_sphere" / "raymarch.exr"));
+    const auto merge =
+        tt::runTwinrender("merge " + (dir / "1").string() + " " + (dir / "2").string() + " " +
+                          (dir / "3").string() + " --out " + (dir / "merged").string());
+    ASSERT_EQ(merge.exitCode, 0) << merge.output;
+    expectSameBits(dir / "whole" / "one_sphere" / "raymarch.exr",
+                   dir / "merged" / "one_sphere" / "raymarch.exr");
+}
+
 TEST(Tiles, ARunInTilesMergesToTheWholeRun) {
     const fs::path dir = tt::freshDir("tiles_run");
     const auto whole = tt::runTwinrender("run " + OCCLUDED + " --out " + (dir / "whole").string());
