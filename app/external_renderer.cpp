@@ -107,6 +107,7 @@ ExternalRenderer::ExternalRenderer(ExternalSettings settings, const LoadedScene&
 
 core::Frame ExternalRenderer::render(const core::RenderInput& in) {
     core::throwIfCancelled(in.cancel);
+    core::requireWholeFrame(in, "external");
     const std::int64_t frameNumber = in.scene.frame;
     const fs::path folder = mSettings.root / in.scene.name / "external" / frameFolder(frameNumber);
     auto fail = [&](const std::string& what) {

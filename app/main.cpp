@@ -19,6 +19,7 @@
 #include "app/interruption.h"
 #include "app/merge_command.h"
 #include "app/output_folder.h"
+#include "app/reference_tiles.h"
 #include "app/render_job.h"
 #include "app/sequence_run.h"
 #include "app/shard.h"
@@ -99,6 +100,30 @@ void printRender(const tr::app::LoadedScene& s, const tr::core::Frame& f,
                     s.scene.name.c_str(), unresolved->second, f.renderer.c_str());
 }
 
+// `render --tiles K/N`: the raymarcher's part of the frame (app/reference_tiles.h). The
+// real-time, external and "both" renderers draw whole frames only: a part of theirs costs the
+// whole frame's passes, so it is refused rather than rendered whole.
+ExitCode runRenderTiles(const std::string& scenePath, const std::string& renderer,
+                        bool rendererGiven, const std::string& frames, const std::string& tiles,
+                        const CommonOptions& o, const std::string& commandLine) {
+    const tr::core::FramePart part = tr::app::parseTiles(tiles);
+    if (rendererGiven && renderer != "raymarch")
+        throw tr::core::InputError(fmt::format(
+            "--tiles {} with --renderer {}: only the reference raymarcher renders part of a "
+            "frame (--renderer raymarch, the default with --tiles); the real-time renderer "
+            "draws whole frames",
+            tiles, renderer));
+    std::vector<std::string> sets = o.sets;
+    if (!frames.empty()) {
+        const auto range = tr::app::framesOverrides(frames);
+        sets.insert(sets.end(), range.begin(), range.end());
+    }
+    auto loaded = tr::app::loadScene(scenePath, sets);
+    const nlohmann::json settings = {{"scene", scenePath}, {"sets", o.sets}, {"frames", frames}};
+    tr::app::renderTiles(loaded, part, !frames.empty(), sets, settings, commandLine, o.out);
+    return ExitCode::Pass;
+}
+
 ExitCode runRender(const std::string& scenePath, const std::string& renderer,
                    const std::string& frames, const CommonOptions& o,
                    tr::app::ExternalSettings external) {
@@ -170,6 +195,12 @@ int main(int argc, char** argv) {
                      "FIRST:LAST[:STEP]: render these frames of the scene's sequence, each into "
                      "OUT/<scene>/<frame>/")
         ->type_name("A:B");
+    std::string renderTiles;
+    render
+        ->add_option("--tiles", renderTiles,
+                     "K/N: render part K of N of the frame (rows of tiles) with the raymarcher; "
+                     "join the N parts with `merge`")
+        ->type_name("K/N");
     addCommon(render, renderOpts);
 
     tr::app::CompareOptions compareOpts;
@@ -243,6 +274,11 @@ int main(int argc, char** argv) {
             "--shard", runOpts.shard,
             "K/N: run every N-th scene (sorted by name) starting at the K-th; join with `merge`")
         ->type_name("K/N");
+    runCmd
+        ->add_option("--tiles", runOpts.tiles,
+                     "K/N: render part K of N of every scene's reference and nothing else; "
+                     "`merge` joins the N parts and runs the run")
+        ->type_name("K/N");
     addAnnotations(runCmd, runOpts.annotations);
     std::string runStudies;
     runCmd
@@ -289,6 +325,11 @@ int main(int argc, char** argv) {
         ->add_option("--shard", sweepOpts.shard,
                      "K/N: every N-th combination starting at the K-th; join with `merge`")
         ->type_name("K/N");
+    sweepCmd
+        ->add_option("--tiles", sweepOpts.tiles,
+                     "K/N: render part K of N of every reference the sweep takes and nothing "
+                     "else; `merge` joins the N parts and runs the sweep")
+        ->type_name("K/N");
     addCommon(sweepCmd, sweepCommon);
 
     tr::app::StudyOptions studyOpts;
@@ -305,9 +346,11 @@ int main(int argc, char** argv) {
     addCommon(studyCmd, studyCommon);
 
     tr::app::MergeOptions mergeOpts;
-    auto* mergeCmd =
-        app.add_subcommand("merge", "join the output folders of `run|sweep --shard K/N`");
-    mergeCmd->add_option("DIRS", mergeOpts.inputs, "the shards' output folders")->required();
+    auto* mergeCmd = app.add_subcommand("merge",
+                                        "join the output folders of `run|sweep --shard K/N` or "
+                                        "`render|run --tiles K/N`");
+    mergeCmd->add_option("DIRS", mergeOpts.inputs, "the shards' or tiles' output folders")
+        ->required();
     mergeCmd->add_option("--out", mergeOpts.out, "output folder of the joined report")->required();
     addAnnotations(mergeCmd, mergeOpts.annotations);
 
@@ -375,7 +418,10 @@ int main(int argc, char** argv) {
         tbb::task_arena arena(threads);
         ExitCode rc = ExitCode::Pass;
         arena.execute([&] {
-            if (*render)
+            if (*render && !renderTiles.empty())
+                rc = runRenderTiles(scenePath, rendererName, render->count("--renderer") > 0,
+                                    renderFrames, renderTiles, renderOpts, commandLine);
+            else if (*render)
                 rc = runRender(scenePath, rendererName, renderFrames, renderOpts, renderExternal);
             if (*doctorCmd) rc = tr::app::runDoctor(doctorOpts);
             if (*compareCmd) rc = tr::app::runCompare(compareOpts);
@@ -395,11 +441,11 @@ int main(int argc, char** argv) {
                     runOpts.external.images = runTestImages;
                 }
                 if (runOpts.tests.empty()) runOpts.tests = {"realtime"};
-                if (runOpts.linkStudies && !runOpts.shard.empty())
-                    throw tr::core::InputError(
-                        "run --studies with --shard: the studies are not sharded; run them once "
-                        "with "
-                        "`twinrender study`");
+                if (runOpts.linkStudies && (!runOpts.shard.empty() || !runOpts.tiles.empty()))
+                    throw tr::core::InputError(fmt::format(
+                        "run --studies with {}: the studies are not split; run them once with "
+                        "`twinrender study`",
+                        runOpts.shard.empty() ? "--tiles" : "--shard"));
                 // quick:NAME,NAME: only those, each checked before the suite renders.
                 std::vector<std::string> runStudyNames;
                 if (const auto colon = runStudies.find(':'); colon != std::string::npos) {

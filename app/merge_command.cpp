@@ -10,11 +10,11 @@
 
 #include "app/comparison.h"
 #include "app/output_folder.h"
+#include "app/reference_tiles.h"
 #include "app/shard.h"
 #include "app/suite_commands.h"
 #include "app/sweep_command.h"
 #include "core/error.h"
-#include "core/folder_name.h"
 #include "core/write_roots.h"
 #include "report/junit.h"
 #include "report/report.h"
@@ -27,21 +27,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// The folder `relative` (a scene's name or a combination's folder, as the manifest in `shard`
-// names it) inside `shard`; InputError naming the manifest and `key` when it would lead out.
-fs::path folderInShard(const fs::path& shard, const std::string& relative, const std::string& key) {
-    const fs::path rel(relative);
-    std::string problem = rel.is_absolute() ? "is an absolute path" : "";
-    for (const fs::path& part : rel)
-        if (problem.empty()) problem = core::folderNameProblem(part.string());
-    if (!problem.empty())
-        throw core::InputError(
-            fmt::format("{}: {} '{}' {}; a manifest names only folders inside its shard's folder",
-                        (shard / "shard.json").string(), key, core::printable(relative), problem));
-    core::requireInside(shard, shard / rel, (shard / "shard.json").string());
-    return shard / rel;
-}
 
 ExitCode mergeRun(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
                   const fs::path& out, const MergeOptions& o) {
@@ -150,46 +135,62 @@ ExitCode mergeSweep(const std::vector<fs::path>& dirs, const std::vector<json>& 
     return finishSweep(*merged);
 }
 
+// What a manifest splits: "scenes" (or a sweep's combinations: --shard) or "tiles" (--tiles).
+std::string splitOf(const json& manifest) {
+    return manifest.value("split", "scenes");
+}
+
 ExitCode mergeManifests(const std::vector<fs::path>& dirs, const std::vector<json>& manifests,
                         const fs::path& out, const MergeOptions& o) {
-    // They belong together: one command, one N, every K once, the same settings.
+    // They belong together: one command, one split, one N, every K once, the same settings.
     const json& first = manifests.front();
     const int n = first.at("of").get<int>();
+    const std::string split = splitOf(first);
+    const auto kind = [](const std::string& s) {
+        return s == "tiles" ? "tiles of a frame (--tiles)" : "shards of the work (--shard)";
+    };
+    const char* part = split == "tiles" ? "tile" : "shard";
+    const std::string command = first.at("command").get<std::string>();
     std::map<int, fs::path> shards;
     for (std::size_t i = 0; i < dirs.size(); ++i) {
         const json& m = manifests[i];
         if (m.at("command") != first.at("command"))
             throw core::InputError(
-                fmt::format("{} is a shard of `{}`, {} of `{}`; merge shards of one command",
-                            dirs[i].string(), m.at("command").get<std::string>(), dirs[0].string(),
-                            first.at("command").get<std::string>()));
+                fmt::format("{} is a {} of `{}`, {} of `{}`; merge the parts of one command",
+                            dirs[i].string(), part, m.at("command").get<std::string>(),
+                            dirs[0].string(), first.at("command").get<std::string>()));
+        if (splitOf(m) != split)
+            throw core::InputError(fmt::format("{} holds {}, {} {}; merge the parts of one split",
+                                               dirs[i].string(), kind(splitOf(m)), dirs[0].string(),
+                                               kind(split)));
         if (m.at("of").get<int>() != n)
-            throw core::InputError(
-                fmt::format("{} is shard {}/{}, {} is shard {}/{}: not shards of one run",
-                            dirs[i].string(), m.at("shard").get<int>(), m.at("of").get<int>(),
-                            dirs[0].string(), first.at("shard").get<int>(), n));
+            throw core::InputError(fmt::format("{} is {} {}/{}, {} is {} {}/{}: not {}s of one {}",
+                                               dirs[i].string(), part, m.at("shard").get<int>(),
+                                               m.at("of").get<int>(), dirs[0].string(), part,
+                                               first.at("shard").get<int>(), n, part, command));
         if (m.at("settings") != first.at("settings")) {
             std::string diff;
             for (const auto& [k, v] : m.at("settings").items())
                 if (!first.at("settings").contains(k) || first.at("settings").at(k) != v)
                     diff += fmt::format("{}{}: {} vs {}", diff.empty() ? "" : "; ", k,
                                         first.at("settings").value(k, json()).dump(), v.dump());
-            throw core::InputError(fmt::format(
-                "{} and {} were run with different settings ({}); not shards of one run",
-                dirs[0].string(), dirs[i].string(), diff));
+            throw core::InputError(
+                fmt::format("{} and {} were run with different settings ({}); not {}s of one {}",
+                            dirs[0].string(), dirs[i].string(), diff, part, command));
         }
         const int k = m.at("shard").get<int>();
         if (shards.count(k))
-            throw core::InputError(fmt::format("{} and {} are both shard {}/{}", shards[k].string(),
-                                               dirs[i].string(), k, n));
+            throw core::InputError(fmt::format("{} and {} are both {} {}/{}", shards[k].string(),
+                                               dirs[i].string(), part, k, n));
         shards[k] = dirs[i];
     }
     for (int k = 1; k <= n; ++k)
         if (!shards.count(k))
             throw core::InputError(
-                fmt::format("shard {}/{} is missing; give all {} shard folders", k, n, n));
+                fmt::format("{} {}/{} is missing; give all {} {} folders", part, k, n, n, part));
+    // The tiles' merge checks the frames they hold before it writes.
+    if (split == "tiles") return mergeTiles(dirs, manifests, out, o);
     prepareOutputFolder(out);
-    const std::string command = first.at("command").get<std::string>();
     if (command == "run") return mergeRun(dirs, manifests, out, o);
     if (command == "sweep") return mergeSweep(dirs, manifests, out, o.commandLine);
     throw core::InputError(

@@ -7,7 +7,6 @@
 #include <atomic>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <iterator>
 #include <optional>
 
@@ -89,7 +88,7 @@ std::optional<core::Frame> readEntry(const LoadedScene& s, const fs::path& dir, 
     }
     core::Frame r;
     try {
-        r.image = core::readImage(exr);
+        r = core::readFrame(dir, "raymarch");
     } catch (const core::InputError& e) {
         why = e.what();
         return std::nullopt;
@@ -99,28 +98,12 @@ std::optional<core::Frame> readEntry(const LoadedScene& s, const fs::path& dir, 
     std::sort(names.begin(), names.end());
     std::sort(expected.begin(), expected.end());
     if (r.image.width() != s.scene.camera.width || r.image.height() != s.scene.camera.height ||
-        names != expected) {
-        why = fmt::format("{}: {}x{} with other channels than a reference render of {}x{}",
+        names != expected || r.part) {
+        why = fmt::format("{}: {}x{} with other channels than a reference render of {}x{}{}",
                           exr.string(), r.image.width(), r.image.height(), s.scene.camera.width,
-                          s.scene.camera.height);
+                          s.scene.camera.height, r.part ? ", or one part of it" : "");
         return std::nullopt;
     }
-    std::ifstream in(meta);
-    const json j = json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) {
-        why = meta.string() + ": not JSON";
-        return std::nullopt;
-    }
-    r.renderer = "raymarch";
-    r.device = j.value("device", "");
-    r.settings = j.value("settings", json());
-    const json timings = j.value("timings_ms", json::object());
-    const json counters = j.value("counters", json::object());
-    for (const auto& [k, v] : timings.items())
-        if (v.is_number()) r.timingsMs[k] = v.get<double>();
-    for (const auto& [k, v] : counters.items())
-        if (v.is_number()) r.counters[k] = v.get<double>();
-    r.particleCount = j.value("particle_count", std::size_t{0});
     r.display = core::tonemappedBeauty(r.image, static_cast<float>(s.scene.camera.exposure));
     return r;
 }

@@ -114,12 +114,18 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
 }
 
 core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& s,
-                   const core::Image* exactSurface) {
+                   const core::Image* exactSurface, core::FramePart part) {
     throwIfInterrupted();
-    Progress progress(fmt::format("{}: {}", s.scene.name, name));
-    core::Frame frame =
-        renderer.render({s.scene, s.particles, s.materials, [&](double f) { progress.update(f); },
-                         interruptFlag(), exactSurface});
+    Progress progress(part.whole() ? fmt::format("{}: {}", s.scene.name, name)
+                                   : fmt::format("{}: {} part {}/{}", s.scene.name, name,
+                                                 part.index, part.count));
+    core::Frame frame = renderer.render({.scene = s.scene,
+                                         .particles = s.particles,
+                                         .materials = s.materials,
+                                         .progress = [&](double f) { progress.update(f); },
+                                         .cancel = interruptFlag(),
+                                         .exactSurface = exactSurface,
+                                         .part = part});
     progress.finish();
     throwIfInterrupted();
     return frame;

@@ -112,9 +112,10 @@ std::unique_ptr<core::Renderer> makeRenderer(std::string_view name, Devices& dev
 
 // Renders the scene, with a progress bar ("<scene>: <name>") on a terminal while the renderer
 // reports progress. `exactSurface`: the reference's AOV image, for the error split
-// (core::RenderInput::exactSurface).
+// (core::RenderInput::exactSurface); `part`: the part of the frame to draw
+// (core::RenderInput::part).
 core::Frame render(core::Renderer& renderer, std::string_view name, const LoadedScene& scene,
-                   const core::Image* exactSurface = nullptr);
+                   const core::Image* exactSurface = nullptr, core::FramePart part = {});
 // One frame of a renderer made for it (makeRenderer).
 core::Frame render(std::string_view name, Devices& devices, const LoadedScene& scene,
                    const core::Image* exactSurface = nullptr);

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/folder_name.h"
 #include "core/image_io.h"
 #include "core/write_roots.h"
 
@@ -14,22 +15,22 @@ namespace twinrender::app {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-Shard parseShard(const std::string& text) {
+Shard parseShard(const std::string& text, const std::string& option) {
     const auto slash = text.find('/');
     auto number = [&](const std::string& part) {
         if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos ||
             part.size() > 6)
             throw core::InputError(fmt::format(
-                "--shard {}: expected K/N with whole numbers, 1 <= K <= N (e.g. 2/4)", text));
+                "{} {}: expected K/N with whole numbers, 1 <= K <= N (e.g. 2/4)", option, text));
         return std::stoi(part);
     };
     if (slash == std::string::npos)
         throw core::InputError(
-            fmt::format("--shard {}: expected K/N, 1 <= K <= N (e.g. 2/4)", text));
+            fmt::format("{} {}: expected K/N, 1 <= K <= N (e.g. 2/4)", option, text));
     Shard s{number(text.substr(0, slash)), number(text.substr(slash + 1))};
     if (s.count < 1 || s.index < 1 || s.index > s.count)
-        throw core::InputError(fmt::format(
-            "--shard {}: K must be between 1 and N (here K = {}, N = {})", text, s.index, s.count));
+        throw core::InputError(fmt::format("{} {}: K must be between 1 and N (here K = {}, N = {})",
+                                           option, text, s.index, s.count));
     return s;
 }
 
@@ -73,6 +74,19 @@ json readShardManifest(const fs::path& dir) {
           "a shard count of 1 or more");
     typed("settings", j["settings"].is_object(), "an object");
     return j;
+}
+
+fs::path folderInShard(const fs::path& shard, const std::string& relative, const std::string& key) {
+    const fs::path rel(relative);
+    std::string problem = rel.is_absolute() ? "is an absolute path" : "";
+    for (const fs::path& part : rel)
+        if (problem.empty()) problem = core::folderNameProblem(part.string());
+    if (!problem.empty())
+        throw core::InputError(
+            fmt::format("{}: {} '{}' {}; a manifest names only folders inside its shard's folder",
+                        (shard / "shard.json").string(), key, core::printable(relative), problem));
+    core::requireInside(shard, shard / rel, (shard / "shard.json").string());
+    return shard / rel;
 }
 
 void copyTree(const fs::path& from, const fs::path& to) {

@@ -9,6 +9,9 @@
 //   "scenes": [every scene name of the whole run, in its order], "reports": [the full report
 //   of each scene this shard ran], "junit": bool; sweep -> "combinations": the product's size,
 //   "indices": [the combinations this shard ran]}.
+// The parts of `render --tiles K/N` and `run --tiles K/N` carry the same manifest with
+// "split": "tiles" (a shard's is "scenes", or none) and their "references"
+// (app/reference_tiles.h); "shard" and "of" are then the part's K and N.
 #pragma once
 
 #include <cstddef>
@@ -31,8 +34,9 @@ struct Shard {
     }
 };
 
-// "K/N" with 1 <= K <= N; throws core::InputError naming the option and what is wrong.
-Shard parseShard(const std::string& text);
+// "K/N" with 1 <= K <= N; throws core::InputError naming the option (`option`: --shard or
+// --tiles) and what is wrong.
+Shard parseShard(const std::string& text, const std::string& option = "--shard");
 
 // Writes DIR/shard.json (atomically) from the command-specific part `manifest`, adding the
 // format, version, shard and count.
@@ -42,6 +46,12 @@ void writeShardManifest(const Shard& shard, nlohmann::json manifest,
 // Reads DIR/shard.json; throws core::InputError naming the file when it is missing or not a
 // shard manifest.
 nlohmann::json readShardManifest(const std::filesystem::path& dir);
+
+// The folder `relative` (a scene's name, a combination's or a tile's folder, as the manifest
+// in `shard` names it) inside `shard`; core::InputError naming the manifest and `key` when it
+// would lead out.
+std::filesystem::path folderInShard(const std::filesystem::path& shard, const std::string& relative,
+                                    const std::string& key);
 
 // Copies a folder's tree into `to` (hard links where the file system allows, else copies),
 // replacing files that exist there.

@@ -20,6 +20,7 @@
 #include "app/output_folder.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
+#include "app/reference_tiles.h"
 #include "app/sequence_run.h"
 #include "app/shard.h"
 #include "app/test_images.h"
@@ -231,8 +232,14 @@ ExitCode runCompare(const CompareOptions& o) {
     return exitCodeOf(status);
 }
 
+std::vector<fs::path> runSceneFiles(const RunOptions& o) {
+    return sceneFiles(o.inputs.empty() ? std::vector<std::string>{defaultScenesDir().string()}
+                                       : o.inputs);
+}
+
 ExitCode runSuite(const RunOptions& o) {
     const bool tty = isatty(STDERR_FILENO);
+    if (!o.tiles.empty()) refuseTilesWith("run", "the scenes", !o.shard.empty(), !o.cache.empty());
     // Everything is read and checked before the first render.
     std::vector<std::string> inputs = o.inputs;
     if (inputs.empty()) inputs.push_back(defaultScenesDir().string());
@@ -245,7 +252,7 @@ ExitCode runSuite(const RunOptions& o) {
         if (fs::is_regular_file(dir / "thresholds.toml"))
             thresholdsFile = (dir / "thresholds.toml").string();
     }
-    const std::vector<fs::path> files = sceneFiles(inputs);
+    const std::vector<fs::path> files = runSceneFiles(o);
     std::vector<LoadedScene> scenes;
     for (const auto& f : files) scenes.push_back(loadScene(f, o.sets));
     checkSceneFolders(scenes);
@@ -270,8 +277,11 @@ ExitCode runSuite(const RunOptions& o) {
         for (std::size_t p = 0; p < byName.size(); ++p) selected[byName[p]] = shard->takes(p);
     }
 
-    // A sequence's video needs ffmpeg: bad environment, said before the first render.
-    for (std::size_t i = 0; i < scenes.size(); ++i)
+    std::optional<core::FramePart> tiles;
+    if (!o.tiles.empty()) tiles = parseTiles(o.tiles);
+    // A sequence's video needs ffmpeg: bad environment, said before the first render (of the
+    // merge, for tiles).
+    for (std::size_t i = 0; i < scenes.size() && !tiles; ++i)
         if (selected[i] && scenes[i].scene.sequence) {
             requireFfmpeg();
             break;
@@ -308,6 +318,8 @@ ExitCode runSuite(const RunOptions& o) {
             for (std::size_t i = 0; i < scenes.size(); ++i)
                 if (selected[i]) checkTestImages(o.external.images, scenes[i]);
     }
+    // Tiles of the references: the merge renders and compares the rest.
+    if (tiles) return runTiles(scenes, *tiles, o, thresholdsFile);
     if (tests("realtime")) devices.realtime();
     // Sequences take their references from the cache, frame by frame; with --cache, every
     // scene does.

@@ -3,6 +3,7 @@
 // Each returns its verdict as an exit code (exit_code.h): pass, warn or fail.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,9 @@ struct RunOptions {
     double flipOver = compare::FlipPoolingSettings{}.overLevel;  // beauty.flip_over's level
     std::string commandLine;                                     // recorded in the report
     std::string shard;  // "K/N" (app/shard.h); empty: every scene
+    // "K/N" (app/reference_tiles.h): part K of N of every reference, nothing compared; empty:
+    // the whole run.
+    std::string tiles;
     // Whether the report links to the stability studies in OUT/studies (main runs them after
     // the scenes: `run --studies`).
     bool linkStudies = false;
@@ -58,6 +62,10 @@ struct RunOptions {
     ExternalSettings external;
 };
 ExitCode runSuite(const RunOptions& options);
+
+// The scene files a run renders: the files given, the .toml files of the folders given
+// (sorted, without thresholds.toml), or the default suite's when none is given.
+std::vector<std::filesystem::path> runSceneFiles(const RunOptions& options);
 
 // Prints the run's checks that did not pass as CI annotations (report/annotations.h) in
 // `format`: "github", "none", or "" for "github" when the environment has GITHUB_ACTIONS=true

@@ -20,6 +20,7 @@
 #include "app/interruption.h"
 #include "app/output_folder.h"
 #include "app/reference_cache.h"
+#include "app/reference_tiles.h"
 #include "app/render_job.h"
 #include "app/sequence_run.h"
 #include "app/shard.h"
@@ -223,10 +224,29 @@ std::vector<std::string> combination(
     return out;
 }
 
-ExitCode runSweep(const SweepOptions& o) {
-    const bool tty = isatty(STDERR_FILENO);
-    // ---- Everything is read and checked before the first render. ----
+namespace {
+
+// The sweep's combinations, each loaded and checked, and what they share: everything is read
+// and checked before the first render.
+struct SweepPlan {
     std::vector<std::pair<std::string, std::vector<std::string>>> vary;
+    bool convergence = false;  // raymarch.* keys varied: the raymarcher against a tight render
+    std::string testRenderer;  // "realtime", or "raymarch" for convergence
+    int frames = 0;            // per combination
+    std::optional<Shard> shard;
+    std::optional<compare::Thresholds> thresholds;
+    std::size_t total = 1;  // combinations
+    double tightTolerance = TIGHT_ROOT_TOLERANCE;
+    int tightSpp = TIGHT_SPP;
+    std::vector<Job> jobs;  // the shard's combinations
+    bool sequence = false;  // a sequence scene: each combination renders every frame
+    std::size_t count = 0;  // its frames, as the first combination has them
+};
+
+SweepPlan planSweep(const SweepOptions& o) {
+    SweepPlan plan;
+    auto& [vary, convergence, testRenderer, frames, shard, thresholds, total, tightTolerance,
+           tightSpp, jobs, sequence, count] = plan;
     for (const auto& v : o.vary) {
         auto parsed = parseVary(v);
         for (const auto& [k, _] : vary)
@@ -244,11 +264,11 @@ ExitCode runSweep(const SweepOptions& o) {
         throw core::InputError(
             "sweep: vary realtime.* keys (the real-time renderer against the reference) and "
             "raymarch.* keys (the reference's convergence) in separate sweeps");
-    const bool convergence = anyRaymarch;
-    const std::string testRenderer = convergence ? "raymarch" : "realtime";
+    convergence = anyRaymarch;
+    testRenderer = convergence ? "raymarch" : "realtime";
     if (o.frames < 0 || o.frames > 1000)
         throw core::InputError(fmt::format("--frames {}: give 1..1000", o.frames));
-    int frames = o.frames > 0 ? o.frames : (convergence ? 1 : 5);
+    frames = o.frames > 0 ? o.frames : (convergence ? 1 : 5);
     // The metric must be one the comparison computes (compare/metric_table.h), or on a
     // sequence scene one its summary pools over the frames (checked below).
     const std::vector<std::string> pooled = report::pooledTemporalMetrics();
@@ -257,18 +277,13 @@ ExitCode runSweep(const SweepOptions& o) {
         throw core::InputError(
             fmt::format("--metric {}: not a metric; metrics are {}, and on a sequence scene {}",
                         o.metric, compare::metricNames(true), fmt::join(pooled, ", ")));
-    std::optional<Shard> shard;
     if (!o.shard.empty()) shard = parseShard(o.shard);
-    std::optional<compare::Thresholds> thresholds;
     if (!o.thresholds.empty()) thresholds = compare::Thresholds::parseFile(o.thresholds);
     if (!fs::is_regular_file(o.scene))
         throw core::InputError(
             fmt::format("{}: scene file not found; give the path of a .toml scene", o.scene));
 
-    std::size_t total = 1;
     for (const auto& [k, values] : vary) total *= values.size();
-    double tightTolerance = TIGHT_ROOT_TOLERANCE;
-    int tightSpp = TIGHT_SPP;
     if (convergence)
         for (const auto& [k, values] : vary)
             for (const auto& v : values) {
@@ -283,9 +298,6 @@ ExitCode runSweep(const SweepOptions& o) {
     tightTolerance = std::max(tightTolerance, 1e-8);  // the raymarcher's lower bound
     tightSpp = std::min(tightSpp, 1024);
 
-    std::vector<Job> jobs;
-    bool sequence = false;  // a sequence scene: each combination renders every frame
-    std::size_t count = 0;  // its frames, as the first combination has them
     for (std::size_t i = 0; i < total; ++i) {
         Job job;
         job.index = i;
@@ -346,6 +358,44 @@ ExitCode runSweep(const SweepOptions& o) {
             "\"Sequences\"), or "
             "one of {}",
             o.metric, o.scene, compare::metricNames(true)));
+    return plan;
+}
+
+// The references of the plan's combinations, as forEachSweepReference gives them.
+void visitReferences(SweepPlan& plan, const ReferenceVisit& visit) {
+    for (Job& job : plan.jobs) {
+        LoadedScene& reference = plan.convergence ? *job.tight : job.test;
+        const std::vector<std::string>& overrides =
+            plan.convergence ? job.tightOverrides : job.testOverrides;
+        if (!plan.sequence) {
+            visit(reference, overrides, std::nullopt);
+            continue;
+        }
+        for (const std::int64_t n : core::sequenceFrames(job.test.scene)) {
+            setFrame(reference, n);
+            visit(reference, overrides, n);
+        }
+    }
+}
+
+}  // namespace
+
+void forEachSweepReference(const SweepOptions& o, const ReferenceVisit& visit) {
+    SweepPlan plan = planSweep(o);
+    visitReferences(plan, visit);
+}
+
+ExitCode runSweep(const SweepOptions& o) {
+    const bool tty = isatty(STDERR_FILENO);
+    if (!o.tiles.empty())
+        refuseTilesWith("sweep", "the combinations", !o.shard.empty(), !o.cache.empty());
+    SweepPlan plan = planSweep(o);
+    auto& [vary, convergence, testRenderer, frames, shard, thresholds, total, tightTolerance,
+           tightSpp, jobs, sequence, count] = plan;
+    // Tiles of the references: the merge renders and compares the rest.
+    if (!o.tiles.empty())
+        return sweepTiles([&](const ReferenceVisit& visit) { visitReferences(plan, visit); },
+                          parseTiles(o.tiles), o);
     if (sequence) {
         // Each frame of a sequence is a new particle set, rendered once: its cost is that
         // first render, which timing repeated renders of one set would hide.

@@ -11,11 +11,15 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "app/exit_code.h"
+#include "app/render_job.h"
 #include "compare/flip_pooling.h"
 #include "report/sweep_report.h"
 
@@ -35,9 +39,20 @@ struct SweepOptions {
     bool requireGpu = false;
     bool selfCheck = false;  // --self-check (app/per_set_check.h)
     std::string shard;       // "K/N"; empty: all
+    // "K/N" (app/reference_tiles.h): part K of N of every reference, nothing compared; empty:
+    // the whole sweep.
+    std::string tiles;
     std::string commandLine;
 };
 ExitCode runSweep(const SweepOptions& options);
+
+// Every reference frame the sweep's combinations take, once per combination (and frame of a
+// sequence): `visit` gets the scene it is rendered from (moved to the frame), the overrides
+// its key is of, and the frame of a sequence. Checks the sweep's inputs as runSweep does.
+void forEachSweepReference(
+    const SweepOptions& options,
+    const std::function<void(LoadedScene& scene, const std::vector<std::string>& overrides,
+                             std::optional<std::int64_t> frame)>& visit);
 
 // How a sweep ends, whole or merged from its shards: prints report::verdictLines and returns
 // the exit code. Held to thresholds, the best combination's verdict (Pass when one passes);

@@ -94,6 +94,7 @@ void checkTestImages(const fs::path& dir, const LoadedScene& s) {
 }
 
 core::Frame TestImages::render(const core::RenderInput& in) {
+    core::requireWholeFrame(in, "test-images");
     const fs::path file = testImagePath(mDir, in.scene, in.scene.frame);
     core::Frame frame;
     try {

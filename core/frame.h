@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/frame_part.h"
 #include "core/image.h"
 
 namespace twinrender::core {
@@ -62,6 +64,9 @@ struct Frame {
     // shadow and occlusion cost), and of the reference's surface with the reference's light
     // ("shading": what its shading alone costs, rounding).
     std::map<std::string, Image> split;
+    // Set when the renderer drew one part of the frame (RenderInput::part): which, and what
+    // joining the parts needs (core/part_join.h). The images then hold the part's rows alone.
+    std::optional<PartRecord> part;
 };
 
 // The tonemapped sRGB beauty (R, G, B in [0, 1]) a person looks at.
@@ -69,7 +74,16 @@ Image tonemappedBeauty(const Image& aovImage, float exposure);
 
 // Writes DIR/R.exr (all AOV channels, linear), DIR/R.png (the display image) and DIR/R.json,
 // R the frame's renderer; each file atomically. `extra` is merged into the JSON (scene name,
-// resolution, ...).
+// resolution, ...). A part of a frame (core/frame_part.h) writes no R.png, and its record as
+// R.json's "tile".
 void writeFrame(const Frame& frame, const std::filesystem::path& dir, const nlohmann::json& extra);
+
+// Reads what writeFrame wrote for `renderer` in DIR (the display image left empty): the AOV
+// image, and from the JSON the device,
+// settings, particle count, counters, timings and a part's record. `json`, when given, receives the
+// whole JSON. Throws InputError naming the file when one is missing or unreadable, or the JSON is
+// not an object or holds a damaged "tile".
+Frame readFrame(const std::filesystem::path& dir, const std::string& renderer,
+                nlohmann::json* json = nullptr);
 
 }  // namespace twinrender::core

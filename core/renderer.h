@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <functional>
+#include <string_view>
 #include <vector>
 
 #include "core/frame.h"
@@ -28,7 +29,15 @@ struct RenderInput {
     // Optional: the reference's AOV image of the same view. A renderer that can shades it
     // too, to say where its own image's error comes from, and fills Frame::split.
     const Image* exactSurface = nullptr;
+    // Optional: draw only this part of the frame (core/frame_part.h; `render --tiles K/N`). The
+    // frame's images hold the part's rows of pixels alone, and Frame::part records which part
+    // it is. A renderer that draws whole frames only refuses a part (requireWholeFrame).
+    FramePart part{};
 };
+
+// Throws InputError when `input` asks for a part of the frame: for a renderer (`renderer`, its
+// name) that draws whole frames only.
+void requireWholeFrame(const RenderInput& input, std::string_view renderer);
 
 class Renderer {
   public:

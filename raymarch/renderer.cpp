@@ -207,7 +207,8 @@ class FrameTrace {
 
     std::size_t emitterCount() const { return mEmitters.size(); }
 
-    int tileCount() const { return mTilesX * mTilesY; }
+    int tileColumns() const { return mTilesX; }
+    int tileRows() const { return mTilesY; }
 
     // Tile `index` of the tiles in rows, tileSize pixels a side; its blocks are cut at the
     // tile's edge (a tile may be smaller than a block).
@@ -228,8 +229,10 @@ class FrameTrace {
         // they see an atmosphere).
         if (mAtmosphere || mTracer.blockMayHit(b.central))
             for (int k = 0; k < mSettings.spp; ++k) traceSample(b, k, pixels, w, ticks);
+        // A part's images hold its rows alone (core/frame_part.h).
         for (int i = 0; i < b.n; ++i)
-            writePixel(pixels[i], mSettings.spp, mExposure, b.px[i], b.py[i], mChannels, mAov,
+            writePixel(pixels[i], mSettings.spp, mExposure, b.px[i],
+                       mInput.part.imageRow(b.py[i], mSettings.tileSize), mChannels, mAov,
                        mDisplay);
     }
 
@@ -559,14 +562,27 @@ class FrameTrace {
     core::AtmosphereSun mSun;
 };
 
-// The tiles in parallel on the caller's arena, on one workspace per thread; the thread time
-// of each part summed over the tiles.
-StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
-                      const core::RenderInput& input) {
-    const int tiles = trace.tileCount();
+// What tracing a frame's tiles (or one part's) adds up: the thread time and the secondary
+// estimates' tallies per row of tiles held, in row order, and their sum in that order.
+struct TracedTiles {
+    StageTicks ticks;
+    std::vector<StageTicks> rows;
+};
+
+// The tiles of `input.part` (every tile of a whole frame) in parallel on the caller's arena, on
+// one workspace per thread.
+TracedTiles traceTiles(const FrameTrace& trace, Workspaces& workspaces,
+                       const core::RenderInput& input) {
+    std::vector<int> held;  // the tiles traced, in tile order
+    for (int row = 0; row < trace.tileRows(); ++row)
+        if (input.part.holdsRow(row))
+            for (int column = 0; column < trace.tileColumns(); ++column)
+                held.push_back(row * trace.tileColumns() + column);
+    const int tiles = static_cast<int>(held.size());
     std::atomic<int> done{0};
     // Each tile's own, summed in tile order after the loop (a sum of doubles in the order
-    // threads finish would depend on the threads).
+    // threads finish would depend on the threads), row by row of tiles (so that parts holding
+    // whole rows join to the same sums: core/part_join.h).
     std::vector<StageTicks> perTile(static_cast<std::size_t>(tiles));
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
         // Embree wants flush-to-zero and denormals-are-zero on every thread that traces.
@@ -577,14 +593,46 @@ StageTicks traceTiles(const FrameTrace& trace, Workspaces& workspaces,
             // A tile takes milliseconds: a cancelled frame stops within one tile per thread
             // (TBB cancels the tiles not yet started and rethrows in the caller).
             core::throwIfCancelled(input.cancel);
-            trace.traceTile(t, w, perTile[static_cast<std::size_t>(t)]);
+            const std::size_t i = static_cast<std::size_t>(t);
+            trace.traceTile(held[i], w, perTile[i]);
             const int finished = ++done;
             if (input.progress) input.progress(double(finished) / tiles);
         }
     });
-    StageTicks sum;
-    for (const StageTicks& t : perTile) sum.merge(t);
-    return sum;
+    TracedTiles out;
+    const std::size_t columns = static_cast<std::size_t>(trace.tileColumns());
+    for (std::size_t start = 0; start < perTile.size(); start += columns) {
+        StageTicks row;
+        for (std::size_t t = start; t < start + columns; ++t) row.merge(perTile[t]);
+        out.ticks.merge(row);
+        out.rows.push_back(row);
+    }
+    return out;
+}
+
+// What joining a part's frame with the others needs (core/part_join.h): each secondary
+// estimate's mean standard error as the rows' sums and the hit samples, its largest error
+// joined by the largest; every other counter is a sum over the tiles but the count of emitting
+// bodies, a fact of the whole frame.
+core::PartRecord partRecord(const core::FramePart& part, int tileSize, int height,
+                            const TracedTiles& traced,
+                            const std::map<std::string, double>& counters) {
+    core::PartRecord r;
+    r.part = part;
+    r.tileSize = tileSize;
+    r.height = height;
+    const auto mean = [&](const std::string& prefix, EstimateTally StageTicks::*tally) {
+        if (!counters.count(prefix + "_standard_error")) return;
+        core::PartMean& m = r.means[prefix + "_standard_error"];
+        for (const StageTicks& row : traced.rows) m.rowSums.push_back((row.*tally).errorSum);
+        m.samples = (traced.ticks.*tally).estimates;
+        r.maxima.push_back(prefix + "_standard_error_max");
+    };
+    mean("ao", &StageTicks::occlusion);
+    mean("irradiance", &StageTicks::light);
+    mean("sun", &StageTicks::sunlight);
+    if (counters.count("emitting_bodies")) r.shared = {"emitting_bodies"};
+    return r;
 }
 
 // The counters of every thread's workspace, summed.
@@ -623,14 +671,16 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     // The background values of core::aov::makeImage (Z = +inf, id = -1, the rest 0) are
     // written by the tiles, in parallel, with the pixels they cover: filling the channels
     // first is a serial pass over the whole image.
-    frame.image = core::Image(camera.width(), camera.height(), core::aov::channelNames());
-    frame.display = core::Image(camera.width(), camera.height(), {"R", "G", "B"});
+    const int height = input.part.heightHeld(camera.height(), mSettings.tileSize);
+    frame.image = core::Image(camera.width(), height, core::aov::channelNames());
+    frame.display = core::Image(camera.width(), height, {"R", "G", "B"});
     frame.particleCount = input.particles.particles.size();
 
     const FrameTrace trace(tracer, camera, input, mSettings, frame);
     Workspaces workspaces([&] { return tracer.makeWorkspace(); });
     const auto start = Clock::now();
-    const StageTicks ticks = traceTiles(trace, workspaces, input);
+    const TracedTiles traced = traceTiles(trace, workspaces, input);
+    const StageTicks& ticks = traced.ticks;
     const double traceMs = msSince(start);
     // Split the parallel wall time by the thread time of each part.
     const double sum =
@@ -662,6 +712,9 @@ core::Frame Renderer::render(const core::RenderInput& input) {
     frame.device =
         fmt::format("{} ({} threads)", cpuName(), tbb::this_task_arena::max_concurrency());
     frame.settings = toJson(mSettings);
+    if (!input.part.whole())
+        frame.part =
+            partRecord(input.part, mSettings.tileSize, camera.height(), traced, frame.counters);
     return frame;
 }
 

@@ -629,6 +629,8 @@ void Renderer::recycle(core::Frame&& old) {
 
 core::Frame Renderer::render(const core::RenderInput& in) {
     core::throwIfCancelled(in.cancel);
+    // A part costs a whole frame's passes: it would save nothing.
+    core::requireWholeFrame(in, "real-time");
     DeviceState& d = mDevice;
     d.context.makeCurrent();
     checkLimits(in, mSettings, d);

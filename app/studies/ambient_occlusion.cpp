@@ -55,7 +55,7 @@ const std::vector<AoScene>& aoScenes() {
     return scenes;
 }
 
-constexpr double FOV_Y_DEG = 40.0;  // every study scene's
+constexpr double AO_SCENES_FOV_Y_DEG = 40.0;  // every study scene's
 
 // The radii, in body radii (quick: fewer, on a smaller image with fewer traced directions).
 std::vector<double> radii(bool quick) {
@@ -367,7 +367,8 @@ std::vector<StudyPoint> ambientOcclusionPoints(bool quick) {
                                   set("realtime.ao.thickness", fmt::format("{}", a.thickness)),
                                   set("realtime.surface.method", "\"" + a.surface + "\"")},
                                  scene.file};
-                    for (std::string& c : cameraAt(scene.camera, repeat, height, FOV_Y_DEG))
+                    for (std::string& c :
+                         cameraAt(scene.camera, repeat, height, AO_SCENES_FOV_Y_DEG))
                         p.sets.push_back(std::move(c));
                     p.sets.insert(p.sets.end(), smaller.begin(), smaller.end());
                     pts.push_back(std::move(p));

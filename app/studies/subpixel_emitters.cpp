@@ -21,7 +21,7 @@ namespace {
 // at 0.134 h (h = 1.3 (4 pi / 3)^(1/3)). The points aim at diameters with it; the rows' x is
 // measured (subpixelEmitterPixels).
 constexpr double EMITTER_RADIUS = 0.28;
-constexpr double FOV_Y_DEG = 40.0;  // the scene's
+constexpr double EMITTER_SCENE_FOV_Y_DEG = 40.0;  // the scene's
 
 // The projected diameters the points aim at, pixels (quick: fewer, on a smaller image).
 std::vector<double> emitterDiameters(bool quick) {
@@ -60,7 +60,7 @@ int referenceSpp(double diameter) {
 
 std::vector<StudyPoint> subpixelEmittersPoints(bool quick) {
     const double height = quick ? 48.0 : 96.0, width = quick ? 64.0 : 128.0;
-    const double focal = focalPixels(height, FOV_Y_DEG);
+    const double focal = focalPixels(height, EMITTER_SCENE_FOV_Y_DEG);
     // Up to 3 px the image is a window of 24 x 18 pixels about the ball, at the same focal
     // length: the reference's many samples per pixel are spent where the light is.
     constexpr double WINDOW_WIDTH = 24.0, WINDOW_HEIGHT = 18.0;
