@@ -517,7 +517,9 @@ ExitCode runSweep(const SweepOptions& o) {
                     {"combinations", total},       {"indices", indices},
                     {"created", report.createdAt}, {"command_line", o.commandLine}};
     }
-    writeTogether(out, [&](const fs::path& staging) {
+    // A structured binding reaches a lambda through a capture of its own: clang before 16
+    // does not capture one implicitly.
+    writeTogether(out, [&, &shard = shard](const fs::path& staging) {
         report::writeSweepReport(report, staging);
         if (shard) writeShardManifest(*shard, manifest, staging);
     });
