@@ -90,6 +90,8 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     // the BODY_MASK variants (SceneBuffers::bodyMask), one that draws none without.
     const bool bodySpheres = settings.particles.bodySpherePixels > 0.0;
     const bool bodyMask = bodySpheres && settings.perSet == PerSetDevice::Gpu;
+    // ao.layers = 2: the occlusion pass's second depth layer, drawn with the G-buffer's shapes.
+    const bool backLayer = usesAmbientOcclusion(settings) && settings.ao.layers == 2;
     for (const bool masked : {false, true}) {
         if (masked && !bodyMask) continue;
         for (const bool ellipsoids : {false, true}) {
@@ -101,6 +103,8 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
             if (usesShadowMap(settings.shadows))
                 add("impostor.vert", "shadow.frag", defines({"SHADOW_PASS"}));
             add("impostor.vert", "gbuffer.frag", defines({depthDefine(settings.depth)}));
+            if (backLayer)
+                add("impostor.vert", "gbuffer.frag", defines(backLayerDefines(settings.depth)));
             if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
                 add("impostor.vert", "gbuffer.frag", defines(emitterTargetDefines(settings.depth)));
         }
@@ -110,6 +114,9 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         if (usesShadowMap(settings.shadows))
             add("impostor.vert", "shadow.frag", bodySphereDefines({"SHADOW_PASS"}));
         add("impostor.vert", "gbuffer.frag", bodySphereDefines({depthDefine(settings.depth)}));
+        if (backLayer)
+            add("impostor.vert", "gbuffer.frag",
+                bodySphereDefines(backLayerDefines(settings.depth)));
         if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
             add("impostor.vert", "gbuffer.frag",
                 bodySphereDefines(emitterTargetDefines(settings.depth)));
@@ -223,15 +230,31 @@ std::vector<ProgramVariant> allProgramVariants() {
         for (AoNoise noise : {AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue})
             for (AoBlur blur : {AoBlur::None, AoBlur::Flat, AoBlur::DepthAware})
                 for (ShadowMode shadows : {ShadowMode::None, ShadowMode::Map})
-                    for (bool emits : {false, true}) {
-                        Settings a;
-                        a.ao.method = method;
-                        a.ao.noise = noise;
-                        a.ao.blur = blur;
-                        a.shadows = shadows;
-                        for (ProgramVariant& v : programVariants(a, emits))
-                            all.try_emplace(v.name(), std::move(v));
-                    }
+                    for (bool emits : {false, true})
+                        for (int layers : {1, 2}) {
+                            Settings a;
+                            a.ao.method = method;
+                            a.ao.noise = noise;
+                            a.ao.blur = blur;
+                            a.ao.layers = layers;
+                            a.shadows = shadows;
+                            for (ProgramVariant& v : programVariants(a, emits))
+                                all.try_emplace(v.name(), std::move(v));
+                        }
+    // The second depth layer's impostor programs for every shape and depth encoding.
+    for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed})
+        for (ParticleShape shape : {ParticleShape::Sphere, ParticleShape::Ellipsoid})
+            for (PerSetDevice where : {PerSetDevice::Cpu, PerSetDevice::Gpu}) {
+                Settings a;
+                a.ao.method = AoMethod::Gtao;
+                a.ao.layers = 2;
+                a.depth = depth;
+                a.particles.shape = shape;
+                a.particles.bodySpherePixels = 4096.0;
+                a.perSet = where;
+                for (ProgramVariant& v : programVariants(a, false))
+                    all.try_emplace(v.name(), std::move(v));
+            }
     // The emissive light's, with and without occlusion and shadows (it lights only where
     // something emits).
     for (EmissiveMethod method :

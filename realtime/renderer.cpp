@@ -262,6 +262,17 @@ struct PassInputs {
     std::optional<core::Atmosphere> atmosphere = std::nullopt;
 };
 
+// The occlusion pass over `surface` and `normalUv`, with its second depth layer drawn first
+// where ao.layers asks for one.
+gl::Texture occlusionOf(const PassInputs& in, const gl::Texture& surface,
+                        const gl::Texture& normalUv) {
+    std::optional<gl::Texture> back;
+    if (in.settings.ao.layers == 2)
+        back.emplace(runBackLayerPass(in.programs, in.scene, surface, in.settings.depth));
+    return runAmbientOcclusionPass(in.programs, surface, normalUv, in.settings.ao, in.aoRadius,
+                                   back ? &*back : nullptr);
+}
+
 // The frame's resources after its passes (frame_graph.h), and the timer query of each pass
 // that ran.
 struct PassTargets {
@@ -386,13 +397,10 @@ const Pass PASSES[] = {
              narrowRange.method = SurfaceMethod::NarrowRange;
              const FilteredSurface f =
                  runSurfacePass(in.programs, r.gbuffer(), r.read(R::NormalUv), narrowRange);
-             r.write(R::Occlusion, runAmbientOcclusionPass(in.programs, *f.surface, f.normalUv,
-                                                           in.settings.ao, in.aoRadius));
+             r.write(R::Occlusion, occlusionOf(in, *f.surface, f.normalUv));
              return;
          }
-         r.write(R::Occlusion,
-                 runAmbientOcclusionPass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
-                                         in.settings.ao, in.aoRadius));
+         r.write(R::Occlusion, occlusionOf(in, r.read(R::Surface), r.read(R::NormalUv)));
      }},
     {"emissive", EMISSIVE_READS, EMISSIVE_WRITES,
      [](const PassInputs& in) { return in.emissiveLight; },
@@ -547,8 +555,7 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     // The exact surface with the real-time light: its shadow map, its occlusion pass.
     std::optional<gl::Texture> occlusion;
     if (usesAmbientOcclusion(in.settings))
-        occlusion.emplace(runAmbientOcclusionPass(d.programs, g.surface, g.normalUv, in.settings.ao,
-                                                  in.aoRadius));
+        occlusion.emplace(occlusionOf(in, g.surface, g.normalUv));
     // Its emissive light too.
     std::optional<gl::Texture> irradiance;
     if (in.emissiveLight)

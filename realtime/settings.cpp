@@ -59,6 +59,7 @@ AoSettings parseAo(const core::ParameterTable& t) {
     a.thickness = t.getDouble("ao.thickness", d.thickness, 0.0, 1000.0);
     a.depth = byName(t.getEnum("ao.depth", std::string(toString(d.depth)), {"shaded", "filtered"}),
                      std::array{AoDepth::Shaded, AoDepth::Filtered});
+    a.layers = static_cast<int>(t.getInt("ao.layers", d.layers, 1, 2));
     return a;
 }
 
@@ -561,6 +562,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.ao.angle_bias", s.ao.angleBiasDeg},
         {"realtime.ao.thickness", s.ao.thickness},
         {"realtime.ao.depth", toString(s.ao.depth)},
+        {"realtime.ao.layers", s.ao.layers},
         {"realtime.emissive.method", toString(s.emissive.method)},
         {"realtime.emissive.directions", s.emissive.directions},
         {"realtime.emissive.steps", s.emissive.steps},

@@ -367,6 +367,11 @@ struct AoSettings {
     // (docs/lighting.md); a filtered depth has none. Filtered by default: the ambient_occlusion
     // study measures it better than the shaded depth on each of its scenes for each method.
     AoDepth depth = AoDepth::Filtered;
+    // ao.layers: 1 | 2. With 2, a second depth layer, the back of the body seen at each pixel
+    // (each impostor's far side, where its body is the one in front), drawn for the occlusion
+    // pass, gives each occluder its back: a body hanging over another no longer stands for a
+    // wall down to it. With a thickness as well, the nearer of the two backs.
+    int layers = 1;
     bool operator==(const AoSettings&) const = default;
 };
 

@@ -1,9 +1,10 @@
 // The ambient_occlusion study (docs/studies.md): the screen-space occlusion methods against the
 // reference's traced occlusion along the occlusion radius R, on a ball resting on a slab and on
 // two scenes with a gap the truth leaves open at small R (a ball hanging over a slab, two balls
-// apart), each method on the shaded and the filtered depth, with and without a thickness, and on
-// a depth-filtering surface method. The finding says where each setting helps and where it
-// hurts against no occlusion, deciding with the spread of renders half a pixel aside.
+// apart), each method on the shaded and the filtered depth, with and without a thickness or a
+// second depth layer, and on a depth-filtering surface method. The finding says where each setting
+// helps and where it hurts against no occlusion, deciding with the spread of renders half a pixel
+// aside.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -70,14 +71,16 @@ struct AoSetting {
     std::string method;  // "none", "ssao", "hbao", "gtao"
     std::string depth = "shaded";
     double thickness = 0.0;
+    int layers = 1;  // ao.layers
     std::string surface = "ssss";
     bool quick = true;  // in quick runs too
 
     std::string name() const {
         if (method == "none") return "none";
         if (surface != "ssss") return method + " on " + surface;
-        return fmt::format("{}, {} depth{}", method, depth,
-                           thickness > 0.0 ? fmt::format(", thickness {}", thickness) : "");
+        return fmt::format("{}, {} depth{}{}", method, depth,
+                           thickness > 0.0 ? fmt::format(", thickness {}", thickness) : "",
+                           layers == 2 ? ", second layer" : "");
     }
 };
 
@@ -90,6 +93,9 @@ std::vector<AoSetting> aoSettings(bool quick) {
         all.push_back({.method = m, .depth = "filtered"});
         all.push_back({.method = m, .depth = "shaded", .thickness = 4.0, .quick = false});
         all.push_back({.method = m, .depth = "filtered", .thickness = 4.0});
+        // The second depth layer: in quick runs for gtao alone, the method whose bit mask
+        // integrates an occluder's span.
+        all.push_back({.method = m, .depth = "filtered", .layers = 2, .quick = m == "gtao"});
         // A surface method that filters the depth itself: the occlusion and the shade pass
         // read the same filtered depth.
         all.push_back({.method = m, .surface = "curvature_flow", .quick = false});
@@ -106,7 +112,7 @@ std::string defaultSeries(const std::string& method) {
     const std::string depth(realtime::toString(d.depth));
     for (const AoSetting& a : aoSettings(false))
         if (a.method == method && a.surface == "ssss" && a.depth == depth &&
-            a.thickness == d.thickness)
+            a.thickness == d.thickness && a.layers == d.layers)
             return a.name();
     return "";
 }
@@ -301,6 +307,8 @@ const std::vector<AoOption>& aoOptions() {
         {"ao.thickness 4 on the filtered depth", "{}, filtered depth, thickness 4",
          "{}, filtered depth"},
         {"ao.thickness 4 on the shaded depth", "{}, shaded depth, thickness 4", "{}, shaded depth"},
+        {"ao.layers 2 on the filtered depth", "{}, filtered depth, second layer",
+         "{}, filtered depth"},
     };
     return options;
 }
@@ -365,6 +373,7 @@ std::vector<StudyPoint> ambientOcclusionPoints(bool quick) {
                                   set("realtime.ao.method", "\"" + a.method + "\""),
                                   set("realtime.ao.depth", "\"" + a.depth + "\""),
                                   set("realtime.ao.thickness", fmt::format("{}", a.thickness)),
+                                  set("realtime.ao.layers", fmt::format("{}", a.layers)),
                                   set("realtime.surface.method", "\"" + a.surface + "\"")},
                                  scene.file};
                     for (std::string& c :

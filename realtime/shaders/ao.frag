@@ -20,6 +20,12 @@
 // hbao counts the directions between its back and its front only, and gtao marks the sectors
 // between them in a bit mask per slice and integrates the cosine-weighted visibility over the
 // unmarked ones (the visibility bitmask of Therrien, Levesque and Gilet 2023).
+// SECOND_LAYER (realtime.ao.layers = 2): each occluder's back is read from a second depth layer,
+// the back of the body seen at each pixel (gbuffer.frag's BACK_LAYER), not assumed: a layered
+// depth buffer in the spirit of the deep G-buffer (Mara, McGuire, Nowrouzezahrai and Luebke
+// 2016), whose second layer for particles is the body's exit, since the nearest surface behind
+// the first inside a body of overlapping impostors is only the next particle. With a thickness
+// as well, the nearer of the two backs.
 // Noise (per pixel: slice rotation and step jitter): NOISE_WHITE (a hash), NOISE_IGN
 // (interleaved gradient noise, Jimenez 2014), NOISE_BLUE (a void-and-cluster texture,
 // realtime/blue_noise.h).
@@ -37,6 +43,19 @@ uniform int uSteps;       // samples along each
 uniform float uMaxPixels;  // the screen radius's cap, pixels
 uniform float uAngleBias;  // hbao: radians added to the tangent's elevation
 uniform float uThickness;  // each occluder's depth, particle radii; 0: without end
+#ifdef SECOND_LAYER
+layout(binding = 6) uniform sampler2D uBack;  // the eye depth of the body's back; 0: none
+#endif
+
+// Whether each occluder ends behind its front (a thickness or a second layer), or is a wall
+// reaching back without end (the methods as published).
+bool finiteOccluders() {
+#ifdef SECOND_LAYER
+    return true;
+#else
+    return uThickness > 0.0;
+#endif
+}
 
 layout(location = 0) out vec4 outOpen;
 
@@ -83,14 +102,21 @@ bool surfaceAt(ivec2 q, out vec3 position) {
 }
 
 // As surfaceAt, and the back of the occluder seen there: uThickness particle radii (the
-// impostor's radius at q) further along its view ray. Without a thickness, infinitely far.
+// impostor's radius at q) further along its view ray, or the second layer's back, the nearer
+// of the two where both are set. Where the second layer holds no back behind the front (no
+// impostor of that body behind a filtered depth), the impostor's own diameter.
 bool occluderAt(ivec2 q, out vec3 front, out vec3 back) {
     ivec2 size = ivec2(viewport.xy);
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return false;
     vec4 s = texelFetch(uSurface, q, 0);
     if (s.y < 0.0) return false;
     front = surfacePosition(vec2(q) + 0.5, s.x);
-    float depth = uThickness * s.z / pixelsPerUnitAt(s.x);
+    float radius = s.z / pixelsPerUnitAt(s.x);
+    float depth = uThickness > 0.0 ? uThickness * radius : 1e30;
+#ifdef SECOND_LAYER
+    float behind = texelFetch(uBack, q, 0).x - s.x;
+    depth = min(depth, behind > 0.0 ? behind * length(front) / s.x : 2.0 * radius);
+#endif
     back = front * (1.0 + depth / max(length(front), 1e-20));
     return true;
 }
@@ -156,7 +182,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         // and with a thickness, the point not behind the occluder's back.
         float bias = 0.02 * uRadius;
         if (zSeen < screen.z - bias && screen.z - zSeen < uRadius &&
-            (uThickness <= 0.0 || screen.z < behind(saturateToInt(floor(screen.xy)), zSeen)))
+            (!finiteOccluders() || screen.z < behind(saturateToInt(floor(screen.xy)), zSeen)))
             closed += 1.0;
     }
     return 1.0 - closed / float(samples);
@@ -188,7 +214,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
             if (s > sinH) {
                 // With a thickness, the directions below the occluder's back are not its.
                 vec3 b = back - position;
-                float from = uThickness > 0.0 ? max(dot(b, toEye) / length(b), sinH) : sinH;
+                float from = finiteOccluders() ? max(dot(b, toEye) / length(b), sinH) : sinH;
                 occlusion += (1.0 - r2 / (uRadius * uRadius)) * max(s - from, 0.0);
                 sinH = s;
             }
@@ -274,7 +300,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         float weight = sqrt(dot(projected, projected));
         if (weight < 1e-6) continue;
         float n = atan(dot(projected, world), dot(projected, toEye));
-        if (uThickness > 0.0) {
+        if (finiteOccluders()) {
             open += weight * sliceVisibilityWithThickness(p, position, toEye, screen, n, pixels,
                                                           xi.y);
             continue;
