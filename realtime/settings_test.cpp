@@ -98,7 +98,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.body_sphere_pixels"), 8.0);
     EXPECT_EQ(j.at("realtime.ao.depth"), "filtered");
     EXPECT_EQ(j.at("realtime.ao.thickness"), 0.0);
-    EXPECT_EQ(j.size(), 82u);
+    EXPECT_EQ(j.at("realtime.ao.layers"), 1);
+    EXPECT_EQ(j.size(), 83u);
 }
 
 TEST(Settings, ReadsTheAtmosphereKeys) {
