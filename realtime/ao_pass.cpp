@@ -70,6 +70,8 @@ gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& s
     estimate.set("uMaxPixels", static_cast<float>(settings.maxPixels));
     estimate.set("uAngleBias",
                  static_cast<float>(settings.angleBiasDeg * 3.14159265358979 / 180.0));
+    estimate.set("uGtaoBias",
+                 static_cast<float>(settings.gtaoAngleBiasDeg * 3.14159265358979 / 180.0));
     estimate.set("uThickness", static_cast<float>(settings.thickness));
     estimate.set("uDepth", 0.0f);
     normalUv.bind(0);

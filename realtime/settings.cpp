@@ -56,6 +56,7 @@ AoSettings parseAo(const core::ParameterTable& t) {
                      std::array{AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue});
     a.maxPixels = t.getDouble("ao.max_pixels", d.maxPixels, 4.0, 4096.0);
     a.angleBiasDeg = t.getDouble("ao.angle_bias", d.angleBiasDeg, 0.0, 60.0);
+    a.gtaoAngleBiasDeg = t.getDouble("ao.gtao_angle_bias", d.gtaoAngleBiasDeg, 0.0, 60.0);
     a.thickness = t.getDouble("ao.thickness", d.thickness, 0.0, 1000.0);
     a.depth = byName(t.getEnum("ao.depth", std::string(toString(d.depth)), {"shaded", "filtered"}),
                      std::array{AoDepth::Shaded, AoDepth::Filtered});
@@ -560,6 +561,7 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.ao.noise", toString(s.ao.noise)},
         {"realtime.ao.max_pixels", s.ao.maxPixels},
         {"realtime.ao.angle_bias", s.ao.angleBiasDeg},
+        {"realtime.ao.gtao_angle_bias", s.ao.gtaoAngleBiasDeg},
         {"realtime.ao.thickness", s.ao.thickness},
         {"realtime.ao.depth", toString(s.ao.depth)},
         {"realtime.ao.layers", s.ao.layers},

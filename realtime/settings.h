@@ -358,6 +358,10 @@ struct AoSettings {
     // ao.angle_bias: hbao's tangent angle bias, degrees, 0..60 (Bavoil & Sainz: samples within
     // it above the tangent plane count nothing, against a coarse surface's false occlusion).
     double angleBiasDeg = 20.0;
+    // ao.gtao_angle_bias: gtao's, degrees, 0..60: horizons within it above the tangent plane
+    // count nothing, and higher ones are lowered by it. 10 by default: the ambient_occlusion
+    // study measures it within the bound on false occlusion on each of its scenes.
+    double gtaoAngleBiasDeg = 10.0;
     // ao.thickness: the depth of each occluder behind the front the depth buffer holds, in
     // particle radii (the impostor's radius where it is seen), 0..1000; 0: without end, every
     // occluder a wall reaching back from its front (the methods as published). Against false

@@ -99,7 +99,8 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.ao.depth"), "filtered");
     EXPECT_EQ(j.at("realtime.ao.thickness"), 0.0);
     EXPECT_EQ(j.at("realtime.ao.layers"), 1);
-    EXPECT_EQ(j.size(), 83u);
+    EXPECT_EQ(j.at("realtime.ao.gtao_angle_bias"), 10.0);
+    EXPECT_EQ(j.size(), 84u);
 }
 
 TEST(Settings, ReadsTheAtmosphereKeys) {

@@ -11,7 +11,9 @@
 //    Its weighting is the image plane's, not the normal's cosine.
 //  - AO_GTAO: ground-truth AO (Jimenez et al. 2016): per slice about the view vector, two
 //    horizons clamped to the normal's hemisphere and the cosine-weighted visibility between
-//    them in closed form, weighted by the projected normal's length.
+//    them in closed form, weighted by the projected normal's length; horizons within an angle
+//    bias above the tangent plane count nothing (hbao's answer to the impostors' bumps), and
+//    each higher one is lowered by it.
 // Thickness (uThickness > 0): the depth buffer holds only the front of each occluder, and the
 // horizons above take all that lies behind it for solid: the front of a ball hanging over a
 // slab stands for a wall reaching back to the slab. With a thickness, each sample's occluder
@@ -42,6 +44,7 @@ uniform int uSlices;      // screen directions (hbao, gtao), or sample rings (ss
 uniform int uSteps;       // samples along each
 uniform float uMaxPixels;  // the screen radius's cap, pixels
 uniform float uAngleBias;  // hbao: radians added to the tangent's elevation
+uniform float uGtaoBias;   // gtao: the same, radians
 uniform float uThickness;  // each occluder's depth, particle radii; 0: without end
 #ifdef SECOND_LAYER
 layout(binding = 6) uniform sampler2D uBack;  // the eye depth of the body's back; 0: none
@@ -278,6 +281,8 @@ float sliceVisibilityWithThickness(ivec2 p, vec3 position, vec3 toEye, vec2 scre
             occluded |= sectorBits(min(a, b), max(a, b), lo);
         }
     }
+    // Within the angle bias above the tangent plane on either side, nothing counts.
+    occluded &= ~(sectorBits(lo, lo + uGtaoBias, lo) | sectorBits(lo + PI - uGtaoBias, lo + PI, lo));
     float open = 0.0, below = visibleUpTo(lo, n);
     for (int k = 0; k < SECTORS; ++k) {
         float above = visibleUpTo(lo + float(k + 1) * (PI / float(SECTORS)), n);
@@ -320,8 +325,9 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
                 best[side] = max(best[side], dot(v, toEye) * inversesqrt(r2));
             }
         }
-        float h2 = min(acos(clamp(best[0], -1.0, 1.0)), n + 0.5 * PI);
-        float h1 = max(-acos(clamp(best[1], -1.0, 1.0)), n - 0.5 * PI);
+        // Lowered by the angle bias: a horizon within it above the tangent plane is none.
+        float h2 = min(acos(clamp(best[0], -1.0, 1.0)) + uGtaoBias, n + 0.5 * PI);
+        float h1 = max(-acos(clamp(best[1], -1.0, 1.0)) - uGtaoBias, n - 0.5 * PI);
         open += weight * sliceVisibility(h1, h2, n);
     }
     // Not capped at 1: one slice's estimate of an open surface is |n_p| (cos n + n sin n), above
