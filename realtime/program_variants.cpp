@@ -137,7 +137,9 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         add("fullscreen.vert", "depth_normals.frag", {});
     }
     if (usesAmbientOcclusion(settings)) {
-        add("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings.ao));
+        add("fullscreen.vert",
+            settings.ao.method == AoMethod::Traced ? "ao_traced.frag" : "ao.frag",
+            ambientOcclusionDefines(settings.ao));
         if (settings.ao.blur != AoBlur::None)
             add("fullscreen.vert", "ao_blur.frag",
                 settings.ao.blur == AoBlur::DepthAware ? std::vector<std::string>{"AO_DEPTH_AWARE"}
@@ -219,7 +221,7 @@ std::vector<ProgramVariant> allProgramVariants() {
                                                     all.try_emplace(v.name(), std::move(v));
                                             }
     // The ambient occlusion's programs, beside the defaults above.
-    for (AoMethod method : {AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao})
+    for (AoMethod method : {AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao, AoMethod::Traced})
         for (AoNoise noise : {AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue})
             for (AoBlur blur : {AoBlur::None, AoBlur::Flat, AoBlur::DepthAware})
                 for (ShadowMode shadows : {ShadowMode::None, ShadowMode::Map})

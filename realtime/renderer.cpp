@@ -19,6 +19,7 @@
 #include "core/cancellation.h"
 #include "core/derived_attributes.h"
 #include "core/error.h"
+#include "realtime/ao_traced.h"
 #include "realtime/error_split.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/frame_graph.h"
@@ -51,6 +52,8 @@ struct DeviceState {
     }
     // The read-back's pixel buffers, kept between frames.
     gl::TextureReadback readback;
+    // ao.method = "traced": the spheres it traces, kept per particle set.
+    OcclusionGridCache occlusionGrid;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
     core::Image spareImage, spareDisplay;
 };
@@ -253,7 +256,8 @@ struct PassInputs {
     // instead, and the camera's world position.
     GpuPerSet* gradientGrid = nullptr;
     glm::dvec3 camera{0.0};
-    double aoRadius = 0.0;  // light.ao_radius
+    double aoRadius = 0.0;                                // light.ao_radius
+    const OcclusionGridBuffers* occlusionGrid = nullptr;  // ao.method = "traced": its spheres
     // Whether the emissive pass runs (usesEmissiveLight), and, for "point_lights", the lights.
     bool emissiveLight = false;
     std::vector<PointLight> pointLights = {};
@@ -386,13 +390,14 @@ const Pass PASSES[] = {
              narrowRange.method = SurfaceMethod::NarrowRange;
              const FilteredSurface f =
                  runSurfacePass(in.programs, r.gbuffer(), r.read(R::NormalUv), narrowRange);
-             r.write(R::Occlusion, runAmbientOcclusionPass(in.programs, *f.surface, f.normalUv,
-                                                           in.settings.ao, in.aoRadius));
+             r.write(R::Occlusion,
+                     runAmbientOcclusionPass(in.programs, *f.surface, f.normalUv, in.settings.ao,
+                                             in.aoRadius, in.occlusionGrid));
              return;
          }
          r.write(R::Occlusion,
                  runAmbientOcclusionPass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
-                                         in.settings.ao, in.aoRadius));
+                                         in.settings.ao, in.aoRadius, in.occlusionGrid));
      }},
     {"emissive", EMISSIVE_READS, EMISSIVE_WRITES,
      [](const PassInputs& in) { return in.emissiveLight; },
@@ -548,7 +553,7 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     std::optional<gl::Texture> occlusion;
     if (usesAmbientOcclusion(in.settings))
         occlusion.emplace(runAmbientOcclusionPass(d.programs, g.surface, g.normalUv, in.settings.ao,
-                                                  in.aoRadius));
+                                                  in.aoRadius, in.occlusionGrid));
     // Its emissive light too.
     std::optional<gl::Texture> irradiance;
     if (in.emissiveLight)
@@ -690,6 +695,18 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.gradientGrid = uploaded.draws.gradientGrid;
     passInputs.camera = in.scene.camera.position;
     passInputs.aoRadius = in.scene.light.aoRadius;
+    // ao.method = "traced": its grid of spheres, built and uploaded with the scene ("upload").
+    std::optional<OcclusionGridBuffers> occlusionGrid;
+    if (usesAmbientOcclusion(mSettings) && mSettings.ao.method == AoMethod::Traced) {
+        const auto gridStart = Clock::now();
+        occlusionGrid = uploadOcclusionGrid(
+            passInputs.aoRadius > 0.0
+                ? d.occlusionGrid.grid(in.particles, mSettings.particles, in.scene.camera.position,
+                                       passInputs.aoRadius)
+                : OcclusionGrid{});
+        passInputs.occlusionGrid = &*occlusionGrid;
+        frame.timingsMs["upload"] += msSince(gridStart);
+    }
     passInputs.emissiveLight = emissiveLight;
     passInputs.uniforms = uploaded.uniforms;
     passInputs.atmosphere = atmosphere;
