@@ -2,6 +2,7 @@
 // occlusion of the ambient term, its reach the scene's light.ao_radius.
 #include <vector>
 
+#include "realtime/ao_traced.h"
 #include "realtime/blue_noise.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/passes.h"
@@ -34,8 +35,10 @@ std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings) {
         case AoMethod::None:
             defines.emplace_back("AO_GTAO");
             break;
+        case AoMethod::Traced:  // ao_traced.frag: the noise's alone
+            break;
     }
-    if (settings.layers == 2) defines.emplace_back("SECOND_LAYER");
+    if (usesBackLayer(settings)) defines.emplace_back("SECOND_LAYER");
     switch (settings.noise) {
         case AoNoise::White:
             defines.emplace_back("NOISE_WHITE");
@@ -52,7 +55,8 @@ std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings) {
 
 gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& surface,
                                     const gl::Texture& normalUv, const AoSettings& settings,
-                                    double radius, const gl::Texture* back) {
+                                    double radius, const gl::Texture* back,
+                                    const OcclusionGridBuffers* grid) {
     const int w = surface.width(), h = surface.height();
     gl::Texture open[2] = {gl::Texture(w, h, gl::Format::R32F),
                            gl::Texture(w, h, gl::Format::R32F)};
@@ -62,7 +66,9 @@ gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& s
     surface.bind(2);
 
     const gl::Program& estimate =
-        programs.get("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings));
+        settings.method == AoMethod::Traced
+            ? tracedOcclusionProgram(programs, settings, *grid)
+            : programs.get("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings));
     estimate.use();
     estimate.set("uRadius", static_cast<float>(radius));
     estimate.set("uSlices", settings.slices);

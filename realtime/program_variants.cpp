@@ -91,7 +91,7 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     const bool bodySpheres = settings.particles.bodySpherePixels > 0.0;
     const bool bodyMask = bodySpheres && settings.perSet == PerSetDevice::Gpu;
     // ao.layers = 2: the occlusion pass's second depth layer, drawn with the G-buffer's shapes.
-    const bool backLayer = usesAmbientOcclusion(settings) && settings.ao.layers == 2;
+    const bool backLayer = usesAmbientOcclusion(settings) && usesBackLayer(settings.ao);
     for (const bool masked : {false, true}) {
         if (masked && !bodyMask) continue;
         for (const bool ellipsoids : {false, true}) {
@@ -144,7 +144,9 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         add("fullscreen.vert", "depth_normals.frag", {});
     }
     if (usesAmbientOcclusion(settings)) {
-        add("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings.ao));
+        add("fullscreen.vert",
+            settings.ao.method == AoMethod::Traced ? "ao_traced.frag" : "ao.frag",
+            ambientOcclusionDefines(settings.ao));
         if (settings.ao.blur != AoBlur::None)
             add("fullscreen.vert", "ao_blur.frag",
                 settings.ao.blur == AoBlur::DepthAware ? std::vector<std::string>{"AO_DEPTH_AWARE"}
@@ -226,7 +228,7 @@ std::vector<ProgramVariant> allProgramVariants() {
                                                     all.try_emplace(v.name(), std::move(v));
                                             }
     // The ambient occlusion's programs, beside the defaults above.
-    for (AoMethod method : {AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao})
+    for (AoMethod method : {AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao, AoMethod::Traced})
         for (AoNoise noise : {AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue})
             for (AoBlur blur : {AoBlur::None, AoBlur::Flat, AoBlur::DepthAware})
                 for (ShadowMode shadows : {ShadowMode::None, ShadowMode::Map})

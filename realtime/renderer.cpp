@@ -19,6 +19,7 @@
 #include "core/cancellation.h"
 #include "core/derived_attributes.h"
 #include "core/error.h"
+#include "realtime/ao_traced.h"
 #include "realtime/error_split.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/frame_graph.h"
@@ -51,6 +52,8 @@ struct DeviceState {
     }
     // The read-back's pixel buffers, kept between frames.
     gl::TextureReadback readback;
+    // ao.method = "traced": the spheres it traces, kept per particle set.
+    OcclusionGridCache occlusionGrid;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
     core::Image spareImage, spareDisplay;
 };
@@ -253,7 +256,8 @@ struct PassInputs {
     // instead, and the camera's world position.
     GpuPerSet* gradientGrid = nullptr;
     glm::dvec3 camera{0.0};
-    double aoRadius = 0.0;  // light.ao_radius
+    double aoRadius = 0.0;                                // light.ao_radius
+    const OcclusionGridBuffers* occlusionGrid = nullptr;  // ao.method = "traced": its spheres
     // Whether the emissive pass runs (usesEmissiveLight), and, for "point_lights", the lights.
     bool emissiveLight = false;
     std::vector<PointLight> pointLights = {};
@@ -263,14 +267,14 @@ struct PassInputs {
 };
 
 // The occlusion pass over `surface` and `normalUv`, with its second depth layer drawn first
-// where ao.layers asks for one.
+// where ao.layers asks for one, or its rays traced through the frame's grid.
 gl::Texture occlusionOf(const PassInputs& in, const gl::Texture& surface,
                         const gl::Texture& normalUv) {
     std::optional<gl::Texture> back;
-    if (in.settings.ao.layers == 2)
+    if (usesBackLayer(in.settings.ao))
         back.emplace(runBackLayerPass(in.programs, in.scene, surface, in.settings.depth));
     return runAmbientOcclusionPass(in.programs, surface, normalUv, in.settings.ao, in.aoRadius,
-                                   back ? &*back : nullptr);
+                                   back ? &*back : nullptr, in.occlusionGrid);
 }
 
 // The frame's resources after its passes (frame_graph.h), and the timer query of each pass
@@ -697,6 +701,18 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.gradientGrid = uploaded.draws.gradientGrid;
     passInputs.camera = in.scene.camera.position;
     passInputs.aoRadius = in.scene.light.aoRadius;
+    // ao.method = "traced": its grid of spheres, built and uploaded with the scene ("upload").
+    std::optional<OcclusionGridBuffers> occlusionGrid;
+    if (usesAmbientOcclusion(mSettings) && mSettings.ao.method == AoMethod::Traced) {
+        const auto gridStart = Clock::now();
+        occlusionGrid = uploadOcclusionGrid(
+            passInputs.aoRadius > 0.0
+                ? d.occlusionGrid.grid(in.particles, mSettings.particles, in.scene.camera.position,
+                                       passInputs.aoRadius)
+                : OcclusionGrid{});
+        passInputs.occlusionGrid = &*occlusionGrid;
+        frame.timingsMs["upload"] += msSince(gridStart);
+    }
     passInputs.emissiveLight = emissiveLight;
     passInputs.uniforms = uploaded.uniforms;
     passInputs.atmosphere = atmosphere;

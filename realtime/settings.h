@@ -316,13 +316,17 @@ enum class PerSetDevice {
     Cpu,  // "cpu": oneTBB over core::ColourField's grids, packed and uploaded
 };
 
-// ao.*: the screen-space ambient occlusion pass (realtime/ao_pass.cpp, shaders/ao.frag). Its
-// reach is the scene's light.ao_radius, which the reference traces exactly.
+// ao.*: the ambient occlusion pass (realtime/ao_pass.cpp, shaders/ao.frag; "traced":
+// realtime/ao_traced.h, shaders/ao_traced.frag). Its reach is the scene's light.ao_radius, which
+// the reference traces exactly.
 enum class AoMethod {
     None,  // "none": no pass; the ambient term is not occluded
     Ssao,  // "ssao": points in the normal's hemisphere tested against the depth buffer
     Hbao,  // "hbao": horizon-based (Bavoil & Sainz 2008)
     Gtao,  // "gtao": ground-truth AO (Jimenez et al. 2016), cosine-weighted horizons
+    // "traced": rays in world space from each pixel's surface point against the particles'
+    // impostor spheres through a uniform grid (realtime/ao_traced.h)
+    Traced,
 };
 enum class AoBlur {
     None,        // "none": the raw, noisy estimate
@@ -342,11 +346,14 @@ enum class AoDepth {
                // from it, run for the occlusion pass alone
 };
 struct AoSettings {
-    AoMethod method = AoMethod::None;  // ao.method: "none" | "ssao" | "hbao" | "gtao"
+    // ao.method: "none" | "ssao" | "hbao" | "gtao" | "traced"
+    AoMethod method = AoMethod::None;
     // ao.slices: screen directions per pixel (hbao: over a full turn; gtao: slices over half a
     // turn, two sides each; ssao: slices x steps points), 1..32.
     int slices = 4;
     int steps = 8;  // ao.steps: samples along each direction (or per ssao slice), 1..64
+    // ao.rays ("traced" only): cosine-weighted rays per pixel, stratified over the disc, 1..256.
+    int rays = 16;
     // ao.blur: "none" | "flat" | "depth_aware"; ao.blur_radius: pixels, 1..16.
     AoBlur blur = AoBlur::DepthAware;
     int blurRadius = 4;
@@ -470,6 +477,9 @@ bool usesAmbientOcclusion(const Settings& settings);
 // Whether it filters a depth of its own: ao.depth is "filtered" and the surface method filters
 // none (ssss, none).
 bool filtersOcclusionDepth(const Settings& settings);
+// Whether the occlusion pass draws its second depth layer: ao.layers = 2 with a screen-space
+// method (the traced rays meet the spheres themselves).
+bool usesBackLayer(const AoSettings& settings);
 // Whether the emissive pass runs: the scene asks for the light of emitting surfaces
 // (light.emissive_light), something emits, and emissive.method is not "none".
 bool usesEmissiveLight(const Settings& settings, bool emissiveLight, bool emits);

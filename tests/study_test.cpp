@@ -411,11 +411,11 @@ bool aoOptionBetter(const json& s, const AoRows& rows, const std::string& scene,
 }  // namespace
 
 TEST(Study, AmbientOcclusionAlongTheRadiusAcrossGaps) {
-    // Three scenes x (each setting and its repeat half a pixel aside) x 11 settings (none, each
-    // method on the shaded and the filtered depth, and on the filtered with a thickness; gtao
-    // on the filtered with the second depth layer) x 3 radii; a reference per scene, radius and
-    // camera.
-    const json s = runStudy("ambient_occlusion", 3 * 2 * 11 * 3, "ao.mean_abs");
+    // Three scenes x (each setting and its repeat half a pixel aside) x 13 settings (none, each
+    // method on the shaded and the filtered depth, each screen-space one on the filtered with a
+    // thickness, gtao on the filtered with the second depth layer) x 3 radii; a reference per
+    // scene, radius and camera.
+    const json s = runStudy("ambient_occlusion", 3 * 2 * 13 * 3, "ao.mean_abs");
     ASSERT_FALSE(s.is_discarded());
     EXPECT_EQ(s["references"], 3 * 3 * 2);
     const json& f = s["facts"];
@@ -423,7 +423,7 @@ TEST(Study, AmbientOcclusionAlongTheRadiusAcrossGaps) {
     // none, whether it meets the goal, and the settings that do.
     const AoRows rows(s);
     const auto verdicts = aoVerdicts(s, rows);
-    ASSERT_EQ(verdicts.size(), 10u);
+    ASSERT_EQ(verdicts.size(), 12u);
     json recommended = json::array();
     for (const auto& [name, v] : verdicts) {
         const json& g = f["settings"][name];
@@ -446,7 +446,7 @@ TEST(Study, AmbientOcclusionAlongTheRadiusAcrossGaps) {
          {"ssao, shaded depth", "ssao, filtered depth", "ssao, filtered depth, thickness 4",
           "hbao, shaded depth", "hbao, filtered depth", "hbao, filtered depth, thickness 4",
           "gtao, shaded depth", "gtao, filtered depth", "gtao, filtered depth, thickness 4",
-          "gtao, filtered depth, second layer"})
+          "gtao, filtered depth, second layer", "traced, shaded depth", "traced, filtered depth"})
         if (verdicts.at(name).meets()) expected.push_back(name);
     EXPECT_EQ(recommended, expected);
     // Each option against its absence, per method and scene.

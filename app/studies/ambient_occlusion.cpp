@@ -1,10 +1,10 @@
-// The ambient_occlusion study (docs/studies.md): the screen-space occlusion methods against the
-// reference's traced occlusion along the occlusion radius R, on a ball resting on a slab and on
-// two scenes with a gap the truth leaves open at small R (a ball hanging over a slab, two balls
-// apart), each method on the shaded and the filtered depth, with and without a thickness or a
-// second depth layer, and on a depth-filtering surface method. The finding says where each setting
-// helps and where it hurts against no occlusion, deciding with the spread of renders half a pixel
-// aside.
+// The ambient_occlusion study (docs/studies.md): the real-time occlusion methods (screen-space,
+// and rays traced against the particles' spheres) against the reference's traced occlusion along
+// the occlusion radius R, on a ball resting on a slab and on two scenes with a gap the truth
+// leaves open at small R (a ball hanging over a slab, two balls apart), each method on the shaded
+// and the filtered depth, with and without a thickness or a second depth layer, and on a
+// depth-filtering surface method. The finding says where each setting helps and where it hurts
+// against no occlusion, deciding with the spread of renders half a pixel aside.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -71,7 +71,7 @@ constexpr double GTAO_BIAS = 10.0;
 // occluder (particle radii) and the surface method; each point sets them all, so that a series
 // keeps its meaning when a default changes.
 struct AoSetting {
-    std::string method;  // "none", "ssao", "hbao", "gtao"
+    std::string method;  // "none", "ssao", "hbao", "gtao", "traced"
     std::string depth = "shaded";
     double thickness = 0.0;
     int layers = 1;               // ao.layers
@@ -91,13 +91,16 @@ struct AoSetting {
     }
 };
 
-const std::vector<std::string> AO_METHODS = {"ssao", "hbao", "gtao"};
+const std::vector<std::string> AO_METHODS = {"ssao", "hbao", "gtao", "traced"};
 
 std::vector<AoSetting> aoSettings(bool quick) {
     std::vector<AoSetting> all = {{.method = "none"}};
     for (const std::string& m : AO_METHODS) {
         all.push_back({.method = m, .depth = "shaded"});
         all.push_back({.method = m, .depth = "filtered"});
+        // The traced rays meet the spheres themselves: no thickness to guess, and the depth
+        // only places the rays' origins.
+        if (m == "traced") continue;
         all.push_back({.method = m, .depth = "shaded", .thickness = 4.0, .quick = false});
         all.push_back({.method = m, .depth = "filtered", .thickness = 4.0});
         // The second depth layer: in quick runs for gtao alone, the method whose bit mask

@@ -28,17 +28,13 @@
 // 2016), whose second layer for particles is the body's exit, since the nearest surface behind
 // the first inside a body of overlapping impostors is only the next particle. With a thickness
 // as well, the nearer of the two backs.
-// Noise (per pixel: slice rotation and step jitter): NOISE_WHITE (a hash), NOISE_IGN
-// (interleaved gradient noise, Jimenez 2014), NOISE_BLUE (a void-and-cluster texture,
-// realtime/blue_noise.h).
+// Noise (per pixel: slice rotation and step jitter): ao_noise.glsl.
 #include "common.glsl"
 #include "convert.glsl"
+#include "ao_noise.glsl"
 
 layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
 layout(binding = 2) uniform sampler2D uSurface;   // eye depth, body, radius px, material
-#ifdef NOISE_BLUE
-layout(binding = 5) uniform sampler2D uBlueNoise;  // R32F ranks in [0, 1), tiled
-#endif
 uniform float uRadius;    // scene units; 0: no occlusion
 uniform int uSlices;      // screen directions (hbao, gtao), or sample rings (ssao)
 uniform int uSteps;       // samples along each
@@ -63,29 +59,6 @@ bool finiteOccluders() {
 layout(location = 0) out vec4 outOpen;
 
 const float PI = 3.14159265358979;
-
-vec2 noise(ivec2 p) {
-#if defined(NOISE_BLUE)
-    ivec2 size = textureSize(uBlueNoise, 0);
-    float b = texelFetch(uBlueNoise, p % size, 0).r;
-    return vec2(b, fract(b + 0.61803398875));
-#elif defined(NOISE_IGN)
-    vec2 q = vec2(p);
-    float a = fract(52.9829189 * fract(dot(q, vec2(0.06711056, 0.00583715))));
-    float b = fract(52.9829189 * fract(dot(q + vec2(5.588238), vec2(0.06711056, 0.00583715))));
-    return vec2(a, b);
-#else
-    // A 2-D integer hash (pcg2d, Jarzynski & Olano 2020).
-    uvec2 v = uvec2(p) * 1664525u + 1013904223u;
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v ^= v >> 16u;
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v ^= v >> 16u;
-    return vec2(v >> 8u) * (1.0 / 16777216.0);
-#endif
-}
 
 // The eye depth of the surface at pixel q: false on the background or off the image.
 bool depthAt(ivec2 q, out float z) {
