@@ -159,9 +159,12 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         add("halo.vert", "halo.frag", {});
         if (bodyMask) add("halo.vert", "halo.frag", bodyMaskDefines(true, {}));
     }
+    // With an occlusion method, a scene without light.ao_radius shades without it.
     add("fullscreen.vert", "shade.frag",
-        shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings),
-                     emissiveLight));
+        shadeDefines(settings.shadows, settings.shadowMap, emits, false, emissiveLight));
+    if (usesAmbientOcclusion(settings))
+        add("fullscreen.vert", "shade.frag",
+            shadeDefines(settings.shadows, settings.shadowMap, emits, true, emissiveLight));
     if (atmosphere)
         add("fullscreen.vert", "atmosphere.frag", atmosphereDefines(settings.atmosphere));
     // The bloom's levels exist where the image is large enough; the composite without them

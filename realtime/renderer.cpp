@@ -266,6 +266,12 @@ struct PassInputs {
     std::optional<core::Atmosphere> atmosphere = std::nullopt;
 };
 
+// Whether the frame runs the occlusion pass: a method, and a reach (light.ao_radius) to look
+// within; without one the ambient term is open everywhere.
+bool occludes(const PassInputs& in) {
+    return usesAmbientOcclusion(in.settings) && in.aoRadius > 0.0;
+}
+
 // The occlusion pass over `surface` and `normalUv`, with its second depth layer drawn first
 // where ao.layers asks for one, or its rays traced through the frame's grid.
 gl::Texture occlusionOf(const PassInputs& in, const gl::Texture& surface,
@@ -391,8 +397,7 @@ const Pass PASSES[] = {
          if (f->surface) r.write(R::Surface, f, *f->surface);
          if (f->emission) r.write(R::Emission, f, *f->emission);
      }},
-    {"ao", AO_READS, AO_WRITES,
-     [](const PassInputs& in) { return usesAmbientOcclusion(in.settings); },
+    {"ao", AO_READS, AO_WRITES, [](const PassInputs& in) { return occludes(in); },
      [](const PassInputs& in, PassResources& r) {
          // ao.depth = "filtered" without a depth filter: the narrow-range filter and its
          // normals for this pass alone (the shade pass keeps its surface).
@@ -558,8 +563,7 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     const GBuffer& g = exact.gbuffer;
     // The exact surface with the real-time light: its shadow map, its occlusion pass.
     std::optional<gl::Texture> occlusion;
-    if (usesAmbientOcclusion(in.settings))
-        occlusion.emplace(occlusionOf(in, g.surface, g.normalUv));
+    if (occludes(in)) occlusion.emplace(occlusionOf(in, g.surface, g.normalUv));
     // Its emissive light too.
     std::optional<gl::Texture> irradiance;
     if (in.emissiveLight)
@@ -703,13 +707,10 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.aoRadius = in.scene.light.aoRadius;
     // ao.method = "traced": its grid of spheres, built and uploaded with the scene ("upload").
     std::optional<OcclusionGridBuffers> occlusionGrid;
-    if (usesAmbientOcclusion(mSettings) && mSettings.ao.method == AoMethod::Traced) {
+    if (occludes(passInputs) && mSettings.ao.method == AoMethod::Traced) {
         const auto gridStart = Clock::now();
-        occlusionGrid = uploadOcclusionGrid(
-            passInputs.aoRadius > 0.0
-                ? d.occlusionGrid.grid(in.particles, mSettings.particles, in.scene.camera.position,
-                                       passInputs.aoRadius)
-                : OcclusionGrid{});
+        occlusionGrid = uploadOcclusionGrid(d.occlusionGrid.grid(
+            in.particles, mSettings.particles, in.scene.camera.position, passInputs.aoRadius));
         passInputs.occlusionGrid = &*occlusionGrid;
         frame.timingsMs["upload"] += msSince(gridStart);
     }

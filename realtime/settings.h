@@ -346,8 +346,11 @@ enum class AoDepth {
                // from it, run for the occlusion pass alone
 };
 struct AoSettings {
-    // ao.method: "none" | "ssao" | "hbao" | "gtao" | "traced"
-    AoMethod method = AoMethod::None;
+    // ao.method: "none" | "ssao" | "hbao" | "gtao" | "traced". "traced" by default: in the
+    // ambient_occlusion study it alone lowers the error against none wherever the truth is
+    // occluded on each of its scenes, within the bound on false occlusion where it is open. It
+    // runs where the scene's light.ao_radius is above 0.
+    AoMethod method = AoMethod::Traced;
     // ao.slices: screen directions per pixel (hbao: over a full turn; gtao: slices over half a
     // turn, two sides each; ssao: slices x steps points), 1..32.
     int slices = 4;
@@ -472,7 +475,8 @@ struct Settings {
     AtmosphereSettings atmosphere;
 };
 
-// Whether the ambient occlusion pass runs (ao.method is not "none").
+// Whether the settings ask for the ambient occlusion pass (ao.method is not "none"); a frame
+// runs it where the scene's light.ao_radius is above 0 too.
 bool usesAmbientOcclusion(const Settings& settings);
 // Whether it filters a depth of its own: ao.depth is "filtered" and the surface method filters
 // none (ssss, none).

@@ -136,8 +136,10 @@ TEST(Settings, TheWholeBodySphereWorksWithEitherPerSetDevice) {
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {
     const Settings d = parseSettings(table({}));
-    EXPECT_EQ(d.ao.method, AoMethod::None);
-    EXPECT_FALSE(usesAmbientOcclusion(d));
+    EXPECT_EQ(d.ao.method, AoMethod::Traced);
+    // Asked for by default; a frame runs it where the scene's light.ao_radius is above 0.
+    EXPECT_TRUE(usesAmbientOcclusion(d));
+    EXPECT_FALSE(usesAmbientOcclusion(parseSettings(table({{"ao.method", std::string("none")}}))));
     const Settings s = parseSettings(table({{"ao.method", std::string("gtao")},
                                             {"ao.slices", std::int64_t(6)},
                                             {"ao.steps", std::int64_t(12)},

@@ -46,7 +46,7 @@ TEST(AmbientOcclusion, EachMethodLowersTheErrorAgainstNone) {
     // and the slab around it are too light (ao.bias > 0). Each method must come closer to the
     // traced truth. Measured (96 x 72, llvmpipe): see the bounds below, a quarter above each.
     const fs::path dir = tt::freshDir("ambient_occlusion");
-    const AoRun none = runWith(dir, "none", {});
+    const AoRun none = runWith(dir, "none", {"realtime.ao.method=none"});
     ASSERT_TRUE(none.metrics.contains("ao.mean_abs"));
     EXPECT_GT(none.metrics.at("ao.bias"), 0.0);
     EXPECT_NEAR(none.metrics.at("ao.bias"), none.metrics.at("ao.mean_abs"), 1e-9);
@@ -75,7 +75,7 @@ TEST(AmbientOcclusion, HorizonMethodsInventOcclusionWhereTheTruthIsOpen) {
     // shaded depth the horizon methods add occlusion there, the impostors' bumps taken for
     // occluders. Measured (160 x 120, llvmpipe): ao.false none 0, hbao 0.0077, gtao 0.0212.
     const fs::path dir = tt::freshDir("ambient_occlusion_gap");
-    const auto none = tt::runMetrics(GAP_SCENE, dir, "none", {});
+    const auto none = tt::runMetrics(GAP_SCENE, dir, "none", {"realtime.ao.method=none"});
     ASSERT_TRUE(none.contains("ao.false"));
     EXPECT_LT(none.at("ao.false"), 1e-3);
     for (const std::string method : {"hbao", "gtao"}) {
@@ -115,7 +115,7 @@ TEST(AmbientOcclusion, ASecondLayerEndsAHangingBallAtItsBack) {
     // by a quarter of it, and below gtao's without the layer by half of it.
     const fs::path dir = tt::freshDir("ambient_occlusion_layer");
     const std::string reach = "light.ao_radius=1.6";
-    const auto none = tt::runMetrics(GAP_SCENE, dir, "none", {reach});
+    const auto none = tt::runMetrics(GAP_SCENE, dir, "none", {reach, "realtime.ao.method=none"});
     const auto front = tt::runMetrics(GAP_SCENE, dir, "front", {reach, "realtime.ao.method=gtao"});
     const auto layered = tt::runMetrics(GAP_SCENE, dir, "layered",
                                         {reach, "realtime.ao.method=gtao", "realtime.ao.layers=2"});
@@ -154,7 +154,8 @@ TEST(AmbientOcclusion, TracedComesClosestWhereTheTruthIsOccluded) {
                  {SCENE, {}, 1.25 * 0.0047, "gtao"}};
     for (const auto& c : cases) {
         const std::string name = c.scene.stem().string();
-        const auto none = tt::runMetrics(c.scene, dir, name + "_none", c.sets);
+        const auto none =
+            tt::runMetrics(c.scene, dir, name + "_none", with(c.sets, "realtime.ao.method=none"));
         const auto best = tt::runMetrics(c.scene, dir, name + "_" + c.best,
                                          with(c.sets, "realtime.ao.method=" + c.best));
         const auto traced = tt::runMetrics(c.scene, dir, name + "_traced",

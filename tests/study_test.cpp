@@ -472,16 +472,23 @@ TEST(Study, AmbientOcclusionAlongTheRadiusAcrossGaps) {
         // default for that);
         EXPECT_TRUE(betterEverywhere("ao.depth filtered", ", filtered depth", ", shaded depth", m))
             << m;
-        // a thickness of 4 particle radii is better on every scene for no method (its default
-        // stays 0);
-        EXPECT_FALSE(betterEverywhere("ao.thickness 4 on the filtered depth",
-                                      ", filtered depth, thickness 4", ", filtered depth", m))
+        // a thickness of 4 particle radii is better on every scene for gtao alone (its bit mask
+        // integrates the span; ssao's points and hbao's one horizon lose real occlusion);
+        EXPECT_EQ(betterEverywhere("ao.thickness 4 on the filtered depth",
+                                   ", filtered depth, thickness 4", ", filtered depth", m),
+                  m == "gtao")
             << m;
     }
-    // on the filtered depth hbao alone stays within the bound, ssao and gtao do not;
-    EXPECT_FALSE(verdicts.at("hbao, filtered depth").exceedsBound);
+    // on the filtered depth ssao still adds more than the bound (at R 0.25, a few pixels);
     EXPECT_TRUE(verdicts.at("ssao, filtered depth").exceedsBound);
-    EXPECT_TRUE(verdicts.at("gtao, filtered depth").exceedsBound);
+    // the rays and gtao with the second layer lower the error against none at every point from
+    // R 1 where the truth is occluded;
+    for (const std::string name :
+         {"traced, shaded depth", "traced, filtered depth", "gtao, filtered depth, second layer"}) {
+        const AoVerdict& v = verdicts.at(name);
+        EXPECT_GT(v.lower, 0u) << name;
+        EXPECT_EQ(v.tie + v.higher, 0u) << name;
+    }
     // over the slab at the largest R gtao takes the ball's front for a wall down to the slab:
     // further from the truth than none without a thickness, closer with one;
     double largest = 0.0;
@@ -498,7 +505,7 @@ TEST(Study, AmbientOcclusionAlongTheRadiusAcrossGaps) {
                      *none),
         -1);
     // and the defaults are the filtered depth without a thickness.
-    for (const std::string& m : methods)
+    for (const std::string m : {"ssao", "hbao", "gtao", "traced"})
         EXPECT_EQ(f["defaults"][m]["series"], m + ", filtered depth") << m;
 }
 
