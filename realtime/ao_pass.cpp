@@ -2,6 +2,7 @@
 // occlusion of the ambient term, its reach the scene's light.ao_radius.
 #include <vector>
 
+#include "realtime/ao_traced.h"
 #include "realtime/blue_noise.h"
 #include "realtime/gl/pipeline.h"
 #include "realtime/passes.h"
@@ -34,7 +35,10 @@ std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings) {
         case AoMethod::None:
             defines.emplace_back("AO_GTAO");
             break;
+        case AoMethod::Traced:  // ao_traced.frag: the noise's alone
+            break;
     }
+    if (usesBackLayer(settings)) defines.emplace_back("SECOND_LAYER");
     switch (settings.noise) {
         case AoNoise::White:
             defines.emplace_back("NOISE_WHITE");
@@ -51,7 +55,8 @@ std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings) {
 
 gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& surface,
                                     const gl::Texture& normalUv, const AoSettings& settings,
-                                    double radius) {
+                                    double radius, const gl::Texture* back,
+                                    const OcclusionGridBuffers* grid) {
     const int w = surface.width(), h = surface.height();
     gl::Texture open[2] = {gl::Texture(w, h, gl::Format::R32F),
                            gl::Texture(w, h, gl::Format::R32F)};
@@ -61,7 +66,9 @@ gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& s
     surface.bind(2);
 
     const gl::Program& estimate =
-        programs.get("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings));
+        settings.method == AoMethod::Traced
+            ? tracedOcclusionProgram(programs, settings, *grid)
+            : programs.get("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings));
     estimate.use();
     estimate.set("uRadius", static_cast<float>(radius));
     estimate.set("uSlices", settings.slices);
@@ -69,9 +76,12 @@ gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& s
     estimate.set("uMaxPixels", static_cast<float>(settings.maxPixels));
     estimate.set("uAngleBias",
                  static_cast<float>(settings.angleBiasDeg * 3.14159265358979 / 180.0));
+    estimate.set("uGtaoBias",
+                 static_cast<float>(settings.gtaoAngleBiasDeg * 3.14159265358979 / 180.0));
     estimate.set("uThickness", static_cast<float>(settings.thickness));
     estimate.set("uDepth", 0.0f);
     normalUv.bind(0);
+    if (back) back->bind(6);
     // 16 KB uploaded with the frame: no texture outlives the frame's GL context.
     gl::Texture noise;
     if (settings.noise == AoNoise::Blue) {
@@ -88,6 +98,33 @@ gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& s
     const gl::Program& blur = programs.get("fullscreen.vert", "ao_blur.frag", defines);
     blurSeparably(blur, settings.blurRadius, open, targets);
     return std::move(open[0]);
+}
+
+std::vector<std::string> backLayerDefines(DepthMode mode) {
+    return {depthDefine(mode), "BACK_LAYER"};
+}
+
+gl::Texture runBackLayerPass(ProgramCache& programs, const SceneBuffers& scene,
+                             const gl::Texture& surface, DepthMode mode) {
+    const int w = surface.width(), h = surface.height();
+    gl::Texture back(w, h, gl::Format::R32F);
+    // The farthest far side wins: the depth test reversed against the G-buffer's.
+    gl::Texture depth(w, h,
+                      mode == DepthMode::Standard ? gl::Format::Depth24 : gl::Format::Depth32F);
+    gl::Framebuffer target("ao back layer", {{&back}}, gl::Attachment{&depth});
+    target.bind();
+    target.clearColor(0, glm::vec4(0.0f));
+    const bool reversed = mode == DepthMode::Reversed;
+    target.clearDepth(reversed ? 1.0f : 0.0f);
+    gl::setPipelineState(
+        {.depthTest = reversed ? gl::DepthTest::Less : gl::DepthTest::Greater,
+         .depthWrite = true,
+         .depthClamp = true,
+         .clipDepth = reversed ? gl::ClipDepth::ZeroToOne : gl::ClipDepth::MinusOneToOne});
+    surface.bind(6);
+    scene.drawImpostors(programs, "gbuffer.frag", backLayerDefines(mode));
+    gl::setPipelineState({});
+    return back;
 }
 
 }  // namespace twinrender::realtime

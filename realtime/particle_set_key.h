@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/derived_attributes.h"
 #include "core/particles.h"
 
 namespace twinrender::realtime {
@@ -99,6 +100,27 @@ class SetCache {
     ParticleSetKey mKey;
     std::tuple<detail::KeptInput<Inputs>...> mInputs;
     Answer mAnswer{};
+};
+
+// The CPU's per-set work (per_set = "cpu") and the traced occlusion's spheres (ao_traced.h): a
+// set that came without normals (core::buildParticles leaves them to the real-time renderer),
+// copied with core::deriveNormals' normals and kept for the set.
+class DerivedNormalsCache {
+  public:
+    const core::ParticleSet& particles(const core::SceneParticles& in) {
+        mGiven = in.hasNormals;
+        if (mGiven) return in.particles;
+        return mCache.get(in.particles, [&] {
+            core::ParticleSet out = in.particles;
+            core::deriveNormals(out, in.bodies);
+            return out;
+        });
+    }
+    bool reused() const { return mGiven || mCache.reused(); }
+
+  private:
+    bool mGiven = false;
+    SetCache<core::ParticleSet> mCache;
 };
 
 }  // namespace twinrender::realtime

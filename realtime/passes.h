@@ -29,6 +29,7 @@
 namespace twinrender::realtime {
 
 class GpuPerSet;
+struct OcclusionGridBuffers;
 
 // What a draw takes (6 vertices per item): `count` items from item `first`, or, when
 // `commands` is set, the indirect draw command a compute pass wrote there at byte `offset`
@@ -192,11 +193,22 @@ const gl::Program& userSurfaceProgram(ProgramCache& programs, const SurfaceSetti
 // ao (ao.method is not "none"): the open fraction of each covered pixel's hemisphere within
 // `radius` (light.ao_radius, scene units; 0: 1 everywhere), from the surface and normals the
 // shade pass reads, then blurred (ao.blur). R32F, background texels 1.
+// `back` (ao.layers = 2): the second depth layer, runBackLayerPass's. ao.method = "traced"
+// traces rays through `grid` (ao_traced.h), which must then be given.
 gl::Texture runAmbientOcclusionPass(ProgramCache& programs, const gl::Texture& surface,
                                     const gl::Texture& normalUv, const AoSettings& settings,
-                                    double radius);
-// The defines of shaders/ao.frag for these settings (the method's and the noise's).
+                                    double radius, const gl::Texture* back = nullptr,
+                                    const OcclusionGridBuffers* grid = nullptr);
+// The defines of shaders/ao.frag (or ao_traced.frag) for these settings (the method's and the
+// noise's).
 std::vector<std::string> ambientOcclusionDefines(const AoSettings& settings);
+// The occlusion pass's second depth layer (ao.layers = 2): per pixel, the eye depth where the
+// view ray leaves the body `surface` holds there (the farthest far side of that body's
+// impostors along the ray); 0 where none. R32F.
+gl::Texture runBackLayerPass(ProgramCache& programs, const SceneBuffers& scene,
+                             const gl::Texture& surface, DepthMode mode);
+// gbuffer.frag's defines for that layer.
+std::vector<std::string> backLayerDefines(DepthMode mode);
 
 // emissive (usesEmissiveLight): the irradiance E (rgb, linear; a unused) that emitting
 // surfaces cast on each covered pixel, from the surface, normals and emission the shade pass

@@ -25,29 +25,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double msSince(Clock::time_point start) {
+double elapsedMs(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-// per_set = "cpu": a set that came without normals (core::buildParticles leaves them to the
-// real-time renderer), copied with core::deriveNormals' normals and kept for the set.
-class DerivedNormalsCache {
-  public:
-    const core::ParticleSet& particles(const core::SceneParticles& in) {
-        mGiven = in.hasNormals;
-        if (mGiven) return in.particles;
-        return mCache.get(in.particles, [&] {
-            core::ParticleSet out = in.particles;
-            core::deriveNormals(out, in.bodies);
-            return out;
-        });
-    }
-    bool reused() const { return mGiven || mCache.reused(); }
-
-  private:
-    bool mGiven = false;
-    SetCache<core::ParticleSet> mCache;
-};
 
 // Whether no sphere reaches into the near plane's ball (nearReach): culling is exact then.
 bool cullingIsExact(const core::ParticleSet& ps, const core::Camera& camera,
@@ -93,7 +73,7 @@ class CpuPerSetWork final : public PerSetWork {
         auto timed = [&](const char* stage, const auto& work) -> decltype(auto) {
             const auto stageStart = Clock::now();
             decltype(auto) result = work();
-            frame.timingsMs[stage] = msSince(stageStart);
+            frame.timingsMs[stage] = elapsedMs(stageStart);
             return result;
         };
         const core::ParticleSet& ps = timed(
@@ -255,7 +235,7 @@ class CpuPerSetWork final : public PerSetWork {
         gl::finish();
         double perSet = 0.0;
         for (const std::string& stage : perSetStages()) perSet += frame.timingsMs[stage];
-        frame.timingsMs["upload"] = msSince(start) - perSet;
+        frame.timingsMs["upload"] = elapsedMs(start) - perSet;
         return out;
     }
 

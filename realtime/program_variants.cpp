@@ -90,6 +90,8 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
     // the BODY_MASK variants (SceneBuffers::bodyMask), one that draws none without.
     const bool bodySpheres = settings.particles.bodySpherePixels > 0.0;
     const bool bodyMask = bodySpheres && settings.perSet == PerSetDevice::Gpu;
+    // ao.layers = 2: the occlusion pass's second depth layer, drawn with the G-buffer's shapes.
+    const bool backLayer = usesAmbientOcclusion(settings) && usesBackLayer(settings.ao);
     for (const bool masked : {false, true}) {
         if (masked && !bodyMask) continue;
         for (const bool ellipsoids : {false, true}) {
@@ -101,6 +103,8 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
             if (usesShadowMap(settings.shadows))
                 add("impostor.vert", "shadow.frag", defines({"SHADOW_PASS"}));
             add("impostor.vert", "gbuffer.frag", defines({depthDefine(settings.depth)}));
+            if (backLayer)
+                add("impostor.vert", "gbuffer.frag", defines(backLayerDefines(settings.depth)));
             if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
                 add("impostor.vert", "gbuffer.frag", defines(emitterTargetDefines(settings.depth)));
         }
@@ -110,6 +114,9 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         if (usesShadowMap(settings.shadows))
             add("impostor.vert", "shadow.frag", bodySphereDefines({"SHADOW_PASS"}));
         add("impostor.vert", "gbuffer.frag", bodySphereDefines({depthDefine(settings.depth)}));
+        if (backLayer)
+            add("impostor.vert", "gbuffer.frag",
+                bodySphereDefines(backLayerDefines(settings.depth)));
         if (emissiveLight && settings.emissive.method == EmissiveMethod::SsemTarget)
             add("impostor.vert", "gbuffer.frag",
                 bodySphereDefines(emitterTargetDefines(settings.depth)));
@@ -137,7 +144,9 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         add("fullscreen.vert", "depth_normals.frag", {});
     }
     if (usesAmbientOcclusion(settings)) {
-        add("fullscreen.vert", "ao.frag", ambientOcclusionDefines(settings.ao));
+        add("fullscreen.vert",
+            settings.ao.method == AoMethod::Traced ? "ao_traced.frag" : "ao.frag",
+            ambientOcclusionDefines(settings.ao));
         if (settings.ao.blur != AoBlur::None)
             add("fullscreen.vert", "ao_blur.frag",
                 settings.ao.blur == AoBlur::DepthAware ? std::vector<std::string>{"AO_DEPTH_AWARE"}
@@ -150,9 +159,12 @@ std::vector<ProgramVariant> programVariants(const Settings& settings, bool emits
         add("halo.vert", "halo.frag", {});
         if (bodyMask) add("halo.vert", "halo.frag", bodyMaskDefines(true, {}));
     }
+    // With an occlusion method, a scene without light.ao_radius shades without it.
     add("fullscreen.vert", "shade.frag",
-        shadeDefines(settings.shadows, settings.shadowMap, emits, usesAmbientOcclusion(settings),
-                     emissiveLight));
+        shadeDefines(settings.shadows, settings.shadowMap, emits, false, emissiveLight));
+    if (usesAmbientOcclusion(settings))
+        add("fullscreen.vert", "shade.frag",
+            shadeDefines(settings.shadows, settings.shadowMap, emits, true, emissiveLight));
     if (atmosphere)
         add("fullscreen.vert", "atmosphere.frag", atmosphereDefines(settings.atmosphere));
     // The bloom's levels exist where the image is large enough; the composite without them
@@ -219,19 +231,35 @@ std::vector<ProgramVariant> allProgramVariants() {
                                                     all.try_emplace(v.name(), std::move(v));
                                             }
     // The ambient occlusion's programs, beside the defaults above.
-    for (AoMethod method : {AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao})
+    for (AoMethod method : {AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao, AoMethod::Traced})
         for (AoNoise noise : {AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue})
             for (AoBlur blur : {AoBlur::None, AoBlur::Flat, AoBlur::DepthAware})
                 for (ShadowMode shadows : {ShadowMode::None, ShadowMode::Map})
-                    for (bool emits : {false, true}) {
-                        Settings a;
-                        a.ao.method = method;
-                        a.ao.noise = noise;
-                        a.ao.blur = blur;
-                        a.shadows = shadows;
-                        for (ProgramVariant& v : programVariants(a, emits))
-                            all.try_emplace(v.name(), std::move(v));
-                    }
+                    for (bool emits : {false, true})
+                        for (int layers : {1, 2}) {
+                            Settings a;
+                            a.ao.method = method;
+                            a.ao.noise = noise;
+                            a.ao.blur = blur;
+                            a.ao.layers = layers;
+                            a.shadows = shadows;
+                            for (ProgramVariant& v : programVariants(a, emits))
+                                all.try_emplace(v.name(), std::move(v));
+                        }
+    // The second depth layer's impostor programs for every shape and depth encoding.
+    for (DepthMode depth : {DepthMode::Standard, DepthMode::Log, DepthMode::Reversed})
+        for (ParticleShape shape : {ParticleShape::Sphere, ParticleShape::Ellipsoid})
+            for (PerSetDevice where : {PerSetDevice::Cpu, PerSetDevice::Gpu}) {
+                Settings a;
+                a.ao.method = AoMethod::Gtao;
+                a.ao.layers = 2;
+                a.depth = depth;
+                a.particles.shape = shape;
+                a.particles.bodySpherePixels = 4096.0;
+                a.perSet = where;
+                for (ProgramVariant& v : programVariants(a, false))
+                    all.try_emplace(v.name(), std::move(v));
+            }
     // The emissive light's, with and without occlusion and shadows (it lights only where
     // something emits).
     for (EmissiveMethod method :

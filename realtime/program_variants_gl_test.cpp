@@ -60,6 +60,7 @@ TEST_F(RendererTest, AFrameBuildsOnlyTheProgramsItsSettingsList) {
     cases[3].perSet = PerSetDevice::Cpu;
     cases[4].surface.method = SurfaceMethod::Bilateral;
     cases[4].depth = DepthMode::Standard;
+    cases[4].ao.method = AoMethod::Traced;
     cases[5].particles.radius = RadiusModel::Fixed;
     cases[5].bloom.enabled = false;
     cases[5].perSet = PerSetDevice::Cpu;

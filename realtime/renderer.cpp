@@ -19,6 +19,7 @@
 #include "core/cancellation.h"
 #include "core/derived_attributes.h"
 #include "core/error.h"
+#include "realtime/ao_traced.h"
 #include "realtime/error_split.h"
 #include "realtime/frame_assembly.h"
 #include "realtime/frame_graph.h"
@@ -51,6 +52,8 @@ struct DeviceState {
     }
     // The read-back's pixel buffers, kept between frames.
     gl::TextureReadback readback;
+    // ao.method = "traced": the spheres it traces, kept per particle set.
+    OcclusionGridCache occlusionGrid;
     // Images handed back by Renderer::recycle, reused when the size and channels match.
     core::Image spareImage, spareDisplay;
 };
@@ -253,7 +256,8 @@ struct PassInputs {
     // instead, and the camera's world position.
     GpuPerSet* gradientGrid = nullptr;
     glm::dvec3 camera{0.0};
-    double aoRadius = 0.0;  // light.ao_radius
+    double aoRadius = 0.0;                                // light.ao_radius
+    const OcclusionGridBuffers* occlusionGrid = nullptr;  // ao.method = "traced": its spheres
     // Whether the emissive pass runs (usesEmissiveLight), and, for "point_lights", the lights.
     bool emissiveLight = false;
     std::vector<PointLight> pointLights = {};
@@ -261,6 +265,23 @@ struct PassInputs {
     // A body's atmosphere (its steps as atmosphere.steps says), when the scene has one.
     std::optional<core::Atmosphere> atmosphere = std::nullopt;
 };
+
+// Whether the frame runs the occlusion pass: a method, and a reach (light.ao_radius) to look
+// within; without one the ambient term is open everywhere.
+bool occludes(const PassInputs& in) {
+    return usesAmbientOcclusion(in.settings) && in.aoRadius > 0.0;
+}
+
+// The occlusion pass over `surface` and `normalUv`, with its second depth layer drawn first
+// where ao.layers asks for one, or its rays traced through the frame's grid.
+gl::Texture occlusionOf(const PassInputs& in, const gl::Texture& surface,
+                        const gl::Texture& normalUv) {
+    std::optional<gl::Texture> back;
+    if (usesBackLayer(in.settings.ao))
+        back.emplace(runBackLayerPass(in.programs, in.scene, surface, in.settings.depth));
+    return runAmbientOcclusionPass(in.programs, surface, normalUv, in.settings.ao, in.aoRadius,
+                                   back ? &*back : nullptr, in.occlusionGrid);
+}
 
 // The frame's resources after its passes (frame_graph.h), and the timer query of each pass
 // that ran.
@@ -376,8 +397,7 @@ const Pass PASSES[] = {
          if (f->surface) r.write(R::Surface, f, *f->surface);
          if (f->emission) r.write(R::Emission, f, *f->emission);
      }},
-    {"ao", AO_READS, AO_WRITES,
-     [](const PassInputs& in) { return usesAmbientOcclusion(in.settings); },
+    {"ao", AO_READS, AO_WRITES, [](const PassInputs& in) { return occludes(in); },
      [](const PassInputs& in, PassResources& r) {
          // ao.depth = "filtered" without a depth filter: the narrow-range filter and its
          // normals for this pass alone (the shade pass keeps its surface).
@@ -386,13 +406,10 @@ const Pass PASSES[] = {
              narrowRange.method = SurfaceMethod::NarrowRange;
              const FilteredSurface f =
                  runSurfacePass(in.programs, r.gbuffer(), r.read(R::NormalUv), narrowRange);
-             r.write(R::Occlusion, runAmbientOcclusionPass(in.programs, *f.surface, f.normalUv,
-                                                           in.settings.ao, in.aoRadius));
+             r.write(R::Occlusion, occlusionOf(in, *f.surface, f.normalUv));
              return;
          }
-         r.write(R::Occlusion,
-                 runAmbientOcclusionPass(in.programs, r.read(R::Surface), r.read(R::NormalUv),
-                                         in.settings.ao, in.aoRadius));
+         r.write(R::Occlusion, occlusionOf(in, r.read(R::Surface), r.read(R::NormalUv)));
      }},
     {"emissive", EMISSIVE_READS, EMISSIVE_WRITES,
      [](const PassInputs& in) { return in.emissiveLight; },
@@ -546,9 +563,7 @@ void renderSplit(DeviceState& d, const PassInputs& in, const FrameResources& t,
     const GBuffer& g = exact.gbuffer;
     // The exact surface with the real-time light: its shadow map, its occlusion pass.
     std::optional<gl::Texture> occlusion;
-    if (usesAmbientOcclusion(in.settings))
-        occlusion.emplace(runAmbientOcclusionPass(d.programs, g.surface, g.normalUv, in.settings.ao,
-                                                  in.aoRadius));
+    if (occludes(in)) occlusion.emplace(occlusionOf(in, g.surface, g.normalUv));
     // Its emissive light too.
     std::optional<gl::Texture> irradiance;
     if (in.emissiveLight)
@@ -690,6 +705,15 @@ core::Frame Renderer::render(const core::RenderInput& in) {
     passInputs.gradientGrid = uploaded.draws.gradientGrid;
     passInputs.camera = in.scene.camera.position;
     passInputs.aoRadius = in.scene.light.aoRadius;
+    // ao.method = "traced": its grid of spheres, built and uploaded with the scene ("upload").
+    std::optional<OcclusionGridBuffers> occlusionGrid;
+    if (occludes(passInputs) && mSettings.ao.method == AoMethod::Traced) {
+        const auto gridStart = Clock::now();
+        occlusionGrid = uploadOcclusionGrid(d.occlusionGrid.grid(
+            in.particles, mSettings.particles, in.scene.camera.position, passInputs.aoRadius));
+        passInputs.occlusionGrid = &*occlusionGrid;
+        frame.timingsMs["upload"] += msSince(gridStart);
+    }
     passInputs.emissiveLight = emissiveLight;
     passInputs.uniforms = uploaded.uniforms;
     passInputs.atmosphere = atmosphere;

@@ -502,6 +502,9 @@ TEST_F(RendererTest, PassesTheSettingsDoNotNeedDoNotRun) {
          {"total", "upload", "shadow", "gbuffer", "ssss", "shade", "post", "readback"})
         EXPECT_TRUE(r.timingsMs.count(key)) << key;
     EXPECT_EQ(r.settings.at("realtime.shadows"), "none");
+    // The default occlusion method without a reach (the scene's light.ao_radius is 0): no pass.
+    EXPECT_EQ(r.settings.at("realtime.ao.method"), "traced");
+    EXPECT_EQ(r.timingsMs.at("ao"), 0.0);
     // The background carries core::aov::makeImage's values in every channel.
     const core::Image background = core::aov::makeImage(1, 1);
     ASSERT_EQ(r.image.channelNames(), background.channelNames());

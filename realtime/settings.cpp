@@ -42,11 +42,13 @@ Enum byName(const std::string& name, const std::array<Enum, N>& values) {
 AoSettings parseAo(const core::ParameterTable& t) {
     const AoSettings d;
     AoSettings a;
-    a.method = byName(
-        t.getEnum("ao.method", std::string(toString(d.method)), {"none", "ssao", "hbao", "gtao"}),
-        std::array{AoMethod::None, AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao});
+    a.method = byName(t.getEnum("ao.method", std::string(toString(d.method)),
+                                {"none", "ssao", "hbao", "gtao", "traced"}),
+                      std::array{AoMethod::None, AoMethod::Ssao, AoMethod::Hbao, AoMethod::Gtao,
+                                 AoMethod::Traced});
     a.slices = static_cast<int>(t.getInt("ao.slices", d.slices, 1, 32));
     a.steps = static_cast<int>(t.getInt("ao.steps", d.steps, 1, 64));
+    a.rays = static_cast<int>(t.getInt("ao.rays", d.rays, 1, 256));
     a.blur =
         byName(t.getEnum("ao.blur", std::string(toString(d.blur)), {"none", "flat", "depth_aware"}),
                std::array{AoBlur::None, AoBlur::Flat, AoBlur::DepthAware});
@@ -56,9 +58,11 @@ AoSettings parseAo(const core::ParameterTable& t) {
                      std::array{AoNoise::White, AoNoise::InterleavedGradient, AoNoise::Blue});
     a.maxPixels = t.getDouble("ao.max_pixels", d.maxPixels, 4.0, 4096.0);
     a.angleBiasDeg = t.getDouble("ao.angle_bias", d.angleBiasDeg, 0.0, 60.0);
+    a.gtaoAngleBiasDeg = t.getDouble("ao.gtao_angle_bias", d.gtaoAngleBiasDeg, 0.0, 60.0);
     a.thickness = t.getDouble("ao.thickness", d.thickness, 0.0, 1000.0);
     a.depth = byName(t.getEnum("ao.depth", std::string(toString(d.depth)), {"shaded", "filtered"}),
                      std::array{AoDepth::Shaded, AoDepth::Filtered});
+    a.layers = static_cast<int>(t.getInt("ao.layers", d.layers, 1, 2));
     return a;
 }
 
@@ -110,6 +114,8 @@ std::string_view toString(AoMethod method) {
             return "hbao";
         case AoMethod::Gtao:
             return "gtao";
+        case AoMethod::Traced:
+            return "traced";
     }
     return "none";
 }
@@ -144,6 +150,11 @@ std::string_view toString(AoNoise noise) {
 
 bool usesAmbientOcclusion(const Settings& settings) {
     return settings.ao.method != AoMethod::None;
+}
+
+bool usesBackLayer(const AoSettings& settings) {
+    return settings.layers == 2 && settings.method != AoMethod::Traced &&
+           settings.method != AoMethod::None;
 }
 
 bool filtersOcclusionDepth(const Settings& settings) {
@@ -554,13 +565,16 @@ nlohmann::json toJson(const Settings& s) {
         {"realtime.ao.method", toString(s.ao.method)},
         {"realtime.ao.slices", s.ao.slices},
         {"realtime.ao.steps", s.ao.steps},
+        {"realtime.ao.rays", s.ao.rays},
         {"realtime.ao.blur", toString(s.ao.blur)},
         {"realtime.ao.blur_radius", s.ao.blurRadius},
         {"realtime.ao.noise", toString(s.ao.noise)},
         {"realtime.ao.max_pixels", s.ao.maxPixels},
         {"realtime.ao.angle_bias", s.ao.angleBiasDeg},
+        {"realtime.ao.gtao_angle_bias", s.ao.gtaoAngleBiasDeg},
         {"realtime.ao.thickness", s.ao.thickness},
         {"realtime.ao.depth", toString(s.ao.depth)},
+        {"realtime.ao.layers", s.ao.layers},
         {"realtime.emissive.method", toString(s.emissive.method)},
         {"realtime.emissive.directions", s.emissive.directions},
         {"realtime.emissive.steps", s.emissive.steps},

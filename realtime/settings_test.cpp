@@ -98,7 +98,9 @@ TEST(Settings, ReadsEveryKey) {
     EXPECT_EQ(j.at("realtime.particles.body_sphere_pixels"), 8.0);
     EXPECT_EQ(j.at("realtime.ao.depth"), "filtered");
     EXPECT_EQ(j.at("realtime.ao.thickness"), 0.0);
-    EXPECT_EQ(j.size(), 82u);
+    EXPECT_EQ(j.at("realtime.ao.layers"), 1);
+    EXPECT_EQ(j.at("realtime.ao.gtao_angle_bias"), 10.0);
+    EXPECT_EQ(j.size(), 85u);
 }
 
 TEST(Settings, ReadsTheAtmosphereKeys) {
@@ -134,8 +136,10 @@ TEST(Settings, TheWholeBodySphereWorksWithEitherPerSetDevice) {
 
 TEST(Settings, ReadsTheAmbientOcclusionKeys) {
     const Settings d = parseSettings(table({}));
-    EXPECT_EQ(d.ao.method, AoMethod::None);
-    EXPECT_FALSE(usesAmbientOcclusion(d));
+    EXPECT_EQ(d.ao.method, AoMethod::Traced);
+    // Asked for by default; a frame runs it where the scene's light.ao_radius is above 0.
+    EXPECT_TRUE(usesAmbientOcclusion(d));
+    EXPECT_FALSE(usesAmbientOcclusion(parseSettings(table({{"ao.method", std::string("none")}}))));
     const Settings s = parseSettings(table({{"ao.method", std::string("gtao")},
                                             {"ao.slices", std::int64_t(6)},
                                             {"ao.steps", std::int64_t(12)},
@@ -157,6 +161,26 @@ TEST(Settings, ReadsTheAmbientOcclusionKeys) {
     EXPECT_EQ(j.at("realtime.ao.blur"), "flat");
     EXPECT_THROW(parseSettings(table({{"ao.method", std::string("hbao+")}})),
                  twinrender::core::InputError);
+}
+
+TEST(Settings, ReadsTheTracedOcclusionKeys) {
+    EXPECT_EQ(parseSettings(table({})).ao.rays, 16);
+    const Settings s =
+        parseSettings(table({{"ao.method", std::string("traced")}, {"ao.rays", std::int64_t(64)}}));
+    EXPECT_EQ(s.ao.method, AoMethod::Traced);
+    EXPECT_TRUE(usesAmbientOcclusion(s));
+    EXPECT_EQ(s.ao.rays, 64);
+    EXPECT_EQ(toJson(s).at("realtime.ao.method"), "traced");
+    EXPECT_EQ(toJson(s).at("realtime.ao.rays"), 64);
+    // Outside [1, 256] is bad input, named by its key.
+    for (const std::int64_t rays : {std::int64_t(0), std::int64_t(257)}) {
+        try {
+            parseSettings(table({{"ao.rays", rays}}));
+            ADD_FAILURE() << rays;
+        } catch (const twinrender::core::InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("ao.rays"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(Settings, ReadsTheEmissiveKeys) {

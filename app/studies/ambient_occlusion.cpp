@@ -1,9 +1,10 @@
-// The ambient_occlusion study (docs/studies.md): the screen-space occlusion methods against the
-// reference's traced occlusion along the occlusion radius R, on a ball resting on a slab and on
-// two scenes with a gap the truth leaves open at small R (a ball hanging over a slab, two balls
-// apart), each method on the shaded and the filtered depth, with and without a thickness, and on
-// a depth-filtering surface method. The finding says where each setting helps and where it
-// hurts against no occlusion, deciding with the spread of renders half a pixel aside.
+// The ambient_occlusion study (docs/studies.md): the real-time occlusion methods (screen-space,
+// and rays traced against the particles' spheres) against the reference's traced occlusion along
+// the occlusion radius R, on a ball resting on a slab and on two scenes with a gap the truth
+// leaves open at small R (a ball hanging over a slab, two balls apart), each method on the shaded
+// and the filtered depth, with and without a thickness or a second depth layer, and on a
+// depth-filtering surface method. The finding says where each setting helps and where it hurts
+// against no occlusion, deciding with the spread of renders half a pixel aside.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -63,33 +64,54 @@ std::vector<double> radii(bool quick) {
                  : std::vector<double>{0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0};
 }
 
+// gtao's angle bias in the study's settings (degrees), and the series without one.
+constexpr double GTAO_BIAS = 10.0;
+
 // A setting of the occlusion pass: the method, the depth it reads, the thickness of each
 // occluder (particle radii) and the surface method; each point sets them all, so that a series
 // keeps its meaning when a default changes.
 struct AoSetting {
-    std::string method;  // "none", "ssao", "hbao", "gtao"
+    std::string method;  // "none", "ssao", "hbao", "gtao", "traced"
     std::string depth = "shaded";
     double thickness = 0.0;
+    int layers = 1;               // ao.layers
+    double gtaoBias = GTAO_BIAS;  // ao.gtao_angle_bias, degrees
     std::string surface = "ssss";
     bool quick = true;  // in quick runs too
 
     std::string name() const {
         if (method == "none") return "none";
         if (surface != "ssss") return method + " on " + surface;
-        return fmt::format("{}, {} depth{}", method, depth,
-                           thickness > 0.0 ? fmt::format(", thickness {}", thickness) : "");
+        return fmt::format("{}, {} depth{}{}{}", method, depth,
+                           thickness > 0.0 ? fmt::format(", thickness {}", thickness) : "",
+                           layers == 2 ? ", second layer" : "",
+                           method == "gtao" && gtaoBias != GTAO_BIAS
+                               ? fmt::format(", angle bias {}", gtaoBias)
+                               : "");
     }
 };
 
-const std::vector<std::string> AO_METHODS = {"ssao", "hbao", "gtao"};
+const std::vector<std::string> AO_METHODS = {"ssao", "hbao", "gtao", "traced"};
 
 std::vector<AoSetting> aoSettings(bool quick) {
     std::vector<AoSetting> all = {{.method = "none"}};
     for (const std::string& m : AO_METHODS) {
         all.push_back({.method = m, .depth = "shaded"});
         all.push_back({.method = m, .depth = "filtered"});
+        // The traced rays meet the spheres themselves: no thickness to guess, and the depth
+        // only places the rays' origins.
+        if (m == "traced") continue;
         all.push_back({.method = m, .depth = "shaded", .thickness = 4.0, .quick = false});
         all.push_back({.method = m, .depth = "filtered", .thickness = 4.0});
+        // The second depth layer: in quick runs for gtao alone, the method whose bit mask
+        // integrates an occluder's span.
+        all.push_back({.method = m, .depth = "filtered", .layers = 2, .quick = m == "gtao"});
+        // gtao without its angle bias, as published.
+        if (m == "gtao") {
+            all.push_back({.method = m, .depth = "filtered", .gtaoBias = 0.0, .quick = false});
+            all.push_back(
+                {.method = m, .depth = "filtered", .layers = 2, .gtaoBias = 0.0, .quick = false});
+        }
         // A surface method that filters the depth itself: the occlusion and the shade pass
         // read the same filtered depth.
         all.push_back({.method = m, .surface = "curvature_flow", .quick = false});
@@ -106,7 +128,8 @@ std::string defaultSeries(const std::string& method) {
     const std::string depth(realtime::toString(d.depth));
     for (const AoSetting& a : aoSettings(false))
         if (a.method == method && a.surface == "ssss" && a.depth == depth &&
-            a.thickness == d.thickness)
+            a.thickness == d.thickness && a.layers == d.layers &&
+            (method != "gtao" || a.gtaoBias == d.gtaoAngleBiasDeg))
             return a.name();
     return "";
 }
@@ -301,6 +324,12 @@ const std::vector<AoOption>& aoOptions() {
         {"ao.thickness 4 on the filtered depth", "{}, filtered depth, thickness 4",
          "{}, filtered depth"},
         {"ao.thickness 4 on the shaded depth", "{}, shaded depth, thickness 4", "{}, shaded depth"},
+        {"ao.layers 2 on the filtered depth", "{}, filtered depth, second layer",
+         "{}, filtered depth"},
+        {"ao.gtao_angle_bias 10 on the filtered depth", "{}, filtered depth",
+         "{}, filtered depth, angle bias 0"},
+        {"ao.gtao_angle_bias 10 with the second layer", "{}, filtered depth, second layer",
+         "{}, filtered depth, second layer, angle bias 0"},
     };
     return options;
 }
@@ -365,6 +394,8 @@ std::vector<StudyPoint> ambientOcclusionPoints(bool quick) {
                                   set("realtime.ao.method", "\"" + a.method + "\""),
                                   set("realtime.ao.depth", "\"" + a.depth + "\""),
                                   set("realtime.ao.thickness", fmt::format("{}", a.thickness)),
+                                  set("realtime.ao.layers", fmt::format("{}", a.layers)),
+                                  set("realtime.ao.gtao_angle_bias", fmt::format("{}", a.gtaoBias)),
                                   set("realtime.surface.method", "\"" + a.surface + "\"")},
                                  scene.file};
                     for (std::string& c :

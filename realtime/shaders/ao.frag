@@ -11,7 +11,9 @@
 //    Its weighting is the image plane's, not the normal's cosine.
 //  - AO_GTAO: ground-truth AO (Jimenez et al. 2016): per slice about the view vector, two
 //    horizons clamped to the normal's hemisphere and the cosine-weighted visibility between
-//    them in closed form, weighted by the projected normal's length.
+//    them in closed form, weighted by the projected normal's length; horizons within an angle
+//    bias above the tangent plane count nothing (hbao's answer to the impostors' bumps), and
+//    each higher one is lowered by it.
 // Thickness (uThickness > 0): the depth buffer holds only the front of each occluder, and the
 // horizons above take all that lies behind it for solid: the front of a ball hanging over a
 // slab stands for a wall reaching back to the slab. With a thickness, each sample's occluder
@@ -20,50 +22,43 @@
 // hbao counts the directions between its back and its front only, and gtao marks the sectors
 // between them in a bit mask per slice and integrates the cosine-weighted visibility over the
 // unmarked ones (the visibility bitmask of Therrien, Levesque and Gilet 2023).
-// Noise (per pixel: slice rotation and step jitter): NOISE_WHITE (a hash), NOISE_IGN
-// (interleaved gradient noise, Jimenez 2014), NOISE_BLUE (a void-and-cluster texture,
-// realtime/blue_noise.h).
+// SECOND_LAYER (realtime.ao.layers = 2): each occluder's back is read from a second depth layer,
+// the back of the body seen at each pixel (gbuffer.frag's BACK_LAYER), not assumed: a layered
+// depth buffer in the spirit of the deep G-buffer (Mara, McGuire, Nowrouzezahrai and Luebke
+// 2016), whose second layer for particles is the body's exit, since the nearest surface behind
+// the first inside a body of overlapping impostors is only the next particle. With a thickness
+// as well, the nearer of the two backs.
+// Noise (per pixel: slice rotation and step jitter): ao_noise.glsl.
 #include "common.glsl"
 #include "convert.glsl"
+#include "ao_noise.glsl"
 
 layout(binding = 0) uniform sampler2D uNormalUv;  // octahedral normal, u, v
 layout(binding = 2) uniform sampler2D uSurface;   // eye depth, body, radius px, material
-#ifdef NOISE_BLUE
-layout(binding = 5) uniform sampler2D uBlueNoise;  // R32F ranks in [0, 1), tiled
-#endif
 uniform float uRadius;    // scene units; 0: no occlusion
 uniform int uSlices;      // screen directions (hbao, gtao), or sample rings (ssao)
 uniform int uSteps;       // samples along each
 uniform float uMaxPixels;  // the screen radius's cap, pixels
 uniform float uAngleBias;  // hbao: radians added to the tangent's elevation
+uniform float uGtaoBias;   // gtao: the same, radians
 uniform float uThickness;  // each occluder's depth, particle radii; 0: without end
+#ifdef SECOND_LAYER
+layout(binding = 6) uniform sampler2D uBack;  // the eye depth of the body's back; 0: none
+#endif
+
+// Whether each occluder ends behind its front (a thickness or a second layer), or is a wall
+// reaching back without end (the methods as published).
+bool finiteOccluders() {
+#ifdef SECOND_LAYER
+    return true;
+#else
+    return uThickness > 0.0;
+#endif
+}
 
 layout(location = 0) out vec4 outOpen;
 
 const float PI = 3.14159265358979;
-
-vec2 noise(ivec2 p) {
-#if defined(NOISE_BLUE)
-    ivec2 size = textureSize(uBlueNoise, 0);
-    float b = texelFetch(uBlueNoise, p % size, 0).r;
-    return vec2(b, fract(b + 0.61803398875));
-#elif defined(NOISE_IGN)
-    vec2 q = vec2(p);
-    float a = fract(52.9829189 * fract(dot(q, vec2(0.06711056, 0.00583715))));
-    float b = fract(52.9829189 * fract(dot(q + vec2(5.588238), vec2(0.06711056, 0.00583715))));
-    return vec2(a, b);
-#else
-    // A 2-D integer hash (pcg2d, Jarzynski & Olano 2020).
-    uvec2 v = uvec2(p) * 1664525u + 1013904223u;
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v ^= v >> 16u;
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v ^= v >> 16u;
-    return vec2(v >> 8u) * (1.0 / 16777216.0);
-#endif
-}
 
 // The eye depth of the surface at pixel q: false on the background or off the image.
 bool depthAt(ivec2 q, out float z) {
@@ -83,14 +78,21 @@ bool surfaceAt(ivec2 q, out vec3 position) {
 }
 
 // As surfaceAt, and the back of the occluder seen there: uThickness particle radii (the
-// impostor's radius at q) further along its view ray. Without a thickness, infinitely far.
+// impostor's radius at q) further along its view ray, or the second layer's back, the nearer
+// of the two where both are set. Where the second layer holds no back behind the front (no
+// impostor of that body behind a filtered depth), the impostor's own diameter.
 bool occluderAt(ivec2 q, out vec3 front, out vec3 back) {
     ivec2 size = ivec2(viewport.xy);
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return false;
     vec4 s = texelFetch(uSurface, q, 0);
     if (s.y < 0.0) return false;
     front = surfacePosition(vec2(q) + 0.5, s.x);
-    float depth = uThickness * s.z / pixelsPerUnitAt(s.x);
+    float radius = s.z / pixelsPerUnitAt(s.x);
+    float depth = uThickness > 0.0 ? uThickness * radius : 1e30;
+#ifdef SECOND_LAYER
+    float behind = texelFetch(uBack, q, 0).x - s.x;
+    depth = min(depth, behind > 0.0 ? behind * length(front) / s.x : 2.0 * radius);
+#endif
     back = front * (1.0 + depth / max(length(front), 1e-20));
     return true;
 }
@@ -156,7 +158,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         // and with a thickness, the point not behind the occluder's back.
         float bias = 0.02 * uRadius;
         if (zSeen < screen.z - bias && screen.z - zSeen < uRadius &&
-            (uThickness <= 0.0 || screen.z < behind(saturateToInt(floor(screen.xy)), zSeen)))
+            (!finiteOccluders() || screen.z < behind(saturateToInt(floor(screen.xy)), zSeen)))
             closed += 1.0;
     }
     return 1.0 - closed / float(samples);
@@ -188,7 +190,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
             if (s > sinH) {
                 // With a thickness, the directions below the occluder's back are not its.
                 vec3 b = back - position;
-                float from = uThickness > 0.0 ? max(dot(b, toEye) / length(b), sinH) : sinH;
+                float from = finiteOccluders() ? max(dot(b, toEye) / length(b), sinH) : sinH;
                 occlusion += (1.0 - r2 / (uRadius * uRadius)) * max(s - from, 0.0);
                 sinH = s;
             }
@@ -252,6 +254,8 @@ float sliceVisibilityWithThickness(ivec2 p, vec3 position, vec3 toEye, vec2 scre
             occluded |= sectorBits(min(a, b), max(a, b), lo);
         }
     }
+    // Within the angle bias above the tangent plane on either side, nothing counts.
+    occluded &= ~(sectorBits(lo, lo + uGtaoBias, lo) | sectorBits(lo + PI - uGtaoBias, lo + PI, lo));
     float open = 0.0, below = visibleUpTo(lo, n);
     for (int k = 0; k < SECTORS; ++k) {
         float above = visibleUpTo(lo + float(k + 1) * (PI / float(SECTORS)), n);
@@ -274,7 +278,7 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
         float weight = sqrt(dot(projected, projected));
         if (weight < 1e-6) continue;
         float n = atan(dot(projected, world), dot(projected, toEye));
-        if (uThickness > 0.0) {
+        if (finiteOccluders()) {
             open += weight * sliceVisibilityWithThickness(p, position, toEye, screen, n, pixels,
                                                           xi.y);
             continue;
@@ -294,8 +298,9 @@ float openFraction(ivec2 p, vec3 position, vec3 normal, vec3 toEye, float pixels
                 best[side] = max(best[side], dot(v, toEye) * inversesqrt(r2));
             }
         }
-        float h2 = min(acos(clamp(best[0], -1.0, 1.0)), n + 0.5 * PI);
-        float h1 = max(-acos(clamp(best[1], -1.0, 1.0)), n - 0.5 * PI);
+        // Lowered by the angle bias: a horizon within it above the tangent plane is none.
+        float h2 = min(acos(clamp(best[0], -1.0, 1.0)) + uGtaoBias, n + 0.5 * PI);
+        float h1 = max(-acos(clamp(best[1], -1.0, 1.0)) - uGtaoBias, n - 0.5 * PI);
         open += weight * sliceVisibility(h1, h2, n);
     }
     // Not capped at 1: one slice's estimate of an open surface is |n_p| (cos n + n sin n), above

@@ -5,6 +5,10 @@
 // uv + blackbody glow).
 // BODY_SPHERE (realtime.particles.body_sphere_pixels): a whole body as one sphere
 // (gpu_scene.h, packBodySpheres): its own normal, uv its body-local spherical angles.
+// BACK_LAYER (realtime.ao.layers = 2, realtime/ao_pass.cpp): the occlusion pass's second depth
+// layer, the back of the body seen at each pixel: each impostor's far intersection, kept where
+// its body is the one uFront holds there, the farthest of them by the depth test; the eye depth
+// alone in the first target.
 #include "common.glsl"
 #include "textures.glsl"
 
@@ -32,6 +36,9 @@ flat in vec2 vSplatCentre;
 layout(location = 0) out vec4 outNormalUv;  // world normal (octahedral), u, v
 layout(location = 1) out vec4 outEmission;  // emission (linear RGB), 0
 layout(location = 2) out vec4 outSurface;   // eye depth, body, projected radius (px), material
+#ifdef BACK_LAYER
+layout(binding = 6) uniform sampler2D uFront;  // the occlusion pass's surface: eye depth, body
+#endif
 
 void main() {
     // realtime.particles.min_pixels: a sub-pixel sphere's flux spread by a bilinear tent over
@@ -56,7 +63,11 @@ void main() {
     float a = dot(m, m), b = dot(o, m);
     float disc = b * b - a * (dot(o, o) - 1.0);
     if (disc < 0.0) discard;
+#ifdef BACK_LAYER
+    float s = (-b + sqrt(disc)) / a;  // where the ray leaves the ellipsoid
+#else
     float s = (-b - sqrt(disc)) / a;
+#endif
     vec3 hit = vQuadPoint + s * dir;  // eye space
     // The normal of |A^-1 (x - centre)| = 1: A^-T times the hit point in unit-sphere space.
     vec3 impostorNormal = normalize(transpose(vInverseAxes) * (o + s * m));
@@ -72,13 +83,23 @@ void main() {
     float r2 = vRadius * vRadius;
     float miss2 = rho2 * (d2 / (d2 + rho2));
     if (miss2 >= r2) discard;
+#ifdef BACK_LAYER
+    float t = d2 / sqrt(d2 + rho2) + sqrt(r2 - miss2);  // where the ray leaves the sphere
+#else
     float t = d2 / sqrt(d2 + rho2) - sqrt(r2 - miss2);
+#endif
     vec3 hit = normalize(vQuadPoint) * t;  // eye space
     vec3 impostorNormal = (hit - vCentre) / vRadius;
 #endif
     float z = -hit.z;
     if (z < cameraNear() || z > cameraFar()) discard;
     gl_FragDepth = windowDepth(z);
+#ifdef BACK_LAYER
+    vec4 front = texelFetch(uFront, ivec2(gl_FragCoord.xy), 0);
+    if (front.y < 0.0 || abs(vBody - front.y) > 0.5) discard;
+    outNormalUv = vec4(z, 0.0, 0.0, 0.0);
+    return;
+#endif
 
     mat3 worldFromView = transpose(mat3(viewFromWorld));
     vec3 offset = worldFromView * (hit - vCentre);

@@ -4,7 +4,8 @@
 //  - the range [d0 - delta, d0 + delta] (delta = uThreshold particle radii): a sample nearer
 //    than it is dropped, and its mirror about the centre with it (bias correction); one beyond
 //    it, the background included, counts as d0 + mu (uClamp particle radii), so silhouettes
-//    round off instead of keeping the spheres' edges;
+//    round off instead of keeping the spheres' edges; one outside the image is dropped with its
+//    mirror;
 //  - every sample within the range widens it to its own depth +- delta (range expansion), so
 //    a slope seen at a grazing angle is followed, not cut;
 //  - another body's samples within the range are dropped with their mirror.
@@ -29,7 +30,11 @@ float gBody, gDelta, gClamped;
 // Sample q's depth for the filter: `dropped` when it lies in front of [lo, hi] or is another
 // body's within it; the clamped depth when it lies behind (the background, +inf, included), so
 // a body in front of another rounds off over it as over the background. Widens the range.
+// Outside the image nothing is known: the surface may go on there, so the sample is dropped
+// with its mirror (read as background, it would round off every body the image's edge cuts).
 float classify(ivec2 q, inout float lo, inout float hi, out bool dropped) {
+    dropped = !inImage(q);
+    if (dropped) return 0.0;
     vec4 t = surfaceAt(q);
     float z = t.x;
     dropped = z < lo;
