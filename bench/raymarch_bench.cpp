@@ -150,7 +150,8 @@ double threadCpuMs() {
 // calling one, whose CPU time is steadier than wall time on a shared machine) and split among
 // the stages as the frame's times are: the primary pass (stage "trace": the camera rays, and
 // a point sun's shadow rays where the scene has one) and the kind's stage, their rays per
-// second, and the rays, mean and largest standard error the frame states for the kind. The
+// second, the kind's CPU cost per ray over the primary pass's per pixel, and the rays, mean
+// and largest standard error the frame states for the kind. The
 // fixed count is 64 directions; `target` > 0 sets the kind's raymarch.*_error.
 void renderSecondary(benchmark::State& state, const std::string& scene, const std::string& kind,
                      const std::string& stage, const std::string& key, double target) {
@@ -180,6 +181,11 @@ void renderSecondary(benchmark::State& state, const std::string& scene, const st
     state.counters["kind_ms"] = stageMs / n;
     state.counters["kind_rays"] = frame.counters.at(kind + "_rays");
     state.counters["kind_Mrays_s"] = frame.counters.at(kind + "_rays") / (stageMs / n) / 1e3;
+    // The kind's cost per ray over the primary pass's per pixel (the targets are ratios:
+    // both scale alike with the machine and its load).
+    const double pixels = double(s.camera.width) * double(s.camera.height);
+    state.counters["ray_per_pixel_cost"] =
+        (stageMs / frame.counters.at(kind + "_rays")) / (primaryMs / pixels);
     state.counters["se_mean"] = frame.counters.at(kind + "_standard_error");
     state.counters["se_max"] = frame.counters.at(kind + "_standard_error_max");
 }

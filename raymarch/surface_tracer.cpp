@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/particle_grid.h"
 #include "core/sph_kernel.h"
 #include "raymarch/bundle_gather.h"
 #include "raymarch/first_crossing.h"
@@ -124,6 +125,15 @@ constexpr double MIN_SEGMENT_FRACTION = 0x1p-40;
 // segment is twice as long: crossing a margin of any size takes tens of segments, not
 // margin / h. In the scenes' camera rays such runs end after a few segments.
 constexpr int EMPTY_RUN = 64;
+// A hit's neighbourhood (gatherNear) holds the particles within its reach plus this many
+// support radii (the gathers' float tests pass spheres up to 2e-4 of their radius beyond it)
+// ...
+constexpr double NEAR_SLACK = 1.001;
+// ... plus this fraction of the coordinates' size (float rounding of the rays' origins and
+// directions, 2^-24 of it).
+constexpr double NEAR_ROUNDING = 1e-5;
+// Directions in a hemisphere may point this little (a cosine) behind its plane: rounding.
+constexpr double SIDE_SLACK = 1e-9;
 
 }  // namespace
 
@@ -135,8 +145,15 @@ class SurfaceTracer::Workspace {
     ParticleBatch batch;                // their data
     std::vector<float> weights;         // kernel weights at a hit
     std::vector<int> groupEnds;         // shadow bundles
-    double lastCrossing = NAN;          // the block's last primary crossing
-    int rowLength = 0;                  // primary rays come in rows of this many
+    // The secondary rays of one hit share its origin: the support spheres that any of them
+    // may meet within `nearReach` of `nearOrigin` (gatherNear), and those of the ray being
+    // marched (its segments' gathers select from them).
+    SphereSet near, raySpheres;
+    std::vector<std::uint32_t> nearIds;
+    glm::dvec3 nearOrigin{NAN}, nearSide{NAN};
+    double nearReach = NAN;
+    double lastCrossing = NAN;  // the block's last primary crossing
+    int rowLength = 0;          // primary rays come in rows of this many
     MarchRay rays[MAX_RAYS];
     TraceCounters counters;
 };
@@ -153,6 +170,11 @@ struct SurfaceTracer::Impl {
     std::unique_ptr<BundleGather> bundles, shadowBundles;
     std::vector<BodyRange> bodyRanges;
     double sinBlock = 0.0;
+    // Secondary rays (occlusionRays): the particles by place, and their support radii as the
+    // gathers hold them.
+    std::unique_ptr<core::ParticleGrid> grid;
+    std::vector<float> supportRadii;
+    double largestSupport = 0.0;
 
     Impl(const EmbreeDevice& device, const core::Camera& cam, const core::SceneParticles& p,
          const Settings& st, bool occlusionRays)
@@ -193,6 +215,11 @@ struct SurfaceTracer::Impl {
         if (st.shadows || occlusionRays)
             shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius,
                                                            shadowMargin, order);
+        if (occlusionRays && n > 0) {
+            grid = std::make_unique<core::ParticleGrid>(ps);
+            supportRadii = supportRadius;
+            largestSupport = *std::max_element(supportRadius.begin(), supportRadius.end());
+        }
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0,
                         INFINITY};
@@ -387,8 +414,11 @@ struct SurfaceTracer::Impl {
     // hits[id] for the rays that find one when `hits` is given. Primary bundles pass the
     // block's central direction, shadow bundles (parallel rays within the shadow margin of
     // the central line through their mean origin, groupParallel) the direction of the light.
+    // `local` (a single ray, n = 1): a set holding every support sphere the ray may meet up to
+    // its parameter `localEnd`; the segments that end there gather from it.
     void march(const int* ids, int n, const glm::dvec3& centralDirection, bool parallel,
-               Workspace& w, SurfaceHit* hits) const {
+               Workspace& w, SurfaceHit* hits, const SphereSet* local = nullptr,
+               double localEnd = -INFINITY) const {
         const double segmentLength =
             settings.segmentLength * (parallel ? SHADOW_SEGMENT_SCALE : 1.0);
         // The central line: through the mean origin (the camera, for primary rays).
@@ -396,6 +426,14 @@ struct SurfaceTracer::Impl {
         for (int k = 0; k < n; ++k) origin += w.rays[ids[k]].ray.origin;
         origin /= double(n);
         for (;;) {
+            if (local && w.rays[ids[0]].active && w.rays[ids[0]].needEntry &&
+                w.rays[ids[0]].tEnd <= localEnd) {
+                // No support sphere ahead: nothing left to meet.
+                const MarchRay& r = w.rays[ids[0]];
+                w.prims.clear();
+                local->select(r.ray.origin, r.ray.direction, r.t, r.tEnd, &w.prims, nullptr);
+                if (w.prims.empty()) return;
+            }
             enter(ids, n, origin, centralDirection, parallel, w);
             // The bundle: every active ray's next segment.
             RayBundle bundle;
@@ -432,13 +470,20 @@ struct SurfaceTracer::Impl {
             const double shift = std::min(tnear, 0.0);
             const double slack = 1e-6 * std::max(std::abs(tfar - shift), 1.0);
             w.prims.clear();
-            bundle.finish();
-            gatherFor(parallel).gather(bundle, origin + shift * centralDirection, centralDirection,
-                                       tnear - shift - slack, tfar - shift + slack, w.prims);
-            ++w.counters.bundles;
-            // Particle order: it is the summation order, so that it does not depend on
-            // Embree's traversal order.
-            sortDistinct(w.prims, w.sorted);
+            if (local && segEnd[0] <= localEnd) {
+                // The gather's own test over the ray's set, which is in particle order.
+                const MarchRay& r = w.rays[lane[0]];
+                local->select(r.ray.origin, r.ray.direction, r.t, segEnd[0], &w.prims, nullptr);
+            } else {
+                bundle.finish();
+                gatherFor(parallel).gather(bundle, origin + shift * centralDirection,
+                                           centralDirection, tnear - shift - slack,
+                                           tfar - shift + slack, w.prims);
+                ++w.counters.bundles;
+                // Particle order: it is the summation order, so that it does not depend on
+                // Embree's traversal order.
+                sortDistinct(w.prims, w.sorted);
+            }
             w.batch.assign(w.prims, fieldParticles, hits ? hitAttributes.data() : nullptr);
 
             for (int j = 0; j < active; ++j) {
@@ -604,6 +649,7 @@ struct SurfaceTracer::Impl {
     // Whether the surface is not met within `radius` of the hit along d (unit): from just
     // outside the surface, as a shadow ray, but stopping at the radius; a ray alone is its own
     // bundle (the directions spread over the hemisphere).
+    // The support spheres of w.near come from gatherNear(hit.outside, radius).
     bool openAlong(const SurfaceHit& hit, const glm::dvec3& d, double radius, Workspace& w) const {
         if (settings.spheres)
             return !spheres->occluded(glm::vec3(hit.outside), glm::vec3(d), 0.0f,
@@ -614,11 +660,48 @@ struct SurfaceTracer::Impl {
         r.t = 2.0 * settings.rootTolerance * hit.hRef;
         r.tEnd = std::min(radius, exitDistance(hit.outside, d));
         if (!(r.t < r.tEnd)) return true;
+        // The spheres this ray meets: none, and it is open without a march.
+        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres);
+        if (w.raySpheres.size() == 0) return true;
         r.hRef = hit.hRef;
         r.needEntry = false;
         const int id = 0;
-        march(&id, 1, d, true, w, nullptr);
+        march(&id, 1, d, true, w, nullptr, &w.raySpheres, r.tEnd);
         return !r.hit;
+    }
+
+    // Fills w.near with every support sphere that a ray from `origin` may meet within `reach`
+    // of it (a gather's test passes spheres a little beyond their radius, and rounds the
+    // ray's origin to float), in particle order; with `side` (unit) non-zero, only along
+    // directions d with d . side >= -SIDE_SLACK (a hemisphere's rays). Kept while the origin,
+    // reach and side stay.
+    void gatherNear(const glm::dvec3& origin, double reach, const glm::dvec3& side,
+                    Workspace& w) const {
+        if (origin == w.nearOrigin && reach == w.nearReach && side == w.nearSide) return;
+        w.nearOrigin = origin;
+        w.nearReach = reach;
+        w.nearSide = side;
+        const auto& ps = particles.particles;
+        const double rounding = NEAR_ROUNDING * (maxAbsCoordinate(origin) + reach);
+        w.nearIds.clear();
+        grid->visitBall(
+            origin, reach + NEAR_SLACK * largestSupport + rounding,
+            [&](const core::ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
+                for (std::uint32_t k = begin; k < end; ++k) {
+                    const std::uint32_t i = g.index[k];
+                    const double within = reach + NEAR_SLACK * supportRadii[i] + rounding;
+                    const glm::dvec3 off = glm::dvec3(ps.position[i]) - origin;
+                    // A point of such a ray lies at most SIDE_SLACK reach behind
+                    // the plane through the origin across `side`.
+                    const bool behind = glm::dot(off, side) < -(NEAR_SLACK * supportRadii[i] +
+                                                                rounding + SIDE_SLACK * reach);
+                    if (glm::dot(off, off) <= within * within && !behind) w.nearIds.push_back(i);
+                }
+            });
+        std::sort(w.nearIds.begin(), w.nearIds.end());
+        w.near.clear();
+        for (const std::uint32_t i : w.nearIds) w.near.add(ps.position[i], supportRadii[i], i);
+        w.near.finish();
     }
 
     // Distance from p along dir to the exit of the scene bounds (no surface lies beyond).
@@ -741,6 +824,13 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
 float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count,
                                double radius, Workspace& w, bool* openEach) const {
     const Impl& im = *mImpl;
+    if (!im.settings.spheres && count > 0) {
+        // The directions' side of the hit's tangent plane (all of them, with rounding).
+        glm::dvec3 side(hit.normal);
+        for (int j = 0; j < count; ++j)
+            if (glm::dot(directions[j], side) < -SIDE_SLACK) side = glm::dvec3(0.0);
+        im.gatherNear(hit.outside, radius, side, w);
+    }
     int open = 0;
     for (int j = 0; j < count; ++j) {
         const bool isOpen = im.openAlong(hit, directions[j], radius, w);
