@@ -132,8 +132,37 @@ constexpr double NEAR_SLACK = 1.001;
 // ... plus this fraction of the coordinates' size (float rounding of the rays' origins and
 // directions, 2^-24 of it).
 constexpr double NEAR_ROUNDING = 1e-5;
-// Directions in a hemisphere may point this little (a cosine) behind its plane: rounding.
-constexpr double SIDE_SLACK = 1e-9;
+// ... and about the rays' cone, this much in the cosine of the angle from its axis (rounding
+// of the directions).
+constexpr double COSINE_SLACK = 1e-6;
+// A neighbourhood of more spheres than this is not gathered: selecting from it for each ray
+// would cost more than the rays' own gathers.
+constexpr std::size_t NEAR_LIMIT = 2048;
+// A cone narrower than this half-angle (radians) is bounded by a ball about its axis' middle,
+// a wider one by the ball of its reach about its apex.
+constexpr double NARROW_CONE = 0.25 * M_PI;
+
+// The directions of rays from one origin: within half-angle acos(cosHalf) of the axis (unit).
+struct RayCone {
+    glm::dvec3 axis{0.0, 0.0, 1.0};
+    double cosHalf = -1.0;
+};
+
+// A cone about the given unit directions: about their mean (every direction when they
+// cancel out).
+RayCone coneOf(const glm::dvec3* directions, int count) {
+    glm::dvec3 sum(0.0);
+    for (int j = 0; j < count; ++j) sum += directions[j];
+    const double length = glm::length(sum);
+    RayCone cone;
+    if (!(length > 1e-3 * count)) return cone;
+    cone.axis = sum / length;
+    cone.cosHalf = 1.0;
+    for (int j = 0; j < count; ++j)
+        cone.cosHalf =
+            std::min(cone.cosHalf, glm::dot(directions[j], cone.axis) / glm::length(directions[j]));
+    return cone;
+}
 
 }  // namespace
 
@@ -150,8 +179,10 @@ class SurfaceTracer::Workspace {
     // marched (its segments' gathers select from them).
     SphereSet near, raySpheres;
     std::vector<std::uint32_t> nearIds;
-    glm::dvec3 nearOrigin{NAN}, nearSide{NAN};
+    glm::dvec3 nearOrigin{NAN};
     double nearReach = NAN;
+    RayCone nearCone;
+    bool nearUsable = false;
     double lastCrossing = NAN;  // the block's last primary crossing
     int rowLength = 0;          // primary rays come in rows of this many
     MarchRay rays[MAX_RAYS];
@@ -649,8 +680,9 @@ struct SurfaceTracer::Impl {
     // Whether the surface is not met within `radius` of the hit along d (unit): from just
     // outside the surface, as a shadow ray, but stopping at the radius; a ray alone is its own
     // bundle (the directions spread over the hemisphere).
-    // The support spheres of w.near come from gatherNear(hit.outside, radius).
-    bool openAlong(const SurfaceHit& hit, const glm::dvec3& d, double radius, Workspace& w) const {
+    // With `near`, the spheres of w.near (gatherNear(hit.outside, radius, ...)) are the ray's.
+    bool openAlong(const SurfaceHit& hit, const glm::dvec3& d, double radius, Workspace& w,
+                   bool near) const {
         if (settings.spheres)
             return !spheres->occluded(glm::vec3(hit.outside), glm::vec3(d), 0.0f,
                                       static_cast<float>(radius));
@@ -660,48 +692,107 @@ struct SurfaceTracer::Impl {
         r.t = 2.0 * settings.rootTolerance * hit.hRef;
         r.tEnd = std::min(radius, exitDistance(hit.outside, d));
         if (!(r.t < r.tEnd)) return true;
-        // The spheres this ray meets: none, and it is open without a march.
-        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres);
-        if (w.raySpheres.size() == 0) return true;
         r.hRef = hit.hRef;
         r.needEntry = false;
         const int id = 0;
+        if (!near) {
+            march(&id, 1, d, true, w, nullptr);
+            return !r.hit;
+        }
+        // The spheres this ray meets: none, and it is open without a march.
+        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres);
+        if (w.raySpheres.size() == 0) return true;
         march(&id, 1, d, true, w, nullptr, &w.raySpheres, r.tEnd);
         return !r.hit;
     }
 
-    // Fills w.near with every support sphere that a ray from `origin` may meet within `reach`
-    // of it (a gather's test passes spheres a little beyond their radius, and rounds the
-    // ray's origin to float), in particle order; with `side` (unit) non-zero, only along
-    // directions d with d . side >= -SIDE_SLACK (a hemisphere's rays). Kept while the origin,
-    // reach and side stay.
-    void gatherNear(const glm::dvec3& origin, double reach, const glm::dvec3& side,
+    // Fills w.near with every support sphere that a ray from `origin` within `cone` may meet
+    // within `reach` of it (a gather's test passes spheres a little beyond their radius, and
+    // rounds the ray to float), in particle order; false (and w.near unusable) where they
+    // are more than NEAR_LIMIT. Kept while the origin, reach and cone stay.
+    bool gatherNear(const glm::dvec3& origin, double reach, const RayCone& cone,
                     Workspace& w) const {
-        if (origin == w.nearOrigin && reach == w.nearReach && side == w.nearSide) return;
+        if (origin == w.nearOrigin && reach == w.nearReach && cone.axis == w.nearCone.axis &&
+            cone.cosHalf == w.nearCone.cosHalf)
+            return w.nearUsable;
         w.nearOrigin = origin;
         w.nearReach = reach;
-        w.nearSide = side;
+        w.nearCone = cone;
+        w.nearUsable = false;
         const auto& ps = particles.particles;
         const double rounding = NEAR_ROUNDING * (maxAbsCoordinate(origin) + reach);
+        const double half = std::acos(std::clamp(cone.cosHalf, -1.0, 1.0));
+        const double sinHalf = std::sin(half);
+        // A ball around the cone's part within reach: about the origin, or for a narrow cone
+        // about the middle of its axis.
+        glm::dvec3 centre = origin;
+        double ball = reach;
+        if (half < NARROW_CONE) {
+            centre = origin + 0.5 * reach * cone.axis;
+            ball = reach * std::sqrt(0.25 + std::pow(std::tan(half), 2));
+        }
         w.nearIds.clear();
+        bool over = false;
         grid->visitBall(
-            origin, reach + NEAR_SLACK * largestSupport + rounding,
+            centre, ball + NEAR_SLACK * largestSupport + rounding,
             [&](const core::ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
-                for (std::uint32_t k = begin; k < end; ++k) {
+                for (std::uint32_t k = begin; k < end && !over; ++k) {
                     const std::uint32_t i = g.index[k];
-                    const double within = reach + NEAR_SLACK * supportRadii[i] + rounding;
+                    const double grown = NEAR_SLACK * supportRadii[i] + rounding;
                     const glm::dvec3 off = glm::dvec3(ps.position[i]) - origin;
-                    // A point of such a ray lies at most SIDE_SLACK reach behind
-                    // the plane through the origin across `side`.
-                    const bool behind = glm::dot(off, side) < -(NEAR_SLACK * supportRadii[i] +
-                                                                rounding + SIDE_SLACK * reach);
-                    if (glm::dot(off, off) <= within * within && !behind) w.nearIds.push_back(i);
+                    const double distance = glm::length(off);
+                    if (distance - grown > reach) continue;
+                    if (distance > grown && !(sinHalf <= grown / distance && cone.cosHalf < 0.0)) {
+                        // Outside the cone grown by the angle b the sphere subtends (the angle
+                        // from the axis above half + b, which is below pi).
+                        const double sinB = grown / distance, cosB = std::sqrt(1.0 - sinB * sinB);
+                        const double cosLimit = cone.cosHalf * cosB - sinHalf * sinB;
+                        if (glm::dot(off, cone.axis) / distance < cosLimit - COSINE_SLACK) continue;
+                    }
+                    w.nearIds.push_back(i);
+                    over = w.nearIds.size() > NEAR_LIMIT;
                 }
             });
+        if (over) return false;
         std::sort(w.nearIds.begin(), w.nearIds.end());
         w.near.clear();
         for (const std::uint32_t i : w.nearIds) w.near.add(ps.position[i], supportRadii[i], i);
         w.near.finish();
+        w.nearUsable = true;
+        return true;
+    }
+
+    // Where the ray from just outside `from` along `direction` first meets the surface
+    // (SurfaceTracer::traceFirst); with `nearEnd` > 0 its part up to that parameter selects
+    // its spheres from w.near.
+    bool first(const SurfaceHit& from, const glm::dvec3& direction, SurfaceHit& hit, Workspace& w,
+               double nearEnd) const {
+        const double tEnd = exitDistance(from.outside, direction);
+        if (settings.spheres)
+            return traceSphere(core::Ray{from.outside, direction}, 0.0, tEnd, hit);
+        // As an occlusion ray, but keeping the crossing's attributes: a row of one ray, no hint
+        // from a neighbour or an earlier crossing.
+        MarchRay& r = w.rays[0];
+        r = MarchRay{};
+        r.ray = core::Ray{from.outside, direction};
+        r.t = 2.0 * settings.rootTolerance * from.hRef;
+        r.tEnd = tEnd;
+        if (!(r.t < r.tEnd)) return false;
+        r.hRef = from.hRef;
+        r.needEntry = false;
+        w.rowLength = 1;
+        w.lastCrossing = NAN;
+        const int id = 0;
+        const double localEnd = std::min(nearEnd, r.tEnd);
+        if (r.t < localEnd) {
+            w.near.select(r.ray.origin, direction, r.t, localEnd, nullptr, &w.raySpheres);
+            // Nothing to meet on the whole way.
+            if (w.raySpheres.size() == 0 && localEnd == r.tEnd) return false;
+            march(&id, 1, direction, true, w, &hit, &w.raySpheres, localEnd);
+        } else {
+            march(&id, 1, direction, true, w, &hit);
+        }
+        return r.hit;
     }
 
     // Distance from p along dir to the exit of the scene bounds (no surface lies beyond).
@@ -824,16 +915,11 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
 float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count,
                                double radius, Workspace& w, bool* openEach) const {
     const Impl& im = *mImpl;
-    if (!im.settings.spheres && count > 0) {
-        // The directions' side of the hit's tangent plane (all of them, with rounding).
-        glm::dvec3 side(hit.normal);
-        for (int j = 0; j < count; ++j)
-            if (glm::dot(directions[j], side) < -SIDE_SLACK) side = glm::dvec3(0.0);
-        im.gatherNear(hit.outside, radius, side, w);
-    }
+    const bool near = !im.settings.spheres && count > 0 &&
+                      im.gatherNear(hit.outside, radius, coneOf(directions, count), w);
     int open = 0;
     for (int j = 0; j < count; ++j) {
-        const bool isOpen = im.openAlong(hit, directions[j], radius, w);
+        const bool isOpen = im.openAlong(hit, directions[j], radius, w, near);
         open += isOpen ? 1 : 0;
         if (openEach) openEach[j] = isOpen;
     }
@@ -842,25 +928,16 @@ float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directio
 
 bool SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3& direction, SurfaceHit& hit,
                                Workspace& w) const {
+    return mImpl->first(from, direction, hit, w, -INFINITY);
+}
+
+void SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3* directions, int count,
+                               double reach, SurfaceHit* hits, bool* found, Workspace& w) const {
     const Impl& im = *mImpl;
-    const double tEnd = im.exitDistance(from.outside, direction);
-    if (im.settings.spheres)
-        return im.traceSphere(core::Ray{from.outside, direction}, 0.0, tEnd, hit);
-    // As an occlusion ray, but keeping the crossing's attributes: a row of one ray, no hint
-    // from a neighbour or an earlier crossing.
-    MarchRay& r = w.rays[0];
-    r = MarchRay{};
-    r.ray = core::Ray{from.outside, direction};
-    r.t = 2.0 * im.settings.rootTolerance * from.hRef;
-    r.tEnd = tEnd;
-    if (!(r.t < r.tEnd)) return false;
-    r.hRef = from.hRef;
-    r.needEntry = false;
-    w.rowLength = 1;
-    w.lastCrossing = NAN;
-    const int id = 0;
-    im.march(&id, 1, direction, true, w, &hit);
-    return r.hit;
+    const bool near = !im.settings.spheres && count > 0 &&
+                      im.gatherNear(from.outside, reach, coneOf(directions, count), w);
+    for (int j = 0; j < count; ++j)
+        found[j] = im.first(from, directions[j], hits[j], w, near ? reach : -INFINITY);
 }
 
 }  // namespace twinrender::raymarch
