@@ -114,16 +114,17 @@ void SphereSet::reserve(std::size_t n) {
     const std::size_t padded = padToLanes(n);
     if (mPrim.size() >= padded) return;
     const std::size_t capacity = std::max(padded, 2 * mPrim.size());
-    for (auto* v : {&mX, &mY, &mZ, &mRadius}) v->resize(capacity);
+    for (auto* v : {&mX, &mY, &mZ, &mRadius, &mGrown}) v->resize(capacity);
     mPrim.resize(capacity);
 }
 
-void SphereSet::add(const glm::vec3& centre, float radius, std::uint32_t prim) {
+void SphereSet::add(const glm::vec3& centre, float radius, float grown, std::uint32_t prim) {
     reserve(mCount + 1);
     mX[mCount] = centre.x;
     mY[mCount] = centre.y;
     mZ[mCount] = centre.z;
     mRadius[mCount] = radius;
+    mGrown[mCount] = grown;
     mPrim[mCount++] = prim;
 }
 
@@ -131,14 +132,15 @@ void SphereSet::finish() {
     // Radius 0 meets nothing (chord2 <= 0).
     reserve(mCount);
     for (std::size_t i = mCount; i < padToLanes(mCount); ++i) {
-        mX[i] = mY[i] = mZ[i] = mRadius[i] = 0.0f;
+        mX[i] = mY[i] = mZ[i] = mRadius[i] = mGrown[i] = 0.0f;
         mPrim[i] = 0;
     }
 }
 
 TWINRENDER_VECTOR_CLONES
 void SphereSet::select(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
-                       double tMax, std::vector<std::uint32_t>* out, SphereSet* subset) const {
+                       double tMax, std::vector<std::uint32_t>* out, SphereSet* subset,
+                       bool grown) const {
     // The ray as RayBundle::add rounds it.
     const float ox = static_cast<float>(origin.x), oy = static_cast<float>(origin.y),
                 oz = static_cast<float>(origin.z);
@@ -148,11 +150,12 @@ void SphereSet::select(const glm::dvec3& origin, const glm::dvec3& direction, do
     const std::size_t n = padToLanes(mCount);
     if (n % LANES != 0) __builtin_unreachable();
     if (mMeets.size() < n) mMeets.resize(mPrim.size());
-    const float *x = mX.data(), *y = mY.data(), *z = mZ.data(), *radius = mRadius.data();
+    const float *x = mX.data(), *y = mY.data(), *z = mZ.data(), *radius = mRadius.data(),
+                *tested = grown ? mGrown.data() : radius;
     int* meets = mMeets.data();
 #pragma omp simd
     for (std::size_t i = 0; i < n; ++i)
-        meets[i] = rayMeetsSupport(x[i], y[i], z[i], radius[i], ox, oy, oz, dx, dy, dz, t0, t1);
+        meets[i] = rayMeetsSupport(x[i], y[i], z[i], tested[i], ox, oy, oz, dx, dy, dz, t0, t1);
     // Compacted a vector at a time: few of the spheres are met.
     if (!subset) {
         for (std::size_t v = 0; v < n; v += LANES)
@@ -162,7 +165,7 @@ void SphereSet::select(const glm::dvec3& origin, const glm::dvec3& direction, do
     }
     subset->reserve(mCount);
     float *sx = subset->mX.data(), *sy = subset->mY.data(), *sz = subset->mZ.data(),
-          *sr = subset->mRadius.data();
+          *sr = subset->mRadius.data(), *sg = subset->mGrown.data();
     std::uint32_t* sp = subset->mPrim.data();
     std::size_t m = 0;
     for (std::size_t v = 0; v < n; v += LANES)
@@ -172,10 +175,39 @@ void SphereSet::select(const glm::dvec3& origin, const glm::dvec3& direction, do
             sy[m] = y[i];
             sz[m] = z[i];
             sr[m] = radius[i];
+            sg[m] = mGrown[i];
             sp[m++] = mPrim[i];
         }
     subset->mCount = m;
     subset->finish();
+}
+
+TWINRENDER_VECTOR_CLONES
+bool SphereSet::firstEntry(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
+                           double tfar, double tLimit, double& t, std::uint32_t& prim) const {
+    // The line as makeRayHit rounds it.
+    const float ox = static_cast<float>(origin.x), oy = static_cast<float>(origin.y),
+                oz = static_cast<float>(origin.z);
+    const float dx = static_cast<float>(direction.x), dy = static_cast<float>(direction.y),
+                dz = static_cast<float>(direction.z);
+    const float t0 = static_cast<float>(std::max(tnear, 0.0)), t1 = static_cast<float>(tfar);
+    const std::size_t n = padToLanes(mCount);
+    if (n % LANES != 0) __builtin_unreachable();
+    mEntry.resize(mPrim.size());
+    const float *x = mX.data(), *y = mY.data(), *z = mZ.data(), *grown = mGrown.data();
+    float* entry = mEntry.data();
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i)
+        entry[i] = sphereEntry(x[i], y[i], z[i], grown[i], ox, oy, oz, dx, dy, dz, t0);
+    std::size_t first = n;
+    for (std::size_t i = 0; i < mCount; ++i)
+        if (entry[i] <= t1 && (first == n || entry[i] < entry[first])) first = i;
+    if (first == n || !(double(entry[first]) <= tLimit)) return false;
+    for (std::size_t i = 0; i < mCount; ++i)
+        if (entry[i] == entry[first] && mRadius[i] != mRadius[first]) return false;
+    t = entry[first];
+    prim = mPrim[first];
+    return true;
 }
 
 std::vector<std::uint32_t> BundleGather::groupOrder(std::span<const glm::vec3> centers) {
@@ -297,17 +329,9 @@ void BundleGather::firstEntryTest(const RTCIntersectFunctionNArguments* args) {
         // Each member's entry (infinite where the ray misses it), then the first of them.
         float entry[GROUP];
 #pragma omp simd
-        for (int k = 0; k < GROUP; ++k) {
-            const float r = g.grown[k];
-            const float wx = g.x[k] - ox, wy = g.y[k] - oy, wz = g.z[k] - oz;
-            const float tc = wx * dx + wy * dy + wz * dz;
-            const float px = wx - tc * dx, py = wy - tc * dy, pz = wz - tc * dz;
-            const float chord2 = r * r - (px * px + py * py + pz * pz);
-            const float half = std::sqrt(chord2 > 0.0f ? chord2 : 0.0f);
-            const float t = tc - half - r * SLACK;
-            const bool meets = (chord2 > 0.0f) & (tc + half >= tnear);
-            entry[k] = meets ? (t > tnear ? t : tnear) : INFINITY;
-        }
+        for (int k = 0; k < GROUP; ++k)
+            entry[k] =
+                sphereEntry(g.x[k], g.y[k], g.z[k], g.grown[k], ox, oy, oz, dx, dy, dz, tnear);
         int first = -1;
         for (int k = 0; k < GROUP; ++k)
             if (entry[k] <= tfar && (first < 0 || entry[k] < entry[first])) first = k;

@@ -185,8 +185,9 @@ TEST(BundleGather, FirstEntryIsNeverAfterTheTrueOne) {
 
 // A set of the spheres selects, for one ray, exactly what a gather of that ray alone reports
 // (the same test, so that fields built from either sum the same particles in the same
-// order), also for rays that graze a sphere within the tests' float slack; and a subset
-// selected over a ray's whole interval selects as the full set over any part of it.
+// order), also for rays that graze a sphere within the tests' float slack; a subset
+// selected over a ray's whole interval selects as the full set over any part of it; and the
+// set's first entry into a grown sphere is the first-entry query's.
 TEST(SphereSet, SelectsExactlyWhatAGatherOfTheRayReports) {
     std::mt19937 rng(5);
     const Spheres s = randomSpheres(rng, 2000, 0.3f);
@@ -194,10 +195,12 @@ TEST(SphereSet, SelectsExactlyWhatAGatherOfTheRayReports) {
     BundleGather gather(device, s.centers, s.radius, s.margin);
     tr::raymarch::SphereSet all, subset;
     for (std::size_t i = 0; i < s.centers.size(); ++i)
-        all.add(s.centers[i], s.radius[i], static_cast<std::uint32_t>(i));
+        all.add(s.centers[i], s.radius[i],
+                (s.radius[i] + s.margin[i]) * (1.0f + tr::raymarch::GATHER_SLACK),
+                static_cast<std::uint32_t>(i));
     all.finish();
     std::uniform_real_distribution<double> unit(-1.0, 1.0), graze(-2e-4, 2e-4);
-    int grazing = 0;
+    int grazing = 0, entries = 0;
     for (int trial = 0; trial < 300; ++trial) {
         const glm::dvec3 o = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 10.0;
         glm::dvec3 d = glm::normalize(glm::dvec3(unit(rng), unit(rng), unit(rng)));
@@ -227,6 +230,18 @@ TEST(SphereSet, SelectsExactlyWhatAGatherOfTheRayReports) {
         all.select(o, d, a, b, &part, nullptr);
         subset.select(o, d, a, b, &partOfSubset, nullptr);
         EXPECT_EQ(partOfSubset, part) << "trial " << trial;
+        // The first entry into a grown sphere, where the set decides it, is the query's.
+        double t = 0.0;
+        std::uint32_t prim = 0;
+        BundleGather::Entry e{};
+        const bool found = gather.firstEntry(o, d, t0, t1, e);
+        if (all.firstEntry(o, d, t0, t1, INFINITY, t, prim)) {
+            ++entries;
+            ASSERT_TRUE(found) << "trial " << trial;
+            EXPECT_EQ(t, e.t) << "trial " << trial;
+            EXPECT_EQ(s.radius[prim], s.radius[e.prim]) << "trial " << trial;
+        }
     }
     EXPECT_EQ(grazing, 150);
+    EXPECT_GT(entries, 100);
 }

@@ -407,8 +407,15 @@ class FrameTrace {
         const std::size_t n = directions.size();
         std::vector<SurfaceHit> at(n);
         const auto found = std::make_unique<bool[]>(n);
-        const double reach = glm::length(emitter.centre - from.outside) + emitter.radius;
-        mTracer.traceFirst(from, directions.data(), int(n), reach, at.data(), found.get(), w);
+        // The cone of the emitter's bounding sphere (emitter_cone.h), or the hemisphere inside it.
+        const glm::dvec3 toCentre = emitter.centre - from.outside;
+        const double distance = glm::length(toCentre);
+        const double reach = distance + emitter.radius;
+        const bool inside = !(distance > emitter.radius);
+        const double sinHalf = inside ? 1.0 : emitter.radius / distance;
+        mTracer.traceFirst(
+            from, directions.data(), int(n), inside ? glm::dvec3(from.normal) : toCentre / distance,
+            std::sqrt(std::max(0.0, 1.0 - sinHalf * sinHalf)), reach, at.data(), found.get(), w);
         std::vector<glm::dvec3> radiance(n, glm::dvec3(0.0));
         for (std::size_t j = 0; j < n; ++j)
             if (found[j] && at[j].body == emitter.body)

@@ -135,6 +135,10 @@ constexpr double NEAR_ROUNDING = 1e-5;
 // ... and about the rays' cone, this much in the cosine of the angle from its axis (rounding
 // of the directions).
 constexpr double COSINE_SLACK = 1e-6;
+// A cone given for a set of directions is widened by this much in the cosine (their rounding);
+// a hemisphere's directions may point this little behind its plane.
+constexpr double CONE_SLACK = 1e-9;
+constexpr double HEMISPHERE_SLACK = 1e-9;
 // A neighbourhood of more spheres than this is not gathered: selecting from it for each ray
 // would cost more than the rays' own gathers.
 constexpr std::size_t NEAR_LIMIT = 2048;
@@ -204,8 +208,8 @@ struct SurfaceTracer::Impl {
     // Secondary rays (occlusionRays): the particles by place, and their support radii as the
     // gathers hold them.
     std::unique_ptr<core::ParticleGrid> grid;
-    std::vector<float> supportRadii;
-    double largestSupport = 0.0;
+    std::vector<float> supportRadii, grownRadii;  // grown: as the shadow gather's entry queries
+    double largestGrown = 0.0;
 
     Impl(const EmbreeDevice& device, const core::Camera& cam, const core::SceneParticles& p,
          const Settings& st, bool occlusionRays)
@@ -249,7 +253,10 @@ struct SurfaceTracer::Impl {
         if (occlusionRays && n > 0) {
             grid = std::make_unique<core::ParticleGrid>(ps);
             supportRadii = supportRadius;
-            largestSupport = *std::max_element(supportRadius.begin(), supportRadius.end());
+            grownRadii.resize(n);
+            for (std::size_t i = 0; i < n; ++i)
+                grownRadii[i] = (supportRadius[i] + shadowMargin[i]) * (1.0f + GATHER_SLACK);
+            largestGrown = *std::max_element(grownRadii.begin(), grownRadii.end());
         }
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0,
@@ -422,6 +429,34 @@ struct SurfaceTracer::Impl {
         }
     }
 
+    // What enter() does for a ray marched alone (a bundle of one, parallel) whose grown
+    // spheres up to localEnd are `set`'s, where the set decides its entry queries
+    // (SphereSet::firstEntry): the same answers without a traversal. Leaves the ray to enter()
+    // where it does not.
+    void enterFromSet(MarchRay& r, const SphereSet& set, double localEnd) const {
+        if (!r.active || !r.needEntry) return;
+        const auto& ps = particles.particles;
+        bool meets = false;
+        for (const auto& b : bodyRanges) meets = meets || rayMeetsBody(r.ray, r.t, r.tEnd, b);
+        if (!meets) return;
+        double t = 0.0;
+        std::uint32_t prim = 0;
+        if (r.sharedEntry) {
+            // The bundle's line is the ray's own (along 0, no shift).
+            const double cosine = glm::dot(r.ray.direction, r.ray.direction);
+            if (!(cosine > 0.0) || !(r.t * cosine > 0.0) ||
+                !set.firstEntry(r.ray.origin, r.ray.direction, r.t * cosine, r.tEnd * cosine,
+                                localEnd, t, prim))
+                return;
+            r.sharedEntry = false;
+            r.t = std::max(r.t, t / cosine - ENTRY_BACKOFF * ps.h[prim]);
+        }
+        if (!set.firstEntry(r.ray.origin, r.ray.direction, r.t, r.tEnd, localEnd, t, prim)) return;
+        r.hRef = ps.h[prim];
+        r.t = std::max(r.t, t - ENTRY_BACKOFF * r.hRef);
+        r.needEntry = false;
+    }
+
     // The gather of camera-ray bundles, or of shadow bundles (parallel rays).
     const BundleGather& gatherFor(bool parallel) const {
         return parallel ? *shadowBundles : *bundles;
@@ -465,6 +500,7 @@ struct SurfaceTracer::Impl {
                 local->select(r.ray.origin, r.ray.direction, r.t, r.tEnd, &w.prims, nullptr);
                 if (w.prims.empty()) return;
             }
+            if (local) enterFromSet(w.rays[ids[0]], *local, localEnd);
             enter(ids, n, origin, centralDirection, parallel, w);
             // The bundle: every active ray's next segment.
             RayBundle bundle;
@@ -700,7 +736,7 @@ struct SurfaceTracer::Impl {
             return !r.hit;
         }
         // The spheres this ray meets: none, and it is open without a march.
-        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres);
+        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres, true);
         if (w.raySpheres.size() == 0) return true;
         march(&id, 1, d, true, w, nullptr, &w.raySpheres, r.tEnd);
         return !r.hit;
@@ -734,11 +770,11 @@ struct SurfaceTracer::Impl {
         w.nearIds.clear();
         bool over = false;
         grid->visitBall(
-            centre, ball + NEAR_SLACK * largestSupport + rounding,
+            centre, ball + NEAR_SLACK * largestGrown + rounding,
             [&](const core::ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
                 for (std::uint32_t k = begin; k < end && !over; ++k) {
                     const std::uint32_t i = g.index[k];
-                    const double grown = NEAR_SLACK * supportRadii[i] + rounding;
+                    const double grown = NEAR_SLACK * grownRadii[i] + rounding;
                     const glm::dvec3 off = glm::dvec3(ps.position[i]) - origin;
                     const double distance = glm::length(off);
                     if (distance - grown > reach) continue;
@@ -756,7 +792,8 @@ struct SurfaceTracer::Impl {
         if (over) return false;
         std::sort(w.nearIds.begin(), w.nearIds.end());
         w.near.clear();
-        for (const std::uint32_t i : w.nearIds) w.near.add(ps.position[i], supportRadii[i], i);
+        for (const std::uint32_t i : w.nearIds)
+            w.near.add(ps.position[i], supportRadii[i], grownRadii[i], i);
         w.near.finish();
         w.nearUsable = true;
         return true;
@@ -785,7 +822,7 @@ struct SurfaceTracer::Impl {
         const int id = 0;
         const double localEnd = std::min(nearEnd, r.tEnd);
         if (r.t < localEnd) {
-            w.near.select(r.ray.origin, direction, r.t, localEnd, nullptr, &w.raySpheres);
+            w.near.select(r.ray.origin, direction, r.t, localEnd, nullptr, &w.raySpheres, true);
             // Nothing to meet on the whole way.
             if (w.raySpheres.size() == 0 && localEnd == r.tEnd) return false;
             march(&id, 1, direction, true, w, &hit, &w.raySpheres, localEnd);
@@ -915,8 +952,13 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
 float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count,
                                double radius, Workspace& w, bool* openEach) const {
     const Impl& im = *mImpl;
-    const bool near = !im.settings.spheres && count > 0 &&
-                      im.gatherNear(hit.outside, radius, coneOf(directions, count), w);
+    // The hemisphere about the normal when it holds every direction (then every round of a
+    // hit's directions shares one gather), else their own cone.
+    RayCone cone{glm::dvec3(hit.normal), -HEMISPHERE_SLACK};
+    for (int j = 0; j < count; ++j)
+        if (glm::dot(directions[j], cone.axis) < cone.cosHalf) cone = coneOf(directions, count);
+    const bool near =
+        !im.settings.spheres && count > 0 && im.gatherNear(hit.outside, radius, cone, w);
     int open = 0;
     for (int j = 0; j < count; ++j) {
         const bool isOpen = im.openAlong(hit, directions[j], radius, w, near);
@@ -932,10 +974,14 @@ bool SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3& directi
 }
 
 void SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3* directions, int count,
-                               double reach, SurfaceHit* hits, bool* found, Workspace& w) const {
+                               const glm::dvec3& axis, double cosHalf, double reach,
+                               SurfaceHit* hits, bool* found, Workspace& w) const {
     const Impl& im = *mImpl;
-    const bool near = !im.settings.spheres && count > 0 &&
-                      im.gatherNear(from.outside, reach, coneOf(directions, count), w);
+    RayCone cone{axis, cosHalf - CONE_SLACK};
+    for (int j = 0; j < count; ++j)
+        if (glm::dot(directions[j], cone.axis) < cone.cosHalf) cone = coneOf(directions, count);
+    const bool near =
+        !im.settings.spheres && count > 0 && im.gatherNear(from.outside, reach, cone, w);
     for (int j = 0; j < count; ++j)
         found[j] = im.first(from, directions[j], hits[j], w, near ? reach : -INFINITY);
 }

@@ -98,10 +98,13 @@ class SurfaceTracer {
                     Workspace& w) const;
     // traceFirst for `count` directions from one hit (found[j], hits[j]), the same answers:
     // their parts within `reach` of the hit (e.g. the far side of an emitter's bounding
-    // sphere) select their spheres from one gather of those that the cone of the directions
-    // meets there, rather than each segment from a gather of its own.
-    void traceFirst(const SurfaceHit& from, const glm::dvec3* directions, int count, double reach,
-                    SurfaceHit* hits, bool* found, Workspace& w) const;
+    // sphere) select their spheres from one gather of those that the cone about `axis` (unit)
+    // of half-angle acos(cosHalf) meets there, rather than each segment from a gather of its
+    // own. The cone should hold every direction (else theirs is taken); the same cone, reach
+    // and hit in the next call (the next round of one hit's directions) reuse the gather.
+    void traceFirst(const SurfaceHit& from, const glm::dvec3* directions, int count,
+                    const glm::dvec3& axis, double cosHalf, double reach, SurfaceHit* hits,
+                    bool* found, Workspace& w) const;
 
     const TraceCounters& counters(const Workspace& w) const;
     void resetCounters(Workspace& w) const;

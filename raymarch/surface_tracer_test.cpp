@@ -55,7 +55,10 @@ TEST(SurfaceTracer, RaysOfOneHitTracedTogetherMeetWhatEachMeetsAlone) {
         const int n = static_cast<int>(set.size());
         std::vector<tr::raymarch::SurfaceHit> hits(set.size());
         auto found = std::make_unique<bool[]>(set.size());
-        tracer.traceFirst(from, set.data(), n, reach, hits.data(), found.get(), *w);
+        // The cone toward the sphere: the downward directions lie outside it, and then the
+        // cone of the directions themselves is taken.
+        tracer.traceFirst(from, set.data(), n, axis, std::cos(std::acos(1.0 - 0.2)), reach,
+                          hits.data(), found.get(), *w);
         int onSphere = 0, onFloor = 0, none = 0;
         for (int j = 0; j < n; ++j) {
             tr::raymarch::SurfaceHit alone;
