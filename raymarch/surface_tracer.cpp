@@ -187,6 +187,7 @@ class SurfaceTracer::Workspace {
     double nearReach = NAN;
     RayCone nearCone;
     bool nearUsable = false;
+    bool nearGrown = false;     // w.near holds every grown sphere too (its entries are decided)
     double lastCrossing = NAN;  // the block's last primary crossing
     int rowLength = 0;          // primary rays come in rows of this many
     MarchRay rays[MAX_RAYS];
@@ -500,7 +501,7 @@ struct SurfaceTracer::Impl {
                 local->select(r.ray.origin, r.ray.direction, r.t, r.tEnd, &w.prims, nullptr);
                 if (w.prims.empty()) return;
             }
-            if (local) enterFromSet(w.rays[ids[0]], *local, localEnd);
+            if (local && w.nearGrown) enterFromSet(w.rays[ids[0]], *local, localEnd);
             enter(ids, n, origin, centralDirection, parallel, w);
             // The bundle: every active ray's next segment.
             RayBundle bundle;
@@ -736,7 +737,7 @@ struct SurfaceTracer::Impl {
             return !r.hit;
         }
         // The spheres this ray meets: none, and it is open without a march.
-        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres, true);
+        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres, false);
         if (w.raySpheres.size() == 0) return true;
         march(&id, 1, d, true, w, nullptr, &w.raySpheres, r.tEnd);
         return !r.hit;
@@ -746,11 +747,13 @@ struct SurfaceTracer::Impl {
     // within `reach` of it (a gather's test passes spheres a little beyond their radius, and
     // rounds the ray to float), in particle order; false (and w.near unusable) where they
     // are more than NEAR_LIMIT. Kept while the origin, reach and cone stay.
-    bool gatherNear(const glm::dvec3& origin, double reach, const RayCone& cone,
+    bool gatherNear(const glm::dvec3& origin, double reach, const RayCone& cone, bool grownSet,
                     Workspace& w) const {
         if (origin == w.nearOrigin && reach == w.nearReach && cone.axis == w.nearCone.axis &&
-            cone.cosHalf == w.nearCone.cosHalf)
+            cone.cosHalf == w.nearCone.cosHalf && grownSet == w.nearGrown)
             return w.nearUsable;
+        w.nearGrown = grownSet;
+        const std::vector<float>& radii = grownSet ? grownRadii : supportRadii;
         w.nearOrigin = origin;
         w.nearReach = reach;
         w.nearCone = cone;
@@ -774,7 +777,7 @@ struct SurfaceTracer::Impl {
             [&](const core::ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
                 for (std::uint32_t k = begin; k < end && !over; ++k) {
                     const std::uint32_t i = g.index[k];
-                    const double grown = NEAR_SLACK * grownRadii[i] + rounding;
+                    const double grown = NEAR_SLACK * radii[i] + rounding;
                     const glm::dvec3 off = glm::dvec3(ps.position[i]) - origin;
                     const double distance = glm::length(off);
                     if (distance - grown > reach) continue;
@@ -958,7 +961,7 @@ float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directio
     for (int j = 0; j < count; ++j)
         if (glm::dot(directions[j], cone.axis) < cone.cosHalf) cone = coneOf(directions, count);
     const bool near =
-        !im.settings.spheres && count > 0 && im.gatherNear(hit.outside, radius, cone, w);
+        !im.settings.spheres && count > 0 && im.gatherNear(hit.outside, radius, cone, false, w);
     int open = 0;
     for (int j = 0; j < count; ++j) {
         const bool isOpen = im.openAlong(hit, directions[j], radius, w, near);
@@ -981,7 +984,7 @@ void SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3* directi
     for (int j = 0; j < count; ++j)
         if (glm::dot(directions[j], cone.axis) < cone.cosHalf) cone = coneOf(directions, count);
     const bool near =
-        !im.settings.spheres && count > 0 && im.gatherNear(from.outside, reach, cone, w);
+        !im.settings.spheres && count > 0 && im.gatherNear(from.outside, reach, cone, true, w);
     for (int j = 0; j < count; ++j)
         found[j] = im.first(from, directions[j], hits[j], w, near ? reach : -INFINITY);
 }
