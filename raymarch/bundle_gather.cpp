@@ -196,15 +196,23 @@ bool SphereSet::firstEntry(const glm::dvec3& origin, const glm::dvec3& direction
     mEntry.resize(mPrim.size());
     const float *x = mX.data(), *y = mY.data(), *z = mZ.data(), *grown = mGrown.data();
     float* entry = mEntry.data();
-#pragma omp simd
-    for (std::size_t i = 0; i < n; ++i)
-        entry[i] = sphereEntry(x[i], y[i], z[i], grown[i], ox, oy, oz, dx, dy, dz, t0);
+    float best = INFINITY;
+#pragma omp simd reduction(min : best)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float e = sphereEntry(x[i], y[i], z[i], grown[i], ox, oy, oz, dx, dy, dz, t0);
+        entry[i] = e;
+        best = minf(best, e <= t1 ? e : INFINITY);
+    }
+    if (!(best <= t1) || !(double(best) <= tLimit)) return false;
+    // The first sphere entered there; another of a different radius there leaves it open.
     std::size_t first = n;
-    for (std::size_t i = 0; i < mCount; ++i)
-        if (entry[i] <= t1 && (first == n || entry[i] < entry[first])) first = i;
-    if (first == n || !(double(entry[first]) <= tLimit)) return false;
-    for (std::size_t i = 0; i < mCount; ++i)
-        if (entry[i] == entry[first] && mRadius[i] != mRadius[first]) return false;
+    for (std::size_t i = 0; i < mCount; ++i) {
+        if (entry[i] != best) continue;
+        if (first == n)
+            first = i;
+        else if (mRadius[i] != mRadius[first])
+            return false;
+    }
     t = entry[first];
     prim = mPrim[first];
     return true;
