@@ -76,6 +76,30 @@ void BM_BallSpheresShadows(benchmark::State& state) {
     renderBall(state, true, true);
 }
 
+// The exact surface's cost over the plain spheres' on the same rays (ball.ssf at 800x600 with
+// shadows): both rendered each iteration, alternately, in the process's CPU time (every
+// thread), so that the machine's load falls on both alike.
+void BM_BallImplicitOverSpheres(benchmark::State& state) {
+    const BallScene& s = ball();
+    tr::raymarch::EmbreeDevice device;
+    double implicitMs = 0.0, spheresMs = 0.0;
+    for (auto _ : state)
+        for (const bool spheres : {false, true}) {
+            tr::raymarch::Settings settings = s.settings;
+            settings.spheres = spheres;
+            settings.shadows = true;
+            tr::raymarch::Renderer renderer(device, settings);
+            const double start = processCpuMs();
+            tr::core::Frame frame = renderer.render({s.scene, s.particles, s.materials});
+            benchmark::DoNotOptimize(frame.image.pixels().data());
+            (spheres ? spheresMs : implicitMs) += processCpuMs() - start;
+        }
+    const double n = double(state.iterations());
+    state.counters["implicit_cpu_ms"] = implicitMs / n;
+    state.counters["spheres_cpu_ms"] = spheresMs / n;
+    state.counters["implicit_over_spheres"] = implicitMs / spheresMs;
+}
+
 // The particles' support spheres (radius 2h, where the M4 kernel ends).
 tr::raymarch::SphereScene supportSpheres(tr::raymarch::EmbreeDevice& device,
                                          const tr::core::ParticleSet& ps) {
@@ -220,6 +244,7 @@ BENCHMARK_CAPTURE(renderSecondary, sun_error_0_02, "ring_shadow", "sun", "sun", 
 BENCHMARK(BM_BallImplicitShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallImplicitNoShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallSpheresShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BallImplicitOverSpheres)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallClosestHitPerPixel)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallGatherPerHitPixel)
     ->Arg(0)
