@@ -743,21 +743,26 @@ struct SurfaceTracer::Impl {
         return !r.hit;
     }
 
-    // Fills w.near with every support sphere that a ray from `origin` within `cone` may meet
-    // within `reach` of it (a gather's test passes spheres a little beyond their radius, and
-    // rounds the ray to float), in particle order; false (and w.near unusable) where they
-    // are more than NEAR_LIMIT. Kept while the origin, reach and cone stay.
+    // Fills w.near with every support sphere (with `grownSet`, every one grown by the shadow
+    // gather's margin, so that the set decides the rays' entry queries) that a ray from
+    // `origin` within `cone` may meet within `reach` of it (a gather's test passes spheres a
+    // little beyond their radius, and rounds the ray to float), in particle order; false (and
+    // w.near unusable) where they are more than NEAR_LIMIT, or without a grid or a finite
+    // reach. Kept while the origin, reach, cone and kind stay.
     bool gatherNear(const glm::dvec3& origin, double reach, const RayCone& cone, bool grownSet,
                     Workspace& w) const {
         if (origin == w.nearOrigin && reach == w.nearReach && cone.axis == w.nearCone.axis &&
             cone.cosHalf == w.nearCone.cosHalf && grownSet == w.nearGrown)
             return w.nearUsable;
         w.nearGrown = grownSet;
-        const std::vector<float>& radii = grownSet ? grownRadii : supportRadii;
         w.nearOrigin = origin;
         w.nearReach = reach;
         w.nearCone = cone;
         w.nearUsable = false;
+        if (!grid || !(reach > 0.0) || !std::isfinite(reach) || !std::isfinite(cone.cosHalf) ||
+            !std::isfinite(maxAbsCoordinate(origin)))
+            return false;
+        const std::vector<float>& radii = grownSet ? grownRadii : supportRadii;
         const auto& ps = particles.particles;
         const double rounding = NEAR_ROUNDING * (maxAbsCoordinate(origin) + reach);
         const double half = std::acos(std::clamp(cone.cosHalf, -1.0, 1.0));
