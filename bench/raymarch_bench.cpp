@@ -76,6 +76,30 @@ void BM_BallSpheresShadows(benchmark::State& state) {
     renderBall(state, true, true);
 }
 
+// The exact surface's cost over the plain spheres' on the same rays (ball.ssf at 800x600 with
+// shadows): both rendered each iteration, alternately, in the process's CPU time (every
+// thread), so that the machine's load falls on both alike.
+void BM_BallImplicitOverSpheres(benchmark::State& state) {
+    const BallScene& s = ball();
+    tr::raymarch::EmbreeDevice device;
+    double implicitMs = 0.0, spheresMs = 0.0;
+    for (auto _ : state)
+        for (const bool spheres : {false, true}) {
+            tr::raymarch::Settings settings = s.settings;
+            settings.spheres = spheres;
+            settings.shadows = true;
+            tr::raymarch::Renderer renderer(device, settings);
+            const double start = processCpuMs();
+            tr::core::Frame frame = renderer.render({s.scene, s.particles, s.materials});
+            benchmark::DoNotOptimize(frame.image.pixels().data());
+            (spheres ? spheresMs : implicitMs) += processCpuMs() - start;
+        }
+    const double n = double(state.iterations());
+    state.counters["implicit_cpu_ms"] = implicitMs / n;
+    state.counters["spheres_cpu_ms"] = spheresMs / n;
+    state.counters["implicit_over_spheres"] = implicitMs / spheresMs;
+}
+
 // The particles' support spheres (radius 2h, where the M4 kernel ends).
 tr::raymarch::SphereScene supportSpheres(tr::raymarch::EmbreeDevice& device,
                                          const tr::core::ParticleSet& ps) {
@@ -150,7 +174,8 @@ double threadCpuMs() {
 // calling one, whose CPU time is steadier than wall time on a shared machine) and split among
 // the stages as the frame's times are: the primary pass (stage "trace": the camera rays, and
 // a point sun's shadow rays where the scene has one) and the kind's stage, their rays per
-// second, and the rays, mean and largest standard error the frame states for the kind. The
+// second, the kind's CPU cost per ray over the primary pass's per pixel, and the rays, mean
+// and largest standard error the frame states for the kind. The
 // fixed count is 64 directions; `target` > 0 sets the kind's raymarch.*_error.
 void renderSecondary(benchmark::State& state, const std::string& scene, const std::string& kind,
                      const std::string& stage, const std::string& key, double target) {
@@ -180,6 +205,11 @@ void renderSecondary(benchmark::State& state, const std::string& scene, const st
     state.counters["kind_ms"] = stageMs / n;
     state.counters["kind_rays"] = frame.counters.at(kind + "_rays");
     state.counters["kind_Mrays_s"] = frame.counters.at(kind + "_rays") / (stageMs / n) / 1e3;
+    // The kind's cost per ray over the primary pass's per pixel (the targets are ratios:
+    // both scale alike with the machine and its load).
+    const double pixels = double(s.camera.width) * double(s.camera.height);
+    state.counters["ray_per_pixel_cost"] =
+        (stageMs / frame.counters.at(kind + "_rays")) / (primaryMs / pixels);
     state.counters["se_mean"] = frame.counters.at(kind + "_standard_error");
     state.counters["se_max"] = frame.counters.at(kind + "_standard_error_max");
 }
@@ -214,6 +244,7 @@ BENCHMARK_CAPTURE(renderSecondary, sun_error_0_02, "ring_shadow", "sun", "sun", 
 BENCHMARK(BM_BallImplicitShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallImplicitNoShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallSpheresShadows)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BallImplicitOverSpheres)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallClosestHitPerPixel)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BallGatherPerHitPixel)
     ->Arg(0)

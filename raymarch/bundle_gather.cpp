@@ -33,9 +33,7 @@ RTCRayHit makeRayHit(const glm::dvec3& o, const glm::dvec3& d, double tnear, dou
     return rh;
 }
 
-// Relative slack of the float sphere tests: they may report a sphere that only grazes a ray
-// (the field build tests it again), never miss one.
-constexpr float SLACK = 1e-4f;
+constexpr float SLACK = GATHER_SLACK;
 
 // Marks in `meets` the members of a group whose grown sphere meets the query's (single) ray
 // within its [tnear, tfar]. It uses the ray as Embree holds it, so that its float rounding is
@@ -99,6 +97,125 @@ void RayBundle::add(const glm::dvec3& o, const glm::dvec3& d, double t0, double 
 
 void RayBundle::finish() {
     while (count % LANES != 0) add(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), INFINITY, -INFINITY);
+}
+
+namespace {
+
+// Bit k set where flags[k] is (k < LANES).
+inline std::uint32_t laneMask(const int* flags) {
+    std::uint32_t mask = 0;
+    for (std::size_t k = 0; k < LANES; ++k) mask |= std::uint32_t(flags[k] != 0) << k;
+    return mask;
+}
+
+}  // namespace
+
+void SphereSet::reserve(std::size_t n) {
+    const std::size_t padded = padToLanes(n);
+    if (mPrim.size() >= padded) return;
+    const std::size_t capacity = std::max(padded, 2 * mPrim.size());
+    for (auto* v : {&mX, &mY, &mZ, &mRadius, &mGrown}) v->resize(capacity);
+    mPrim.resize(capacity);
+}
+
+void SphereSet::add(const glm::vec3& centre, float radius, float grown, std::uint32_t prim) {
+    reserve(mCount + 1);
+    mX[mCount] = centre.x;
+    mY[mCount] = centre.y;
+    mZ[mCount] = centre.z;
+    mRadius[mCount] = radius;
+    mGrown[mCount] = grown;
+    mPrim[mCount++] = prim;
+}
+
+void SphereSet::finish() {
+    // Radius 0 meets nothing (chord2 <= 0).
+    reserve(mCount);
+    for (std::size_t i = mCount; i < padToLanes(mCount); ++i) {
+        mX[i] = mY[i] = mZ[i] = mRadius[i] = mGrown[i] = 0.0f;
+        mPrim[i] = 0;
+    }
+}
+
+TWINRENDER_VECTOR_CLONES
+void SphereSet::select(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
+                       double tMax, std::vector<std::uint32_t>* out, SphereSet* subset,
+                       bool grown) const {
+    // The ray as RayBundle::add rounds it.
+    const float ox = static_cast<float>(origin.x), oy = static_cast<float>(origin.y),
+                oz = static_cast<float>(origin.z);
+    const float dx = static_cast<float>(direction.x), dy = static_cast<float>(direction.y),
+                dz = static_cast<float>(direction.z);
+    const float t0 = static_cast<float>(tMin), t1 = static_cast<float>(tMax);
+    const std::size_t n = padToLanes(mCount);
+    if (n % LANES != 0) __builtin_unreachable();
+    if (mMeets.size() < n) mMeets.resize(mPrim.size());
+    const float *x = mX.data(), *y = mY.data(), *z = mZ.data(), *radius = mRadius.data(),
+                *tested = grown ? mGrown.data() : radius;
+    int* meets = mMeets.data();
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i)
+        meets[i] = rayMeetsSupport(x[i], y[i], z[i], tested[i], ox, oy, oz, dx, dy, dz, t0, t1);
+    // Compacted a vector at a time: few of the spheres are met.
+    if (!subset) {
+        for (std::size_t v = 0; v < n; v += LANES)
+            for (std::uint32_t mask = laneMask(meets + v); mask != 0; mask &= mask - 1)
+                out->push_back(mPrim[v + std::size_t(__builtin_ctz(mask))]);
+        return;
+    }
+    subset->reserve(mCount);
+    float *sx = subset->mX.data(), *sy = subset->mY.data(), *sz = subset->mZ.data(),
+          *sr = subset->mRadius.data(), *sg = subset->mGrown.data();
+    std::uint32_t* sp = subset->mPrim.data();
+    std::size_t m = 0;
+    for (std::size_t v = 0; v < n; v += LANES)
+        for (std::uint32_t mask = laneMask(meets + v); mask != 0; mask &= mask - 1) {
+            const std::size_t i = v + std::size_t(__builtin_ctz(mask));
+            sx[m] = x[i];
+            sy[m] = y[i];
+            sz[m] = z[i];
+            sr[m] = radius[i];
+            sg[m] = mGrown[i];
+            sp[m++] = mPrim[i];
+        }
+    subset->mCount = m;
+    subset->finish();
+}
+
+TWINRENDER_VECTOR_CLONES
+bool SphereSet::firstEntry(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
+                           double tfar, double tLimit, double& t, std::uint32_t& prim) const {
+    // The line as makeRayHit rounds it.
+    const float ox = static_cast<float>(origin.x), oy = static_cast<float>(origin.y),
+                oz = static_cast<float>(origin.z);
+    const float dx = static_cast<float>(direction.x), dy = static_cast<float>(direction.y),
+                dz = static_cast<float>(direction.z);
+    const float t0 = static_cast<float>(std::max(tnear, 0.0)), t1 = static_cast<float>(tfar);
+    const std::size_t n = padToLanes(mCount);
+    if (n % LANES != 0) __builtin_unreachable();
+    mEntry.resize(mPrim.size());
+    const float *x = mX.data(), *y = mY.data(), *z = mZ.data(), *grown = mGrown.data();
+    float* entry = mEntry.data();
+    float best = INFINITY;
+#pragma omp simd reduction(min : best)
+    for (std::size_t i = 0; i < n; ++i) {
+        const float e = sphereEntry(x[i], y[i], z[i], grown[i], ox, oy, oz, dx, dy, dz, t0);
+        entry[i] = e;
+        best = minf(best, e <= t1 ? e : INFINITY);
+    }
+    if (!(best <= t1) || !(double(best) <= tLimit)) return false;
+    // The first sphere entered there; another of a different radius there leaves it open.
+    std::size_t first = n;
+    for (std::size_t i = 0; i < mCount; ++i) {
+        if (entry[i] != best) continue;
+        if (first == n)
+            first = i;
+        else if (mRadius[i] != mRadius[first])
+            return false;
+    }
+    t = entry[first];
+    prim = mPrim[first];
+    return true;
 }
 
 std::vector<std::uint32_t> BundleGather::groupOrder(std::span<const glm::vec3> centers) {
@@ -187,25 +304,14 @@ void BundleGather::intersect(const RTCIntersectFunctionNArguments* args) {
     if (n % RayBundle::LANES != 0) __builtin_unreachable();
     for (int m = 0; m < GROUP; ++m) {
         if (!central[m]) continue;
-        const glm::vec3 c(g.x[m], g.y[m], g.z[m]);
-        const float r = g.radius[m];
-        const float r2 = r * r * (1.0f + 2.0f * SLACK);
-        const float slack = r * SLACK;
+        const float cx = g.x[m], cy = g.y[m], cz = g.z[m], r = g.radius[m];
         // A vector of rays at a time (branch-free within it), until one meets the sphere.
         int meets = 0;
         for (int v = 0; v < n && !meets; v += RayBundle::LANES) {
 #pragma omp simd reduction(| : meets)
-            for (int i = v; i < v + RayBundle::LANES; ++i) {
-                const float wx = c.x - b.ox[i], wy = c.y - b.oy[i], wz = c.z - b.oz[i];
-                const float tc = wx * b.dx[i] + wy * b.dy[i] + wz * b.dz[i];
-                const float px = wx - tc * b.dx[i], py = wy - tc * b.dy[i], pz = wz - tc * b.dz[i];
-                const float chord2 = r2 - (px * px + py * py + pz * pz);
-                // The chord meets [tMin, tMax]: its centre lies within sqrt(chord2) of the
-                // interval.
-                const float gap =
-                    (b.tMin[i] - tc > tc - b.tMax[i] ? b.tMin[i] - tc : tc - b.tMax[i]) - slack;
-                meets |= (chord2 > 0.0f) & ((gap <= 0.0f) | (gap * gap <= chord2));
-            }
+            for (int i = v; i < v + RayBundle::LANES; ++i)
+                meets |= rayMeetsSupport(cx, cy, cz, r, b.ox[i], b.oy[i], b.oz[i], b.dx[i], b.dy[i],
+                                         b.dz[i], b.tMin[i], b.tMax[i]);
         }
         if (meets) ctx->out->push_back(g.prim[m]);
     }
@@ -231,17 +337,9 @@ void BundleGather::firstEntryTest(const RTCIntersectFunctionNArguments* args) {
         // Each member's entry (infinite where the ray misses it), then the first of them.
         float entry[GROUP];
 #pragma omp simd
-        for (int k = 0; k < GROUP; ++k) {
-            const float r = g.grown[k];
-            const float wx = g.x[k] - ox, wy = g.y[k] - oy, wz = g.z[k] - oz;
-            const float tc = wx * dx + wy * dy + wz * dz;
-            const float px = wx - tc * dx, py = wy - tc * dy, pz = wz - tc * dz;
-            const float chord2 = r * r - (px * px + py * py + pz * pz);
-            const float half = std::sqrt(chord2 > 0.0f ? chord2 : 0.0f);
-            const float t = tc - half - r * SLACK;
-            const bool meets = (chord2 > 0.0f) & (tc + half >= tnear);
-            entry[k] = meets ? (t > tnear ? t : tnear) : INFINITY;
-        }
+        for (int k = 0; k < GROUP; ++k)
+            entry[k] =
+                sphereEntry(g.x[k], g.y[k], g.z[k], g.grown[k], ox, oy, oz, dx, dy, dz, tnear);
         int first = -1;
         for (int k = 0; k < GROUP; ++k)
             if (entry[k] <= tfar && (first < 0 || entry[k] < entry[first])) first = k;

@@ -13,6 +13,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
@@ -35,6 +36,79 @@ struct RayBundle {
     void add(const glm::dvec3& origin, const glm::dvec3& direction, double t0, double t1);
     // Pads to whole vectors with rays that overlap nothing; call before gathering.
     void finish();
+};
+
+// Relative slack of the float sphere tests: they may report a sphere that only grazes a ray
+// (the field build tests it again), never miss one.
+constexpr float GATHER_SLACK = 1e-4f;
+
+// Whether the ray o + t d (float, as RayBundle holds it) meets the support sphere of centre c
+// and radius r over [tMin, tMax]: the test a gather applies to each ray of its bundle, and
+// SphereSet::select to each sphere of its set, so that both select the same spheres.
+inline int rayMeetsSupport(float cx, float cy, float cz, float r, float ox, float oy, float oz,
+                           float dx, float dy, float dz, float tMin, float tMax) {
+    const float r2 = r * r * (1.0f + 2.0f * GATHER_SLACK);
+    const float slack = r * GATHER_SLACK;
+    const float wx = cx - ox, wy = cy - oy, wz = cz - oz;
+    const float tc = wx * dx + wy * dy + wz * dz;
+    const float px = wx - tc * dx, py = wy - tc * dy, pz = wz - tc * dz;
+    const float chord2 = r2 - (px * px + py * py + pz * pz);
+    // The chord meets [tMin, tMax]: its centre lies within sqrt(chord2) of the interval.
+    const float gap = (tMin - tc > tc - tMax ? tMin - tc : tc - tMax) - slack;
+    return (chord2 > 0.0f) & ((gap <= 0.0f) | (gap * gap <= chord2));
+}
+
+// Where the ray o + t d (float, as Embree holds it) enters the sphere of centre c and radius
+// r (a support sphere grown by a margin) in [tnear, ...): tnear when it starts inside,
+// infinity when it misses it: the test of a first-entry query (BundleGather::firstEntry), and
+// of SphereSet::firstEntry.
+inline float sphereEntry(float cx, float cy, float cz, float r, float ox, float oy, float oz,
+                         float dx, float dy, float dz, float tnear) {
+    const float wx = cx - ox, wy = cy - oy, wz = cz - oz;
+    const float tc = wx * dx + wy * dy + wz * dz;
+    const float px = wx - tc * dx, py = wy - tc * dy, pz = wz - tc * dz;
+    const float chord2 = r * r - (px * px + py * py + pz * pz);
+    const float half = std::sqrt(chord2 > 0.0f ? chord2 : 0.0f);
+    const float t = tc - half - r * GATHER_SLACK;
+    const bool meets = (chord2 > 0.0f) & (tc + half >= tnear);
+    return meets ? (t > tnear ? t : tnear) : INFINITY;
+}
+
+// Support spheres in a fixed order (particle order where they come from a neighbourhood),
+// padded to whole vectors with spheres that meet no ray: what the secondary rays of one hit
+// (which share its origin) gather from, one ray at a time, without a traversal each.
+class SphereSet {
+  public:
+    void clear() { mCount = 0; }
+    // `grown`: the radius grown by the margin of the first-entry queries.
+    void add(const glm::vec3& centre, float radius, float grown, std::uint32_t prim);
+    // Pads to whole vectors; call before select().
+    void finish();
+    std::size_t size() const { return mCount; }
+
+    // The spheres that the ray (origin, unit direction) meets over [tMin, tMax], in this
+    // set's order, by the test of a gather: appended to `out` (prims) or, when `subset` is
+    // given, make it (finished); with `grown`, those whose grown sphere it meets.
+    void select(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax,
+                std::vector<std::uint32_t>* out, SphereSet* subset, bool grown = false) const;
+
+    // The answer of BundleGather::firstEntry (same margin) for the line origin + t direction
+    // over [tnear, tfar], where the set alone decides it: the first entry into a grown sphere
+    // of the set lies at most at tLimit (up to which the set must hold every grown sphere
+    // the line meets), and every sphere entered there has one radius (Embree's traversal
+    // order picks among them). False where it does not.
+    bool firstEntry(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
+                    double tfar, double tLimit, double& t, std::uint32_t& prim) const;
+
+  private:
+    // Room for n spheres and their padding (contents kept).
+    void reserve(std::size_t n);
+
+    std::size_t mCount = 0;
+    std::vector<float> mX, mY, mZ, mRadius, mGrown;
+    std::vector<std::uint32_t> mPrim;
+    mutable std::vector<int> mMeets;
+    mutable std::vector<float> mEntry;
 };
 
 class BundleGather {

@@ -182,3 +182,66 @@ TEST(BundleGather, FirstEntryIsNeverAfterTheTrueOne) {
         EXPECT_NEAR(packet[0].t, e.t, 1e-4);
     }
 }
+
+// A set of the spheres selects, for one ray, exactly what a gather of that ray alone reports
+// (the same test, so that fields built from either sum the same particles in the same
+// order), also for rays that graze a sphere within the tests' float slack; a subset
+// selected over a ray's whole interval selects as the full set over any part of it; and the
+// set's first entry into a grown sphere is the first-entry query's.
+TEST(SphereSet, SelectsExactlyWhatAGatherOfTheRayReports) {
+    std::mt19937 rng(5);
+    const Spheres s = randomSpheres(rng, 2000, 0.3f);
+    tr::raymarch::EmbreeDevice device;
+    BundleGather gather(device, s.centers, s.radius, s.margin);
+    tr::raymarch::SphereSet all, subset;
+    for (std::size_t i = 0; i < s.centers.size(); ++i)
+        all.add(s.centers[i], s.radius[i],
+                (s.radius[i] + s.margin[i]) * (1.0f + tr::raymarch::GATHER_SLACK),
+                static_cast<std::uint32_t>(i));
+    all.finish();
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), graze(-2e-4, 2e-4);
+    int grazing = 0, entries = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const glm::dvec3 o = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 10.0;
+        glm::dvec3 d = glm::normalize(glm::dvec3(unit(rng), unit(rng), unit(rng)));
+        if (trial % 2 == 1) {
+            // Aimed to pass a sphere at its radius times 1 + graze (its side or its cap).
+            const std::size_t i = static_cast<std::size_t>(trial) % s.centers.size();
+            const glm::dvec3 c(s.centers[i]);
+            const glm::dvec3 across =
+                glm::normalize(glm::cross(c - o, glm::dvec3(unit(rng), unit(rng), unit(rng))));
+            d = glm::normalize(c + across * (double(s.radius[i]) * (1.0 + graze(rng))) - o);
+            ++grazing;
+        }
+        const double t0 = 0.5 * std::abs(unit(rng)), t1 = t0 + 4.0 + 4.0 * std::abs(unit(rng));
+        RayBundle bundle;
+        bundle.add(o, d, t0, t1);
+        bundle.finish();
+        std::vector<std::uint32_t> gathered, selected;
+        gather.gather(bundle, o, d, t0 - 1e-5, t1 + 1e-5, gathered);
+        std::sort(gathered.begin(), gathered.end());
+        all.select(o, d, t0, t1, &selected, nullptr);
+        EXPECT_EQ(selected, gathered) << "trial " << trial;
+        // A part of the ray, from the whole ray's subset.
+        all.select(o, d, t0, t1, nullptr, &subset);
+        EXPECT_EQ(subset.size(), selected.size());
+        const double a = t0 + 0.3 * (t1 - t0), b = t0 + 0.6 * (t1 - t0);
+        std::vector<std::uint32_t> part, partOfSubset;
+        all.select(o, d, a, b, &part, nullptr);
+        subset.select(o, d, a, b, &partOfSubset, nullptr);
+        EXPECT_EQ(partOfSubset, part) << "trial " << trial;
+        // The first entry into a grown sphere, where the set decides it, is the query's.
+        double t = 0.0;
+        std::uint32_t prim = 0;
+        BundleGather::Entry e{};
+        const bool found = gather.firstEntry(o, d, t0, t1, e);
+        if (all.firstEntry(o, d, t0, t1, INFINITY, t, prim)) {
+            ++entries;
+            ASSERT_TRUE(found) << "trial " << trial;
+            EXPECT_EQ(t, e.t) << "trial " << trial;
+            EXPECT_EQ(s.radius[prim], s.radius[e.prim]) << "trial " << trial;
+        }
+    }
+    EXPECT_EQ(grazing, 150);
+    EXPECT_GT(entries, 100);
+}

@@ -373,12 +373,17 @@ class FrameTrace {
                     continue;
                 }
                 double y = 0.0, yy = 0.0;  // of count x weight x luminance, for the variance
-                for (const EmitterSample& s :
-                     emitterSamples(hits[i].outside, normal, emitter.centre, emitter.radius,
-                                    mEmissiveSide, seed)) {
-                    if (!(s.weight > 0.0)) continue;
+                std::vector<EmitterSample> samples = emitterSamples(
+                    hits[i].outside, normal, emitter.centre, emitter.radius, mEmissiveSide, seed);
+                std::erase_if(samples, [](const EmitterSample& s) { return !(s.weight > 0.0); });
+                std::vector<glm::dvec3> directions;
+                for (const EmitterSample& s : samples) directions.push_back(s.direction);
+                const std::vector<glm::dvec3> radiances =
+                    emittedAlong(hits[i], directions, emitter, w);
+                for (std::size_t j = 0; j < samples.size(); ++j) {
+                    const EmitterSample& s = samples[j];
                     ++rays;
-                    const glm::dvec3 radiance = emittedAlong(hits[i], s.direction, emitter, w);
+                    const glm::dvec3& radiance = radiances[j];
                     if (radiance == glm::dvec3(0.0)) continue;
                     sum += s.weight * radiance;
                     const double x = count * s.weight * luminance(radiance);
@@ -393,14 +398,30 @@ class FrameTrace {
         }
     }
 
-    // The radiance the ray from `from` along `direction` meets, if it meets `emitter` first;
-    // 0 otherwise.
-    glm::dvec3 emittedAlong(const SurfaceHit& from, const glm::dvec3& direction,
-                            const core::EmittingBody& emitter, Workspace& w) const {
-        SurfaceHit at;
-        if (!mTracer.traceFirst(from, direction, at, w) || at.body != emitter.body)
-            return glm::dvec3(0.0);
-        return glm::dvec3(core::surfaceEmission(mInput.materials[at.material], at.uv, at.glow));
+    // The radiance each ray from `from` along `directions` meets, if it meets `emitter` first;
+    // 0 otherwise. Their crossings with the emitter lie within its bounding sphere: the
+    // tracer gathers once for their way there.
+    std::vector<glm::dvec3> emittedAlong(const SurfaceHit& from,
+                                         const std::vector<glm::dvec3>& directions,
+                                         const core::EmittingBody& emitter, Workspace& w) const {
+        const std::size_t n = directions.size();
+        std::vector<SurfaceHit> at(n);
+        const auto found = std::make_unique<bool[]>(n);
+        // The cone of the emitter's bounding sphere (emitter_cone.h), or the hemisphere inside it.
+        const glm::dvec3 toCentre = emitter.centre - from.outside;
+        const double distance = glm::length(toCentre);
+        const double reach = distance + emitter.radius;
+        const bool inside = !(distance > emitter.radius);
+        const double sinHalf = inside ? 1.0 : emitter.radius / distance;
+        mTracer.traceFirst(
+            from, directions.data(), int(n), inside ? glm::dvec3(from.normal) : toCentre / distance,
+            std::sqrt(std::max(0.0, 1.0 - sinHalf * sinHalf)), reach, at.data(), found.get(), w);
+        std::vector<glm::dvec3> radiance(n, glm::dvec3(0.0));
+        for (std::size_t j = 0; j < n; ++j)
+            if (found[j] && at[j].body == emitter.body)
+                radiance[j] = glm::dvec3(
+                    core::surfaceEmission(mInput.materials[at[j].material], at[j].uv, at[j].glow));
+        return radiance;
     }
 
     // One body's irradiance at a hit from rounds over its cone (raymarch/emitter_cone.h) until
@@ -412,16 +433,24 @@ class FrameTrace {
         const EmitterCone cone(hit.outside, glm::dvec3(hit.normal), emitter.centre, emitter.radius);
         ProgressiveStrata strata(streamSeed(seed, Stream::Emitters));
         glm::dvec3 weighted(0.0);  // of weight x radiance over every point
+        std::vector<glm::dvec3> directions;
+        std::vector<std::size_t> traced;  // the points whose direction has a weight
         sampleInRounds(strata, mLightRounds, [&](const std::vector<glm::dvec2>& points, double* y) {
+            directions.clear();
+            traced.clear();
             for (std::size_t j = 0; j < points.size(); ++j) {
                 const glm::dvec3 direction = cone.direction(points[j]);
-                const double weight = cone.weight(direction);
                 y[j] = 0.0;
-                if (!(weight > 0.0)) continue;
+                if (!(cone.weight(direction) > 0.0)) continue;
+                directions.push_back(direction);
+                traced.push_back(j);
+            }
+            const std::vector<glm::dvec3> radiances = emittedAlong(hit, directions, emitter, w);
+            for (std::size_t k = 0; k < traced.size(); ++k) {
+                const double weight = cone.weight(directions[k]);
                 ++rays;
-                const glm::dvec3 radiance = emittedAlong(hit, direction, emitter, w);
-                weighted += weight * radiance;
-                y[j] = weight * luminance(radiance);
+                weighted += weight * radiances[k];
+                y[traced[k]] = weight * luminance(radiances[k]);
             }
         });
         sum += weighted / double(strata.points());

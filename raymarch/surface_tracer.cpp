@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/particle_grid.h"
 #include "core/sph_kernel.h"
 #include "raymarch/bundle_gather.h"
 #include "raymarch/first_crossing.h"
@@ -124,6 +125,48 @@ constexpr double MIN_SEGMENT_FRACTION = 0x1p-40;
 // segment is twice as long: crossing a margin of any size takes tens of segments, not
 // margin / h. In the scenes' camera rays such runs end after a few segments.
 constexpr int EMPTY_RUN = 64;
+// A hit's neighbourhood (gatherNear) holds the particles within its reach plus this many
+// support radii (the gathers' float tests pass spheres up to 2e-4 of their radius beyond it)
+// ...
+constexpr double NEAR_SLACK = 1.001;
+// ... plus this fraction of the coordinates' size (float rounding of the rays' origins and
+// directions, 2^-24 of it).
+constexpr double NEAR_ROUNDING = 1e-5;
+// ... and about the rays' cone, this much in the cosine of the angle from its axis (rounding
+// of the directions).
+constexpr double COSINE_SLACK = 1e-6;
+// A cone given for a set of directions is widened by this much in the cosine (their rounding);
+// a hemisphere's directions may point this little behind its plane.
+constexpr double CONE_SLACK = 1e-9;
+constexpr double HEMISPHERE_SLACK = 1e-9;
+// A neighbourhood of more spheres than this is not gathered: selecting from it for each ray
+// would cost more than the rays' own gathers.
+constexpr std::size_t NEAR_LIMIT = 2048;
+// A cone narrower than this half-angle (radians) is bounded by a ball about its axis' middle,
+// a wider one by the ball of its reach about its apex.
+constexpr double NARROW_CONE = 0.25 * M_PI;
+
+// The directions of rays from one origin: within half-angle acos(cosHalf) of the axis (unit).
+struct RayCone {
+    glm::dvec3 axis{0.0, 0.0, 1.0};
+    double cosHalf = -1.0;
+};
+
+// A cone about the given unit directions: about their mean (every direction when they
+// cancel out).
+RayCone coneOf(const glm::dvec3* directions, int count) {
+    glm::dvec3 sum(0.0);
+    for (int j = 0; j < count; ++j) sum += directions[j];
+    const double length = glm::length(sum);
+    RayCone cone;
+    if (!(length > 1e-3 * count)) return cone;
+    cone.axis = sum / length;
+    cone.cosHalf = 1.0;
+    for (int j = 0; j < count; ++j)
+        cone.cosHalf =
+            std::min(cone.cosHalf, glm::dot(directions[j], cone.axis) / glm::length(directions[j]));
+    return cone;
+}
 
 }  // namespace
 
@@ -135,8 +178,18 @@ class SurfaceTracer::Workspace {
     ParticleBatch batch;                // their data
     std::vector<float> weights;         // kernel weights at a hit
     std::vector<int> groupEnds;         // shadow bundles
-    double lastCrossing = NAN;          // the block's last primary crossing
-    int rowLength = 0;                  // primary rays come in rows of this many
+    // The secondary rays of one hit share its origin: the support spheres that any of them
+    // may meet within `nearReach` of `nearOrigin` (gatherNear), and those of the ray being
+    // marched (its segments' gathers select from them).
+    SphereSet near, raySpheres;
+    std::vector<std::uint32_t> nearIds;
+    glm::dvec3 nearOrigin{NAN};
+    double nearReach = NAN;
+    RayCone nearCone;
+    bool nearUsable = false;
+    bool nearGrown = false;     // w.near holds every grown sphere too (its entries are decided)
+    double lastCrossing = NAN;  // the block's last primary crossing
+    int rowLength = 0;          // primary rays come in rows of this many
     MarchRay rays[MAX_RAYS];
     TraceCounters counters;
 };
@@ -153,6 +206,11 @@ struct SurfaceTracer::Impl {
     std::unique_ptr<BundleGather> bundles, shadowBundles;
     std::vector<BodyRange> bodyRanges;
     double sinBlock = 0.0;
+    // Secondary rays (occlusionRays): the particles by place, and their support radii as the
+    // gathers hold them.
+    std::unique_ptr<core::ParticleGrid> grid;
+    std::vector<float> supportRadii, grownRadii;  // grown: as the shadow gather's entry queries
+    double largestGrown = 0.0;
 
     Impl(const EmbreeDevice& device, const core::Camera& cam, const core::SceneParticles& p,
          const Settings& st, bool occlusionRays)
@@ -193,6 +251,14 @@ struct SurfaceTracer::Impl {
         if (st.shadows || occlusionRays)
             shadowBundles = std::make_unique<BundleGather>(device, ps.position, supportRadius,
                                                            shadowMargin, order);
+        if (occlusionRays && n > 0) {
+            grid = std::make_unique<core::ParticleGrid>(ps);
+            supportRadii = supportRadius;
+            grownRadii.resize(n);
+            for (std::size_t i = 0; i < n; ++i)
+                grownRadii[i] = (supportRadius[i] + shadowMargin[i]) * (1.0f + GATHER_SLACK);
+            largestGrown = *std::max_element(grownRadii.begin(), grownRadii.end());
+        }
         auto addRange = [&](std::size_t begin, std::size_t end) {
             BodyRange r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), glm::dvec3(0.0), 0.0,
                         INFINITY};
@@ -364,6 +430,34 @@ struct SurfaceTracer::Impl {
         }
     }
 
+    // What enter() does for a ray marched alone (a bundle of one, parallel) whose grown
+    // spheres up to localEnd are `set`'s, where the set decides its entry queries
+    // (SphereSet::firstEntry): the same answers without a traversal. Leaves the ray to enter()
+    // where it does not.
+    void enterFromSet(MarchRay& r, const SphereSet& set, double localEnd) const {
+        if (!r.active || !r.needEntry) return;
+        const auto& ps = particles.particles;
+        bool meets = false;
+        for (const auto& b : bodyRanges) meets = meets || rayMeetsBody(r.ray, r.t, r.tEnd, b);
+        if (!meets) return;
+        double t = 0.0;
+        std::uint32_t prim = 0;
+        if (r.sharedEntry) {
+            // The bundle's line is the ray's own (along 0, no shift).
+            const double cosine = glm::dot(r.ray.direction, r.ray.direction);
+            if (!(cosine > 0.0) || !(r.t * cosine > 0.0) ||
+                !set.firstEntry(r.ray.origin, r.ray.direction, r.t * cosine, r.tEnd * cosine,
+                                localEnd, t, prim))
+                return;
+            r.sharedEntry = false;
+            r.t = std::max(r.t, t / cosine - ENTRY_BACKOFF * ps.h[prim]);
+        }
+        if (!set.firstEntry(r.ray.origin, r.ray.direction, r.t, r.tEnd, localEnd, t, prim)) return;
+        r.hRef = ps.h[prim];
+        r.t = std::max(r.t, t - ENTRY_BACKOFF * r.hRef);
+        r.needEntry = false;
+    }
+
     // The gather of camera-ray bundles, or of shadow bundles (parallel rays).
     const BundleGather& gatherFor(bool parallel) const {
         return parallel ? *shadowBundles : *bundles;
@@ -387,8 +481,11 @@ struct SurfaceTracer::Impl {
     // hits[id] for the rays that find one when `hits` is given. Primary bundles pass the
     // block's central direction, shadow bundles (parallel rays within the shadow margin of
     // the central line through their mean origin, groupParallel) the direction of the light.
+    // `local` (a single ray, n = 1): a set holding every support sphere the ray may meet up to
+    // its parameter `localEnd`; the segments that end there gather from it.
     void march(const int* ids, int n, const glm::dvec3& centralDirection, bool parallel,
-               Workspace& w, SurfaceHit* hits) const {
+               Workspace& w, SurfaceHit* hits, const SphereSet* local = nullptr,
+               double localEnd = -INFINITY) const {
         const double segmentLength =
             settings.segmentLength * (parallel ? SHADOW_SEGMENT_SCALE : 1.0);
         // The central line: through the mean origin (the camera, for primary rays).
@@ -396,6 +493,15 @@ struct SurfaceTracer::Impl {
         for (int k = 0; k < n; ++k) origin += w.rays[ids[k]].ray.origin;
         origin /= double(n);
         for (;;) {
+            if (local && w.rays[ids[0]].active && w.rays[ids[0]].needEntry &&
+                w.rays[ids[0]].tEnd <= localEnd) {
+                // No support sphere ahead: nothing left to meet.
+                const MarchRay& r = w.rays[ids[0]];
+                w.prims.clear();
+                local->select(r.ray.origin, r.ray.direction, r.t, r.tEnd, &w.prims, nullptr);
+                if (w.prims.empty()) return;
+            }
+            if (local && w.nearGrown) enterFromSet(w.rays[ids[0]], *local, localEnd);
             enter(ids, n, origin, centralDirection, parallel, w);
             // The bundle: every active ray's next segment.
             RayBundle bundle;
@@ -432,13 +538,20 @@ struct SurfaceTracer::Impl {
             const double shift = std::min(tnear, 0.0);
             const double slack = 1e-6 * std::max(std::abs(tfar - shift), 1.0);
             w.prims.clear();
-            bundle.finish();
-            gatherFor(parallel).gather(bundle, origin + shift * centralDirection, centralDirection,
-                                       tnear - shift - slack, tfar - shift + slack, w.prims);
-            ++w.counters.bundles;
-            // Particle order: it is the summation order, so that it does not depend on
-            // Embree's traversal order.
-            sortDistinct(w.prims, w.sorted);
+            if (local && segEnd[0] <= localEnd) {
+                // The gather's own test over the ray's set, which is in particle order.
+                const MarchRay& r = w.rays[lane[0]];
+                local->select(r.ray.origin, r.ray.direction, r.t, segEnd[0], &w.prims, nullptr);
+            } else {
+                bundle.finish();
+                gatherFor(parallel).gather(bundle, origin + shift * centralDirection,
+                                           centralDirection, tnear - shift - slack,
+                                           tfar - shift + slack, w.prims);
+                ++w.counters.bundles;
+                // Particle order: it is the summation order, so that it does not depend on
+                // Embree's traversal order.
+                sortDistinct(w.prims, w.sorted);
+            }
             w.batch.assign(w.prims, fieldParticles, hits ? hitAttributes.data() : nullptr);
 
             for (int j = 0; j < active; ++j) {
@@ -604,7 +717,9 @@ struct SurfaceTracer::Impl {
     // Whether the surface is not met within `radius` of the hit along d (unit): from just
     // outside the surface, as a shadow ray, but stopping at the radius; a ray alone is its own
     // bundle (the directions spread over the hemisphere).
-    bool openAlong(const SurfaceHit& hit, const glm::dvec3& d, double radius, Workspace& w) const {
+    // With `near`, the spheres of w.near (gatherNear(hit.outside, radius, ...)) are the ray's.
+    bool openAlong(const SurfaceHit& hit, const glm::dvec3& d, double radius, Workspace& w,
+                   bool near) const {
         if (settings.spheres)
             return !spheres->occluded(glm::vec3(hit.outside), glm::vec3(d), 0.0f,
                                       static_cast<float>(radius));
@@ -617,8 +732,112 @@ struct SurfaceTracer::Impl {
         r.hRef = hit.hRef;
         r.needEntry = false;
         const int id = 0;
-        march(&id, 1, d, true, w, nullptr);
+        if (!near) {
+            march(&id, 1, d, true, w, nullptr);
+            return !r.hit;
+        }
+        // The spheres this ray meets: none, and it is open without a march.
+        w.near.select(r.ray.origin, d, r.t, r.tEnd, nullptr, &w.raySpheres, false);
+        if (w.raySpheres.size() == 0) return true;
+        march(&id, 1, d, true, w, nullptr, &w.raySpheres, r.tEnd);
         return !r.hit;
+    }
+
+    // Fills w.near with every support sphere (with `grownSet`, every one grown by the shadow
+    // gather's margin, so that the set decides the rays' entry queries) that a ray from
+    // `origin` within `cone` may meet within `reach` of it (a gather's test passes spheres a
+    // little beyond their radius, and rounds the ray to float), in particle order; false (and
+    // w.near unusable) where they are more than NEAR_LIMIT, or without a grid or a finite
+    // reach. Kept while the origin, reach, cone and kind stay.
+    bool gatherNear(const glm::dvec3& origin, double reach, const RayCone& cone, bool grownSet,
+                    Workspace& w) const {
+        if (origin == w.nearOrigin && reach == w.nearReach && cone.axis == w.nearCone.axis &&
+            cone.cosHalf == w.nearCone.cosHalf && grownSet == w.nearGrown)
+            return w.nearUsable;
+        w.nearGrown = grownSet;
+        w.nearOrigin = origin;
+        w.nearReach = reach;
+        w.nearCone = cone;
+        w.nearUsable = false;
+        if (!grid || !(reach > 0.0) || !std::isfinite(reach) || !std::isfinite(cone.cosHalf) ||
+            !std::isfinite(maxAbsCoordinate(origin)))
+            return false;
+        const std::vector<float>& radii = grownSet ? grownRadii : supportRadii;
+        const auto& ps = particles.particles;
+        const double rounding = NEAR_ROUNDING * (maxAbsCoordinate(origin) + reach);
+        const double half = std::acos(std::clamp(cone.cosHalf, -1.0, 1.0));
+        const double sinHalf = std::sin(half);
+        // A ball around the cone's part within reach: about the origin, or for a narrow cone
+        // about the middle of its axis.
+        glm::dvec3 centre = origin;
+        double ball = reach;
+        if (half < NARROW_CONE) {
+            centre = origin + 0.5 * reach * cone.axis;
+            ball = reach * std::sqrt(0.25 + std::pow(std::tan(half), 2));
+        }
+        w.nearIds.clear();
+        bool over = false;
+        grid->visitBall(
+            centre, ball + NEAR_SLACK * largestGrown + rounding,
+            [&](const core::ParticleGrid::Level& g, std::uint32_t begin, std::uint32_t end) {
+                for (std::uint32_t k = begin; k < end && !over; ++k) {
+                    const std::uint32_t i = g.index[k];
+                    const double grown = NEAR_SLACK * radii[i] + rounding;
+                    const glm::dvec3 off = glm::dvec3(ps.position[i]) - origin;
+                    const double distance = glm::length(off);
+                    if (distance - grown > reach) continue;
+                    if (distance > grown && !(sinHalf <= grown / distance && cone.cosHalf < 0.0)) {
+                        // Outside the cone grown by the angle b the sphere subtends (the angle
+                        // from the axis above half + b, which is below pi).
+                        const double sinB = grown / distance, cosB = std::sqrt(1.0 - sinB * sinB);
+                        const double cosLimit = cone.cosHalf * cosB - sinHalf * sinB;
+                        if (glm::dot(off, cone.axis) / distance < cosLimit - COSINE_SLACK) continue;
+                    }
+                    w.nearIds.push_back(i);
+                    over = w.nearIds.size() > NEAR_LIMIT;
+                }
+            });
+        if (over) return false;
+        std::sort(w.nearIds.begin(), w.nearIds.end());
+        w.near.clear();
+        for (const std::uint32_t i : w.nearIds)
+            w.near.add(ps.position[i], supportRadii[i], grownRadii[i], i);
+        w.near.finish();
+        w.nearUsable = true;
+        return true;
+    }
+
+    // Where the ray from just outside `from` along `direction` first meets the surface
+    // (SurfaceTracer::traceFirst); with `nearEnd` > 0 its part up to that parameter selects
+    // its spheres from w.near.
+    bool first(const SurfaceHit& from, const glm::dvec3& direction, SurfaceHit& hit, Workspace& w,
+               double nearEnd) const {
+        const double tEnd = exitDistance(from.outside, direction);
+        if (settings.spheres)
+            return traceSphere(core::Ray{from.outside, direction}, 0.0, tEnd, hit);
+        // As an occlusion ray, but keeping the crossing's attributes: a row of one ray, no hint
+        // from a neighbour or an earlier crossing.
+        MarchRay& r = w.rays[0];
+        r = MarchRay{};
+        r.ray = core::Ray{from.outside, direction};
+        r.t = 2.0 * settings.rootTolerance * from.hRef;
+        r.tEnd = tEnd;
+        if (!(r.t < r.tEnd)) return false;
+        r.hRef = from.hRef;
+        r.needEntry = false;
+        w.rowLength = 1;
+        w.lastCrossing = NAN;
+        const int id = 0;
+        const double localEnd = std::min(nearEnd, r.tEnd);
+        if (r.t < localEnd) {
+            w.near.select(r.ray.origin, direction, r.t, localEnd, nullptr, &w.raySpheres, true);
+            // Nothing to meet on the whole way.
+            if (w.raySpheres.size() == 0 && localEnd == r.tEnd) return false;
+            march(&id, 1, direction, true, w, &hit, &w.raySpheres, localEnd);
+        } else {
+            march(&id, 1, direction, true, w, &hit);
+        }
+        return r.hit;
     }
 
     // Distance from p along dir to the exit of the scene bounds (no surface lies beyond).
@@ -741,9 +960,16 @@ void SurfaceTracer::traceShadows(int n, const SurfaceHit* hits, const bool* foun
 float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directions, int count,
                                double radius, Workspace& w, bool* openEach) const {
     const Impl& im = *mImpl;
+    // The hemisphere about the normal when it holds every direction (then every round of a
+    // hit's directions shares one gather), else their own cone.
+    RayCone cone{glm::dvec3(hit.normal), -HEMISPHERE_SLACK};
+    for (int j = 0; j < count; ++j)
+        if (glm::dot(directions[j], cone.axis) < cone.cosHalf) cone = coneOf(directions, count);
+    const bool near =
+        !im.settings.spheres && count > 0 && im.gatherNear(hit.outside, radius, cone, false, w);
     int open = 0;
     for (int j = 0; j < count; ++j) {
-        const bool isOpen = im.openAlong(hit, directions[j], radius, w);
+        const bool isOpen = im.openAlong(hit, directions[j], radius, w, near);
         open += isOpen ? 1 : 0;
         if (openEach) openEach[j] = isOpen;
     }
@@ -752,25 +978,20 @@ float SurfaceTracer::traceOpen(const SurfaceHit& hit, const glm::dvec3* directio
 
 bool SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3& direction, SurfaceHit& hit,
                                Workspace& w) const {
+    return mImpl->first(from, direction, hit, w, -INFINITY);
+}
+
+void SurfaceTracer::traceFirst(const SurfaceHit& from, const glm::dvec3* directions, int count,
+                               const glm::dvec3& axis, double cosHalf, double reach,
+                               SurfaceHit* hits, bool* found, Workspace& w) const {
     const Impl& im = *mImpl;
-    const double tEnd = im.exitDistance(from.outside, direction);
-    if (im.settings.spheres)
-        return im.traceSphere(core::Ray{from.outside, direction}, 0.0, tEnd, hit);
-    // As an occlusion ray, but keeping the crossing's attributes: a row of one ray, no hint
-    // from a neighbour or an earlier crossing.
-    MarchRay& r = w.rays[0];
-    r = MarchRay{};
-    r.ray = core::Ray{from.outside, direction};
-    r.t = 2.0 * im.settings.rootTolerance * from.hRef;
-    r.tEnd = tEnd;
-    if (!(r.t < r.tEnd)) return false;
-    r.hRef = from.hRef;
-    r.needEntry = false;
-    w.rowLength = 1;
-    w.lastCrossing = NAN;
-    const int id = 0;
-    im.march(&id, 1, direction, true, w, &hit);
-    return r.hit;
+    RayCone cone{axis, cosHalf - CONE_SLACK};
+    for (int j = 0; j < count; ++j)
+        if (glm::dot(directions[j], cone.axis) < cone.cosHalf) cone = coneOf(directions, count);
+    const bool near =
+        !im.settings.spheres && count > 0 && im.gatherNear(from.outside, reach, cone, true, w);
+    for (int j = 0; j < count; ++j)
+        found[j] = im.first(from, directions[j], hits[j], w, near ? reach : -INFINITY);
 }
 
 }  // namespace twinrender::raymarch

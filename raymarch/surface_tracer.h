@@ -11,8 +11,11 @@
 // where the tangent plane of a neighbouring pixel's crossing meets it, when the field is
 // proven below the level up to there.
 // Shadow rays of a block are parallel (a directional light) and march the same way, in
-// bundles that stay within the shadow margin of their central line. Ambient occlusion rays
-// (short, from one point in many directions) march alone, each its own bundle.
+// bundles that stay within the shadow margin of their central line. The secondary rays of one
+// hit (occlusion, emitters: from one point in many directions) march alone, each its own
+// bundle, but gather once for the hit: every support sphere that the cone of their
+// directions meets within their reach, from which each ray's segments select theirs by the
+// gather's own test (a ray that meets none of them is done without a march).
 #pragma once
 
 #include <cstdint>
@@ -93,6 +96,15 @@ class SurfaceTracer {
     // occlusion ray; for the light of emitting surfaces. Needs occlusionRays.
     bool traceFirst(const SurfaceHit& from, const glm::dvec3& direction, SurfaceHit& hit,
                     Workspace& w) const;
+    // traceFirst for `count` directions from one hit (found[j], hits[j]), the same answers:
+    // their parts within `reach` of the hit (e.g. the far side of an emitter's bounding
+    // sphere) select their spheres from one gather of those that the cone about `axis` (unit)
+    // of half-angle acos(cosHalf) meets there, rather than each segment from a gather of its
+    // own. The cone should hold every direction (else theirs is taken); the same cone, reach
+    // and hit in the next call (the next round of one hit's directions) reuse the gather.
+    void traceFirst(const SurfaceHit& from, const glm::dvec3* directions, int count,
+                    const glm::dvec3& axis, double cosHalf, double reach, SurfaceHit* hits,
+                    bool* found, Workspace& w) const;
 
     const TraceCounters& counters(const Workspace& w) const;
     void resetCounters(Workspace& w) const;
