@@ -6,6 +6,7 @@
 // depth-filtering surface method. The finding says where each setting helps and where it hurts
 // against no occlusion, deciding with the spread of renders half a pixel aside.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -222,14 +223,6 @@ json aoPointsJson(const std::vector<AoPoint>& points) {
     return out;
 }
 
-// "0.031 ball_over_slab at R 3": the point furthest from 0 on the side `sign`.
-std::string furthest(const std::vector<AoPoint>& points, double sign) {
-    const auto it = std::max_element(
-        points.begin(), points.end(),
-        [&](const auto& a, const auto& b) { return sign * a.delta < sign * b.delta; });
-    return it == points.end() ? "" : num(std::abs(it->delta)) + " " + atScene(it->scene, it->r);
-}
-
 // One setting over every scene and R: its largest false occlusion and where, whether it passes
 // the bound, and against none from GAIN_FROM_R where the truth is occluded.
 struct AoVerdict {
@@ -268,16 +261,17 @@ AoVerdict verdictOf(const AoCells& cells, const std::string& name) {
     return v;
 }
 
-std::string verdictText(const std::string& name, const AoVerdict& v) {
+// How a setting that does not meet the goal misses it: "hbao, filtered depth (12 of 14 lower)"
+// within the bound, "gtao, filtered depth, second layer (ao.false 0.0055 ball_on_slab at R
+// 0.25)" lower everywhere; "" for one that misses both.
+std::string missText(const std::string& name, const AoVerdict& v) {
     const AoAgainst& a = v.none;
-    std::string t = fmt::format(
-        "{}: ao.false up to {} ({}); against none {} lower, {} tied, {} "
-        "higher",
-        name, num(v.worstFalse), atScene(v.worstFalseScene, v.worstFalseR), a.lower.size(),
-        a.tie.size(), a.higher.size());
-    if (!a.lower.empty()) t += ", most gained " + furthest(a.lower, -1.0);
-    if (!a.higher.empty()) t += ", most lost " + furthest(a.higher, 1.0);
-    return t;
+    const std::size_t points = a.lower.size() + a.tie.size() + a.higher.size();
+    if (!v.exceedsBound) return fmt::format("{} ({} of {} lower)", name, a.lower.size(), points);
+    if (a.tie.empty() && a.higher.empty() && !a.lower.empty())
+        return fmt::format("{} (ao.false {} {})", name, num(v.worstFalse),
+                           atScene(v.worstFalseScene, v.worstFalseR));
+    return "";
 }
 
 // One option against another (the filtered depth against the shaded, a thickness against none)
@@ -337,12 +331,11 @@ const std::vector<AoOption>& aoOptions() {
 // The option on every method and scene: facts, and a sentence saying where it is better and
 // where it harms.
 std::string optionText(const AoCells& cells, const AoOption& option, json& facts) {
-    std::string text;
+    std::vector<std::string> every, some, none;  // the methods it is better for on those scenes
     for (const std::string& m : AO_METHODS) {
         const std::string with = fmt::format(fmt::runtime(option.with), m);
         const std::string without = fmt::format(fmt::runtime(option.without), m);
         std::vector<std::string> better, worse;
-        std::vector<AoPoint> higher;
         for (const auto& [scene, settings] : cells) {
             const auto a = settings.find(with), b = settings.find(without);
             if (a == settings.end() || b == settings.end()) continue;
@@ -352,17 +345,25 @@ std::string optionText(const AoCells& cells, const AoOption& option, json& facts
                 {"higher", aoPointsJson(o.points.higher)}, {"mean_delta", jsonOrNull(o.meanDelta)},
                 {"mean_noise", jsonOrNull(o.meanNoise)},   {"better", o.better()}};
             (o.better() ? better : worse).push_back(scene);
-            higher.insert(higher.end(), o.points.higher.begin(), o.points.higher.end());
         }
         if (better.empty() && worse.empty()) continue;
         facts[m]["better_on_every_scene"] = worse.empty();
-        text +=
-            fmt::format("{}{} better on {} of {} scenes{}, higher at {} points{}",
-                        text.empty() ? "" : ", ", m, better.size(), better.size() + worse.size(),
-                        worse.empty() ? "" : " (not on " + joinNames(worse) + ")", higher.size(),
-                        higher.empty() ? "" : " (most " + furthest(higher, 1.0) + ")");
+        (worse.empty()    ? every
+         : better.empty() ? none
+                          : some)
+            .push_back(worse.empty() || better.empty()
+                           ? m
+                           : fmt::format("{} (not on {})", m, joinNames(worse)));
     }
-    return text.empty() ? "" : option.name + ": " + text;
+    if (every.empty() && some.empty() && none.empty()) return "";
+    std::string text = option.name + ":";
+    if (!every.empty()) text += " better on every scene for " + joinNames(every);
+    if (!some.empty())
+        text += std::string(every.empty() ? "" : ",") + " on some for " + joinNames(some);
+    if (!none.empty())
+        text += std::string(every.empty() && some.empty() ? "" : ",") + " on none for " +
+                joinNames(none);
+    return text;
 }
 
 // The lines of a chart of `metric` along R on one scene, none dashed.
@@ -524,7 +525,7 @@ void ambientOcclusionConclude(StudyResult& s) {
         {"largest ao.false", "lower", "tied", "higher", "ao_ms"},
         {}};
     std::map<std::string, AoVerdict> verdicts;
-    std::string settingsText;
+    std::vector<std::string> withinBound, lowerEverywhere;  // how the others miss the goal
     json recommended = json::array();
     for (const std::string& name : names) {
         const AoVerdict v = verdictOf(cells, name);
@@ -547,7 +548,9 @@ void ambientOcclusionConclude(StudyResult& s) {
                                      {"ao_ms", jsonOrNull(v.aoMs)},
                                      {"meets", v.meets()}};
         if (v.meets()) recommended.push_back(name);
-        settingsText += (settingsText.empty() ? "" : "; ") + verdictText(name, v);
+        if (v.meets()) continue;
+        const std::string miss = missText(name, v);
+        if (!miss.empty()) (v.exceedsBound ? lowerEverywhere : withinBound).push_back(miss);
     }
     s.tables.push_back(std::move(summary));
     addTables(s, cells, names);
@@ -572,14 +575,20 @@ void ambientOcclusionConclude(StudyResult& s) {
     }
     s.facts["false_bound"] = FALSE_BOUND;
     s.facts["gain_from_r"] = GAIN_FROM_R;
+    // The settings' names hold commas: the lists go by semicolons.
+    const auto namesOrNone = [](const std::vector<std::string>& v) {
+        return v.empty() ? std::string("none") : fmt::format("{}", fmt::join(v, "; "));
+    };
     s.finding = fmt::format(
         "the goal: ao.false at most {} everywhere, and from R {} wherever the truth is occluded "
-        "ao.mean_abs lower than none's beyond the spread of renders half a pixel aside. {}. Met "
-        "by {}; at the defaults {}. Options, better on a scene when their mean change of "
-        "ao.mean_abs over its radii is below minus the mean spread: {}",
-        num(FALSE_BOUND), xNumber(GAIN_FROM_R), settingsText,
-        recommended.empty() ? "no setting" : joinNames(recommended.get<std::vector<std::string>>()),
-        atDefaults, optionsText);
+        "ao.mean_abs lower than none's beyond the spread of renders half a pixel aside. Met by "
+        "{}; at the defaults {}. Within the bound but not always lower: {}. Always lower but "
+        "above the bound: {}. Options, better on a scene when their mean change of ao.mean_abs "
+        "over its radii is below minus the mean spread: {}. Each setting's figures: "
+        "settings.csv",
+        num(FALSE_BOUND), xNumber(GAIN_FROM_R),
+        namesOrNone(recommended.get<std::vector<std::string>>()), atDefaults,
+        namesOrNone(withinBound), namesOrNone(lowerEverywhere), optionsText);
 }
 
 }  // namespace twinrender::app::study

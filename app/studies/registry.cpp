@@ -152,10 +152,12 @@ const std::vector<StudyDef>& studies() {
             .question = "The occlusion radius R from a quarter of a body's radius to ten, on a "
                         "ball resting on a slab and across two gaps the truth leaves open at "
                         "small R (a ball hanging two radii over a slab, two balls 1.35 radii "
-                        "apart): where does each screen-space method (ssao, hbao, gtao), on the "
-                        "shaded or the filtered depth, with or without a thickness, add "
-                        "occlusion the traced truth does not have (ao.false), leave out what it "
-                        "has (ao.missed), and come closer to it than no occlusion (ao.mean_abs)?",
+                        "apart): where does each method, the screen-space ones (ssao, hbao, "
+                        "gtao) on the shaded or the filtered depth, with or without a thickness "
+                        "or a second depth layer, and rays traced against the particles' "
+                        "spheres, add occlusion the traced truth does not have (ao.false), leave "
+                        "out what it has (ao.missed), and come closer to it than no occlusion "
+                        "(ao.mean_abs)?",
             .scene = "",
             .xLabel = "occlusion radius R (body radii)",
             .xLog = true,
