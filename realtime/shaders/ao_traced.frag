@@ -8,8 +8,7 @@
 //    stratum's angle and moves every ray within its row. Each ray counts by its stratum's
 //    area, so a count that the rows do not divide is still cosine-weighted.
 //  - Self-intersection: the surface point lies on or inside the spheres it was drawn from, and
-//    on a filtered depth below their bumps (by up to the narrow-range filter's clamp at the
-//    image's border, which it takes for background). The origin moves along the normal out of
+//    on a filtered depth below their bumps. The origin moves along the normal out of
 //    the spheres it lies in (at most uMaxLift impostor radii, the pixel's, surface channel z),
 //    then uBias impostor radii further, and spheres that still contain it are not occluders.
 //  - The walk: each segment is clipped to the grid's box, then steps from cell to cell
