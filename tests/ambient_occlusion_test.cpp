@@ -92,9 +92,9 @@ TEST(AmbientOcclusion, HorizonMethodsInventOcclusionWhereTheTruthIsOpen) {
 TEST(AmbientOcclusion, HbaoAtTheDefaultsStaysWithinTheFalseOcclusionBoundAcrossAGap) {
     // The default depth of the occlusion pass is the filtered one (docs/lighting.md: the
     // ambient_occlusion study measures it better than the shaded on every scene for each
-    // method). On it hbao, the method docs/lighting.md recommends, adds less than 0.005 of
-    // occlusion where the truth is open, over the slab and beside the other ball. Measured
-    // (160 x 120, llvmpipe): ao.false 0.0010 over the slab, 0.0013 beside the ball.
+    // method). On it hbao, the screen-space method docs/lighting.md finds within the bound, adds
+    // less than 0.005 of occlusion where the truth is open, over the slab and beside the other
+    // ball. Measured (160 x 120, llvmpipe): ao.false 0.0010 over the slab, 0.0013 beside the ball.
     const fs::path dir = tt::freshDir("ambient_occlusion_default");
     for (const fs::path& scene : {GAP_SCENE, SCENES / "balls_apart.toml"}) {
         const auto r =
