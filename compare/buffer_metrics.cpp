@@ -444,7 +444,7 @@ Mask depthEdgeMask(const core::Image& reference, const Mask& covered) {
             if (!covered(x, y)) continue;
             const float depth = reference.at(x, y, z), body = reference.at(x, y, id);
             bool edge = false;
-            for (const auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+            for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
                 const int nx = x + dx, ny = y + dy;
                 if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
                 edge = edge || !covered(nx, ny) || reference.at(nx, ny, id) != body ||

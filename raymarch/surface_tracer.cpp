@@ -16,7 +16,10 @@
 
 namespace twinrender::raymarch {
 
-namespace {
+// The tracer's own types and helpers. A named namespace, not an anonymous one: the Workspace
+// and Impl below hold these types, and in a unity build (where this file is included) a class
+// with members of anonymous-namespace types draws -Wsubobject-linkage.
+namespace surface_tracer_detail {
 
 // One ray's state while its bundle marches.
 struct MarchRay {
@@ -168,7 +171,9 @@ RayCone coneOf(const glm::dvec3* directions, int count) {
     return cone;
 }
 
-}  // namespace
+}  // namespace surface_tracer_detail
+
+using namespace surface_tracer_detail;
 
 class SurfaceTracer::Workspace {
   public:

@@ -24,15 +24,24 @@ tr::raymarch::SurfaceHit pointAboveTheFloor() {
     return from;
 }
 
+// SphereOverFloor's tracer, its workspace, and the hit the rays leave from.
+struct TracerAboveTheFloor {
+    const tr::raymarch::testing::SphereOverFloor f;
+    tr::raymarch::EmbreeDevice device;
+    const tr::core::Camera camera{f.s.scene.camera};
+    const tr::raymarch::SurfaceTracer tracer{device, camera, f.s.particles, f.settings, true};
+    const tr::raymarch::SurfaceTracer::WorkspacePtr w = tracer.makeWorkspace();
+    const tr::raymarch::SurfaceHit from = pointAboveTheFloor();
+};
+
 }  // namespace
 
 TEST(SurfaceTracer, RaysOfOneHitTracedTogetherMeetWhatEachMeetsAlone) {
-    const tr::raymarch::testing::SphereOverFloor f;
-    tr::raymarch::EmbreeDevice device;
-    const tr::core::Camera camera(f.s.scene.camera);
-    const tr::raymarch::SurfaceTracer tracer(device, camera, f.s.particles, f.settings, true);
-    auto w = tracer.makeWorkspace();
-    const tr::raymarch::SurfaceHit from = pointAboveTheFloor();
+    const TracerAboveTheFloor t;
+    const auto& f = t.f;
+    const auto& tracer = t.tracer;
+    const auto& w = t.w;
+    const auto& from = t.from;
     // Toward the sphere (a cone about it, some of whose rays miss it and go on to the scene's
     // bounds) and over the hemisphere below (the floor).
     std::vector<glm::dvec3> directions;
@@ -76,17 +85,17 @@ TEST(SurfaceTracer, RaysOfOneHitTracedTogetherMeetWhatEachMeetsAlone) {
         // Every kind of answer was met.
         EXPECT_GT(onSphere, 10);
         EXPECT_GT(none, 0);
-        if (n > 48) EXPECT_GE(onFloor, 12);  // the shallowest may pass the floor's edge
+        if (n > 48) {
+            EXPECT_GE(onFloor, 12);  // the shallowest may pass the floor's edge
+        }
     }
 }
 
 TEST(SurfaceTracer, OcclusionRaysOfOneHitTracedTogetherAreOpenWhereEachIsAlone) {
-    const tr::raymarch::testing::SphereOverFloor f;
-    tr::raymarch::EmbreeDevice device;
-    const tr::core::Camera camera(f.s.scene.camera);
-    const tr::raymarch::SurfaceTracer tracer(device, camera, f.s.particles, f.settings, true);
-    auto w = tracer.makeWorkspace();
-    const tr::raymarch::SurfaceHit from = pointAboveTheFloor();
+    const TracerAboveTheFloor t;
+    const auto& tracer = t.tracer;
+    const auto& w = t.w;
+    const auto& from = t.from;
     // The whole sphere of directions: the floor below, the ball above, open sky between.
     // Within radius 3 their neighbourhood holds the whole floor, more spheres than one hit
     // gathers: these rays gather per segment as camera rays do, and each ray alone (its own
@@ -109,9 +118,10 @@ TEST(SurfaceTracer, OcclusionRaysOfOneHitTracedTogetherAreOpenWhereEachIsAlone) 
             closed += open[j] ? 0 : 1;
         }
         EXPECT_GE(closed, n / 4) << radius;  // the floor, below most downward directions
-        if (radius > 1.0)
+        if (radius > 1.0) {
             EXPECT_GT(gathers, 0u);  // the neighbourhood was too large: gathers per segment
-        else
+        } else {
             EXPECT_EQ(gathers, 0u);
+        }
     }
 }

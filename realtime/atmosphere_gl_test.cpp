@@ -41,6 +41,7 @@ TestScene ballWithAtmosphere(glm::dvec3 scattering = {1.0, 2.0, 4.0}) {
                                            .scattering = scattering,
                                            .absorption = 0.2 * scattering,
                                            .phaseG = 0.3,
+                                           .radius = std::nullopt,
                                            .steps = 16};
     t.scene.bodies.push_back(body);
     return t;
