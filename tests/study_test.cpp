@@ -439,14 +439,16 @@ TEST(Study, AmbientOcclusionAlongTheRadiusAcrossGaps) {
         // The finding names how each setting that misses the goal misses it.
         const std::string finding = s["finding"];
         const std::size_t points = v.lower + v.tie + v.higher;
-        if (!v.meets() && !v.exceedsBound)
+        if (!v.meets() && !v.exceedsBound) {
             EXPECT_NE(finding.find(fmt::format("{} ({} of {} lower)", name, v.lower, points)),
                       std::string::npos)
                 << name;
-        if (!v.meets() && v.exceedsBound && v.tie + v.higher == 0 && v.lower > 0)
+        }
+        if (!v.meets() && v.exceedsBound && v.tie + v.higher == 0 && v.lower > 0) {
             EXPECT_NE(finding.find(name + " (ao.false " + g3(v.worstFalse) + " " + v.worstScene),
                       std::string::npos)
                 << name;
+        }
     }
     for (const json& name : f["recommended"]) {
         recommended.push_back(name);
